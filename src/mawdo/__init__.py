@@ -1,0 +1,29 @@
+"""mawdo: wind driven optimization (WDO, AWDO, MAWDO) and real-time path planning.
+
+>>> from mawdo import minimize
+>>> res = minimize("sphere", algorithm="mawdo", runs=30, seed=1, max_iter=500)
+>>> res.fun.shape
+(30,)
+"""
+
+from mawdo.minimize import make_problem, minimize
+from mawdo.optimizers import OPTIMIZERS, make_optimizer
+from mawdo.problem import ObjectiveError, Problem
+from mawdo.result import OptimizeResult
+
+__version__ = "0.1.0"
+
+
+def __getattr__(name):
+    # FUNCTIONS lives in mawdo.functions; imported lazily so that package stays independent.
+    if name == "FUNCTIONS":
+        from mawdo.functions import FUNCTIONS
+
+        return FUNCTIONS
+    raise AttributeError(f"module 'mawdo' has no attribute {name!r}")
+
+
+__all__ = [
+    "FUNCTIONS", "OPTIMIZERS", "ObjectiveError", "OptimizeResult", "Problem", "make_optimizer",
+    "make_problem", "minimize", "__version__",
+]

@@ -1,0 +1,132 @@
+"""The optimizer contract: ``Params`` (frozen coefficients) + ``State`` (arrays) + ask/tell.
+
+Every optimizer works on ``R`` independent runs at once. State arrays carry a leading run axis
+``(R, N, D)``; ``ask`` returns candidates ``(R, n, D)`` in the problem's coordinates, ``tell``
+receives their values ``(R, n)`` (non-finite already mapped to +inf by the evaluator). All random
+numbers come from :class:`mawdo.streams.RunStreams`, one generator per run, so a run's trajectory
+does not depend on the batch it shares.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from abc import ABC, abstractmethod
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+import numpy as np
+
+from mawdo.streams import RunStreams
+
+
+@dataclass
+class Space:
+    """The search box seen by an optimizer: ``lb, ub`` of shape ``(D,)``."""
+
+    lb: np.ndarray
+    ub: np.ndarray
+
+    @property
+    def dim(self) -> int:
+        return int(self.lb.shape[0])
+
+    def to_unit(self, x: np.ndarray) -> np.ndarray:
+        """Map problem coordinates to the normalised box ``[-1, 1]^D`` (WDO's space)."""
+        return 2.0 * (x - self.lb) / (self.ub - self.lb) - 1.0
+
+    def from_unit(self, p: np.ndarray) -> np.ndarray:
+        """Map ``[-1, 1]^D`` to problem coordinates: ``x = lb + (p + 1)/2 (ub - lb)`` (SPEC 1.1)."""
+        return self.lb + (p + 1.0) * 0.5 * (self.ub - self.lb)
+
+
+def check_range(name: str, value, low=None, high=None, *, low_open=False, high_open=False):
+    """Raise ``ValueError`` naming ``name`` unless ``value`` lies in the given interval."""
+    ok = True
+    if low is not None:
+        ok &= value > low if low_open else value >= low
+    if high is not None:
+        ok &= value < high if high_open else value <= high
+    if not ok:
+        lo = "(" if low_open else "["
+        hi = ")" if high_open else "]"
+        raise ValueError(
+            f"{name}={value!r} is out of range; it must lie in "
+            f"{lo}{'-inf' if low is None else low}, {'inf' if high is None else high}{hi}"
+        )
+
+
+def check_choice(name: str, value, choices):
+    if value not in choices:
+        raise ValueError(f"{name}={value!r} is not valid; choose one of {tuple(choices)}")
+
+
+@dataclass(frozen=True)
+class Params:
+    """Base class of every optimizer's coefficients; subclasses validate in ``__post_init__``."""
+
+    pop_size: int = 50
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.pop_size, int | np.integer) or self.pop_size < 2:
+            raise ValueError(f"pop_size={self.pop_size!r} must be an integer >= 2")
+
+    def as_dict(self) -> dict[str, Any]:
+        return dataclasses.asdict(self)
+
+
+class Optimizer(ABC):
+    """Ask/tell optimizer over a batch of independent runs.
+
+    Subclasses set ``params_class`` and implement ``init``, ``ask`` and ``tell``.
+    """
+
+    name: ClassVar[str] = "optimizer"
+    params_class: ClassVar[type[Params]] = Params
+
+    def __init__(self, params: Params | None = None, name: str | None = None, **options) -> None:
+        if params is None:
+            params = make_params(self.params_class, options, self.name)
+        elif options:
+            params = dataclasses.replace(params, **options)
+        self.params = params
+        if name is not None:
+            self.name = name
+        self.metadata: dict[str, Any] = {}
+
+    @abstractmethod
+    def init(self, space: Space, streams: RunStreams, max_iter: int):
+        """Create the state of ``streams.runs`` runs; ``max_iter`` feeds iteration schedules."""
+
+    @abstractmethod
+    def ask(self, state) -> np.ndarray:
+        """Candidates to evaluate next, shape ``(R, n, D)`` in problem coordinates."""
+
+    @abstractmethod
+    def tell(self, state, X: np.ndarray, F: np.ndarray):
+        """Take the values ``F`` (``(R, n)``) of the candidates ``X`` and return the new state."""
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}({self.name!r}, {self.params})"
+
+
+def make_params(cls: type[Params], options: dict, algorithm: str) -> Params:
+    """Build ``cls(**options)``, naming unknown options and suggesting the valid ones."""
+    import difflib
+
+    names = [f.name for f in dataclasses.fields(cls)]
+    for key in options:
+        if key not in names:
+            close = difflib.get_close_matches(key, names, n=2)
+            hint = f" Did you mean {', '.join(map(repr, close))}?" if close else ""
+            raise ValueError(
+                f"{algorithm} has no option {key!r}.{hint} Its options are: {', '.join(names)}"
+            )
+    return cls(**options)
+
+
+def ranks(F: np.ndarray) -> np.ndarray:
+    """1-based fitness ranks along the last axis (1 = best; ties broken by index, stable)."""
+    order = np.argsort(F, axis=-1, kind="stable")
+    r = np.empty_like(order)
+    np.put_along_axis(r, order, np.arange(1, F.shape[-1] + 1), axis=-1)
+    return r

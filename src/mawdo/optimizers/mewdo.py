@@ -1,0 +1,154 @@
+"""MEWDO, RECONSTRUCTED: a multi-strategy ensemble WDO with success-adaptive strategy shares.
+
+The MEWDO paper (Zhang, Yang & Chen, Math. Comput. Simul. 231, 2025) was not available to us.
+This is our reconstruction from its one-line description in the MAWDO paper ("multi-strategy
+enhanced WDO"), as SPEC 1.4 asks: an ensemble of WDO-family update strategies whose share of the
+population adapts to each strategy's recent success rate. Every output that names it says
+"reconstructed"; see docs/deviations.md.
+
+Strategies (all in WDO's normalised space, velocity clamp ``vmax``, clipping):
+  0. classic WDO (fixed alpha, g, RT, c; ``|1 - 1/i|`` pressure weight);
+  1. AWDO (coefficients ~ U[0, 1] per parcel, pressure and Coriolis divided by the rank);
+  2. personal-best WDO: the pressure term pulls toward a random better parcel's ``pbest``
+     (a current-to-pbest move that keeps diversity), gravity toward the population centroid.
+
+Each iteration every parcel draws its strategy from probabilities ``q``; a parcel succeeds when
+its new pressure is below its previous one. ``q`` follows an exponential moving average of each
+strategy's success rate (learning rate ``lr``), floored at ``q_min`` and renormalised.
+No greedy selection: every parcel moves, as in WDO.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from mawdo.optimizers import wind
+from mawdo.optimizers.base import Optimizer, Params, Space, check_range, ranks
+from mawdo.streams import RunStreams
+
+N_STRATEGIES = 3
+
+
+@dataclass(frozen=True)
+class MEWDOParams(Params):
+    """MEWDO (reconstructed) coefficients.
+
+    Parameters
+    ----------
+    alpha, g, RT, c : float
+        Coefficients of the classic strategy (WDO defaults).
+    vmax : float
+        Velocity clamp, normalised units (0.3).
+    lr : float
+        Learning rate of the success-rate average, in (0, 1].
+    q_min : float
+        Floor of each strategy's share, in [0, 1/3].
+    """
+
+    alpha: float = 0.4
+    g: float = 0.2
+    RT: float = 3.0
+    c: float = 0.4
+    vmax: float = 0.3
+    lr: float = 0.1
+    q_min: float = 0.1
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        check_range("vmax", self.vmax, 0, None, low_open=True)
+        check_range("lr", self.lr, 0, 1, low_open=True)
+        check_range("q_min", self.q_min, 0, 1.0 / N_STRATEGIES)
+
+
+def update_shares(succ_rate, q, lr, q_min):
+    """Move strategy shares toward the normalised success rates, floored at ``q_min``.
+
+    ``succ_rate`` and ``q`` have shape ``(R, K)``; strategies that were not used keep their share.
+    """
+    tot = succ_rate.sum(axis=1, keepdims=True)
+    target = np.where(tot > 0, succ_rate / np.where(tot > 0, tot, 1.0), q)
+    q = (1.0 - lr) * q + lr * target
+    q = np.maximum(q, q_min)
+    return q / q.sum(axis=1, keepdims=True)
+
+
+@dataclass
+class MEWDOState:
+    p: np.ndarray
+    u: np.ndarray
+    f: np.ndarray
+    pbest: np.ndarray
+    pbest_f: np.ndarray
+    q: np.ndarray  # (R, K) strategy shares
+    strategy: np.ndarray  # (R, N) strategy used by the last move
+    t: int
+    T: int
+    space: Space
+    streams: RunStreams
+
+
+class MEWDO(Optimizer):
+    """MEWDO (reconstructed); see the module docstring."""
+
+    name = "mewdo"
+    params_class = MEWDOParams
+
+    def init(self, space: Space, streams: RunStreams, max_iter: int) -> MEWDOState:
+        P = self.params
+        N, D, R = P.pop_size, space.dim, streams.runs
+        p = streams.uniform(-1.0, 1.0, (N, D))
+        return MEWDOState(
+            p=p, u=streams.uniform(-P.vmax, P.vmax, (N, D)), f=np.full((R, N), np.inf),
+            pbest=p.copy(), pbest_f=np.full((R, N), np.inf),
+            q=np.full((R, N_STRATEGIES), 1.0 / N_STRATEGIES), strategy=np.full((R, N), -1),
+            t=0, T=max_iter, space=space, streams=streams,
+        )
+
+    def ask(self, state: MEWDOState) -> np.ndarray:
+        s, P = state, self.params
+        if s.t == 0:
+            return s.space.from_unit(s.p)
+        R, N, D = s.p.shape
+        r = ranks(s.f)[..., None].astype(float)
+        tbest = s.pbest[np.arange(R), np.argmin(s.pbest_f, axis=1)][:, None, :]
+        u_perm = np.take_along_axis(s.u, s.streams.permutations(N, D), axis=2)
+        draws = s.streams.random((N, 6))
+        # strategy choice by inverse CDF of the shares
+        cdf = np.cumsum(s.q, axis=1)[:, None, :]
+        strat = np.minimum((draws[..., 0:1] > cdf).sum(axis=2), N_STRATEGIES - 1)
+        # 0: classic WDO
+        v0 = wind.wdo_velocity(s.u, s.p, tbest, r, u_perm, P.alpha, P.g, P.RT, P.c)
+        # 1: AWDO with per-parcel random coefficients
+        a, g, RT, c = (draws[..., k : k + 1] for k in range(1, 5))
+        v1 = wind.awdo_velocity(s.u, s.p, tbest, r, u_perm, a, g, RT, c)
+        # 2: pull toward the pbest of a random parcel ranked better (or itself if best)
+        better = np.floor(draws[..., 5] * (r[..., 0] - 1)).astype(np.int64)  # rank index < own
+        order = np.argsort(s.f, axis=1, kind="stable")
+        guide = s.pbest[np.arange(R)[:, None], np.take_along_axis(order, better, axis=1)]
+        centre = s.p.mean(axis=1, keepdims=True)
+        v2 = wind.awdo_velocity(s.u, s.p, guide, 1.0, u_perm, P.alpha, P.g, 1.0, P.c, centre)
+        sel = strat[..., None]
+        u = np.where(sel == 0, v0, np.where(sel == 1, v1, v2))
+        s.u = np.clip(u, -P.vmax, P.vmax)
+        s.p = np.clip(s.p + s.u, -1.0, 1.0)
+        s.strategy = strat
+        return s.space.from_unit(s.p)
+
+    def tell(self, state: MEWDOState, X: np.ndarray, F: np.ndarray) -> MEWDOState:
+        s, P = state, self.params
+        if s.t > 0:
+            success = F < s.f
+            used = np.stack([(s.strategy == k) for k in range(N_STRATEGIES)], axis=-1)  # R,N,K
+            n_used = used.sum(axis=1)
+            n_succ = (used & success[..., None]).sum(axis=1)
+            rate = np.where(n_used > 0, n_succ / np.maximum(n_used, 1), 0.0)
+            s.q = np.where(n_used.sum(axis=1, keepdims=True) > 0,
+                           update_shares(rate, s.q, P.lr, P.q_min), s.q)
+        s.f = F.copy()
+        improved = F < s.pbest_f
+        s.pbest_f = np.where(improved, F, s.pbest_f)
+        s.pbest[improved] = s.p[improved]
+        s.t += 1
+        return s

@@ -1,0 +1,86 @@
+"""The algorithm registry: names -> (implementation, preset options, reference).
+
+Variants are registered configurations of one implementation, not copied classes; the CLI,
+the experiment plans and the contract test suite all iterate over ``OPTIMIZERS``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from mawdo.optimizers.base import Optimizer
+from mawdo.registry import Registry
+
+
+@dataclass(frozen=True)
+class AlgorithmSpec:
+    """A registered algorithm.
+
+    Attributes
+    ----------
+    name : str
+        Registry name (lower case).
+    cls : type
+        The :class:`~mawdo.optimizers.base.Optimizer` subclass that implements it.
+    preset : dict
+        Options fixed by this entry (on top of the class defaults); a user may still override them.
+    reference : str
+        The publication (and reference code) it follows.
+    description : str
+        One line for ``mawdo list``.
+    reconstructed : bool
+        True when no published text was available and the algorithm is our reconstruction.
+    label : str
+        Display name in tables ("MAWDO-1", "MEWDO (reconstructed)").
+    """
+
+    name: str
+    cls: type
+    preset: dict[str, Any] = field(default_factory=dict)
+    reference: str = ""
+    description: str = ""
+    reconstructed: bool = False
+    label: str = ""
+
+    @property
+    def display(self) -> str:
+        base = self.label or self.name.upper()
+        return f"{base} (reconstructed)" if self.reconstructed else base
+
+    def metadata(self) -> dict[str, Any]:
+        return {
+            "name": self.name,
+            "label": self.display,
+            "reference": self.reference,
+            "reconstructed": self.reconstructed,
+        }
+
+
+OPTIMIZERS: Registry[AlgorithmSpec] = Registry("algorithm")
+
+
+def register(spec: AlgorithmSpec) -> AlgorithmSpec:
+    return OPTIMIZERS.register(spec.name, spec)
+
+
+def make_optimizer(algorithm: str | Optimizer, **options) -> Optimizer:
+    """Instantiate a registered algorithm with its preset and the given options.
+
+    Parameters
+    ----------
+    algorithm : str or Optimizer
+        A registered name (see ``mawdo list``) or an optimizer instance (returned as is when no
+        options are given).
+    **options
+        Coefficients of the algorithm (``pop_size``, ``groups``, ...); unknown names raise
+        ``ValueError`` listing the valid ones.
+    """
+    if isinstance(algorithm, Optimizer):
+        if options:
+            return type(algorithm)(algorithm.params, name=algorithm.name, **options)
+        return algorithm
+    spec = OPTIMIZERS[algorithm]
+    opt = spec.cls(name=spec.name, **{**spec.preset, **options})
+    opt.metadata = spec.metadata()
+    return opt

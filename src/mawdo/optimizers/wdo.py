@@ -1,0 +1,268 @@
+"""WDO, AWDO and MAWDO as configurations of one implementation.
+
+One iteration (after the population of iteration ``t`` has been evaluated):
+
+1. leaders: ``pbest`` per parcel, ``gbest_g`` = best ``pbest`` of group ``g``, ``tbest`` = best of
+   all (the global best-so-far);
+2. guidance ``B``: ``tbest`` (WDO/AWDO), ``gbest_g`` (groups only), or the hierarchical mix of
+   Eq. 5 with scheduled weights (Eqs. 6-9) and the distance gate (Eqs. 10-11);
+3. velocity (WDO Eq. 1 or AWDO Eq. 4), clamped to ``vmax``; position ``p + u`` (Eq. 2);
+4. boundary: clip (Eq. 3) or reflect-damp (Eqs. 15-16);
+5. every ``restart_every`` iterations the worst ``restart_frac`` parcels restart around ``tbest``
+   (PGR, Eqs. 12-13), each also trying its opposite (OBL, Eq. 14).
+
+Low-dimensional stabilisation (D <= ``low_dim``): per-group coefficients (Eqs. 18-21), ``vmax/4``
+(Eq. 22) and gravity toward the group centroid (Eqs. 23-24).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from mawdo.optimizers import wind
+from mawdo.optimizers.base import Optimizer, Params, Space, check_choice, check_range, ranks
+from mawdo.optimizers.boundary import BOUNDARY_POLICIES, apply_boundary
+from mawdo.streams import RunStreams
+
+
+@dataclass(frozen=True)
+class WindParams(Params):
+    """Coefficients and switches of the WDO family (defaults: classic WDO, SPEC 1.1).
+
+    Parameters
+    ----------
+    pop_size : int
+        Air parcels per run, >= 2.
+    velocity : {"wdo", "awdo"}
+        ``"wdo"``: fixed coefficients, pressure weight ``|1 - 1/i|`` (Bayraktar 2013).
+        ``"awdo"``: coefficients ``~ U[0, 1]``, pressure and Coriolis divided by the rank (Eq. 4).
+    alpha, g, RT, c : float
+        Friction, gravity, pressure (RT) and Coriolis coefficients of WDO (0.4, 0.2, 3, 0.4).
+    coef_draw : {"iteration", "parcel"}
+        AWDO: one coefficient draw per iteration (paper) or one per parcel and iteration.
+    vmax : float
+        Velocity clamp in normalised units, > 0 (0.3).
+    groups : int
+        Number of contiguous groups G, 1 <= G <= pop_size.
+    guidance : {"global", "group", "hierarchical"}
+        Target ``B``: global best-so-far, the group's best, or Eq. 5's mix.
+    rank_scope : {"population", "group"}
+        Ranks ``r_i`` over the whole population or within each group.
+    schedule : bool
+        Scheduled mixing (Eqs. 6-9); when false, ``weights`` stay fixed.
+    weights : tuple of 3 floats
+        Fixed ``(w1, w2, w3)`` when ``schedule`` is off.
+    gate : bool
+        Distance gate on ``w3`` (Eqs. 10-11).
+    restart : bool
+        Periodic Guided Restart (Eqs. 12-13).
+    restart_every : int
+        PGR interval K in iterations, >= 1.
+    restart_frac : float
+        Fraction rho of the population restarted, in (0, 1].
+    sigma0, sigma_end : float
+        PGR step size at the start and the end of the run, normalised units (> 0).
+    obl : bool
+        Opposition-based learning for restarted parcels (Eq. 14); needs ``restart``.
+    boundary : {"clip", "reflect"}
+        Boundary policy; ``eta`` is the reflection damping (0.5).
+    low_dim_stabilization : bool
+        Enable the low-dimensional mechanisms when D <= ``low_dim``.
+    low_dim : int
+        Dimension threshold (3).
+    hetero_redraw : bool
+        Redraw the per-group coefficients every iteration instead of once.
+    """
+
+    velocity: str = "wdo"
+    alpha: float = 0.4
+    g: float = 0.2
+    RT: float = 3.0
+    c: float = 0.4
+    coef_draw: str = "iteration"
+    vmax: float = 0.3
+    groups: int = 1
+    guidance: str = "global"
+    rank_scope: str = "population"
+    schedule: bool = True
+    weights: tuple = (0.6, 0.3, 0.1)
+    gate: bool = True
+    restart: bool = False
+    restart_every: int = 50
+    restart_frac: float = 0.1
+    sigma0: float = 0.5
+    sigma_end: float = 0.05
+    obl: bool = False
+    boundary: str = "clip"
+    eta: float = 0.5
+    low_dim_stabilization: bool = False
+    low_dim: int = 3
+    hetero_redraw: bool = False
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        check_choice("velocity", self.velocity, ("wdo", "awdo"))
+        check_choice("coef_draw", self.coef_draw, ("iteration", "parcel"))
+        check_choice("guidance", self.guidance, ("global", "group", "hierarchical"))
+        check_choice("rank_scope", self.rank_scope, ("population", "group"))
+        check_choice("boundary", self.boundary, BOUNDARY_POLICIES)
+        check_range("vmax", self.vmax, 0, None, low_open=True)
+        check_range("eta", self.eta, 0, 1)
+        check_range("restart_frac", self.restart_frac, 0, 1, low_open=True)
+        check_range("sigma0", self.sigma0, 0, None, low_open=True)
+        check_range("sigma_end", self.sigma_end, 0, None, low_open=True)
+        if not isinstance(self.groups, int | np.integer) or not 1 <= self.groups <= self.pop_size:
+            raise ValueError(f"groups={self.groups!r} must be an integer in [1, pop_size]")
+        if not isinstance(self.restart_every, int | np.integer) or self.restart_every < 1:
+            raise ValueError(f"restart_every={self.restart_every!r} must be an integer >= 1")
+        if len(self.weights) != 3 or min(self.weights) < 0 or sum(self.weights) <= 0:
+            raise ValueError(f"weights={self.weights!r} must be three non-negative numbers")
+        if self.obl and not self.restart:
+            raise ValueError("obl=True acts on restarted parcels: set restart=True as well")
+
+    @property
+    def n_restart(self) -> int:
+        return max(1, int(round(self.restart_frac * self.pop_size)))
+
+
+@dataclass
+class WindState:
+    """Arrays of ``R`` runs in normalised space (``p, u, pbest`` are ``(R, N, D)``)."""
+
+    p: np.ndarray
+    u: np.ndarray
+    f: np.ndarray  # current fitness (R, N)
+    pbest: np.ndarray
+    pbest_f: np.ndarray
+    gid: np.ndarray  # (N,) group index
+    coef: np.ndarray | None  # per-group (alpha, g, RT, c) (R, G, 4) in low-D mode
+    vmax: float
+    low_dim: bool
+    t: int
+    T: int
+    space: Space
+    streams: RunStreams
+    restarted: np.ndarray | None = None  # (R, m) parcels restarted in the last ask
+
+
+class Wind(Optimizer):
+    """The WDO family (WDO, AWDO, MAWDO and its ablations); see the module docstring."""
+
+    name = "wdo"
+    params_class = WindParams
+
+    # -- set-up --------------------------------------------------------------------------------
+    def init(self, space: Space, streams: RunStreams, max_iter: int) -> WindState:
+        P = self.params
+        N, D = P.pop_size, space.dim
+        low = P.low_dim_stabilization and D <= P.low_dim
+        vmax = 0.25 * P.vmax if low else P.vmax  # Eq. 22
+        p = streams.uniform(-1.0, 1.0, (N, D))
+        u = streams.uniform(-vmax, vmax, (N, D))
+        coef = self._group_coefficients(streams) if low else None
+        R = streams.runs
+        return WindState(
+            p=p, u=u, f=np.full((R, N), np.inf), pbest=p.copy(), pbest_f=np.full((R, N), np.inf),
+            gid=wind.partition(N, P.groups), coef=coef, vmax=vmax, low_dim=low, t=0,
+            T=max_iter, space=space, streams=streams,
+        )
+
+    def _group_coefficients(self, streams: RunStreams) -> np.ndarray:
+        """Heterogeneous coefficients per group (Eqs. 18-21), shape ``(R, G, 4)``."""
+        lo = np.array([0.15, 0.15, 0.90, 0.10])
+        hi = np.array([0.45, 0.45, 1.50, 0.50])
+        return streams.uniform(lo, hi, (self.params.groups, 4))
+
+    # -- ask -------------------------------------------------------------------------------------
+    def ask(self, state: WindState) -> np.ndarray:
+        if state.t == 0:
+            return state.space.from_unit(state.p)
+        P, s = self.params, state
+        R, N, D = s.p.shape
+        G = P.groups
+        rows = np.arange(R)[:, None]
+
+        # 1. leaders
+        gbest_idx = wind.group_argmin(s.pbest_f, s.gid, G)  # (R, G)
+        gbest = s.pbest[rows, gbest_idx]  # (R, G, D)
+        tbest = s.pbest[np.arange(R), np.argmin(s.pbest_f, axis=1)]  # (R, D)
+
+        # 2. guidance B
+        if P.guidance == "global":
+            B = tbest[:, None, :]
+        elif P.guidance == "group":
+            B = gbest[:, s.gid]
+        else:
+            w1, w2, w3 = wind.schedule_weights(s.t, s.T) if P.schedule else P.weights
+            if P.gate:
+                gate = wind.distance_gate(gbest, tbest, 2.0 * np.sqrt(D))  # (R, G)
+                w3_eff = w3 * gate[:, s.gid]  # Eq. 11, per parcel
+            else:
+                w3_eff = w3
+            B = wind.hierarchical_guidance(s.pbest, gbest[:, s.gid], tbest, w1, w2, w3_eff)
+
+        # 3. velocity and position
+        r = wind.group_ranks(s.f, s.gid, G) if P.rank_scope == "group" else ranks(s.f)
+        r = r[..., None].astype(float)
+        alpha, g, RT, c = self._coefficients(s)
+        centre = wind.group_centroid(s.p, s.gid, G)[:, s.gid] if s.low_dim else 0.0
+        perm = s.streams.permutations(N, D)
+        u_perm = np.take_along_axis(s.u, perm, axis=2)
+        step = wind.wdo_velocity if P.velocity == "wdo" else wind.awdo_velocity
+        u = np.clip(step(s.u, s.p, B, r, u_perm, alpha, g, RT, c, centre), -s.vmax, s.vmax)
+        p, u = apply_boundary(P.boundary, s.p + u, u, -1.0, 1.0, P.eta)
+
+        # 4. periodic guided restart (+ opposition)
+        s.restarted = None
+        extra = None
+        if P.restart and s.t % P.restart_every == 0:
+            m = P.n_restart
+            worst = np.argsort(s.f, axis=1, kind="stable")[:, N - m:]  # (R, m)
+            sigma = wind.restart_sigma(s.t, s.T, P.sigma0, P.sigma_end)
+            fresh = tbest[:, None, :] + sigma * s.streams.normal((m, D))  # Eq. 12
+            fresh, _ = apply_boundary(P.boundary, fresh, np.zeros_like(fresh), -1.0, 1.0, P.eta)
+            p[rows, worst] = fresh
+            u[rows, worst] = 0.0
+            s.restarted = worst
+            if P.obl:
+                extra = wind.opposite(fresh)
+        s.p, s.u = p, u
+        X = p if extra is None else np.concatenate([p, extra], axis=1)
+        return s.space.from_unit(X)
+
+    def _coefficients(self, s: WindState):
+        """(alpha, g, RT, c), each broadcastable to ``(R, N, 1)``."""
+        P = self.params
+        if s.low_dim:
+            if P.hetero_redraw:
+                s.coef = self._group_coefficients(s.streams)
+            per = s.coef[:, s.gid]  # (R, N, 4)
+            return tuple(per[..., k : k + 1] for k in range(4))
+        if P.velocity == "awdo":
+            shape = (1, 4) if P.coef_draw == "iteration" else (s.p.shape[1], 4)
+            draw = s.streams.random(shape)  # a_t, g_t, RT_t, c_t ~ U[0, 1] (Eq. 4)
+            return tuple(draw[..., k : k + 1] for k in range(4))
+        return P.alpha, P.g, P.RT, P.c
+
+    # -- tell ------------------------------------------------------------------------------------
+    def tell(self, state: WindState, X: np.ndarray, F: np.ndarray) -> WindState:
+        s = state
+        R, N = s.f.shape
+        Fn = F[:, :N].copy()
+        if s.restarted is not None and F.shape[1] > N:
+            # OBL: keep the better of each restarted parcel and its opposite.
+            rows = np.arange(R)[:, None]
+            f_opp = F[:, N:]
+            take = f_opp < Fn[rows, s.restarted]
+            idx_r, idx_k = np.nonzero(take)
+            tgt = s.restarted[idx_r, idx_k]
+            s.p[idx_r, tgt] = -s.p[idx_r, tgt]
+            Fn[idx_r, tgt] = f_opp[idx_r, idx_k]
+        s.f = Fn
+        improved = Fn < s.pbest_f
+        s.pbest_f = np.where(improved, Fn, s.pbest_f)
+        s.pbest[improved] = s.p[improved]
+        s.t += 1
+        return s

@@ -1,0 +1,68 @@
+"""A small name -> entry registry that suggests the closest names on a miss.
+
+Registries drive the CLI (``mawdo list``), the contract test suites and the experiment plans,
+so every lookup error must tell the user what exists.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Iterator, Mapping
+from typing import Generic, TypeVar
+
+T = TypeVar("T")
+
+
+class Registry(Mapping[str, T], Generic[T]):
+    """An ordered, case-insensitive mapping from names to entries.
+
+    Parameters
+    ----------
+    kind : str
+        What the entries are ("algorithm", "function", "scenario"); used in error messages.
+    """
+
+    def __init__(self, kind: str) -> None:
+        self.kind = kind
+        self._items: dict[str, T] = {}
+
+    def register(self, name: str, entry: T) -> T:
+        """Add ``entry`` under ``name`` (lower-cased); a duplicate name is an error."""
+        key = name.lower()
+        if key in self._items:
+            raise ValueError(f"{self.kind} {name!r} is already registered")
+        self._items[key] = entry
+        return entry
+
+    def __getitem__(self, name: str) -> T:
+        if not isinstance(name, str):
+            raise TypeError(f"{self.kind} name must be a string, got {type(name).__name__}")
+        key = name.lower()
+        try:
+            return self._items[key]
+        except KeyError:
+            raise UnknownNameError(unknown_name_message(self.kind, name, self._items)) from None
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._items)
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+    def __repr__(self) -> str:
+        return f"Registry({self.kind!r}, {list(self._items)})"
+
+
+def unknown_name_message(kind: str, name: str, known) -> str:
+    """Message for an unknown name: the closest known names, then the full list."""
+    known = list(known)
+    close = difflib.get_close_matches(name.lower(), known, n=3, cutoff=0.5)
+    hint = f" Did you mean {', '.join(repr(c) for c in close)}?" if close else ""
+    return f"unknown {kind} {name!r}.{hint} Known {kind}s: {', '.join(known)}."
+
+
+class UnknownNameError(KeyError, ValueError):
+    """Raised for an unknown registry name; is both a KeyError and a ValueError."""
+
+    def __str__(self) -> str:  # KeyError would quote the message
+        return str(self.args[0]) if self.args else ""
