@@ -66,7 +66,7 @@ def as_bounds(bounds, dim: int | None = None) -> tuple[np.ndarray, np.ndarray]:
         i = int(bad[0])
         raise ValueError(
             f"bounds must satisfy low < high in every coordinate; coordinate {i} has "
-            f"low={lb[i]!r} >= high={ub[i]!r}"
+            f"low={float(lb[i])!r} >= high={float(ub[i])!r}"
         )
     return lb, ub
 
@@ -175,7 +175,8 @@ class Evaluator:
         try:
             vals = self.problem(flat).reshape(R, m)
         except ObjectiveError as exc:
-            raise ObjectiveError(f"{exc} (algorithm {self.algorithm!r}, iteration {iteration})")
+            msg = f"{exc} (algorithm {self.algorithm!r}, iteration {iteration})"
+            raise ObjectiveError(msg) from exc
         except Exception as exc:  # the user's objective: locate the failing run for the message
             run = self._failing_run(X[:, :m])
             where = f"run {run}, " if run is not None else ""

@@ -71,7 +71,7 @@ class RunStreams:
         return out
 
     def uniform(self, low, high, shape=()) -> np.ndarray:
-        """U[low, high) draws, shape ``(R, *shape)``; ``low``/``high`` broadcast against ``shape``."""
+        """U[low, high) draws, shape ``(R, *shape)``; bounds broadcast against ``shape``."""
         return low + (np.asarray(high) - low) * self.random(shape)
 
     def normal(self, shape=()) -> np.ndarray:

@@ -109,7 +109,8 @@ def test_restart_samples_around_tbest_with_decaying_sigma():
     st.streams = _Delegate(st.streams, normal=z)
     opt.ask(st)
     sigma = 0.5 - (0.5 - 0.05) * 50 / 100
-    np.testing.assert_allclose(st.p[0, st.restarted[0]], np.tile(np.clip(tb + sigma * 0.1, -1, 1), (2, 1)))
+    expect = np.tile(np.clip(tb + sigma * 0.1, -1, 1), (2, 1))
+    np.testing.assert_allclose(st.p[0, st.restarted[0]], expect)
 
 
 class _Delegate:

@@ -3,10 +3,10 @@
 Iteration ``t = 1..T``: evaluate the pack, update the leaders alpha, beta, delta (best-so-far),
 then move every wolf:
 
-    a = 2 - 2 (t - 1) / T                                   (GWO.m: a = 2 - l*2/Max_iter, l = t-1)
-    A_k = 2 a r1 - a,  C_k = 2 r2                            (Eqs. 3.3-3.4, fresh r1, r2 per k, i, d)
-    D_k = |C_k X_k - X|,  X_k' = X_k - A_k D_k               (Eqs. 3.5-3.6, k = alpha, beta, delta)
-    X <- (X_alpha' + X_beta' + X_delta') / 3                 (Eq. 3.7), then clipped to the box.
+    a = 2 - 2 (t - 1) / T                  (GWO.m: a = 2 - l*2/Max_iter, l = t - 1)
+    A_k = 2 a r1 - a,  C_k = 2 r2           (Eqs. 3.3-3.4; fresh r1, r2 per leader, wolf, dim)
+    D_k = |C_k X_k - X|,  X_k' = X_k - A_k D_k      (Eqs. 3.5-3.6, k = alpha, beta, delta)
+    X <- (X_alpha' + X_beta' + X_delta') / 3        (Eq. 3.7), then clipped to the box.
 
 No greedy selection: every wolf moves.
 """

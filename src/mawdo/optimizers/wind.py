@@ -69,7 +69,10 @@ def hierarchical_guidance(pbest, gbest, tbest, w1, w2, w3_eff):
 
 
 def restart_sigma(t, T, sigma0, sigma_end):
-    """PGR step size (Eq. 13, decay made explicit): ``sigma_t = sigma0 - (sigma0 - sigma_end) t/T``."""
+    """PGR step size (Eq. 13, decay made explicit).
+
+    ``sigma_t = sigma0 - (sigma0 - sigma_end) t/T``.
+    """
     return sigma0 - (sigma0 - sigma_end) * min(t / T, 1.0)
 
 
@@ -79,7 +82,10 @@ def opposite(p):
 
 
 def partition(N: int, G: int) -> np.ndarray:
-    """Group index of each parcel: ``G`` contiguous, near-equal groups (50, 8 -> 7,7,6,6,6,6,6,6)."""
+    """Group index of each parcel: ``G`` contiguous near-equal groups.
+
+    ``N = 50, G = 8`` gives sizes 7, 7, 6, 6, 6, 6, 6, 6.
+    """
     if not 1 <= G <= N:
         raise ValueError(f"groups={G} must lie in [1, pop_size={N}]")
     sizes = np.full(G, N // G)

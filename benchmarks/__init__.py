@@ -1,0 +1,1 @@
+"""Performance harness (not tests): ``make bench`` / ``python -m benchmarks``."""

@@ -1,0 +1,184 @@
+"""The ``mawdo`` command: a thin layer over the library.
+
+``mawdo list`` and ``mawdo optimize`` live here; ``mawdo bench`` (experiments) and
+``mawdo plan`` (path planning) are sub-apps mounted from their packages.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+import typer
+from rich.console import Console
+from rich.table import Table
+
+app = typer.Typer(
+    help="Wind driven optimization (WDO, AWDO, MAWDO) and real-time path planning.",
+    no_args_is_help=True, add_completion=False, pretty_exceptions_show_locals=False,
+)
+console = Console(width=None if sys.stdout.isatty() else 140)
+
+
+def _fail(msg: str) -> None:
+    console.print(f"[bold red]error:[/] {msg}")
+    raise typer.Exit(2)
+
+
+def _parse_options(pairs: list[str]) -> dict:
+    """``key=value`` strings -> dict, values parsed as JSON when possible (numbers, bools)."""
+    out = {}
+    for pair in pairs:
+        if "=" not in pair:
+            _fail(f"--option {pair!r} must look like key=value, e.g. --option groups=4")
+        k, v = pair.split("=", 1)
+        try:
+            out[k.strip()] = json.loads(v)
+        except json.JSONDecodeError:
+            out[k.strip()] = v
+        if isinstance(out[k.strip()], list):
+            out[k.strip()] = tuple(out[k.strip()])
+    return out
+
+
+@app.command("list")
+def list_cmd(what: str = typer.Argument("all", help="algorithms, functions, scenarios or all")):
+    """Show the registered algorithms, benchmark functions and scenarios."""
+    from mawdo.functions import FUNCTIONS, PAPER_SUITE
+    from mawdo.optimizers import OPTIMIZERS
+
+    if what not in ("all", "algorithms", "functions", "scenarios"):
+        _fail(f"unknown listing {what!r}; use algorithms, functions, scenarios or all")
+    if what in ("all", "algorithms"):
+        t = Table(title="algorithms")
+        for col in ("name", "label", "description", "reference"):
+            t.add_column(col, overflow="fold")
+        for name, spec in OPTIMIZERS.items():
+            t.add_row(name, spec.display, spec.description, spec.reference)
+        console.print(t)
+    if what in ("all", "functions"):
+        t = Table(title="benchmark functions")
+        for col in ("name", "paper", "D", "bounds", "f*"):
+            t.add_column(col)
+        seen = set()
+        for name in FUNCTIONS:
+            f = FUNCTIONS[name]
+            if id(f) in seen:
+                continue  # aliases such as F1 -> sphere
+            seen.add(id(f))
+            suite = "" if f.name in PAPER_SUITE else " (alt)"
+            t.add_row(f.name, (f.paper_id or "-") + suite, str(f.dim),
+                      f"[{f.lb.min():g}, {f.ub.max():g}]", f"{f.f_star:.10g}")
+        console.print(t)
+    if what in ("all", "scenarios"):
+        try:
+            from mawdo.planning import SCENARIOS
+        except ImportError:
+            SCENARIOS = {}
+        if SCENARIOS:
+            console.print("scenarios: " + ", ".join(SCENARIOS))
+
+
+@app.command()
+def optimize(
+    function: str = typer.Argument(..., help="benchmark name or paper id, e.g. rastrigin or F7"),
+    algorithm: str = typer.Option("mawdo", "--algorithm", "-a",
+                                  help="one or more registered names, comma separated"),
+    runs: int = typer.Option(30, help="independent runs (one vectorised batch)"),
+    seed: int = typer.Option(0, help="master seed"),
+    iters: int = typer.Option(500, help="iterations per run (initial population = 1)"),
+    evals: int = typer.Option(None, help="exact evaluation budget per run instead of --iters"),
+    pop: int = typer.Option(50, help="population size"),
+    dim: int = typer.Option(None, help="dimension for scalable functions"),
+    shifted: bool = typer.Option(False, help="move the optimum off the box centre (seeded)"),
+    preset: str = typer.Option("paper", help="bounds preset: paper or standard"),
+    option: list[str] = typer.Option([], "--option", "-o", help="algorithm option key=value"),
+    plot: Path = typer.Option(None, help="save a convergence plot (PNG/SVG)"),
+    json_out: Path = typer.Option(None, "--json", help="save per-run results as JSON"),
+    progress: bool = typer.Option(True, help="show a progress bar"),
+):
+    """Run one or more algorithms on a benchmark function and print Best/Ave/Std/nfev/time."""
+    from mawdo import minimize
+
+    algos = [a.strip() for a in algorithm.split(",") if a.strip()]
+    opts = _parse_options(option)
+    results = {}
+    for algo in algos:
+        try:
+            res = minimize(
+                function, algorithm=algo, runs=runs, seed=seed,
+                max_iter=None if evals else iters, max_evals=evals, pop_size=pop, dim=dim,
+                shifted=shifted, preset=preset, progress=progress, **opts,
+            )
+        except (KeyError, ValueError, TypeError) as exc:
+            _fail(str(exc.args[0]) if isinstance(exc, KeyError) else str(exc))
+        results[res.metadata.get("label", algo)] = res
+    _print_table(function, results)
+    if plot:
+        from mawdo.viz import plot_convergence
+
+        console.print(f"convergence plot: {plot_convergence(results, plot)}")
+    if json_out:
+        payload = {label: {"fun": r.fun.tolist(), "nfev": r.nfev.tolist(), "x": r.x.tolist(),
+                           "params": r.params, "seed": seed, "time": r.time}
+                   for label, r in results.items()}
+        json_out.parent.mkdir(parents=True, exist_ok=True)
+        json_out.write_text(json.dumps(payload, indent=1, default=str))
+        console.print(f"results: {json_out}")
+
+
+def _print_table(function: str, results: dict) -> None:
+    first = next(iter(results.values()))
+    has_star = first.f_star is not None
+    t = Table(title=f"{first.problem} ({function}): {first.runs} runs"
+                    + (f", f* = {first.f_star:.10g}" if has_star else ""))
+    cols = ["algorithm", "Best", "Ave", "Std"] + (["Ave error"] if has_star else [])
+    for col in cols + ["nfev", "time (s)"]:
+        t.add_column(col, justify="right")
+    for label, r in results.items():
+        s = r.summary()
+        row = [label, f"{s['best']:.4e}", f"{s['mean']:.4e}", f"{s['std']:.4e}"]
+        if has_star:
+            row.append(f"{np.mean(r.fun - r.f_star):.4e}")
+        row += [f"{s['nfev']:.0f}", f"{r.time:.3f}"]
+        t.add_row(*row)
+    console.print(t)
+
+
+@app.command()
+def demo(out: Path = typer.Option(Path("out/demo"), help="output folder")):
+    """The main job: MAWDO against its rivals on two paper functions, with a plot."""
+    from mawdo import minimize
+    from mawdo.viz import plot_convergence
+
+    out.mkdir(parents=True, exist_ok=True)
+    for fn in ("rastrigin", "shekel_10"):
+        results = {}
+        for algo in ("wdo", "awdo", "gwo", "woa", "mawdo"):
+            r = minimize(fn, algorithm=algo, runs=30, seed=0, max_iter=500)
+            results[r.metadata["label"]] = r
+        _print_table(fn, results)
+        console.print(f"plot: {plot_convergence(results, out / f'{fn}.png')}")
+
+
+def _mount_subapps() -> None:
+    try:
+        from mawdo.experiments.cli import bench_app
+    except ImportError:
+        bench_app = None
+    if bench_app is not None:
+        app.add_typer(bench_app, name="bench", help="Benchmark study: run plans, make reports.")
+    try:
+        from mawdo.planning.cli import plan_app
+    except ImportError:
+        plan_app = None
+    if plan_app is not None:
+        app.add_typer(plan_app, name="plan", help="Path planning among moving obstacles.")
+
+
+_mount_subapps()
+
+if __name__ == "__main__":  # pragma: no cover
+    app()
