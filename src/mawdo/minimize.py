@@ -100,6 +100,7 @@ def minimize(
     target: float | None = None,
     max_time: float | None = None,
     callback: Callable | None = None,
+    x0=None,
     dim: int | None = None,
     vectorized: bool = True,
     shifted: bool = False,
@@ -137,6 +138,9 @@ def minimize(
     callback : callable, optional
         ``callback(result_so_far) -> bool``, called after every iteration with an
         :class:`OptimizeResult` snapshot; returning True stops all runs.
+    x0 : array_like, optional
+        Warm start: ``(k, D)`` points (shared by all runs) or ``(R, k, D)``, ``k <= pop_size``,
+        placed in the initial population; the rest is drawn at random.
     progress : bool
         Show a progress bar (rich).
     **options
@@ -174,7 +178,7 @@ def minimize(
     noise_streams = RunStreams.from_seed_sequences([c[1] for c in children])
     evaluator = Evaluator(problem, noise_streams, opt.name)
     space = Space(problem.lb, problem.ub)
-    state = opt.init(space, algo_streams, T)
+    state = opt.init(space, algo_streams, T, x0)
 
     R, D = runs, problem.dim
     best_f = np.full(R, np.inf)

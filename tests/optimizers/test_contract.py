@@ -131,3 +131,23 @@ def test_target_stops_each_run_and_freezes_it(algo):
     for r in np.flatnonzero(hit):
         k = np.argmax(res.history[r] <= 2.0)
         assert np.all(res.history[r, k:] == res.history[r, k])
+
+
+@pytest.mark.parametrize("algo", ALGOS)
+def test_warm_start_points_are_evaluated_first(algo):
+    seen = []
+
+    def f(X):
+        seen.append(X.copy())
+        return shifted_sphere(X)
+
+    x0 = np.stack([CENTRE, LB, UB + 7.0])  # the optimum, a corner, a point outside (clipped)
+    res = run(algo, fun=f, x0=x0, max_iter=3)
+    first = seen[0].reshape(3, -1, 4)
+    for r in range(3):
+        np.testing.assert_allclose(first[r, :3], np.stack([CENTRE, LB, UB]), atol=1e-12)
+    assert np.all(res.fun < 1e-20)  # the optimum was handed in (up to [-1,1] round-off), kept
+    with pytest.raises(ValueError, match="x0 must have shape"):
+        run(algo, x0=np.zeros((2, 3)))
+    with pytest.raises(ValueError, match="x0 has 13 points but pop_size is 12"):
+        run(algo, x0=np.zeros((13, 4)))

@@ -44,12 +44,12 @@ class AWDOCMA(Wind):
     name = "awdo_cmaes"
     params_class = AWDOCMAParams
 
-    def init(self, space: Space, streams: RunStreams, max_iter: int) -> AWDOCMAState:
+    def init(self, space: Space, streams: RunStreams, max_iter: int, x0=None) -> AWDOCMAState:
         try:
             from cmaes import CMA
         except ImportError as exc:  # pragma: no cover - cmaes is a hard dependency
             raise ImportError("AWDO variant 'cmaes' needs the 'cmaes' package") from exc
-        base = super().init(space, streams, max_iter)
+        base = super().init(space, streams, max_iter, x0)
         N = self.params.pop_size
         # The first coefficients are U[0,1] (rec.arx = rand(4, popsize)); the CMA-ES mean too.
         arx = streams.random((N, 4))

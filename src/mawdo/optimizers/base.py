@@ -94,8 +94,12 @@ class Optimizer(ABC):
         self.metadata: dict[str, Any] = {}
 
     @abstractmethod
-    def init(self, space: Space, streams: RunStreams, max_iter: int):
-        """Create the state of ``streams.runs`` runs; ``max_iter`` feeds iteration schedules."""
+    def init(self, space: Space, streams: RunStreams, max_iter: int, x0=None):
+        """Create the state of ``streams.runs`` runs.
+
+        ``max_iter`` feeds iteration schedules; ``x0`` (problem coordinates, ``(k, D)`` or
+        ``(R, k, D)``) seeds the first ``k`` members of the initial population (warm start).
+        """
 
     @abstractmethod
     def ask(self, state) -> np.ndarray:
@@ -107,6 +111,44 @@ class Optimizer(ABC):
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self.name!r}, {self.params})"
+
+
+def initial_population(streams: RunStreams, n: int, low, high, x0=None) -> np.ndarray:
+    """``n`` points per run, uniform in ``[low, high]``, the first ones replaced by ``x0``.
+
+    Parameters
+    ----------
+    streams : RunStreams
+        One generator per run; the uniform draw is made whether or not ``x0`` is given, so a warm
+        start does not shift the rest of the run's random numbers.
+    n : int
+        Population size.
+    low, high : float or numpy.ndarray
+        Box of the optimizer's own coordinates, broadcastable to ``(D,)``.
+    x0 : numpy.ndarray, optional
+        Seed points in the same coordinates, ``(k, D)`` (shared by every run) or ``(R, k, D)``,
+        ``k <= n``; clipped into the box.
+    """
+    D = np.broadcast_shapes(np.shape(low), np.shape(high))[-1]
+    pop = streams.uniform(low, high, (n, D))
+    if x0 is not None:
+        x0 = as_x0(x0, streams.runs, D, n)
+        pop[:, : x0.shape[1]] = np.clip(x0, low, high)
+    return pop
+
+
+def as_x0(x0, runs: int, D: int, n: int) -> np.ndarray:
+    """Validate warm-start points and return them as ``(runs, k, D)``."""
+    x0 = np.asarray(x0, dtype=float)
+    if x0.ndim == 2:
+        x0 = np.broadcast_to(x0, (runs, *x0.shape))
+    if x0.ndim != 3 or x0.shape[0] != runs or x0.shape[2] != D:
+        raise ValueError(f"x0 must have shape (k, {D}) or ({runs}, k, {D}); got {x0.shape}")
+    if x0.shape[1] > n:
+        raise ValueError(f"x0 has {x0.shape[1]} points but pop_size is {n}")
+    if not np.all(np.isfinite(x0)):
+        raise ValueError("x0 must be finite")
+    return x0
 
 
 def make_params(cls: type[Params], options: dict, algorithm: str) -> Params:

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mawdo.optimizers.base import Optimizer, Params, Space
+from mawdo.optimizers.base import Optimizer, Params, Space, initial_population
 from mawdo.streams import RunStreams
 
 
@@ -130,9 +130,9 @@ class GWO(Optimizer):
     name = "gwo"
     params_class = GWOParams
 
-    def init(self, space: Space, streams: RunStreams, max_iter: int) -> GWOState:
+    def init(self, space: Space, streams: RunStreams, max_iter: int, x0=None) -> GWOState:
         N, D, R = self.params.pop_size, space.dim, streams.runs
-        X = space.lb + streams.random((N, D)) * (space.ub - space.lb)
+        X = initial_population(streams, N, space.lb, space.ub, x0)
         return GWOState(
             X=X, lead_f=np.full((R, 3), np.inf), lead_x=np.zeros((R, 3, D)),
             t=0, T=max_iter, space=space, streams=streams,

@@ -25,7 +25,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from mawdo.optimizers import wind
-from mawdo.optimizers.base import Optimizer, Params, Space, check_range, ranks
+from mawdo.optimizers.base import (
+    Optimizer,
+    Params,
+    Space,
+    as_x0,
+    check_range,
+    initial_population,
+    ranks,
+)
 from mawdo.streams import RunStreams
 
 N_STRATEGIES = 3
@@ -95,10 +103,11 @@ class MEWDO(Optimizer):
     name = "mewdo"
     params_class = MEWDOParams
 
-    def init(self, space: Space, streams: RunStreams, max_iter: int) -> MEWDOState:
+    def init(self, space: Space, streams: RunStreams, max_iter: int, x0=None) -> MEWDOState:
         P = self.params
         N, D, R = P.pop_size, space.dim, streams.runs
-        p = streams.uniform(-1.0, 1.0, (N, D))
+        p0 = None if x0 is None else space.to_unit(as_x0(x0, streams.runs, D, N))
+        p = initial_population(streams, N, -np.ones(D), np.ones(D), p0)
         return MEWDOState(
             p=p, u=streams.uniform(-P.vmax, P.vmax, (N, D)), f=np.full((R, N), np.inf),
             pbest=p.copy(), pbest_f=np.full((R, N), np.inf),

@@ -22,7 +22,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from mawdo.optimizers import wind
-from mawdo.optimizers.base import Optimizer, Params, Space, check_choice, check_range, ranks
+from mawdo.optimizers.base import (
+    Optimizer,
+    Params,
+    Space,
+    as_x0,
+    check_choice,
+    check_range,
+    initial_population,
+    ranks,
+)
 from mawdo.optimizers.boundary import BOUNDARY_POLICIES, apply_boundary
 from mawdo.streams import RunStreams
 
@@ -154,12 +163,13 @@ class Wind(Optimizer):
     params_class = WindParams
 
     # -- set-up --------------------------------------------------------------------------------
-    def init(self, space: Space, streams: RunStreams, max_iter: int) -> WindState:
+    def init(self, space: Space, streams: RunStreams, max_iter: int, x0=None) -> WindState:
         P = self.params
         N, D = P.pop_size, space.dim
         low = P.low_dim_stabilization and D <= P.low_dim
         vmax = 0.25 * P.vmax if low else P.vmax  # Eq. 22
-        p = streams.uniform(-1.0, 1.0, (N, D))
+        p0 = None if x0 is None else space.to_unit(as_x0(x0, streams.runs, D, N))
+        p = initial_population(streams, N, -np.ones(D), np.ones(D), p0)
         u = streams.uniform(-vmax, vmax, (N, D))
         coef = self._group_coefficients(streams) if low else None
         R = streams.runs

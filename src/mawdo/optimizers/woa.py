@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mawdo.optimizers.base import Optimizer, Params, Space, check_choice
+from mawdo.optimizers.base import Optimizer, Params, Space, check_choice, initial_population
 from mawdo.streams import RunStreams
 
 
@@ -79,9 +79,9 @@ class WOA(Optimizer):
     name = "woa"
     params_class = WOAParams
 
-    def init(self, space: Space, streams: RunStreams, max_iter: int) -> WOAState:
+    def init(self, space: Space, streams: RunStreams, max_iter: int, x0=None) -> WOAState:
         N, D, R = self.params.pop_size, space.dim, streams.runs
-        X = space.lb + streams.random((N, D)) * (space.ub - space.lb)
+        X = initial_population(streams, N, space.lb, space.ub, x0)
         return WOAState(X=X, leader_f=np.full(R, np.inf), leader_x=np.zeros((R, D)),
                         t=0, T=max_iter, space=space, streams=streams)
 
