@@ -1,0 +1,210 @@
+"""Independent collision checker (shapely only; shares no code with the cost kernel).
+
+An executed trajectory is the robot's positions at integer time steps ``t0, t0 + 1, ...``; between
+two positions the robot moves in a straight line at constant speed. Over each step, every
+obstacle's motion is cut into constant-velocity pieces (the scenario's motion model); on a piece
+the robot's position *relative to the obstacle* moves along a straight segment, so the relative
+trajectory over the step is a polyline, and its distance to the obstacle's shape (at offset zero)
+is the smallest distance between robot centre and obstacle during the step. Clearance is that
+distance minus the robot radius (and minus the radius for circles): exact, no time sampling.
+
+Clearance is negative when the robot disc overlaps an obstacle: for a circle it is the exact
+signed value; for a polygon, once the robot's centre is inside, it is ``-r`` minus how deep the
+centre gets (measured on points ``DEPTH_STEP / 2`` apart; positive exactly when the centre
+enters the interior). A collision is a clearance ``< -tol`` (touching is allowed, as in the
+oracle; ``tol`` defaults to 1e-9 px so that rounding is not reported).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+from mawdo.planning.scenario import CircleObstacle, PolygonObstacle, Scenario
+
+__all__ = ["CheckReport", "check_static_path", "check_trajectory"]
+
+#: Clearance down to ``-DEFAULT_TOL`` (pixels) counts as touching, not as a collision, so that
+#: rounding (e.g. a path sliding along an inflated edge) is not reported.
+DEFAULT_TOL = 1e-9
+#: Spacing (pixels) of the points on which a polygon's penetration depth is measured.
+DEPTH_STEP = 0.25
+
+
+@dataclass(frozen=True)
+class CheckReport:
+    """Result of a collision check.
+
+    Attributes
+    ----------
+    ok : bool
+        No collision and (for trajectories) every position inside the map.
+    collisions : tuple of (int, int)
+        ``(step, obstacle index)`` for each step/segment that collides with an obstacle.
+    min_clearance : float
+        Smallest clearance over all steps and obstacles (pixels; negative = overlap; ``inf``
+        without obstacles).
+    clearance : numpy.ndarray, shape (n_steps, n_obstacles)
+        Clearance per step (segment) and obstacle (pixels).
+    out_of_map : tuple of int
+        Indices of positions outside the map box (trajectories only).
+    """
+
+    ok: bool
+    collisions: tuple[tuple[int, int], ...]
+    min_clearance: float
+    clearance: np.ndarray
+    out_of_map: tuple[int, ...] = ()
+
+
+def _polygon_depth(geoms: np.ndarray, poly) -> np.ndarray:
+    """How far each geometry reaches into the polygon's interior (pixels; 0 if it only touches).
+
+    The part of the geometry inside the polygon is cut into pieces of at most ``DEPTH_STEP``;
+    the depth is the largest distance to the polygon's boundary over the pieces' ends and
+    midpoints, so it is positive exactly when the geometry enters the interior and within
+    ``DEPTH_STEP / 4`` of the true depth.
+    """
+    depth = np.zeros(len(geoms))
+    boundary = poly.boundary
+    for k in np.nonzero(shapely.distance(geoms, poly) == 0.0)[0]:
+        g = geoms[k]
+        if shapely.length(g) == 0.0:  # a point (the robot does not move relative to it)
+            pts = shapely.get_coordinates(g)[:1]
+        else:
+            clip = shapely.segmentize(shapely.intersection(g, poly), DEPTH_STEP)
+            parts = [shapely.get_coordinates(p) for p in getattr(clip, "geoms", [clip])]
+            parts = [c for c in parts if len(c) >= 2]
+            if not parts:
+                continue
+            pts = np.concatenate([np.vstack([c, 0.5 * (c[:-1] + c[1:])]) for c in parts])
+        inside = shapely.contains_xy(poly, pts[:, 0], pts[:, 1])
+        if np.any(inside):
+            depth[k] = float(np.max(shapely.distance(shapely.points(pts[inside]), boundary)))
+    return depth
+
+
+def _shape_distance(shape, lines: np.ndarray) -> np.ndarray:
+    """Signed distance (pixels) from each line to the raw shape: negative when it goes inside.
+
+    Circles exactly (distance to the centre minus the radius); polygons by their distance, or
+    minus the penetration depth (:func:`_polygon_depth`).
+    """
+    if isinstance(shape, CircleObstacle):
+        return shapely.distance(lines, shapely.Point(shape.center)) - shape.radius
+    poly = shape if not isinstance(shape, PolygonObstacle) else shapely.Polygon(shape.vertices)
+    return shapely.distance(lines, poly) - _polygon_depth(lines, poly)
+
+
+def _report(clearance: np.ndarray, tol: float, out_of_map=()) -> CheckReport:
+    steps, obs = np.nonzero(clearance < -tol)
+    collisions = tuple((int(s), int(o)) for s, o in zip(steps, obs, strict=True))
+    min_c = float(clearance.min()) if clearance.size else np.inf
+    return CheckReport(
+        not collisions and not out_of_map, collisions, min_c, clearance, tuple(out_of_map)
+    )
+
+
+def _as_points(path, what: str) -> np.ndarray:
+    p = np.asarray(path, dtype=float)
+    if p.ndim != 2 or p.shape[1] != 2 or len(p) < 1:
+        raise ValueError(f"{what} must have shape (k, 2) with k >= 1, got {p.shape}")
+    if not np.all(np.isfinite(p)):
+        raise ValueError(f"{what} must be finite")
+    return p
+
+
+def check_trajectory(
+    positions, scenario: Scenario, t0: float = 0.0, tol: float = DEFAULT_TOL, times=None
+) -> CheckReport:
+    """Check an executed trajectory against the scenario's moving and static obstacles.
+
+    Parameters
+    ----------
+    positions : array_like, shape (k, 2)
+        Robot centre at times ``t0, t0 + 1, ..., t0 + k - 1`` (pixels), moving in a straight
+        line at constant speed in between. A single position is checked at ``t0`` only.
+    scenario : Scenario
+        Obstacles, their motion and the robot radius.
+    t0 : float
+        Time of the first position (time steps), >= 0.
+    tol : float
+        Clearance below ``-tol`` (pixels) is a collision.
+    times : array_like, shape (k,), optional
+        Explicit, non-decreasing times of the positions (time steps), e.g. the vertices of a
+        path followed at constant speed; overrides ``t0``.
+
+    Returns
+    -------
+    CheckReport
+        ``collisions`` lists ``(step, obstacle)``: step ``s`` is the move from position ``s`` to
+        ``s + 1`` (step 0 for a single position).
+    """
+    p = _as_points(positions, "positions")
+    if times is None:
+        times = t0 + np.arange(len(p), dtype=float)
+    else:
+        times = np.asarray(times, dtype=float)
+        if times.shape != (len(p),) or not np.all(np.isfinite(times)):
+            raise ValueError(f"times must be finite with shape ({len(p)},), got {times.shape}")
+        if np.any(np.diff(times) < 0):
+            raise ValueError("times must be non-decreasing")
+    if times.size and times[0] < 0:
+        raise ValueError(f"times must be >= 0, got {times[0]!r}")
+    if len(p) == 1:
+        p = np.vstack([p, p])
+        times = np.array([times[0], times[0]])
+    r = scenario.robot_radius
+    W, H = scenario.width, scenario.height
+    outside = np.nonzero((p[:, 0] < 0) | (p[:, 0] > W) | (p[:, 1] < 0) | (p[:, 1] > H))[0]
+    n_steps = len(p) - 1
+    clearance = np.full((n_steps, len(scenario.obstacles)), np.inf)
+    for o in scenario.obstacles:
+        coords, index = [], []
+        for s in range(n_steps):
+            ta, tb = times[s], times[s + 1]
+            tk, ok = o.knots(ta, tb)
+            frac = (tk - ta) / (tb - ta) if tb > ta else np.zeros_like(tk)
+            robot = p[s] + frac[:, None] * (p[s + 1] - p[s])
+            rel = robot - ok  # robot centre in the obstacle's frame, linear per piece
+            if len(rel) == 1:
+                rel = np.vstack([rel, rel])
+            coords.append(rel)
+            index.append(np.full(len(rel), s))
+        lines = shapely.linestrings(np.concatenate(coords), indices=np.concatenate(index))
+        clearance[:, o.index] = _shape_distance(o.shape, lines) - r
+    return _report(clearance, tol, [int(i) for i in outside])
+
+
+def check_static_path(
+    path, obstacles, radius: float = 0.0, tol: float = DEFAULT_TOL
+) -> CheckReport:
+    """Check a polyline against obstacles that do not move.
+
+    Parameters
+    ----------
+    path : array_like, shape (k, 2)
+        Path vertices (pixels).
+    obstacles : sequence
+        Shapely geometries, or obstacle shapes from a scenario (``CircleObstacle`` /
+        ``PolygonObstacle``, tested exactly at offset zero).
+    radius : float
+        Robot radius (pixels) subtracted from every distance (0 if the obstacles are inflated).
+    tol : float
+        Clearance below ``-tol`` (pixels) is a collision.
+
+    Returns
+    -------
+    CheckReport
+        ``collisions`` lists ``(segment, obstacle)`` (segment 0 for a single point).
+    """
+    p = _as_points(path, "path")
+    if len(p) == 1:
+        p = np.vstack([p, p])
+    lines = shapely.linestrings(np.stack([p[:-1], p[1:]], axis=1))
+    clearance = np.full((len(lines), len(obstacles)), np.inf)
+    for j, ob in enumerate(obstacles):
+        clearance[:, j] = _shape_distance(ob, lines) - radius
+    return _report(clearance, tol)

@@ -1,0 +1,88 @@
+"""``mawdo plan``: plan through a scenario and write metrics (and figures).
+
+``mawdo plan SCENARIO ...`` runs one planning run (``run`` is the default command);
+``mawdo plan study ...`` runs the multi-algorithm study.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import typer
+from rich.console import Console
+from typer.core import TyperGroup
+
+console = Console(width=None if sys.stdout.isatty() else 140)
+
+
+class _DefaultRun(TyperGroup):
+    """``mawdo plan paper ...`` means ``mawdo plan run paper ...``."""
+
+    def parse_args(self, ctx, args):
+        if args and args[0] not in self.commands and args[0] not in ("--help", "-h"):
+            args = ["run", *args]
+        return super().parse_args(ctx, args)
+
+
+plan_app = typer.Typer(
+    cls=_DefaultRun,
+    no_args_is_help=True,
+    add_completion=False,
+    help="Path planning among moving obstacles.",
+)
+
+
+def _scenario(name_or_path: str):
+    from mawdo.planning import SCENARIOS, get_scenario, load_scenario
+
+    p = Path(name_or_path)
+    if p.suffix.lower() in (".toml", ".json") or p.exists():
+        return load_scenario(p)
+    if name_or_path.lower() in SCENARIOS:
+        return get_scenario(name_or_path)
+    return get_scenario(name_or_path)  # raises with close-name suggestions
+
+
+@plan_app.command("run")
+def run_cmd(
+    scenario: str = typer.Argument(..., help="built-in name (paper) or a .toml/.json file"),
+    algorithm: str = typer.Option("mawdo", "--algorithm", "-a", help="registered optimizer"),
+    seed: int = typer.Option(0, help="seed of the run"),
+    preset: str = typer.Option("realtime", help="planner preset: realtime, paper or quick"),
+    static: bool = typer.Option(False, "--static", help="plan once on the map frozen at t=0"),
+    out: Path = typer.Option(Path("out/plan"), help="output folder (metrics.json, figures)"),
+    figures: bool = typer.Option(True, help="write the snapshot grid and the GIF"),
+):
+    """Plan and execute one run; print and save its metrics."""
+    from mawdo.planning.metrics import run_metrics
+    from mawdo.planning.planner import plan
+
+    try:
+        sc = _scenario(scenario)
+        res = plan(sc, algorithm=algorithm, seed=seed, config=preset, dynamic=not static)
+    except (KeyError, ValueError) as exc:
+        console.print(f"[bold red]error:[/] {exc.args[0] if isinstance(exc, KeyError) else exc}")
+        raise typer.Exit(2) from None
+    m = run_metrics(res)
+    out.mkdir(parents=True, exist_ok=True)
+    payload = {
+        "scenario": sc.name,
+        "algorithm": algorithm,
+        "seed": seed,
+        "preset": preset,
+        "dynamic": not static,
+        **m,
+    }
+    (out / "metrics.json").write_text(json.dumps(payload, indent=1))
+    for k, v in payload.items():
+        console.print(f"{k:>22s}: {v:.4g}" if isinstance(v, float) else f"{k:>22s}: {v}")
+    console.print(f"metrics: {out / 'metrics.json'}")
+    if figures:
+        try:
+            from mawdo.planning import render
+        except ImportError:
+            return
+        console.print(f"snapshot grid: {render.snapshot_grid([res], out / 'snapshots.png')}")
+        console.print(f"animation: {render.animate(res, out / 'run.gif')}")

@@ -1,0 +1,271 @@
+"""Path cost of the paper (Eqs. 17-21) for a population of waypoint candidates.
+
+``C = alpha C1 + beta C2 + lam C3`` (Eq. 17) with ``alpha + beta + lam = 1`` (Eq. 18):
+
+* ``C1``: polyline length of ``start, w1..wm, goal`` (pixels, Eq. 19);
+* ``C2 = k n^4`` (Eq. 20), ``n`` the number of (segment, obstacle) pairs whose segment hits the
+  obstacle inflated by the robot radius, *including a segment lying wholly inside it* (the
+  paper counts boundary crossings, which misses that case);
+* ``C3 = sum |theta_i - pi|`` over interior vertices (radians, Eq. 21): the total turning angle;
+  zero-length segments are skipped, so duplicated waypoints neither add nor hide turning.
+
+Modes
+-----
+``snapshot`` (the paper)
+    Obstacles frozen where they are at the planning time ``t0``.
+``spacetime``
+    The robot leaves ``start`` at ``t0`` and moves at its speed ``v`` along the path, so it is on
+    segment ``j`` during ``[t0 + s_j / v, t0 + s_{j+1} / v]`` (``s`` arc length). Each segment is
+    tested against each obstacle's motion over that interval, exactly (relative motion per
+    constant-velocity piece; see :mod:`mawdo.planning.kernel`).
+
+Default weights (why)
+---------------------
+``alpha = 0.45, beta = 0.10, lam = 0.45, k = 1e5``.
+
+* ``beta k = 1e4`` exceeds the cost of *any* collision-free path on the 366 x 366 map: with
+  20 waypoints in the map box, ``C1 <= 21 * 517.6 = 10870`` px and ``C3 <= 20 pi``, so
+  ``alpha C1 + lam C3 <= 4920 < 1e4``. Every collision-free candidate therefore ranks above every
+  colliding one, and among colliding ones fewer hits rank better (``n^4``). The bound is
+  ``beta k > alpha (m + 1) diag + lam m pi``; :meth:`CostWeights.dominates` checks it.
+* ``lam = alpha``: one radian of turning costs as much as one pixel of length. Near an optimum a
+  zig-zag of amplitude ``d`` on segments of length ``l`` adds about ``2 d^2 / l`` px of length but
+  ``4 d / l`` rad of turning, so the turning term is what irons out small wiggles, while a
+  detour of many pixels is still judged by its length. Turning that a detour needs cannot be
+  avoided, so this weight barely moves the shortest collision-free path.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from mawdo.planning.geometry import FlatObstacles, MotionTable
+from mawdo.planning.kernel import population_cost
+from mawdo.planning.scenario import Scenario
+
+__all__ = ["CostWeights", "PathCost", "assemble_paths"]
+
+MODES = ("snapshot", "spacetime")
+
+
+@dataclass(frozen=True)
+class CostWeights:
+    """Weights of Eq. 17 and the collision scale of Eq. 20.
+
+    Parameters
+    ----------
+    alpha : float
+        Weight of the length C1 (per pixel), >= 0.
+    beta : float
+        Weight of the collision term C2, >= 0.
+    lam : float
+        Weight of the turning C3 (per radian), >= 0.
+    k : float
+        Scale of ``C2 = k n^4``, >= 0.
+
+    ``alpha + beta + lam`` must be 1 (Eq. 18; within 1e-9).
+    """
+
+    alpha: float = 0.45
+    beta: float = 0.10
+    lam: float = 0.45
+    k: float = 1e5
+
+    def __post_init__(self) -> None:
+        for name in ("alpha", "beta", "lam", "k"):
+            value = getattr(self, name)
+            if not np.isfinite(value) or value < 0:
+                raise ValueError(f"CostWeights.{name} must be finite and >= 0, got {value!r}")
+        total = self.alpha + self.beta + self.lam
+        if abs(total - 1.0) > 1e-9:
+            raise ValueError(f"alpha + beta + lam must equal 1 (Eq. 18), got {total!r}")
+
+    def dominates(self, width: float, height: float, n_waypoints: int = 20) -> bool:
+        """True if one collision outweighs any collision-free path in a ``width x height`` map.
+
+        That holds when ``beta k > alpha (m + 1) diag + lam m pi`` (``m`` waypoints in the map
+        box, ``diag`` the map diagonal in pixels).
+        """
+        diag = float(np.hypot(width, height))
+        bound = self.alpha * (n_waypoints + 1) * diag + self.lam * n_waypoints * np.pi
+        return self.beta * self.k > bound
+
+
+def assemble_paths(X, start, goal) -> np.ndarray:
+    """Full paths ``start, w1..wm, goal`` from candidates.
+
+    Parameters
+    ----------
+    X : array_like, shape (n, 2 m)
+        Waypoints ``(x1, y1, ..., xm, ym)`` (pixels).
+    start, goal : array_like, shape (2,)
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, m + 2, 2)
+    """
+    X = np.asarray(X, dtype=float)
+    n = X.shape[0]
+    pts = X.reshape(n, -1, 2)
+    s = np.broadcast_to(np.asarray(start, dtype=float), (n, 1, 2))
+    g = np.broadcast_to(np.asarray(goal, dtype=float), (n, 1, 2))
+    return np.concatenate([s, pts, g], axis=1)
+
+
+class PathCost:
+    """The paper's path cost for a population, evaluated by one compiled kernel call.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        World: map, goal, robot radius and speed, obstacles and their motion.
+    mode : {"snapshot", "spacetime"}
+        How moving obstacles are treated (see the module docstring).
+    weights : CostWeights, optional
+        Defaults to ``CostWeights()`` (alpha 0.45, beta 0.10, lam 0.45, k 1e5).
+    n_waypoints : int
+        Waypoints per candidate ``m``; the dimension is ``2 m`` (default 20 -> 40-D).
+
+    Examples
+    --------
+    >>> cost = PathCost(get_scenario("paper"), mode="spacetime")      # doctest: +SKIP
+    >>> f = cost(X, start=(20, 20), t0=12.0)                           # doctest: +SKIP
+    """
+
+    def __init__(
+        self,
+        scenario: Scenario,
+        mode: str = "snapshot",
+        weights: CostWeights | None = None,
+        n_waypoints: int = 20,
+    ) -> None:
+        if mode not in MODES:
+            raise ValueError(f"mode must be one of {MODES}, got {mode!r}")
+        if not isinstance(n_waypoints, int | np.integer) or n_waypoints < 1:
+            raise ValueError(f"n_waypoints must be a positive integer, got {n_waypoints!r}")
+        if weights is None:
+            weights = CostWeights()
+        if not isinstance(weights, CostWeights):
+            raise TypeError(f"weights must be a CostWeights, got {type(weights).__name__}")
+        self.scenario = scenario
+        self.mode = mode
+        self.weights = weights
+        self.n_waypoints = int(n_waypoints)
+        self.flat = FlatObstacles.from_scenario(scenario)
+        self._table: MotionTable | None = None
+
+    @property
+    def dim(self) -> int:
+        """Dimension of a candidate (``2 * n_waypoints``)."""
+        return 2 * self.n_waypoints
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """Box ``(lb, ub)`` of a candidate: the map (pixels), each shape ``(dim,)``."""
+        lb = np.zeros(self.dim)
+        ub = np.tile([self.scenario.width, self.scenario.height], self.n_waypoints)
+        return lb, ub
+
+    def __call__(self, X, start=None, t0: float = 0.0) -> np.ndarray:
+        """Total cost C (Eq. 17) of each candidate.
+
+        Parameters
+        ----------
+        X : array_like, shape (n, dim) or (dim,)
+            Candidates (pixels).
+        start : array_like, shape (2,), optional
+            Current robot position (pixels); default the scenario's start.
+        t0 : float
+            Planning time (time steps), >= 0.
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,) (a float for a single candidate)
+        """
+        cost, _, _, _ = self._evaluate(X, start, t0)
+        return cost
+
+    def parts(self, X, start=None, t0: float = 0.0):
+        """The three parts of the cost, unweighted.
+
+        Returns
+        -------
+        length : numpy.ndarray, shape (n,)
+            C1, polyline length (pixels, Eq. 19).
+        n_collisions : numpy.ndarray of int64, shape (n,)
+            ``n`` of Eq. 20 (``C2 = k n^4``).
+        turning : numpy.ndarray, shape (n,)
+            C3, total turning (radians, Eq. 21).
+        """
+        _, length, ncol, turn = self._evaluate(X, start, t0)
+        return length, ncol, turn
+
+    # ----------------------------------------------------------------------------------------
+
+    def _motion_table(self, X: np.ndarray, start: np.ndarray, t0: float) -> MotionTable:
+        # Every segment is shorter than the diagonal of a box holding all points, so the robot
+        # reaches the goal before t0 + (m + 1) diag / v: a table to there covers every query.
+        # One min/max over all coordinates gives a (square) box cheaply.
+        lo, hi = X.min(), X.max()
+        if not (np.isfinite(lo) and np.isfinite(hi)):  # NaN candidates just get a NaN cost
+            finite = X[np.isfinite(X)]
+            lo, hi = (finite.min(), finite.max()) if finite.size else (0.0, 0.0)
+        ends = np.concatenate([start, self.scenario.goal])
+        lo, hi = min(lo, ends.min()), max(hi, ends.max())
+        diag = np.sqrt(2.0) * float(hi - lo)
+        t_need = t0 + (self.n_waypoints + 1) * diag / self.scenario.robot_speed
+        table = self._table
+        if table is None or not table.covers(t0, t_need):
+            # a receding-horizon planner calls again with a later t0: cover twice what is needed
+            table = MotionTable.build(self.scenario.obstacles, t0, t0 + 2.0 * (t_need - t0) + 1.0)
+            self._table = table
+        return table
+
+    def _evaluate(self, X, start, t0):
+        X = np.asarray(X, dtype=np.float64)
+        single = X.ndim == 1
+        X2 = np.ascontiguousarray(np.atleast_2d(X))
+        if X2.ndim != 2 or X2.shape[1] != self.dim:
+            raise ValueError(
+                f"X must have shape (n, {self.dim}) for {self.n_waypoints} waypoints, got {X.shape}"
+            )
+        start = self.scenario.start if start is None else np.asarray(start, dtype=np.float64)
+        if start.shape != (2,) or not np.all(np.isfinite(start)):
+            raise ValueError(f"start must be a finite (x, y) pair, got {start!r}")
+        t0 = float(t0)
+        if not np.isfinite(t0) or t0 < 0:
+            raise ValueError(f"t0 must be finite and >= 0, got {t0!r}")
+        n = X2.shape[0]
+        out_cost = np.empty(n)
+        out_len = np.empty(n)
+        out_turn = np.empty(n)
+        out_ncol = np.empty(n, dtype=np.int64)
+        if n == 0:
+            return out_cost, out_len, out_ncol, out_turn
+        n_obs = len(self.flat.thresh)
+        spacetime = self.mode == "spacetime"
+        if spacetime:
+            table = self._motion_table(X2, start, t0)
+            snap = np.zeros((n_obs, 2))
+        else:
+            table = MotionTable.frozen(n_obs)
+            snap = np.ascontiguousarray(self.scenario.offsets(t0), dtype=np.float64)
+        w = self.weights
+        population_cost(
+            X2,
+            start,
+            self.scenario.goal,
+            t0,
+            float(self.scenario.robot_speed),
+            spacetime,
+            self.flat.arrays(),
+            snap,
+            table.kernel_arrays(t0),
+            (float(w.alpha), float(w.beta), float(w.lam), float(w.k)),
+            (out_cost, out_len, out_ncol, out_turn),
+        )
+        if single:
+            return out_cost[0], out_len[0], out_ncol[0], out_turn[0]
+        return out_cost, out_len, out_ncol, out_turn

@@ -1,0 +1,95 @@
+"""Polyline helpers for the planner and the metrics: arc length, advancing, re-spreading, turning.
+
+Pure NumPy on ``(k, 2)`` point arrays (pixels); independent of the Numba cost kernel so the
+metrics of an executed path are not computed by the code that produced it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def segment_lengths(points: np.ndarray) -> np.ndarray:
+    """Lengths of the ``k - 1`` segments of a polyline ``(k, 2)`` (pixels)."""
+    return np.hypot(*np.diff(points, axis=0).T)
+
+
+def polyline_length(points: np.ndarray) -> float:
+    """Total length (pixels)."""
+    return float(segment_lengths(points).sum())
+
+
+def turning_angles(points: np.ndarray, eps: float = 1e-9) -> np.ndarray:
+    """Turning angle at each interior vertex, ``|theta_i - pi|`` of Eq. 21 (radians, [0, pi]).
+
+    Zero-length segments (shorter than ``eps`` pixels) are dropped first: a robot standing still
+    does not turn.
+    """
+    seg = np.diff(points, axis=0)
+    seg = seg[np.hypot(*seg.T) > eps]
+    if len(seg) < 2:
+        return np.zeros(0)
+    a, b = seg[:-1], seg[1:]
+    cross = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+    dot = (a * b).sum(axis=1)
+    return np.abs(np.arctan2(cross, dot))
+
+
+def advance(points: np.ndarray, distance: float):
+    """Move ``distance`` pixels along a polyline from its first point.
+
+    Returns
+    -------
+    position : numpy.ndarray, shape (2,)
+        Where the robot ends (the last point if the polyline is shorter than ``distance``).
+    remainder : numpy.ndarray, shape (j, 2)
+        The rest of the polyline, starting at ``position``.
+    passed : numpy.ndarray, shape (q, 2)
+        Vertices passed on the way (strictly after the start, before ``position``).
+    fractions : numpy.ndarray, shape (q,)
+        Where each passed vertex lies, as a fraction of ``distance`` (for time stamps).
+    """
+    seg = segment_lengths(points)
+    cum = np.concatenate([[0.0], np.cumsum(seg)])
+    if distance >= cum[-1]:
+        inner = slice(1, len(points) - 1)
+        frac = cum[inner] / distance if distance > 0 else np.zeros(len(points) - 2)
+        return points[-1].copy(), points[-1:].copy(), points[inner].copy(), frac
+    j = int(np.searchsorted(cum, distance, side="right") - 1)  # segment j holds the point
+    frac = (distance - cum[j]) / seg[j] if seg[j] > 0 else 0.0
+    pos = points[j] + frac * (points[j + 1] - points[j])
+    inner = slice(1, j + 1)
+    return pos, np.vstack([pos, points[j + 1 :]]), points[inner].copy(), cum[inner] / distance
+
+
+def respread(points: np.ndarray, m: int) -> np.ndarray:
+    """``m`` interior waypoints at equal arc length along a polyline (its ends excluded).
+
+    Returns an array ``(m, 2)``; a degenerate polyline gives ``m`` copies of its point.
+    """
+    seg = segment_lengths(points)
+    cum = np.concatenate([[0.0], np.cumsum(seg)])
+    if cum[-1] <= 0:
+        return np.repeat(points[:1], m, axis=0)
+    s = cum[-1] * np.arange(1, m + 1) / (m + 1)
+    return np.column_stack([np.interp(s, cum, points[:, k]) for k in range(2)])
+
+
+def densify(points: np.ndarray, m: int) -> np.ndarray:
+    """``m`` interior waypoints for a polyline, keeping its geometry exactly.
+
+    The polyline's own interior vertices are kept (at most ``m`` of them: the last ones); the
+    count is made up by splitting the longest segment at its midpoint, repeatedly. Unlike
+    :func:`respread`, this never cuts a corner of the route, so a collision-free route stays
+    collision-free when the planner re-seeds the optimizer with it.
+
+    Returns an array ``(m, 2)`` (pixels).
+    """
+    pts = [p for p in np.asarray(points, dtype=float)]
+    first, last, inner = pts[0], pts[-1], pts[1:-1][-m:] if m > 0 else []
+    pts = [first, *inner, last]
+    while len(pts) - 2 < m:
+        seg = np.hypot(*np.diff(np.array(pts), axis=0).T)
+        j = int(np.argmax(seg))
+        pts.insert(j + 1, 0.5 * (pts[j] + pts[j + 1]))
+    return np.array(pts[1:-1])

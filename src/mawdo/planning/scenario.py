@@ -1,0 +1,584 @@
+"""World model for path planning: map, start and goal, robot, obstacles and their motion.
+
+A scenario is read from a dict (TOML or JSON file, schema version 1), validated field by field by
+pydantic and then checked as a whole (start and goal inside the map and clear of obstacles,
+polygons simple, moving obstacles inside the map). Every problem is reported with the path of the
+offending field, e.g. ``obstacles[2].radius: must be > 0``, in one :class:`ScenarioError`.
+
+Units: positions and sizes in pixels (x right, y up, origin at the lower-left map corner), time in
+time steps, speeds in pixels per time step.
+
+File layout (TOML)::
+
+    schema_version = 1
+    name = "example"
+    seed = 7                       # seeds the random-walk obstacles
+    width = 366.0                  # pixels
+    height = 366.0
+    start = [20.0, 20.0]
+    goal = [346.0, 346.0]
+    robot = { radius = 4.0, speed = 4.0 }
+
+    [[obstacles]]                  # static polygon (motion omitted = static)
+    shape = "polygon"
+    vertices = [[100, 100], [160, 100], [130, 150]]
+
+    [[obstacles]]                  # moving circle; a motion table without `model`
+    shape = "circle"               # is constant_velocity (reflects at the border)
+    center = [200, 80]
+    radius = 12
+    motion = { velocity = [1.5, 0.5] }
+
+Other motions: ``{ model = "patrol", waypoints = [[dx, dy], ...], speed = 2.0 }`` (offsets from
+the written position; the route is closed through ``(0, 0)``; ``cycle = "back_and_forth"`` retraces
+it instead) and ``{ model = "bounded_random_walk", step = 1.5, hold = 5 }`` (speed at most
+``step``, a new random velocity every ``hold`` steps).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import tomllib
+from collections.abc import Callable
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+from typing import Annotated, Any, Literal
+
+import numpy as np
+import shapely
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Discriminator,
+    Field,
+    Tag,
+    ValidationError,
+)
+
+from mawdo.planning.motion import BoundedRandomWalk, ConstantVelocity, Motion, Patrol, Static
+from mawdo.registry import Registry
+
+__all__ = [
+    "SCENARIOS",
+    "CircleObstacle",
+    "Obstacle",
+    "PolygonObstacle",
+    "Scenario",
+    "ScenarioError",
+    "ScenarioSpec",
+    "get_scenario",
+    "load_scenario",
+    "scenario_from_dict",
+]
+
+SCHEMA_VERSION = 1
+# Coordinates are bounded so that geometry stays far from float overflow (pixels).
+MAX_COORD = 1e6
+MAX_MAP_SIZE = 1e5
+
+Coord = Annotated[float, Field(ge=-MAX_COORD, le=MAX_COORD)]
+Point = tuple[Coord, Coord]
+
+
+class ScenarioError(ValueError):
+    """An invalid scenario: ``errors`` lists ``(field_path, message)`` pairs.
+
+    Parameters
+    ----------
+    errors : list of (str, str)
+        Field paths (``obstacles[2].radius``; empty for the whole file) and messages.
+    source : str, optional
+        Where the scenario came from (a file name), for the message.
+    """
+
+    def __init__(self, errors: list[tuple[str, str]], source: str | None = None) -> None:
+        self.errors = list(errors)
+        self.source = source
+        where = f" {source!r}" if source else ""
+        lines = [f"{p}: {m}" if p else m for p, m in self.errors]
+        super().__init__(f"invalid scenario{where}:\n  " + "\n  ".join(lines))
+
+
+class _Model(BaseModel):
+    # Unknown keys are typos; NaN/inf would poison geometry; frozen so specs can be shared.
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
+
+
+class StaticMotion(_Model):
+    """The obstacle never moves."""
+
+    model: Literal["static"] = "static"
+
+
+class ConstantVelocityMotion(_Model):
+    """Constant velocity (pixels per time step), reflecting at the map border."""
+
+    model: Literal["constant_velocity"] = "constant_velocity"
+    velocity: Point
+
+
+class PatrolMotion(_Model):
+    """Patrol through offsets (pixels) from the written position at ``speed`` px per step."""
+
+    model: Literal["patrol"] = "patrol"
+    waypoints: list[Point] = Field(min_length=1)
+    speed: float = Field(ge=0)
+    cycle: Literal["loop", "back_and_forth"] = "loop"
+
+
+class RandomWalkMotion(_Model):
+    """Seeded random walk: speed at most ``step`` px per step, a new velocity every ``hold``."""
+
+    model: Literal["bounded_random_walk"] = "bounded_random_walk"
+    step: float = Field(ge=0, le=MAX_MAP_SIZE)
+    hold: int = Field(default=1, ge=1, le=10_000)
+
+
+_MOTION_TAGS = ("static", "constant_velocity", "patrol", "bounded_random_walk")
+
+
+def _motion_tag(value: Any) -> str | None:
+    # A motion table without `model` is the default moving model (constant velocity).
+    if isinstance(value, dict):
+        tag = value.get("model", "constant_velocity")
+        return tag if isinstance(tag, str) else None
+    return getattr(value, "model", None)
+
+
+MotionSpec = Annotated[
+    Annotated[StaticMotion, Tag("static")]
+    | Annotated[ConstantVelocityMotion, Tag("constant_velocity")]
+    | Annotated[PatrolMotion, Tag("patrol")]
+    | Annotated[RandomWalkMotion, Tag("bounded_random_walk")],
+    Discriminator(
+        _motion_tag,
+        custom_error_type="unknown_motion",
+        custom_error_message=f"model must be one of {', '.join(_MOTION_TAGS)}",
+    ),
+]
+
+
+class CircleObstacle(_Model):
+    """A disc: ``center`` (pixels) and ``radius`` (pixels, > 0)."""
+
+    shape: Literal["circle"]
+    id: str | None = None
+    center: Point
+    radius: float = Field(gt=0, le=MAX_MAP_SIZE)
+    motion: MotionSpec = StaticMotion()
+
+    def bounds(self) -> tuple[float, float, float, float]:
+        """``(xmin, ymin, xmax, ymax)`` at offset zero (pixels)."""
+        (x, y), r = self.center, self.radius
+        return (x - r, y - r, x + r, y + r)
+
+    def distance(self, point) -> float:
+        """Euclidean distance from ``point`` to the disc at offset zero (pixels; 0 inside)."""
+        return max(math.dist(point, self.center) - self.radius, 0.0)
+
+
+class PolygonObstacle(_Model):
+    """A simple polygon (no holes) given by >= 3 vertices (pixels), in either orientation."""
+
+    shape: Literal["polygon"]
+    id: str | None = None
+    vertices: list[Point] = Field(min_length=3)
+    motion: MotionSpec = StaticMotion()
+
+    def bounds(self) -> tuple[float, float, float, float]:
+        """``(xmin, ymin, xmax, ymax)`` at offset zero (pixels)."""
+        v = np.asarray(self.vertices)
+        return (*v.min(axis=0), *v.max(axis=0))
+
+    def distance(self, point) -> float:
+        """Euclidean distance from ``point`` to the polygon at offset zero (pixels; 0 inside)."""
+        return float(shapely.Polygon(self.vertices).distance(shapely.Point(point)))
+
+
+ObstacleSpec = Annotated[CircleObstacle | PolygonObstacle, Field(discriminator="shape")]
+
+
+class RobotSpec(_Model):
+    """Disc robot: ``radius`` (pixels, >= 0; 0 is a point robot), ``speed`` (px per step, > 0)."""
+
+    radius: float = Field(default=4.0, ge=0, le=MAX_MAP_SIZE)
+    speed: float = Field(default=4.0, gt=0, le=MAX_MAP_SIZE)
+
+
+class ScenarioSpec(_Model):
+    """The scenario file, schema version 1 (see the module docstring for the layout)."""
+
+    schema_version: Literal[1]
+    name: str = "unnamed"
+    description: str = ""
+    seed: int = Field(default=0, ge=0, lt=2**63)
+    width: float = Field(default=366.0, gt=0, le=MAX_MAP_SIZE)
+    height: float = Field(default=366.0, gt=0, le=MAX_MAP_SIZE)
+    start: Point
+    goal: Point
+    robot: RobotSpec = RobotSpec()
+    obstacles: list[ObstacleSpec] = Field(default_factory=list)
+
+
+# --------------------------------------------------------------------------------------------
+# runtime objects
+
+
+@dataclass(frozen=True, eq=False)
+class Obstacle:
+    """One obstacle of a scenario: its shape (at offset zero) and its motion.
+
+    Attributes
+    ----------
+    index : int
+        Position in ``Scenario.obstacles``.
+    id : str
+        Name from the file, or ``obstacle-<index>``.
+    shape : CircleObstacle or PolygonObstacle
+        The validated shape spec (pixels), as written in the file.
+    motion : Motion
+        Translation of the shape over time (see :mod:`mawdo.planning.motion`).
+    """
+
+    index: int
+    id: str
+    shape: CircleObstacle | PolygonObstacle
+    motion: Motion
+
+    @property
+    def is_static(self) -> bool:
+        return self.motion.is_static
+
+    @property
+    def is_circle(self) -> bool:
+        return isinstance(self.shape, CircleObstacle)
+
+    def offset(self, t) -> np.ndarray:
+        """Translation of the shape at times ``t`` (time steps): ``t.shape + (2,)`` pixels."""
+        return self.motion.offset(t)
+
+    def knots(self, t0: float, t1: float) -> tuple[np.ndarray, np.ndarray]:
+        """Constant-velocity pieces of ``[t0, t1]``; see :meth:`Motion.knots`."""
+        return self.motion.knots(t0, t1)
+
+
+@dataclass(frozen=True, eq=False)
+class Scenario:
+    """A validated scenario ready for planning.
+
+    Build one with :func:`scenario_from_dict`, :func:`load_scenario`, :func:`get_scenario` or the
+    raster loaders in :mod:`mawdo.planning.rasters`.
+
+    Attributes
+    ----------
+    spec : ScenarioSpec
+        The validated file contents (round-trips with :meth:`to_dict`).
+    obstacles : tuple of Obstacle
+        Runtime obstacles, in file order.
+    """
+
+    spec: ScenarioSpec
+    obstacles: tuple[Obstacle, ...]
+
+    @property
+    def name(self) -> str:
+        return self.spec.name
+
+    @property
+    def width(self) -> float:
+        """Map width (pixels)."""
+        return self.spec.width
+
+    @property
+    def height(self) -> float:
+        """Map height (pixels)."""
+        return self.spec.height
+
+    @property
+    def bounds(self) -> tuple[float, float, float, float]:
+        """Map box ``(0, 0, width, height)`` (pixels)."""
+        return (0.0, 0.0, self.spec.width, self.spec.height)
+
+    @property
+    def start(self) -> np.ndarray:
+        """Start position (pixels), shape (2,)."""
+        return np.array(self.spec.start, dtype=float)
+
+    @property
+    def goal(self) -> np.ndarray:
+        """Goal position (pixels), shape (2,)."""
+        return np.array(self.spec.goal, dtype=float)
+
+    @property
+    def robot_radius(self) -> float:
+        """Robot disc radius ``r`` (pixels); obstacles are inflated by it."""
+        return self.spec.robot.radius
+
+    @property
+    def robot_speed(self) -> float:
+        """Robot speed ``v`` (pixels per time step)."""
+        return self.spec.robot.speed
+
+    @property
+    def seed(self) -> int:
+        return self.spec.seed
+
+    @property
+    def static_indices(self) -> list[int]:
+        """Indices of obstacles that never move."""
+        return [o.index for o in self.obstacles if o.is_static]
+
+    @property
+    def moving_indices(self) -> list[int]:
+        """Indices of obstacles that move."""
+        return [o.index for o in self.obstacles if not o.is_static]
+
+    def straight_line_length(self) -> float:
+        """Length of the straight start-goal segment (pixels)."""
+        return float(np.hypot(*(self.goal - self.start)))
+
+    def offsets(self, t) -> np.ndarray:
+        """Every obstacle's translation at times ``t`` (time steps).
+
+        Parameters
+        ----------
+        t : float or array_like
+            Times (time steps), any shape.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape ``t.shape + (n_obstacles, 2)``, pixels. Deterministic in the scenario's seed.
+        """
+        t = np.asarray(t, dtype=float)
+        if not self.obstacles:
+            return np.zeros(t.shape + (0, 2))
+        return np.stack([o.offset(t) for o in self.obstacles], axis=-2)
+
+    def to_dict(self) -> dict:
+        """The scenario as a plain dict (JSON-compatible) that validates back to an equal one."""
+        return self.spec.model_dump(mode="json", exclude_none=True)
+
+
+# --------------------------------------------------------------------------------------------
+# validation
+
+
+def _format_loc(loc: tuple) -> str:
+    """``('obstacles', 2, 'circle', 'radius')`` -> ``obstacles[2].radius`` (union tags dropped)."""
+    tags = {"circle", "polygon", *_MOTION_TAGS}
+    parts: list[str] = []
+    prev: Any = None
+    for item in loc:
+        # pydantic inserts the tag of a discriminated union after the list index / `motion`
+        if isinstance(item, str) and item in tags and (isinstance(prev, int) or prev == "motion"):
+            prev = item
+            continue
+        if isinstance(item, int):
+            parts.append(f"[{item}]")
+        else:
+            parts.append(("." if parts else "") + str(item))
+        prev = item
+    return "".join(parts)
+
+
+def _num(x) -> str:
+    return f"{x:g}" if isinstance(x, float) else str(x)
+
+
+_MESSAGES: dict[str, Callable[[dict], str]] = {
+    "greater_than": lambda c: f"must be > {_num(c['gt'])}",
+    "greater_than_equal": lambda c: f"must be >= {_num(c['ge'])}",
+    "less_than": lambda c: f"must be < {_num(c['lt'])}",
+    "less_than_equal": lambda c: f"must be <= {_num(c['le'])}",
+    "missing": lambda c: "required field is missing",
+    "extra_forbidden": lambda c: "unknown field",
+    "too_short": lambda c: f"needs at least {c['min_length']} items",
+    "finite_number": lambda c: "must be a finite number",
+    "union_tag_invalid": lambda c: (
+        f"{c['discriminator'].strip(chr(39))} must be one of {c['expected_tags']}, got {c['tag']!r}"
+    ),
+    "union_tag_not_found": lambda c: f"needs a {c['discriminator']} field",
+}
+
+
+def _pydantic_errors(exc: ValidationError) -> list[tuple[str, str]]:
+    out = []
+    for err in exc.errors(include_url=False):
+        make = _MESSAGES.get(err["type"])
+        msg = make(err.get("ctx") or {}) if make else err["msg"]
+        if err["type"] == "literal_error" and err["loc"] == ("schema_version",):
+            msg = f"unsupported schema version {err['input']!r} (supported: {SCHEMA_VERSION})"
+        out.append((_format_loc(err["loc"]), msg))
+    return out
+
+
+def _offset_bounds(shape, width: float, height: float) -> tuple[np.ndarray, np.ndarray]:
+    """Offsets ``[lo, hi]`` per axis that keep the shape's bounding box in the map (pixels)."""
+    xmin, ymin, xmax, ymax = shape.bounds()
+    return np.array([-xmin, -ymin]), np.array([width - xmax, height - ymax])
+
+
+def _semantic_errors(spec: ScenarioSpec) -> list[tuple[str, str]]:
+    """Whole-scenario checks that single fields cannot express."""
+    errors: list[tuple[str, str]] = []
+    W, H, r = spec.width, spec.height, spec.robot.radius
+    for name in ("start", "goal"):
+        x, y = getattr(spec, name)
+        if not (0.0 <= x <= W and 0.0 <= y <= H):
+            errors.append((name, f"({x:g}, {y:g}) is outside the map [0, {W:g}] x [0, {H:g}]"))
+    seen: dict[str, int] = {}
+    for i, ob in enumerate(spec.obstacles):
+        path = f"obstacles[{i}]"
+        if ob.id is not None:
+            if ob.id in seen:
+                errors.append(
+                    (f"{path}.id", f"duplicate id {ob.id!r} (also obstacles[{seen[ob.id]}])")
+                )
+            seen.setdefault(ob.id, i)
+        if isinstance(ob, PolygonObstacle):
+            poly = shapely.Polygon(ob.vertices)
+            if not poly.is_valid:
+                why = shapely.is_valid_reason(poly)
+                errors.append((f"{path}.vertices", f"polygon is not simple/valid ({why})"))
+                continue
+            if poly.area <= 0.0:
+                errors.append((f"{path}.vertices", "polygon has zero area"))
+                continue
+        lo, hi = _offset_bounds(ob, W, H)
+        motion = ob.motion
+        if not isinstance(motion, StaticMotion) and (np.any(lo > 0) or np.any(hi < 0)):
+            errors.append((path, "a moving obstacle must lie inside the map at t=0"))
+        if isinstance(motion, PatrolMotion):
+            for j, w in enumerate(motion.waypoints):
+                if np.any(np.asarray(w) < lo) or np.any(np.asarray(w) > hi):
+                    errors.append(
+                        (f"{path}.motion.waypoints[{j}]", "moves the obstacle outside the map")
+                    )
+        for name in ("start", "goal"):
+            if ob.distance(getattr(spec, name)) <= r:
+                who = f"obstacles[{i}]" + (f" ({ob.id!r})" if ob.id else "")
+                errors.append((name, f"inside {who} inflated by the robot radius {r:g} px at t=0"))
+    return errors
+
+
+def _build_motion(ob, index: int, spec: ScenarioSpec) -> Motion:
+    m = ob.motion
+    lo, hi = _offset_bounds(ob, spec.width, spec.height)
+    if isinstance(m, ConstantVelocityMotion):
+        return ConstantVelocity(tuple(m.velocity), tuple(lo), tuple(hi))
+    if isinstance(m, PatrolMotion):
+        way = np.asarray(m.waypoints, dtype=float)
+        route = np.vstack([np.zeros((1, 2)), way])
+        if m.cycle == "back_and_forth":
+            route = np.vstack([route, route[-2:0:-1]])  # retrace, the closing leg ends at (0, 0)
+        return Patrol(route, m.speed)
+    if isinstance(m, RandomWalkMotion):
+        # one independent stream per obstacle, derived from the scenario seed
+        seed = np.random.SeedSequence(spec.seed, spawn_key=(index,))
+        return BoundedRandomWalk(m.step, tuple(lo), tuple(hi), seed, m.hold)
+    return Static()
+
+
+def scenario_from_spec(spec: ScenarioSpec, source: str | None = None) -> Scenario:
+    """Check a parsed spec as a whole and build the runtime :class:`Scenario`."""
+    errors = _semantic_errors(spec)
+    if errors:
+        raise ScenarioError(errors, source)
+    obstacles = tuple(
+        Obstacle(i, ob.id or f"obstacle-{i}", ob, _build_motion(ob, i, spec))
+        for i, ob in enumerate(spec.obstacles)
+    )
+    return Scenario(spec, obstacles)
+
+
+def scenario_from_dict(data: Any, source: str | None = None) -> Scenario:
+    """Validate a scenario dict (the parsed TOML/JSON file) and build the :class:`Scenario`.
+
+    Parameters
+    ----------
+    data : dict
+        Scenario contents, schema version 1.
+    source : str, optional
+        Name of the origin, used in error messages.
+
+    Raises
+    ------
+    ScenarioError
+        With every problem found, each prefixed by its field path.
+    """
+    if not isinstance(data, dict):
+        raise ScenarioError([("", f"expected a table/object, got {type(data).__name__}")], source)
+    try:
+        spec = ScenarioSpec.model_validate(data)
+    except ValidationError as exc:
+        raise ScenarioError(_pydantic_errors(exc), source) from None
+    return scenario_from_spec(spec, source)
+
+
+def load_scenario(path: str | Path) -> Scenario:
+    """Read and validate a scenario file (``.toml`` or ``.json``).
+
+    Raises
+    ------
+    FileNotFoundError
+        If the file does not exist.
+    ScenarioError
+        If the file cannot be parsed or does not validate.
+    """
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in (".toml", ".json"):
+        raise ScenarioError(
+            [("", f"unsupported file type {suffix!r} (use .toml or .json)")], str(path)
+        )
+    if not path.is_file():
+        raise FileNotFoundError(f"no such scenario file: {str(path)!r}")
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise ScenarioError([("", f"cannot read file: {exc}")], str(path)) from None
+    try:
+        text = raw.decode("utf-8")
+        data = tomllib.loads(text) if suffix == ".toml" else json.loads(text)
+    except (UnicodeDecodeError, tomllib.TOMLDecodeError, json.JSONDecodeError) as exc:
+        raise ScenarioError(
+            [("", f"cannot parse {suffix[1:].upper()}: {exc}")], str(path)
+        ) from None
+    return scenario_from_dict(data, source=str(path))
+
+
+# --------------------------------------------------------------------------------------------
+# built-in scenarios
+
+#: Named scenarios: each entry is a zero-argument factory returning a fresh :class:`Scenario`.
+SCENARIOS: Registry[Callable[[], Scenario]] = Registry("scenario")
+
+
+def _builtin(filename: str) -> Callable[[], Scenario]:
+    def factory() -> Scenario:
+        text = resources.files("mawdo.planning").joinpath("data", filename).read_text("utf-8")
+        return scenario_from_dict(tomllib.loads(text), source=f"builtin:{filename}")
+
+    return factory
+
+
+SCENARIOS.register("paper", _builtin("paper.toml"))
+
+
+def get_scenario(name: str | Path) -> Scenario:
+    """A built-in scenario by name (see :data:`SCENARIOS`) or a scenario file by path.
+
+    Raises
+    ------
+    mawdo.registry.UnknownNameError
+        For an unknown name that is not an existing file; the message lists close names.
+    """
+    if not isinstance(name, str | Path):
+        raise TypeError(f"scenario name must be a string, got {type(name).__name__}")
+    name = str(name)
+    if name.lower() not in SCENARIOS and Path(name).suffix.lower() in (".toml", ".json"):
+        return load_scenario(name)
+    return SCENARIOS[name]()

@@ -1,0 +1,74 @@
+"""Polyline helpers used by the planner and the metrics, against hand calculations."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from mawdo.planning.path import advance, densify, polyline_length, respread, turning_angles
+
+L_SHAPE = np.array([[0.0, 0.0], [3.0, 0.0], [3.0, 4.0]])
+
+
+def test_length_and_turning_by_hand():
+    assert polyline_length(L_SHAPE) == 7.0
+    np.testing.assert_allclose(turning_angles(L_SHAPE), [math.pi / 2])
+    zigzag = np.array([[0, 0], [1, 1], [2, 0], [2, 0], [3, 1.0]])  # a repeated point: no turn
+    np.testing.assert_allclose(turning_angles(zigzag), [math.pi / 2, math.pi / 2])
+    assert turning_angles(np.array([[0, 0], [1, 0], [2, 0.0]])).tolist() == [0.0]
+    back = np.array([[0, 0], [1, 0], [0, 0.0]])
+    assert turning_angles(back)[0] == pytest.approx(math.pi)
+
+
+def test_advance_passes_the_corner():
+    pos, rem, passed, frac = advance(L_SHAPE, 5.0)
+    np.testing.assert_allclose(pos, [3.0, 2.0])
+    np.testing.assert_allclose(rem, [[3.0, 2.0], [3.0, 4.0]])
+    np.testing.assert_allclose(passed, [[3.0, 0.0]])
+    np.testing.assert_allclose(frac, [3.0 / 5.0])
+    pos, rem, passed, _ = advance(L_SHAPE, 2.0)
+    np.testing.assert_allclose(pos, [2.0, 0.0])
+    assert passed.shape == (0, 2) and rem.shape == (3, 2)
+    pos, rem, passed, _ = advance(L_SHAPE, 100.0)  # past the end: stop at the goal
+    np.testing.assert_allclose(pos, [3.0, 4.0])
+    assert rem.shape == (1, 2) and len(passed) == 1
+
+
+def test_densify_keeps_the_geometry_and_respread_does_not():
+    d = densify(L_SHAPE, 5)
+    assert d.shape == (5, 2)
+    full = np.vstack([L_SHAPE[0], d, L_SHAPE[-1]])
+    assert polyline_length(full) == pytest.approx(7.0)
+    assert any(np.allclose(p, [3.0, 0.0]) for p in d)  # the corner is kept
+    r = respread(L_SHAPE, 5)
+    assert polyline_length(np.vstack([L_SHAPE[0], r, L_SHAPE[-1]])) < 7.0  # corner cut
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.lists(st.tuples(st.floats(0, 100), st.floats(0, 100)), min_size=2, max_size=8),
+    st.integers(1, 25),
+)
+def test_densify_preserves_length_and_endpoints(pts, m):
+    pts = np.array(pts)
+    k = len(pts) - 2
+    d = densify(pts, m)
+    assert d.shape == (m, 2)
+    full = np.vstack([pts[0], d, pts[-1]])
+    if k <= m:  # all vertices kept: the route is the same curve
+        assert polyline_length(full) == pytest.approx(polyline_length(pts), rel=1e-9, abs=1e-9)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.lists(st.tuples(st.floats(0, 100), st.floats(0, 100)), min_size=2, max_size=8),
+    st.floats(0, 500),
+)
+def test_advance_splits_the_length(pts, dist):
+    pts = np.array(pts)
+    total = polyline_length(pts)
+    pos, rem, passed, frac = advance(pts, dist)
+    assert polyline_length(rem) == pytest.approx(max(total - dist, 0.0), abs=1e-7)
+    assert np.all((frac >= 0) & (frac <= 1 + 1e-12))
