@@ -73,12 +73,9 @@ def list_cmd(what: str = typer.Argument("all", help="algorithms, functions, scen
                       f"[{f.lb.min():g}, {f.ub.max():g}]", f"{f.f_star:.10g}")
         console.print(t)
     if what in ("all", "scenarios"):
-        try:
-            from mawdo.planning import SCENARIOS
-        except ImportError:
-            SCENARIOS = {}
-        if SCENARIOS:
-            console.print("scenarios: " + ", ".join(SCENARIOS))
+        from mawdo.planning import SCENARIOS
+
+        console.print("scenarios: " + ", ".join(SCENARIOS))
 
 
 @app.command()
@@ -196,18 +193,11 @@ def demo(
 
 
 def _mount_subapps() -> None:
-    try:
-        from mawdo.experiments.cli import bench_app
-    except ImportError:
-        bench_app = None
-    if bench_app is not None:
-        app.add_typer(bench_app, name="bench", help="Benchmark study: run plans, make reports.")
-    try:
-        from mawdo.planning.cli import plan_app
-    except ImportError:
-        plan_app = None
-    if plan_app is not None:
-        app.add_typer(plan_app, name="plan", help="Path planning among moving obstacles.")
+    from mawdo.experiments.cli import bench_app
+    from mawdo.planning.cli import plan_app
+
+    app.add_typer(bench_app, name="bench", help="Benchmark study: run plans, make reports.")
+    app.add_typer(plan_app, name="plan", help="Path planning among moving obstacles.")
 
 
 _mount_subapps()

@@ -77,7 +77,7 @@ class OptimizeResult:
 
     @property
     def success(self) -> np.ndarray:
-        """Per run: finished by a budget or the target, not by an error (always true here)."""
+        """Per run: found at least one finite objective value."""
         return np.isfinite(self.fun)
 
     @property

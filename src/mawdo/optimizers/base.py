@@ -84,13 +84,13 @@ class Optimizer(ABC):
     params_class: ClassVar[type[Params]] = Params
 
     def __init__(self, params: Params | None = None, name: str | None = None, **options) -> None:
+        if name is not None:
+            self.name = name  # before the params, so option errors name the registered entry
         if params is None:
             params = make_params(self.params_class, options, self.name)
         elif options:
             params = dataclasses.replace(params, **options)
         self.params = params
-        if name is not None:
-            self.name = name
         self.metadata: dict[str, Any] = {}
 
     @abstractmethod

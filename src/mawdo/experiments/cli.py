@@ -1,0 +1,123 @@
+"""``mawdo bench``: run benchmark plans into a results store and report from it.
+
+A thin Typer layer over :mod:`mawdo.experiments`; every decision lives in the library.
+Mounted by the main CLI as ``mawdo bench``; also runnable as ``python -m mawdo.experiments``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+bench_app = typer.Typer(
+    name="bench",
+    help="Benchmark sweeps (paper Tables 3 and 5): run a plan into a SQLite store, then report.",
+    no_args_is_help=True,
+    add_completion=False,
+)
+
+
+def _names(text: str | None) -> list[str] | None:
+    if text is None:
+        return None
+    return [t.strip() for t in text.split(",") if t.strip()]
+
+
+def _fail(msg: str, code: int = 2) -> None:
+    typer.echo(f"error: {msg}", err=True)
+    raise typer.Exit(code)
+
+
+@bench_app.command("run")
+def run_cmd(
+    preset: str = typer.Option(None, "--preset", help="Named plan (see `presets`)."),
+    plan_file: Path = typer.Option(None, "--plan", help="Plan file (TOML).", exists=False),
+    out: Path = typer.Option(Path("results.db"), "--out", "-o", help="Results store (SQLite)."),
+    workers: int = typer.Option(1, "--workers", "-w", min=1, help="Local worker processes."),
+    dask: str = typer.Option(None, "--dask", help="Dask scheduler address (tcp://host:8786)."),
+    force: bool = typer.Option(False, "--force",
+                               help="Discard a store made by another plan or version."),
+    retry_failed: bool = typer.Option(False, "--retry-failed", help="Recompute failed runs."),
+    runs: int = typer.Option(None, "--runs", help="Override: runs per (algorithm, function)."),
+    iters: int = typer.Option(None, "--iters", help="Override: iterations (max_iter)."),
+    pop_size: int = typer.Option(None, "--pop-size", help="Override: population size."),
+    seed: int = typer.Option(None, "--seed", help="Override: master seed."),
+    algorithms: str = typer.Option(None, "--algorithms", help="Override: a,b,c"),
+    functions: str = typer.Option(None, "--functions", help="Override: f,g (names or F1..F16)"),
+    batch_size: int = typer.Option(None, "--batch-size", help="Override: runs per task."),
+    budget: str = typer.Option(None, "--budget", help="Override: iterations | evals."),
+    progress: bool = typer.Option(True, "--progress/--no-progress", help="Progress bar."),
+) -> None:
+    """Run (or resume) a sweep. Stored runs are skipped; Ctrl-C keeps what finished.
+
+    The plan comes from --preset, --plan, or from --algorithms and --functions alone (paper
+    defaults: 30 runs, pop 50, 500 iterations); the other flags override its fields.
+    """
+    from mawdo.experiments.plan import ExperimentPlan, PlanError, preset_plan
+    from mawdo.experiments.runner import run_plan
+    from mawdo.experiments.store import StoreError
+
+    if preset is not None and plan_file is not None:
+        _fail("give one of --preset NAME or --plan FILE.toml, not both")
+    if preset is None and plan_file is None and (algorithms is None or functions is None):
+        _fail("give --preset NAME, --plan FILE.toml, or at least --algorithms and --functions")
+    try:
+        if preset is not None:
+            plan = preset_plan(preset)
+        elif plan_file is not None:
+            plan = ExperimentPlan.from_toml(plan_file)
+        else:
+            # A plan from flags alone: the paper protocol's defaults for everything not given.
+            plan = ExperimentPlan.from_dict({"name": "cli", "algorithms": _names(algorithms),
+                                             "functions": _names(functions)})
+        plan = plan.with_overrides(
+            runs=runs, max_iter=iters, pop_size=pop_size, seed=seed,
+            algorithms=_names(algorithms), functions=_names(functions), batch_size=batch_size,
+            budget=budget,
+        )
+    except PlanError as exc:
+        _fail(f"invalid plan:\n{exc}")
+    typer.echo(f"{plan.describe()}; plan {plan.plan_hash[:12]} -> {out}", err=True)
+    try:
+        summary = run_plan(plan, out, workers=workers, dask=dask, progress=progress, force=force,
+                           retry_failed=retry_failed)
+    except StoreError as exc:
+        _fail(str(exc), code=1)
+    except (ValueError, RuntimeError) as exc:
+        _fail(str(exc), code=1)
+    typer.echo(str(summary))
+    if summary.interrupted:
+        raise typer.Exit(130)
+    if summary.lost:
+        raise typer.Exit(1)
+
+
+@bench_app.command("report")
+def report_cmd(
+    store: Path = typer.Argument(..., help="Results store written by `run`."),
+    out: Path = typer.Option(Path("report"), "--out", "-o", help="Output directory."),
+    plots: bool = typer.Option(True, "--plots/--no-plots", help="Draw figures."),
+    svg: bool = typer.Option(False, "--svg", help="Also write SVG figures."),
+    reference: str = typer.Option(None, "--reference",
+                                  help="Algorithm tested against the others (default mawdo)."),
+) -> None:
+    """Write tables (Markdown, LaTeX, CSV) and figures from a store, without recomputing."""
+    from mawdo.experiments.report import write_report
+    from mawdo.experiments.store import StoreError
+
+    try:
+        files = write_report(store, out, plots=plots, svg=svg, reference=reference)
+    except (StoreError, ValueError) as exc:
+        _fail(str(exc), code=1)
+    typer.echo(f"wrote {len(files)} files to {out}/ (start with {out / 'report.md'})")
+
+
+@bench_app.command("presets")
+def presets_cmd() -> None:
+    """List the named plans."""
+    from mawdo.experiments.plan import PRESET_HELP, preset_plan
+
+    for name, text in PRESET_HELP.items():
+        p = preset_plan(name)
+        typer.echo(f"{name:22s} {text}\n{'':22s} {p.total_runs} runs, plan {p.plan_hash[:12]}")

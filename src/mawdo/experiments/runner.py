@@ -1,0 +1,354 @@
+"""Run a plan into a store: resume, local process pool or Dask, one writer, clean Ctrl-C.
+
+The parent process is the only writer to SQLite; workers (processes of a local pool, or Dask
+workers) compute tasks and send their rows back. Every task is a pure function of its spec
+(:meth:`ExperimentPlan.task_spec`), and ``mawdo.minimize`` makes run ``k`` identical whether it is
+computed alone or in any batch, so the stored values do not depend on the worker count, the
+backend, the order of completion or on where a sweep was interrupted.
+"""
+
+from __future__ import annotations
+
+import multiprocessing as mp
+import os
+import signal
+import socket
+import sys
+import time
+import traceback
+from collections.abc import Iterator
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from contextlib import closing
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from mawdo.experiments.plan import ExperimentPlan
+from mawdo.experiments.store import Store, library_version
+from mawdo.minimize import minimize
+
+
+@dataclass
+class RunSummary:
+    """What :func:`run_plan` did.
+
+    Attributes
+    ----------
+    store : Path
+        The results store.
+    total : int
+        Runs in the plan.
+    skipped : int
+        Runs already stored when the sweep started (resume).
+    done : int
+        Runs computed and stored by this call (failed ones included).
+    failed : int
+        Of ``done``, runs whose algorithm or objective raised (stored with their error text).
+    lost : int
+        Runs of tasks that never came back (worker crash, lost Dask worker); not stored, so a
+        re-run computes them.
+    interrupted : bool
+        Stopped by Ctrl-C (KeyboardInterrupt); finished tasks are stored.
+    tasks : int
+        Tasks stored by this call.
+    wall_time : float
+        Seconds.
+    """
+
+    store: Path
+    total: int
+    skipped: int = 0
+    done: int = 0
+    failed: int = 0
+    lost: int = 0
+    interrupted: bool = False
+    tasks: int = 0
+    wall_time: float = 0.0
+
+    @property
+    def complete(self) -> bool:
+        """Every run of the plan is stored."""
+        return self.skipped + self.done == self.total
+
+    def __str__(self) -> str:
+        rate = self.done / self.wall_time if self.wall_time > 0 else 0.0
+        parts = [f"{self.done} runs computed ({rate:.1f} runs/s)", f"{self.skipped} already stored"]
+        if self.failed:
+            parts.append(f"{self.failed} failed")
+        if self.lost:
+            parts.append(f"{self.lost} lost")
+        state = "interrupted" if self.interrupted else ("complete" if self.complete else "partial")
+        return (f"{state}: {', '.join(parts)}; {self.skipped + self.done}/{self.total} runs in "
+                f"{self.store} ({self.wall_time:.1f} s)")
+
+
+# ---------------------------------------------------------------------- the unit of work
+def execute_task(spec: dict[str, Any]) -> dict[str, Any]:
+    """Compute one task (see :meth:`ExperimentPlan.task_spec`) and return its rows.
+
+    Runs on a worker; must stay a module-level function (pickled by reference). An exception
+    from the algorithm or the objective becomes one row per run with ``error_text`` set, so a
+    bad corner of a sweep is recorded rather than killing it.
+    """
+    t0 = time.perf_counter()
+    first, n = spec["first_run"], spec["n_runs"]
+    common = {"seed_entropy": spec["seed_entropy"], "shift_seed": spec["shift_seed"]}
+    if spec["budget"] == "iterations":
+        budget = {"max_iter": spec["max_iter"]}
+    else:
+        # Equal evaluations: pop_size * max_iter each; minimize derives T from it for schedules.
+        budget = {"max_evals": spec["pop_size"] * spec["max_iter"]}
+    try:
+        res = minimize(
+            spec["function"], algorithm=spec["algorithm"], runs=n,
+            seed=np.random.SeedSequence(spec["seed_entropy"]), first_run=first,
+            shifted=spec["shifted"], shift_seed=spec["shift_seed"] or 0,
+            preset=spec["bounds_preset"], pop_size=spec["pop_size"], **spec["options"], **budget,
+        )
+        wall = time.perf_counter() - t0
+        f_star = None if res.f_star is None else float(res.f_star)
+        rows = []
+        for i in range(n):
+            fun = float(res.fun[i])
+            rows.append({
+                "run": first + i, "fun": fun, "f_star": f_star,
+                "error": None if f_star is None else fun - f_star,
+                "nfev": int(res.nfev[i]), "nit": int(res.nit[i]), "status": int(res.status[i]),
+                # Runs share one vectorised batch; a run's time is the batch's share.
+                "wall_time": wall / n, "params": res.params,
+                "curve": np.asarray(res.history[i], dtype=float),
+                "curve_nfev": np.asarray(res.history_nfev[i], dtype=np.int64),
+                "error_text": None, **common,
+            })
+    except Exception as exc:  # noqa: BLE001 - any failure of user/algorithm code is recorded
+        wall = time.perf_counter() - t0
+        text = "".join(traceback.format_exception_only(exc)).strip()
+        rows = [{"run": first + i, "params": {"pop_size": spec["pop_size"], **spec["options"]},
+                 "wall_time": wall / n, "error_text": text, **common} for i in range(n)]
+    return {
+        "task": {k: spec[k] for k in ("algorithm", "function", "first_run", "n_runs")},
+        "rows": rows,
+        "wall": wall,
+        "worker": f"{socket.gethostname()}:{os.getpid()}",
+        "library_version": library_version(),
+    }
+
+
+def _lost(spec: dict[str, Any], exc: BaseException) -> dict[str, Any]:
+    return {
+        "task": {k: spec[k] for k in ("algorithm", "function", "first_run", "n_runs")},
+        "lost": f"{type(exc).__name__}: {exc}",
+    }
+
+
+# ---------------------------------------------------------------------- backends
+def _in_process(specs: list[dict]) -> Iterator[dict]:
+    for spec in specs:
+        yield execute_task(spec)
+
+
+def _ignore_sigint() -> None:
+    # Only the parent handles Ctrl-C: it stops the pool and keeps what finished. A terminal's
+    # Ctrl-C reaches the whole process group, and a worker dying of it mid-task would break
+    # the pool before the parent can shut it down in order.
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _pool(specs: list[dict], workers: int) -> Iterator[dict]:
+    # forkserver/spawn rather than fork: the parent may hold threads (rich's refresh thread,
+    # Dask, BLAS pools), and forking a threaded process can deadlock.
+    method = "forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn"
+    pool = ProcessPoolExecutor(max_workers=workers, mp_context=mp.get_context(method),
+                               initializer=_ignore_sigint)
+    futures = {pool.submit(execute_task, s): s for s in specs}
+    finished = False
+    try:
+        for fut in as_completed(futures):
+            try:
+                yield fut.result()
+            except Exception as exc:  # noqa: BLE001 - a broken pool loses tasks, not the sweep
+                yield _lost(futures[fut], exc)
+        finished = True
+    finally:
+        # The executor forgets its processes on shutdown; keep them to stop them ourselves.
+        procs = list((getattr(pool, "_processes", None) or {}).values())
+        pool.shutdown(wait=finished, cancel_futures=True)
+        if not finished:
+            # Interrupted: running tasks would otherwise finish (minutes) before exit.
+            for proc in procs:
+                proc.terminate()
+            for proc in procs:
+                proc.join(timeout=5)
+
+
+def _dask(specs: list[dict], dask) -> Iterator[dict]:
+    from distributed import Client
+    from distributed import as_completed as dask_as_completed
+
+    own = isinstance(dask, str)
+    if own:
+        try:
+            client = Client(dask, timeout="20s")
+        except (OSError, TimeoutError) as exc:
+            raise RuntimeError(f"cannot connect to the Dask scheduler at {dask}: {exc}") from None
+    else:
+        client = dask
+    futures = {}
+    for s in specs:
+        f = client.submit(execute_task, s, pure=False)
+        futures[f] = s
+    finished = False
+    try:
+        for fut in dask_as_completed(list(futures)):
+            try:
+                out = fut.result()
+            except Exception as exc:  # noqa: BLE001 - e.g. KilledWorker: lost, retried on re-run
+                out = _lost(futures[fut], exc)
+            fut.release()
+            yield out
+        finished = True
+    finally:
+        if not finished:
+            client.cancel(list(futures))
+        if own:
+            client.close()
+
+
+# ---------------------------------------------------------------------- progress
+class _Bar:
+    def __init__(self, enabled: bool, total: int, label: str) -> None:
+        self.progress = None
+        if not enabled or total == 0:
+            return
+        from rich.console import Console
+        from rich.progress import (
+            BarColumn,
+            MofNCompleteColumn,
+            Progress,
+            TextColumn,
+            TimeElapsedColumn,
+            TimeRemainingColumn,
+        )
+
+        self.progress = Progress(
+            TextColumn("[bold]{task.description}"), BarColumn(), MofNCompleteColumn(),
+            TextColumn("runs"), TimeElapsedColumn(), TextColumn("ETA"), TimeRemainingColumn(),
+            TextColumn("{task.fields[note]}"), console=Console(stderr=True),
+        )
+        self.task = self.progress.add_task(label, total=total, note="")
+        self.progress.start()
+
+    def advance(self, n: int, note: str) -> None:
+        if self.progress is not None:
+            self.progress.update(self.task, advance=n, note=note)
+
+    def close(self) -> None:
+        if self.progress is not None:
+            self.progress.stop()
+
+
+def _say(msg: str) -> None:
+    print(msg, file=sys.stderr, flush=True)
+
+
+# ---------------------------------------------------------------------- driver
+def run_plan(
+    plan: ExperimentPlan,
+    store_path: str | Path,
+    workers: int = 1,
+    dask=None,
+    progress: bool = True,
+    force: bool = False,
+    retry_failed: bool = False,
+) -> RunSummary:
+    """Compute every run of ``plan`` that ``store_path`` does not hold yet, and store it.
+
+    Parameters
+    ----------
+    plan : ExperimentPlan
+        The sweep.
+    store_path : str or Path
+        SQLite results store; created if absent, resumed if it holds part of this plan.
+    workers : int
+        1: compute in this process. >1: a local process pool of that many workers.
+    dask : str or distributed.Client, optional
+        Send tasks to a Dask cluster instead (scheduler address such as
+        ``"tcp://10.0.0.1:8786"``, or a connected client, left open). Excludes ``workers > 1``.
+    progress : bool
+        Show a progress bar over runs with an ETA (stderr).
+    force : bool
+        Reuse a store made by another plan or library version by discarding its runs.
+    retry_failed : bool
+        Delete stored failed runs first, so they are computed again.
+
+    Returns
+    -------
+    RunSummary
+        Counts and wall time. A Ctrl-C does not raise: it stops the workers, keeps every
+        finished task, prints how to resume and returns with ``interrupted=True``.
+
+    Raises
+    ------
+    StoreError
+        The store cannot be used (another plan, read-only, corrupt ...).
+    ValueError
+        Bad ``workers`` / ``dask`` combination.
+    """
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+        raise ValueError(f"workers={workers!r} must be an integer >= 1")
+    if dask is not None and workers > 1:
+        raise ValueError("give either workers > 1 (local pool) or dask (cluster), not both")
+    t0 = time.perf_counter()
+    store_path = Path(store_path)
+    summary = RunSummary(store=store_path, total=plan.total_runs)
+    with Store.open(store_path, plan, force=force) as store:
+        if retry_failed:
+            store.delete_failed()
+        done_keys = store.done_keys()
+        tasks = plan.tasks(done_keys)
+        summary.skipped = plan.total_runs - sum(t.n_runs for t in tasks)
+        specs = [plan.task_spec(t) for t in tasks]
+        if dask is not None:
+            outcomes = _dask(specs, dask)
+        elif workers > 1 and len(specs) > 1:
+            outcomes = _pool(specs, min(workers, len(specs)))
+        else:
+            outcomes = _in_process(specs)
+        bar = _Bar(progress, sum(t.n_runs for t in tasks), plan.name)
+        version = library_version()
+        try:
+            with closing(outcomes):
+                for out in outcomes:
+                    n = out["task"]["n_runs"]
+                    if "lost" not in out and out["library_version"] != version:
+                        out = {"task": out["task"], "lost": (
+                            f"worker {out['worker']} runs mawdo {out['library_version']}, "
+                            f"this process {version}")}
+                    if "lost" in out:
+                        summary.lost += n
+                        _say(f"task lost ({_task_name(out['task'])}): {out['lost']}")
+                    else:
+                        store.write_task(out)
+                        summary.tasks += 1
+                        summary.done += n
+                        summary.failed += sum(r["error_text"] is not None for r in out["rows"])
+                    bar.advance(n, f"{summary.failed} failed" if summary.failed else "")
+        except KeyboardInterrupt:
+            summary.interrupted = True
+        finally:
+            bar.close()
+    summary.wall_time = time.perf_counter() - t0
+    if summary.interrupted:
+        _say(f"Interrupted. {summary.skipped + summary.done}/{summary.total} runs are stored in "
+             f"{store_path}; run the same command again to resume (stored runs are skipped).")
+    elif summary.lost:
+        _say(f"{summary.lost} runs were lost to worker failures; run the same command again to "
+             f"compute them.")
+    return summary
+
+
+def _task_name(t: dict[str, Any]) -> str:
+    last = t["first_run"] + t["n_runs"] - 1
+    return f"{t['algorithm']} on {t['function']}, runs {t['first_run']}-{last}"

@@ -1,0 +1,49 @@
+"""Shared plans and helpers for the experiments tests (tiny budgets: the suite runs in seconds)."""
+
+from __future__ import annotations
+
+import sqlite3
+
+import pytest
+
+from mawdo.experiments import ExperimentPlan, run_plan
+
+# Covers a noisy function (F6 draws noise from the run's stream), a low-dimensional one (MAWDO's
+# stabilisation) and a multimodal one; max_iter > 50 so MAWDO's restart + OBL happens once.
+SMALL = {
+    "name": "small",
+    "algorithms": ["gwo", "mewdo", "mawdo"],
+    "functions": ["quartic", "six_hump_camel", "rastrigin"],
+    "runs": 4, "pop_size": 12, "max_iter": 60, "seed": 123, "batch_size": 2,
+}
+
+
+def small_plan(**changes) -> ExperimentPlan:
+    return ExperimentPlan.from_dict({**SMALL, **changes})
+
+
+# Columns that are the same whoever computed a run and when (not wall times, not task ids).
+VALUE_COLUMNS = (
+    "plan_hash, algorithm, function, shifted, run, params_json, seed_entropy, shift_seed, fun, "
+    "error, f_star, nfev, nit, status, curve, curve_nfev, curve_len, library_version, error_text"
+)
+
+
+def stored_values(path) -> list[tuple]:
+    """Every run's value columns, in key order (comparable across stores)."""
+    conn = sqlite3.connect(path)
+    try:
+        return conn.execute(
+            f"SELECT {VALUE_COLUMNS} FROM runs ORDER BY algorithm, function, run"
+        ).fetchall()
+    finally:
+        conn.close()
+
+
+@pytest.fixture(scope="session")
+def reference_store(tmp_path_factory):
+    """The SMALL plan computed in process, uninterrupted: the reference for every comparison."""
+    path = tmp_path_factory.mktemp("ref") / "ref.db"
+    summary = run_plan(small_plan(), path, workers=1, progress=False)
+    assert summary.complete and summary.failed == 0
+    return path

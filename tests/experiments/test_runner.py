@@ -1,0 +1,259 @@
+"""The runner: identical stored values for every backend, resume after kill -9 and Ctrl-C,
+failures as rows, budgets."""
+
+from __future__ import annotations
+
+import os
+import signal
+import sqlite3
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mawdo import minimize
+from mawdo.experiments import ExperimentPlan, Store, execute_task, run_plan
+from mawdo.experiments import runner as runner_mod
+from mawdo.experiments.plan import Task
+
+from .conftest import small_plan, stored_values
+
+# A plan whose tasks are slow enough (~0.1 s each, batch of one run) to kill the runner
+# between tasks, and numerous enough that a kill after the first task leaves most undone.
+SLOW_TOML = """
+name = "slow"
+algorithms = ["wdo", "mawdo"]
+functions = ["sphere", "rastrigin"]
+runs = 6
+pop_size = 20
+max_iter = 300
+seed = 7
+batch_size = 1
+"""
+
+
+def test_execute_task_matches_a_direct_minimize_call():
+    plan = small_plan()
+    out = execute_task(plan.task_spec(Task("mawdo", "quartic", 2, 2)))
+    res = minimize("quartic", algorithm="mawdo", runs=1, first_run=3,
+                   seed=np.random.SeedSequence(plan.function_seed("quartic")),
+                   max_iter=plan.max_iter, pop_size=plan.pop_size)
+    row = out["rows"][1]
+    assert row["run"] == 3 and row["error_text"] is None
+    assert row["fun"] == res.fun[0] and row["nfev"] == res.nfev[0]
+    np.testing.assert_array_equal(row["curve"], res.history[0])
+
+
+def test_workers_do_not_change_stored_values(reference_store, tmp_path):
+    ref = stored_values(reference_store)
+    assert len(ref) == small_plan().total_runs
+    summary = run_plan(small_plan(), tmp_path / "w2.db", workers=2, progress=False)
+    assert summary.complete and summary.tasks == len(small_plan().tasks())
+    with Store.read(tmp_path / "w2.db") as store:
+        workers = {t["worker"] for t in store.task_log()}
+    # computed in pool processes, not here (how many of the two got work depends on timing)
+    assert 1 <= len(workers) <= 2 and not any(w.endswith(f":{os.getpid()}") for w in workers)
+    assert stored_values(tmp_path / "w2.db") == ref
+
+
+def test_dask_local_cluster_gives_identical_values(reference_store, tmp_path):
+    from distributed import Client, LocalCluster
+
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
+                      dashboard_address=None) as cluster, Client(cluster) as client:
+        summary = run_plan(small_plan(), tmp_path / "dask.db", dask=client, progress=False)
+        # the runner leaves a client it was given open
+        assert client.status == "running"
+        # and connects (then disconnects) by itself given the scheduler's address
+        by_address = run_plan(small_plan(), tmp_path / "addr.db", dask=cluster.scheduler_address,
+                              progress=False)
+    assert summary.complete and by_address.complete
+    assert stored_values(tmp_path / "addr.db") == stored_values(reference_store)
+    with Store.read(tmp_path / "dask.db") as store:
+        assert all(not w.endswith(f":{os.getpid()}") for w in
+                   (t["worker"] for t in store.task_log()))
+    assert stored_values(tmp_path / "dask.db") == stored_values(reference_store)
+
+
+def test_a_finished_store_is_skipped(reference_store, tmp_path):
+    copy = tmp_path / "copy.db"
+    copy.write_bytes(Path(reference_store).read_bytes())
+    summary = run_plan(small_plan(), copy, progress=False)
+    assert (summary.done, summary.skipped, summary.tasks) == (0, small_plan().total_runs, 0)
+
+
+def _wait_for_tasks(db: Path, proc: subprocess.Popen, at_least: int, timeout: float = 60) -> int:
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if proc.poll() is not None:
+            raise AssertionError(f"runner exited early: {proc.communicate()}")
+        if db.exists():
+            try:
+                conn = sqlite3.connect(f"{db.resolve().as_uri()}?mode=ro", uri=True, timeout=1)
+                try:
+                    n = conn.execute("SELECT COUNT(*) FROM tasks").fetchone()[0]
+                finally:
+                    conn.close()
+                if n >= at_least:
+                    return n
+            except sqlite3.OperationalError:
+                pass  # tables not created yet
+        time.sleep(0.01)
+    raise AssertionError("runner stored no task in time")
+
+
+def _start(plan_file: Path, db: Path, *extra: str) -> subprocess.Popen:
+    return subprocess.Popen(
+        [sys.executable, "-m", "mawdo.experiments", "run", "--plan", str(plan_file),
+         "--out", str(db), "--no-progress", *extra],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    )
+
+
+@pytest.fixture(scope="module")
+def slow_plan_file(tmp_path_factory) -> Path:
+    f = tmp_path_factory.mktemp("plans") / "slow.toml"
+    f.write_text(SLOW_TOML)
+    return f
+
+
+def test_kill_9_then_resume_equals_an_uninterrupted_run(slow_plan_file, tmp_path):
+    plan = ExperimentPlan.from_toml(slow_plan_file)
+    db = tmp_path / "killed.db"
+    proc = _start(slow_plan_file, db)
+    try:
+        _wait_for_tasks(db, proc, at_least=1)
+    finally:
+        proc.send_signal(signal.SIGKILL)
+        proc.communicate(timeout=30)
+    assert proc.returncode == -signal.SIGKILL
+
+    with Store.read(db) as store:
+        before = store.done_keys()
+        first_session = store.task_log()
+    assert 0 < len(before) < plan.total_runs  # really interrupted in the middle
+
+    summary = run_plan(plan, db, progress=False)
+    assert summary.complete and summary.skipped == len(before)
+    with Store.read(db) as store:
+        log = store.task_log()
+    resumed = [(t["algorithm"], t["function"], k) for t in log[len(first_session):]
+               for k in range(t["first_run"], t["first_run"] + t["n_runs"])]
+    # no stored run computed twice, every missing run computed once
+    assert len(resumed) == len(set(resumed)) == plan.total_runs - len(before)
+    assert not set(resumed) & before
+
+    clean = tmp_path / "clean.db"
+    run_plan(plan, clean, progress=False)
+    assert stored_values(db) == stored_values(clean)
+
+    from mawdo.experiments import write_report
+    a = write_report(db, tmp_path / "rep_killed", plots=False)
+    b = write_report(clean, tmp_path / "rep_clean", plots=False)
+    deterministic = [p.name for p in a if p.name != "timing.csv"]
+    assert "results_raw.tex" in deterministic and "report.md" in deterministic
+    for name in deterministic:
+        assert (tmp_path / "rep_killed" / name).read_text() == \
+            (tmp_path / "rep_clean" / name).read_text(), name
+    assert len(a) == len(b)
+
+
+def test_ctrl_c_stops_the_pool_keeps_finished_tasks_and_says_how_to_resume(slow_plan_file,
+                                                                          tmp_path):
+    plan = ExperimentPlan.from_toml(slow_plan_file)
+    db = tmp_path / "sigint.db"
+    proc = _start(slow_plan_file, db, "--workers", "2")
+    try:
+        _wait_for_tasks(db, proc, at_least=1)
+        proc.send_signal(signal.SIGINT)
+        out, err = proc.communicate(timeout=30)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    assert proc.returncode == 130, err
+    assert "Interrupted" in err and "run the same command again to resume" in err
+    with Store.read(db) as store:
+        stored = store.count()
+        log = store.task_log()
+    # only whole tasks are stored, and the run stopped before the end
+    assert stored == sum(t["n_runs"] for t in log) and 0 < stored < plan.total_runs
+    summary = run_plan(plan, db, progress=False)
+    assert summary.complete and summary.skipped == stored
+
+
+def test_a_failing_task_becomes_error_rows(monkeypatch, tmp_path):
+    real = runner_mod.minimize
+
+    def flaky(fun, **kw):
+        if fun == "six_hump_camel" and kw["algorithm"] == "gwo":
+            raise FloatingPointError("objective exploded")
+        return real(fun, **kw)
+
+    monkeypatch.setattr(runner_mod, "minimize", flaky)
+    plan = small_plan()
+    db = tmp_path / "fail.db"
+    summary = run_plan(plan, db, progress=False)
+    assert summary.complete and summary.failed == plan.runs
+    with Store.read(db) as store:
+        failed = [r for r in store.records() if r.failed]
+        assert {(r.algorithm, r.function) for r in failed} == {("gwo", "six_hump_camel")}
+        assert all(r.fun is None and "FloatingPointError: objective exploded" in r.error_text
+                   for r in failed)
+        assert store.count(failed=False) == plan.total_runs - plan.runs
+
+    # failed runs are stored (a re-run skips them) until asked to retry
+    assert run_plan(plan, db, progress=False).done == 0
+    monkeypatch.setattr(runner_mod, "minimize", real)
+    again = run_plan(plan, db, progress=False, retry_failed=True)
+    assert (again.done, again.failed) == (plan.runs, 0)
+
+
+def test_results_from_another_library_version_are_not_stored(monkeypatch, tmp_path):
+    real = runner_mod.execute_task
+    monkeypatch.setattr(runner_mod, "execute_task",
+                        lambda spec: {**real(spec), "library_version": "9.9.9"})
+    plan = small_plan(functions=["rastrigin"], runs=2)
+    summary = run_plan(plan, tmp_path / "v.db", progress=False)
+    assert (summary.lost, summary.done, summary.complete) == (plan.total_runs, 0, False)
+    with Store.read(tmp_path / "v.db") as store:
+        assert store.count() == 0
+    monkeypatch.setattr(runner_mod, "execute_task", real)
+    assert run_plan(plan, tmp_path / "v.db", progress=False).complete
+
+
+def test_equal_evaluation_budget_is_exact_for_every_algorithm(tmp_path):
+    # max_iter 60 > restart period 50: MAWDO's OBL spends extra evaluations in iteration mode
+    plan = small_plan(budget="evals", functions=["rastrigin"], runs=2)
+    run_plan(plan, tmp_path / "evals.db", progress=False)
+    run_plan(plan.with_overrides(budget="iterations"), tmp_path / "iters.db", progress=False)
+    with Store.read(tmp_path / "evals.db") as store:
+        evals = store.records()
+    with Store.read(tmp_path / "iters.db") as store:
+        iters = store.records()
+    budget = plan.pop_size * plan.max_iter
+    assert all(r.nfev == budget for r in evals)
+    assert all(r.nit == plan.max_iter for r in iters)
+    assert any(r.nfev > budget for r in iters if r.algorithm == "mawdo")
+    assert all(r.curve_nfev[-1] == r.nfev for r in evals + iters)
+
+
+def test_shifted_plan_stores_the_shift_seed(tmp_path):
+    plan = small_plan(shifted=True, functions=["rastrigin"], runs=2, algorithms=["gwo", "mawdo"])
+    run_plan(plan, tmp_path / "sh.db", progress=False)
+    with Store.read(tmp_path / "sh.db") as store:
+        recs = store.records()
+    assert {r.shift_seed for r in recs} == {plan.shift_seed("rastrigin")}
+    assert all(r.shifted for r in recs)
+    unshifted = execute_task(small_plan(functions=["rastrigin"]).task_spec(
+        Task("gwo", "rastrigin", 0, 1)))["rows"][0]["fun"]
+    assert recs[0].fun != unshifted
+
+
+def test_bad_runner_arguments(tmp_path):
+    with pytest.raises(ValueError, match="workers=0"):
+        run_plan(small_plan(), tmp_path / "x.db", workers=0)
+    with pytest.raises(ValueError, match="not both"):
+        run_plan(small_plan(), tmp_path / "x.db", workers=2, dask="tcp://127.0.0.1:1")
