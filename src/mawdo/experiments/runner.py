@@ -92,6 +92,10 @@ def execute_task(spec: dict[str, Any]) -> dict[str, Any]:
     from the algorithm or the objective becomes one row per run with ``error_text`` set, so a
     bad corner of a sweep is recorded rather than killing it.
     """
+    if spec.get("kind") == "planning":
+        from mawdo.experiments.study import execute_study_task
+
+        return execute_study_task(spec)
     t0 = time.perf_counter()
     first, n = spec["first_run"], spec["n_runs"]
     common = {"seed_entropy": spec["seed_entropy"], "shift_seed": spec["shift_seed"]}

@@ -32,7 +32,7 @@ import numpy as np
 
 from mawdo.experiments.plan import ExperimentPlan, PlanError
 
-SCHEMA_VERSION = 1
+SCHEMA_VERSION = 2
 
 _SCHEMA = """
 CREATE TABLE IF NOT EXISTS meta (
@@ -65,6 +65,8 @@ CREATE TABLE IF NOT EXISTS runs (
     library_version TEXT NOT NULL,
     error_text TEXT,
     task_id INTEGER,
+    metrics_json TEXT,
+    payload BLOB,
     PRIMARY KEY (algorithm, function, shifted, run)
 );
 CREATE TABLE IF NOT EXISTS tasks (
@@ -82,7 +84,8 @@ CREATE TABLE IF NOT EXISTS tasks (
 _RUN_COLUMNS = (
     "plan_hash", "algorithm", "function", "shifted", "run", "params_json", "seed_entropy",
     "shift_seed", "fun", "error", "f_star", "nfev", "nit", "status", "wall_time", "curve",
-    "curve_nfev", "curve_len", "library_version", "error_text", "task_id",
+    "curve_nfev", "curve_len", "library_version", "error_text", "task_id", "metrics_json",
+    "payload",
 )
 
 
@@ -261,7 +264,9 @@ class Store:
                 raise StoreError(f"{path} is a SQLite file but not a mawdo results store "
                                  f"(no meta row)")
             try:
-                plan = ExperimentPlan.from_json(meta["plan_json"])
+                from mawdo.experiments.study import plan_from_json
+
+                plan = plan_from_json(meta["plan_json"])
             except PlanError as exc:
                 raise StoreError(f"{path}: its stored plan is no longer valid: {exc}") from None
         except BaseException:
@@ -328,6 +333,9 @@ class Store:
                     None if curve is None else encode_i64(r["curve_nfev"]),
                     None if curve is None else int(len(curve)),
                     version, r.get("error_text"), task_id,
+                    None if r.get("metrics") is None else json.dumps(r["metrics"],
+                                                                     default=_json_default),
+                    r.get("payload"),
                 ))
             self.conn.executemany(
                 f"INSERT INTO runs ({', '.join(_RUN_COLUMNS)}) "
@@ -428,6 +436,18 @@ class Store:
                       for r in recs])
         fs = recs[0].f_star
         return c, n, float("nan") if fs is None else float(fs)
+
+    def study_runs(self, algorithm: str | None = None, payload: bool = False) -> list[dict]:
+        """Planning-study runs: ``algorithm, run, metrics`` (dict), and the serialised run
+        (``payload``, bytes) when asked; failed runs have ``metrics=None`` and ``error_text``."""
+        where, args = ("WHERE algorithm = ?", [algorithm]) if algorithm else ("", [])
+        rows = self.conn.execute(
+            f"SELECT algorithm, run, metrics_json, {'payload' if payload else 'NULL'}, "
+            f"error_text, curve, curve_len FROM runs {where} ORDER BY algorithm, run", args
+        ).fetchall()
+        return [{"algorithm": a, "run": int(k), "metrics": None if mj is None else json.loads(mj),
+                 "payload": pl, "error_text": et, "curve": decode(c, "<f8", cl)}
+                for a, k, mj, pl, et, c, cl in rows]
 
     def task_log(self) -> list[dict[str, Any]]:
         """Every executed task, in execution order."""

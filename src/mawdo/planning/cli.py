@@ -86,3 +86,60 @@ def run_cmd(
             return
         console.print(f"snapshot grid: {render.snapshot_grid([res], out / 'snapshots.png')}")
         console.print(f"animation: {render.animate(res, out / 'run.gif')}")
+
+
+@plan_app.command("study")
+def study_cmd(
+    preset: str = typer.Option("paper-table6", help="paper-table6, study-quick or study-smoke"),
+    out: Path = typer.Option(Path("results/table6.db"), help="SQLite results store"),
+    runs: int = typer.Option(None, help="runs per algorithm (override)"),
+    algorithms: str = typer.Option(None, help="comma-separated algorithms (override)"),
+    scenario: str = typer.Option(None, help="scenario name or file (override)"),
+    workers: int = typer.Option(1, help="local worker processes"),
+    dask: str = typer.Option(None, help="Dask scheduler address, e.g. tcp://host:8786"),
+    force: bool = typer.Option(False, help="discard a store made by another plan or version"),
+    report: Path = typer.Option(None, help="also write the report to this folder"),
+    progress: bool = typer.Option(True, help="show a progress bar"),
+):
+    """Run the planning study (paper Table 6) into a resumable store."""
+    from mawdo.experiments.plan import PlanError
+    from mawdo.experiments.runner import run_plan
+    from mawdo.experiments.store import StoreError
+    from mawdo.experiments.study import study_preset
+
+    try:
+        plan = study_preset(preset).with_overrides(
+            runs=runs, scenario=scenario,
+            algorithms=None if algorithms is None else [a.strip() for a in algorithms.split(",")])
+    except PlanError as exc:
+        console.print(f"[bold red]error:[/] {exc}")
+        raise typer.Exit(2) from None
+    console.print(plan.describe())
+    try:
+        summary = run_plan(plan, out, workers=workers, dask=dask, progress=progress, force=force)
+    except (StoreError, ValueError) as exc:
+        console.print(f"[bold red]error:[/] {exc}")
+        raise typer.Exit(1) from None
+    console.print(str(summary))
+    if summary.interrupted:
+        raise typer.Exit(130)
+    if report is not None:
+        report_cmd(out, report)
+
+
+@plan_app.command("report")
+def report_cmd(
+    store: Path = typer.Argument(..., help="results store of a study"),
+    out: Path = typer.Option(Path("report/study"), help="output folder"),
+    gif: bool = typer.Option(True, help="write the animated GIF"),
+):
+    """Tables and figures of a planning study, read from its store (nothing is recomputed)."""
+    from mawdo.experiments.store import StoreError
+    from mawdo.experiments.study_report import write_study_report
+
+    try:
+        path = write_study_report(store, out, gif=gif)
+    except StoreError as exc:
+        console.print(f"[bold red]error:[/] {exc}")
+        raise typer.Exit(1) from None
+    console.print(f"report: {path}")

@@ -243,7 +243,7 @@ def plan(
         A scenario or the name of a built-in one (``"paper"``).
     algorithm : str
         Any registered optimizer (``mawdo list algorithms``).
-    seed : int
+    seed : int or numpy.random.SeedSequence
         Seed of the run; replan ``k`` uses the ``k``-th child of ``SeedSequence(seed)``.
     config : PlannerConfig or str, optional
         Settings or a preset name (``"realtime"`` default, ``"paper"``, ``"quick"``).
@@ -269,7 +269,7 @@ def plan(
         n_waypoints=cfg.n_waypoints,
     )
     lb, ub = cost.bounds
-    master = np.random.SeedSequence(seed)
+    master = seed if isinstance(seed, np.random.SeedSequence) else np.random.SeedSequence(seed)
     goal = sc.goal
     pos = sc.start.copy()
     traj = [pos.copy()]
@@ -353,3 +353,101 @@ def plan(
 def executed_length(result: PlanResult) -> float:
     """Length of the executed route (pixels)."""
     return polyline_length(result.route)
+
+
+ORACLE_FOLLOWER = "oracle_follower"
+
+
+def follow_oracle(scenario, max_steps: int | None = None) -> PlanResult:
+    """The baseline a robotics engineer would pick: follow the exact shortest path on the
+    obstacles frozen at each instant, ignoring their motion (replanned every step).
+
+    Deterministic (no seed). When the frozen map leaves no path (a moving obstacle covers the
+    robot's inflated position or blocks every route) the robot waits for a step.
+    """
+    from mawdo.planning.oracle import scenario_optimum
+
+    sc = _resolve(scenario)
+    v = sc.robot_speed
+    max_steps = max_steps or int(np.ceil(4 * sc.straight_line_length() / v)) + 10
+    pos = sc.start.copy()
+    traj, route, stamps = [pos.copy()], [pos.copy()], [0.0]
+    replans: list[Replan] = []
+    reason = "step limit reached before the goal"
+    for step in range(max_steps + 1):
+        if np.hypot(*(sc.goal - pos)) <= 1e-9:
+            reason = "goal reached"
+            break
+        if step == max_steps:
+            break
+        t0 = time.perf_counter()
+        opt = scenario_optimum(sc, t=float(step), static_only=False, start=pos)
+        latency = time.perf_counter() - t0
+        if opt.reachable:
+            path = opt.path
+            pos, _, passed, frac = advance(path, v)
+            route.extend(passed)
+            stamps.extend(step + frac)
+            waypoints = path[1:-1]
+        else:
+            waypoints = np.zeros((0, 2))
+        replans.append(Replan(step=step, position=traj[-1].copy(), waypoints=waypoints,
+                              cost=float("nan"), length=float(opt.length), collisions=0,
+                              latency=latency, nfev=0, history=np.zeros(0)))
+        route.append(pos.copy())
+        stamps.append(step + 1.0)
+        traj.append(pos.copy())
+    return PlanResult(scenario=sc, algorithm=ORACLE_FOLLOWER, seed=0,
+                      config=PlannerConfig(), trajectory=np.array(traj),
+                      success=reason == "goal reached", reason=reason, replans=replans,
+                      route=np.array(route), route_times=np.array(stamps))
+
+
+def result_to_bytes(result: PlanResult) -> bytes:
+    """Serialise what figures need (route, replans) to ``.npz`` bytes; the scenario is not
+    included (the study stores its plan, which names it)."""
+    import io
+
+    reps = result.replans
+    m = max((len(r.waypoints) for r in reps), default=0)
+    wp = np.full((len(reps), m, 2), np.nan)
+    for i, r in enumerate(reps):
+        wp[i, : len(r.waypoints)] = r.waypoints
+    h = max((len(r.history) for r in reps), default=0)
+    hist = np.full((len(reps), h), np.nan)
+    for i, r in enumerate(reps):
+        hist[i, : len(r.history)] = r.history
+    buf = io.BytesIO()
+    np.savez_compressed(
+        buf, trajectory=result.trajectory, route=result.route, route_times=result.route_times,
+        step=np.array([r.step for r in reps]), position=np.array([r.position for r in reps]),
+        waypoints=wp, cost=np.array([r.cost for r in reps]),
+        length=np.array([r.length for r in reps]),
+        collisions=np.array([r.collisions for r in reps]),
+        latency=np.array([r.latency for r in reps]), nfev=np.array([r.nfev for r in reps]),
+        history=hist, meta=np.array([result.algorithm, str(result.seed), result.reason]),
+        success=np.array(result.success),
+    )
+    return buf.getvalue()
+
+
+def result_from_bytes(data: bytes, scenario) -> PlanResult:
+    """Inverse of :func:`result_to_bytes` (the config is not stored: defaults are filled in)."""
+    import io
+
+    z = np.load(io.BytesIO(data), allow_pickle=False)
+    reps = []
+    for i in range(len(z["step"])):
+        w = z["waypoints"][i]
+        h = z["history"][i]
+        reps.append(Replan(step=int(z["step"][i]), position=z["position"][i],
+                           waypoints=w[~np.isnan(w[:, 0])], cost=float(z["cost"][i]),
+                           length=float(z["length"][i]), collisions=int(z["collisions"][i]),
+                           latency=float(z["latency"][i]), nfev=int(z["nfev"][i]),
+                           history=h[~np.isnan(h)]))
+    algorithm, seed, reason = (str(x) for x in z["meta"])
+    return PlanResult(scenario=_resolve(scenario), algorithm=algorithm,
+                      seed=int(seed) if seed.lstrip("-").isdigit() else 0,
+                      config=PlannerConfig(), trajectory=z["trajectory"],
+                      success=bool(z["success"]), reason=reason, replans=reps,
+                      route=z["route"], route_times=z["route_times"])
