@@ -192,6 +192,26 @@ def demo(
     console.print(f"done in {time.perf_counter() - t0:.1f} s")
 
 
+@app.command()
+def reproduce(
+    out: Path = typer.Option(Path("report"), help="output folder (report.md, results/)"),
+    quick: bool = typer.Option(False, help="reduced budget: minutes instead of about an hour"),
+    workers: int = typer.Option(2, help="local worker processes"),
+    dask: str = typer.Option(None, help="Dask scheduler address"),
+    progress: bool = typer.Option(True, help="show progress bars"),
+):
+    """Reproduce the paper: benchmark, shifted suite, ablation and planning study, one report."""
+    from mawdo.reproduce import reproduce as run
+
+    try:
+        path = run(out, quick=quick, workers=workers, dask=dask, progress=progress,
+                   say=console.print)
+    except KeyboardInterrupt:
+        console.print("interrupted: run the same command again to resume")
+        raise typer.Exit(130) from None
+    console.print(f"report: {path}")
+
+
 def _mount_subapps() -> None:
     from mawdo.experiments.cli import bench_app
     from mawdo.planning.cli import plan_app
