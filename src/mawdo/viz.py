@@ -19,18 +19,19 @@ def _pyplot():
 
 
 def band(ax, curves: np.ndarray, label: str, x: np.ndarray | None = None, log: bool = True,
-         color=None):
+         color=None, floor: float | None = None, lw: float = 1.6):
     """Draw the median of ``curves`` (``(R, T)``) with its interquartile band on ``ax``.
 
-    Non-positive values are floored at the smallest positive float so a log axis can show
-    runs that reached the optimum exactly.
+    On a log axis, values below ``floor`` (default: the smallest positive float) are drawn at
+    the floor, so runs that reached the optimum exactly stay visible.
     """
     c = np.asarray(curves, float)
-    if log:
-        c = np.maximum(c, np.finfo(float).tiny)
     x = np.arange(1, c.shape[1] + 1) if x is None else x
     q1, med, q3 = np.percentile(c, [25, 50, 75], axis=0)
-    (line,) = ax.plot(x, med, label=label, color=color, lw=1.6)
+    if log:
+        lo = np.finfo(float).tiny if floor is None else floor
+        q1, med, q3 = (np.maximum(q, lo) for q in (q1, med, q3))
+    (line,) = ax.plot(x, med, label=label, color=color, lw=lw)
     ax.fill_between(x, q1, q3, color=line.get_color(), alpha=0.2, lw=0)
     if log:
         ax.set_yscale("log")

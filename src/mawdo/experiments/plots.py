@@ -24,6 +24,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from mawdo.experiments.store import Store
+from mawdo.viz import band
 
 NCOLS = 4
 DPI = 110
@@ -100,15 +101,11 @@ def convergence_figure(store: Store, stem: str | Path,
             if curve.size == 0:
                 continue
             err = curve - (0.0 if math.isnan(f_star) else f_star)
-            q25, med, q75 = np.percentile(err, [25, 50, 75], axis=0)
             x = np.median(nfev, axis=0) if by_evals else np.arange(1, err.shape[1] + 1)
-            series.append((algo, x, q25, med, q75))
-        floor, clipped = _floor([s[k] for s in series for k in (2, 3, 4)])
-        for algo, x, q25, med, q75 in series:
-            c = colours[algo]
-            ax.fill_between(x, np.maximum(q25, floor), np.maximum(q75, floor), color=c,
-                            alpha=0.2, linewidth=0)
-            ax.plot(x, np.maximum(med, floor), color=c, label=label(algo), linewidth=1.2)
+            series.append((algo, x, err))
+        floor, clipped = _floor([s[2] for s in series])
+        for algo, x, err in series:
+            band(ax, err, label(algo), x=x, color=colours[algo], floor=floor, lw=1.2)
         ax.set_yscale("log")
         ax.set_title(f"{function_label(fn)} ({fn})" + (" [0 drawn at floor]" if clipped else ""),
                      fontsize=9)
