@@ -88,3 +88,18 @@ def test_bad_planner_settings_are_named():
         PlannerConfig(seed_fraction=1.5)
     with pytest.raises(ValueError, match="unknown planner preset 'fast'"):
         plan("paper", "mawdo", config="fast")
+
+
+def test_first_plan_uses_its_own_population(paper, monkeypatch):
+    import sys
+
+    module = sys.modules["mawdo.minimize"]  # the package re-exports a function of that name
+    real, calls = module.minimize, []
+
+    def spy(*a, **kw):
+        calls.append(kw["pop_size"])
+        return real(*a, **kw)
+
+    monkeypatch.setattr(module, "minimize", spy)
+    plan(paper, "gwo", seed=0, config="quick", first_pop_size=120, max_steps=3)
+    assert calls == [120, 80, 80]

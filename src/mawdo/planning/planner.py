@@ -185,7 +185,8 @@ def _config(config, overrides) -> PlannerConfig:
 
 
 def _optimise(
-    cost: PathCost, pos, t, algorithm, config: PlannerConfig, iters, seed_seq, x0, max_time
+    cost: PathCost, pos, t, algorithm, config: PlannerConfig, iters, seed_seq, x0, max_time,
+    pop_size,
 ):
     from mawdo.minimize import minimize
 
@@ -200,7 +201,7 @@ def _optimise(
         max_iter=iters,
         max_time=max_time,
         x0=x0,
-        pop_size=config.pop_size,
+        pop_size=pop_size,
         **opts,
     )
     return res
@@ -285,8 +286,11 @@ def plan(
             break
         if remainder is None or (dynamic and step % cfg.replan_every == 0):
             k = len(replans)
-            ss = np.random.SeedSequence(master.entropy, spawn_key=(k,))
-            rng = np.random.default_rng(np.random.SeedSequence(master.entropy, spawn_key=(k, 1)))
+            key = tuple(master.spawn_key)
+            ss = np.random.SeedSequence(master.entropy, spawn_key=(*key, k))
+            rng = np.random.default_rng(
+                np.random.SeedSequence(master.entropy, spawn_key=(*key, k, 1))
+            )
             if remainder is None:
                 n_via = max(0, int(cfg.seed_fraction * (cfg.first_pop_size or cfg.pop_size)) - 1)
                 x0 = np.vstack(
@@ -312,6 +316,7 @@ def plan(
                 ss,
                 x0,
                 None if first else cfg.replan_time,
+                (cfg.first_pop_size or cfg.pop_size) if first else cfg.pop_size,
             )
             latency = time.perf_counter() - t0
             best = res.x[0]
