@@ -42,14 +42,20 @@ def main(argv: list[str] | None = None) -> dict:
 
     print(f"{plan.describe()}")
     print(f"cpus: {os.cpu_count()}, workers: {args.workers}")
-    print(f"sweep: {summary.done} runs in {wall:.1f} s = {summary.done / wall:.1f} runs/s "
-          f"({summary.failed} failed); store {size / 2**20:.1f} MiB")
+    print(
+        f"sweep: {summary.done} runs in {wall:.1f} s = {summary.done / wall:.1f} runs/s "
+        f"({summary.failed} failed); store {size / 2**20:.1f} MiB"
+    )
     for a, s in sorted(per_algo.items(), key=lambda kv: -kv[1]):
         print(f"  {a:8s} {s:7.1f} s of worker time")
     if args.report:
         print(f"report (tables + figures): {report_wall:.1f} s")
-    return {"wall": wall, "runs": summary.done, "runs_per_s": summary.done / wall,
-            "report_wall": report_wall}
+    return {
+        "wall": wall,
+        "runs": summary.done,
+        "runs_per_s": summary.done / wall,
+        "report_wall": report_wall,
+    }
 
 
 if __name__ == "__main__":

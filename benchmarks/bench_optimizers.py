@@ -42,14 +42,18 @@ def main() -> list[dict]:
     floor = min(bare_loop() for _ in range(3))
     rows = []
     print("F1 sphere, D=30, pop 50, 500 iterations, 30 runs in one batch (best of 3)")
-    print(f"{'algorithm':10s} {'wall (s)':>9s} {'evals/s':>12s} {'overhead (s)':>13s} "
-          f"{'target (s)':>10s}")
+    print(
+        f"{'algorithm':10s} {'wall (s)':>9s} {'evals/s':>12s} {'overhead (s)':>13s} "
+        f"{'target (s)':>10s}"
+    )
     for algo in ("wdo", "gwo", "woa", "awdo", "mewdo", "mawdo"):
         wall, nfev = time_algorithm(algo)
         target = TARGETS.get(algo)
         flag = "" if target is None else ("  ok" if wall < target else "  MISSED")
-        print(f"{algo:10s} {wall:9.3f} {nfev / wall:12.3e} {wall - floor:13.3f} "
-              f"{'' if target is None else f'{target:.1f}':>10s}{flag}")
+        print(
+            f"{algo:10s} {wall:9.3f} {nfev / wall:12.3e} {wall - floor:13.3f} "
+            f"{'' if target is None else f'{target:.1f}':>10s}{flag}"
+        )
         rows.append({"algorithm": algo, "wall": wall, "evals_per_s": nfev / wall})
     print(f"{'bare loop':10s} {floor:9.3f} {30 * 50 * 500 / floor:12.3e}  (evaluation only)")
     return rows

@@ -40,8 +40,10 @@ def kernel() -> None:
         for label, X in pops.items():
             med, mn = _median_time(lambda X=X, cost=cost: cost(X, t0=5.0))
             flag = "ok" if med <= 3e-3 else "MISSED"
-            print(f"  {mode:9s} {label:30s} {med * 1e3:6.2f} ms  (min {mn * 1e3:5.2f})  "
-                  f"target 3 ms {flag}")
+            print(
+                f"  {mode:9s} {label:30s} {med * 1e3:6.2f} ms  (min {mn * 1e3:5.2f})  "
+                f"target 3 ms {flag}"
+            )
 
 
 def planner(seeds=(0, 1, 2)) -> None:
@@ -50,8 +52,10 @@ def planner(seeds=(0, 1, 2)) -> None:
 
     cfg = PRESETS["realtime"]
     l_star = static_optimum(plan.__globals__["get_scenario"]("paper"))
-    print(f"dynamic planner, MAWDO, realtime preset (pop {cfg.pop_size}, "
-          f"{cfg.replan_iters} iterations per replan, replan every step)")
+    print(
+        f"dynamic planner, MAWDO, realtime preset (pop {cfg.pop_size}, "
+        f"{cfg.replan_iters} iterations per replan, replan every step)"
+    )
     lat, gaps, ok = [], [], []
     for seed in seeds:
         res = plan("paper", "mawdo", seed=seed, config=cfg)
@@ -61,10 +65,14 @@ def planner(seeds=(0, 1, 2)) -> None:
         ok.append(m["success"] and m["collision_free"])
     lat = np.concatenate(lat)
     p95 = np.percentile(lat, 95)
-    print(f"  replans {lat.size}: latency p50 {np.median(lat):.1f} ms, p95 {p95:.1f} ms, "
-          f"max {lat.max():.1f} ms  target p95 50 ms {'ok' if p95 <= 50 else 'MISSED'}")
-    print(f"  gap L/L*: {', '.join(f'{g:.3f}' for g in gaps)}; "
-          f"collision-free and at goal: {sum(ok)}/{len(ok)}")
+    print(
+        f"  replans {lat.size}: latency p50 {np.median(lat):.1f} ms, p95 {p95:.1f} ms, "
+        f"max {lat.max():.1f} ms  target p95 50 ms {'ok' if p95 <= 50 else 'MISSED'}"
+    )
+    print(
+        f"  gap L/L*: {', '.join(f'{g:.3f}' for g in gaps)}; "
+        f"collision-free and at goal: {sum(ok)}/{len(ok)}"
+    )
 
 
 def main() -> None:

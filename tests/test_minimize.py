@@ -45,14 +45,17 @@ def test_bounds_forms_agree_and_mismatched_lengths_are_named():
         as_bounds((0, 1))
 
 
-@pytest.mark.parametrize("kw,match", [
-    ({"pop_size": 1}, "pop_size=1 must be an integer >= 2"),
-    ({"runs": 0}, "runs=0 must be an integer >= 1"),
-    ({"max_iter": 0}, "max_iter=0 must be a positive integer"),
-    ({"max_evals": -5}, "max_evals=-5"),
-    ({"max_time": 0}, "max_time"),
-    ({"first_run": -1}, "first_run"),
-])
+@pytest.mark.parametrize(
+    "kw,match",
+    [
+        ({"pop_size": 1}, "pop_size=1 must be an integer >= 2"),
+        ({"runs": 0}, "runs=0 must be an integer >= 1"),
+        ({"max_iter": 0}, "max_iter=0 must be a positive integer"),
+        ({"max_evals": -5}, "max_evals=-5"),
+        ({"max_time": 0}, "max_time"),
+        ({"first_run": -1}, "first_run"),
+    ],
+)
 def test_bad_budget_arguments(kw, match):
     with pytest.raises(ValueError, match=match):
         minimize(sphere, B3, algorithm="gwo", **{"max_iter": 3, **kw})
@@ -74,17 +77,23 @@ def test_objective_that_raises_names_algorithm_run_and_iteration():
             raise ZeroDivisionError("boom")
         return sphere(X)
 
-    with pytest.raises(ObjectiveError, match=r"ZeroDivisionError: boom \(algorithm 'woa', run \d+, "
-                                             r"iteration \d+\)"):
+    with pytest.raises(
+        ObjectiveError,
+        match=r"ZeroDivisionError: boom \(algorithm 'woa', run \d+, "
+        r"iteration \d+\)",
+    ):
         minimize(f, B3, algorithm="woa", runs=4, seed=0, max_iter=50)
 
 
-@pytest.mark.parametrize("out,match", [
-    (lambda X: sphere(X)[:, None], r"returned shape \(\d+, 1\) for \d+ points"),
-    (lambda X: X, r"returned shape \(\d+, 3\)"),
-    (lambda X: 1.0, r"returned shape \(\)"),
-    (lambda X: ["a"] * len(X), "not numbers"),
-])
+@pytest.mark.parametrize(
+    "out,match",
+    [
+        (lambda X: sphere(X)[:, None], r"returned shape \(\d+, 1\) for \d+ points"),
+        (lambda X: X, r"returned shape \(\d+, 3\)"),
+        (lambda X: 1.0, r"returned shape \(\)"),
+        (lambda X: ["a"] * len(X), "not numbers"),
+    ],
+)
 def test_objective_with_wrong_output_shape(out, match):
     with pytest.raises(ObjectiveError, match=match):
         minimize(out, B3, algorithm="wdo", max_iter=2)

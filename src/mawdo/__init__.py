@@ -24,6 +24,13 @@ def __getattr__(name):
 
 
 __all__ = [
-    "FUNCTIONS", "OPTIMIZERS", "ObjectiveError", "OptimizeResult", "Problem", "make_optimizer",
-    "make_problem", "minimize", "__version__",
+    "FUNCTIONS",
+    "OPTIMIZERS",
+    "ObjectiveError",
+    "OptimizeResult",
+    "Problem",
+    "make_optimizer",
+    "make_problem",
+    "minimize",
+    "__version__",
 ]

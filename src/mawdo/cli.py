@@ -17,7 +17,9 @@ from rich.table import Table
 
 app = typer.Typer(
     help="Wind driven optimization (WDO, AWDO, MAWDO) and real-time path planning.",
-    no_args_is_help=True, add_completion=False, pretty_exceptions_show_locals=False,
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_show_locals=False,
 )
 console = Console(width=None if sys.stdout.isatty() else 140)
 
@@ -69,8 +71,13 @@ def list_cmd(what: str = typer.Argument("all", help="algorithms, functions, scen
                 continue  # aliases such as F1 -> sphere
             seen.add(id(f))
             suite = "" if f.name in PAPER_SUITE else " (alt)"
-            t.add_row(f.name, (f.paper_id or "-") + suite, str(f.dim),
-                      f"[{f.lb.min():g}, {f.ub.max():g}]", f"{f.f_star:.10g}")
+            t.add_row(
+                f.name,
+                (f.paper_id or "-") + suite,
+                str(f.dim),
+                f"[{f.lb.min():g}, {f.ub.max():g}]",
+                f"{f.f_star:.10g}",
+            )
         console.print(t)
     if what in ("all", "scenarios"):
         from mawdo.planning import SCENARIOS
@@ -81,8 +88,9 @@ def list_cmd(what: str = typer.Argument("all", help="algorithms, functions, scen
 @app.command()
 def optimize(
     function: str = typer.Argument(..., help="benchmark name or paper id, e.g. rastrigin or F7"),
-    algorithm: str = typer.Option("mawdo", "--algorithm", "-a",
-                                  help="one or more registered names, comma separated"),
+    algorithm: str = typer.Option(
+        "mawdo", "--algorithm", "-a", help="one or more registered names, comma separated"
+    ),
     runs: int = typer.Option(30, help="independent runs (one vectorised batch)"),
     seed: int = typer.Option(0, help="master seed"),
     iters: int = typer.Option(500, help="iterations per run (initial population = 1)"),
@@ -105,9 +113,18 @@ def optimize(
     for algo in algos:
         try:
             res = minimize(
-                function, algorithm=algo, runs=runs, seed=seed,
-                max_iter=None if evals else iters, max_evals=evals, pop_size=pop, dim=dim,
-                shifted=shifted, preset=preset, progress=progress, **opts,
+                function,
+                algorithm=algo,
+                runs=runs,
+                seed=seed,
+                max_iter=None if evals else iters,
+                max_evals=evals,
+                pop_size=pop,
+                dim=dim,
+                shifted=shifted,
+                preset=preset,
+                progress=progress,
+                **opts,
             )
         except (KeyError, ValueError, TypeError) as exc:
             _fail(str(exc.args[0]) if isinstance(exc, KeyError) else str(exc))
@@ -118,9 +135,17 @@ def optimize(
 
         console.print(f"convergence plot: {plot_convergence(results, plot)}")
     if json_out:
-        payload = {label: {"fun": r.fun.tolist(), "nfev": r.nfev.tolist(), "x": r.x.tolist(),
-                           "params": r.params, "seed": seed, "time": r.time}
-                   for label, r in results.items()}
+        payload = {
+            label: {
+                "fun": r.fun.tolist(),
+                "nfev": r.nfev.tolist(),
+                "x": r.x.tolist(),
+                "params": r.params,
+                "seed": seed,
+                "time": r.time,
+            }
+            for label, r in results.items()
+        }
         json_out.parent.mkdir(parents=True, exist_ok=True)
         json_out.write_text(json.dumps(payload, indent=1, default=str))
         console.print(f"results: {json_out}")
@@ -129,8 +154,10 @@ def optimize(
 def _print_table(function: str, results: dict) -> None:
     first = next(iter(results.values()))
     has_star = first.f_star is not None
-    t = Table(title=f"{first.problem} ({function}): {first.runs} runs"
-                    + (f", f* = {first.f_star:.10g}" if has_star else ""))
+    t = Table(
+        title=f"{first.problem} ({function}): {first.runs} runs"
+        + (f", f* = {first.f_star:.10g}" if has_star else "")
+    )
     cols = ["algorithm", "Best", "Ave", "Std"] + (["Ave error"] if has_star else [])
     for col in cols + ["nfev", "time (s)"]:
         t.add_column(col, justify="right")
@@ -159,9 +186,11 @@ def demo(
     t0 = time.perf_counter()
     out.mkdir(parents=True, exist_ok=True)
     sc = get_scenario("paper")
-    console.print(f"[bold]mawdo demo[/]: MAWDO on the '{sc.name}' scenario ({sc.width:g} x "
-                  f"{sc.height:g} px, {len(sc.static_indices)} static and "
-                  f"{len(sc.moving_indices)} moving obstacles), real-time replanning every step")
+    console.print(
+        f"[bold]mawdo demo[/]: MAWDO on the '{sc.name}' scenario ({sc.width:g} x "
+        f"{sc.height:g} px, {len(sc.static_indices)} static and "
+        f"{len(sc.moving_indices)} moving obstacles), real-time replanning every step"
+    )
     res = plan(sc, algorithm="mawdo", seed=seed, config="realtime")
     m = run_metrics(res)
     t = Table(title="MAWDO on the paper scenario (one run)")
@@ -183,7 +212,8 @@ def demo(
     console.print(t)
     (out / "metrics.json").write_text(json.dumps(m, indent=1))
     (out / "metrics.md").write_text(
-        "| metric | value |\n|---|---|\n" + "".join(f"| {k} | {v} |\n" for k, v in rows))
+        "| metric | value |\n|---|---|\n" + "".join(f"| {k} | {v} |\n" for k, v in rows)
+    )
     grid = render.snapshot_grid({"MAWDO": res}, out / "snapshots.png", metrics={"MAWDO": m})
     gif = render.animate(res, out / "mawdo_paper.gif", every=2)
     console.print(f"snapshot grid : {grid}")
@@ -204,8 +234,9 @@ def reproduce(
     from mawdo.reproduce import reproduce as run
 
     try:
-        path = run(out, quick=quick, workers=workers, dask=dask, progress=progress,
-                   say=console.print)
+        path = run(
+            out, quick=quick, workers=workers, dask=dask, progress=progress, say=console.print
+        )
     except KeyboardInterrupt:
         console.print("interrupted: run the same command again to resume")
         raise typer.Exit(130) from None

@@ -159,8 +159,13 @@ def minimize(
     if max_time is not None and not max_time > 0:
         raise ValueError(f"max_time={max_time!r} must be > 0 seconds")
     problem = make_problem(
-        fun, bounds, dim=dim, vectorized=vectorized, shifted=shifted,
-        shift_seed=shift_seed, preset=preset,
+        fun,
+        bounds,
+        dim=dim,
+        vectorized=vectorized,
+        shifted=shifted,
+        shift_seed=shift_seed,
+        preset=preset,
     )
     opt = make_optimizer(algorithm, **options)
     pop = opt.params.pop_size
@@ -230,8 +235,20 @@ def minimize(
                 message = STATUS_MESSAGES[3]
                 break
             if callback is not None:
-                snap = _result(opt, problem, seed, best_x, best_f, evaluator.nfev, nit, hist,
-                               hist_nfev, status, "in progress", time.perf_counter() - t0)
+                snap = _result(
+                    opt,
+                    problem,
+                    seed,
+                    best_x,
+                    best_f,
+                    evaluator.nfev,
+                    nit,
+                    hist,
+                    hist_nfev,
+                    status,
+                    "in progress",
+                    time.perf_counter() - t0,
+                )
                 if callback(snap):
                     status[active], active[:] = 4, False
                     message = STATUS_MESSAGES[4]
@@ -239,12 +256,25 @@ def minimize(
     finally:
         if bar is not None:
             bar.close()
-    return _result(opt, problem, seed, best_x, best_f, evaluator.nfev, nit, hist, hist_nfev,
-                   status, message, time.perf_counter() - t0)
+    return _result(
+        opt,
+        problem,
+        seed,
+        best_x,
+        best_f,
+        evaluator.nfev,
+        nit,
+        hist,
+        hist_nfev,
+        status,
+        message,
+        time.perf_counter() - t0,
+    )
 
 
-def _result(opt, problem, seed, best_x, best_f, nfev, nit, hist, hist_nfev, status, message,
-            elapsed) -> OptimizeResult:
+def _result(
+    opt, problem, seed, best_x, best_f, nfev, nit, hist, hist_nfev, status, message, elapsed
+) -> OptimizeResult:
     return OptimizeResult(
         x=best_x.copy(),
         fun=best_f.copy(),
@@ -272,9 +302,12 @@ class _Bar:
 
         self.by_evals = by_evals
         self.progress = Progress(
-            TextColumn("[bold]{task.description}"), BarColumn(),
-            TextColumn("{task.completed}/{task.total}"), TextColumn("best {task.fields[best]}"),
-            TimeRemainingColumn(), transient=True,
+            TextColumn("[bold]{task.description}"),
+            BarColumn(),
+            TextColumn("{task.completed}/{task.total}"),
+            TextColumn("best {task.fields[best]}"),
+            TimeRemainingColumn(),
+            transient=True,
         )
         self.task = self.progress.add_task(label, total=total, best="-")
         self.progress.start()

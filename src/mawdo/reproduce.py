@@ -21,9 +21,16 @@ QUICK_BENCH = {"runs": 5, "max_iter": 100}
 QUICK_STUDY = "study-quick"
 
 
-def reproduce(out: str | Path, quick: bool = False, workers: int = 2, dask=None,
-              progress: bool = True, say=print, bench_overrides: dict | None = None,
-              study: str | None = None) -> Path:
+def reproduce(
+    out: str | Path,
+    quick: bool = False,
+    workers: int = 2,
+    dask=None,
+    progress: bool = True,
+    say=print,
+    bench_overrides: dict | None = None,
+    study: str | None = None,
+) -> Path:
     """Run the benchmark, ablation and planning studies and write ``OUT/report.md``.
 
     Parameters
@@ -43,9 +50,11 @@ def reproduce(out: str | Path, quick: bool = False, workers: int = 2, dask=None,
     out = Path(out)
     stores = out / "results"
     parts = []
-    for preset, title in (("paper-table3", "Benchmark functions (paper Table 3)"),
-                          ("paper-table3-shifted", "Shifted suite (optimum off the centre)"),
-                          ("paper-ablation", "Ablation (paper Table 5)")):
+    for preset, title in (
+        ("paper-table3", "Benchmark functions (paper Table 3)"),
+        ("paper-table3-shifted", "Shifted suite (optimum off the centre)"),
+        ("paper-ablation", "Ablation (paper Table 5)"),
+    ):
         plan = preset_plan(preset)
         if quick:
             plan = plan.with_overrides(name=f"{preset}-quick", **QUICK_BENCH)
@@ -66,27 +75,41 @@ def reproduce(out: str | Path, quick: bool = False, workers: int = 2, dask=None,
     say(f"  {summary}")
     if summary.interrupted:
         raise KeyboardInterrupt
-    parts.append(("Path planning (paper Table 6)",
-                  write_study_report(db, out / "paper-table6")))
+    parts.append(("Path planning (paper Table 6)", write_study_report(db, out / "paper-table6")))
     return _gather(out, parts, quick)
 
 
 def _gather(out: Path, parts, quick: bool) -> Path:
-    lines = ["# mawdo: reproduction of Liu, Mohd Zain & Mao (arXiv 2511.20394)", "",
-             "Budget: " + ("**quick** (reduced; not the paper's protocol)" if quick else
-                           "the paper's protocol (30 runs x 500 iterations, pop 50; 50 planning "
-                           "runs)"), "",
-             "Readings of the paper and every departure from it: `docs/deviations.md`. "
-             "F12-F16 paper values are not comparable (SPEC 2); the planning map is a "
-             "reconstruction (compare ratios and ranks).", ""]
+    lines = [
+        "# mawdo: reproduction of Liu, Mohd Zain & Mao (arXiv 2511.20394)",
+        "",
+        "Budget: "
+        + (
+            "**quick** (reduced; not the paper's protocol)"
+            if quick
+            else "the paper's protocol (30 runs x 500 iterations, pop 50; 50 planning runs)"
+        ),
+        "",
+        "Readings of the paper and every departure from it: `docs/deviations.md`. "
+        "F12-F16 paper values are not comparable (SPEC 2); the planning map is a "
+        "reconstruction (compare ratios and ranks).",
+        "",
+    ]
     for title, path in parts:
         rel = path.relative_to(out)
         body = path.read_text(encoding="utf-8")
         # re-root the part's image links so they resolve from OUT/report.md
         body = body.replace("](", f"]({rel.parent.as_posix()}/").replace(
-            f"]({rel.parent.as_posix()}/http", "](http")
-        lines += [f"## {title}", "", f"Full report: [{rel}]({rel.as_posix()})", "",
-                  _demote(body), ""]
+            f"]({rel.parent.as_posix()}/http", "](http"
+        )
+        lines += [
+            f"## {title}",
+            "",
+            f"Full report: [{rel}]({rel.as_posix()})",
+            "",
+            _demote(body),
+            "",
+        ]
     path = out / "report.md"
     path.write_text("\n".join(lines), encoding="utf-8")
     return path

@@ -18,8 +18,16 @@ def _pyplot():
     return plt
 
 
-def band(ax, curves: np.ndarray, label: str, x: np.ndarray | None = None, log: bool = True,
-         color=None, floor: float | None = None, lw: float = 1.6):
+def band(
+    ax,
+    curves: np.ndarray,
+    label: str,
+    x: np.ndarray | None = None,
+    log: bool = True,
+    color=None,
+    floor: float | None = None,
+    lw: float = 1.6,
+):
     """Draw the median of ``curves`` (``(R, T)``) with its interquartile band on ``ax``.
 
     On a log axis, values below ``floor`` (default: the smallest positive float) are drawn at
@@ -38,8 +46,9 @@ def band(ax, curves: np.ndarray, label: str, x: np.ndarray | None = None, log: b
     return line
 
 
-def plot_convergence(results: Mapping[str, object], path: str | Path, title: str = "",
-                     error: bool = True) -> Path:
+def plot_convergence(
+    results: Mapping[str, object], path: str | Path, title: str = "", error: bool = True
+) -> Path:
     """Convergence of several algorithms on one problem: median best-so-far and IQR band.
 
     Parameters

@@ -14,7 +14,11 @@ SMALL = {
     "name": "small",
     "algorithms": ["gwo", "mewdo", "mawdo"],
     "functions": ["quartic", "six_hump_camel", "rastrigin"],
-    "runs": 4, "pop_size": 12, "max_iter": 60, "seed": 123, "batch_size": 2,
+    "runs": 4,
+    "pop_size": 12,
+    "max_iter": 60,
+    "seed": 123,
+    "batch_size": 2,
 }
 
 

@@ -18,18 +18,46 @@ def invoke(*args: str):
 
 def test_run_preset_with_overrides_then_report(tmp_path):
     db = tmp_path / "cli.db"
-    res = invoke("run", "--preset", "smoke", "--runs", "2", "--algorithms", "gwo,mewdo,mawdo",
-                 "--functions", "F1,six_hump_camel", "--iters", "12", "--out", str(db),
-                 "--workers", "1", "--no-progress")
+    res = invoke(
+        "run",
+        "--preset",
+        "smoke",
+        "--runs",
+        "2",
+        "--algorithms",
+        "gwo,mewdo,mawdo",
+        "--functions",
+        "F1,six_hump_camel",
+        "--iters",
+        "12",
+        "--out",
+        str(db),
+        "--workers",
+        "1",
+        "--no-progress",
+    )
     assert res.exit_code == 0, res.output
     assert "complete: 12 runs computed" in res.stdout
     with Store.read(db) as store:
         assert store.count() == 3 * 2 * 2
         assert store.plan.max_iter == 12 and store.plan.functions == ("sphere", "six_hump_camel")
 
-    again = invoke("run", "--preset", "smoke", "--runs", "2", "--algorithms", "gwo,mewdo,mawdo",
-                   "--functions", "F1,six_hump_camel", "--iters", "12", "--out", str(db),
-                   "--no-progress")
+    again = invoke(
+        "run",
+        "--preset",
+        "smoke",
+        "--runs",
+        "2",
+        "--algorithms",
+        "gwo,mewdo,mawdo",
+        "--functions",
+        "F1,six_hump_camel",
+        "--iters",
+        "12",
+        "--out",
+        str(db),
+        "--no-progress",
+    )
     assert again.exit_code == 0
     assert "0 runs computed" in again.stdout and "12 already" in again.stdout
 
@@ -42,8 +70,9 @@ def test_run_preset_with_overrides_then_report(tmp_path):
 
 def test_run_with_plan_file(tmp_path):
     plan = tmp_path / "p.toml"
-    plan.write_text('algorithms = ["wdo"]\nfunctions = ["F12"]\nruns = 2\npop_size = 8\n'
-                    'max_iter = 10\n')
+    plan.write_text(
+        'algorithms = ["wdo"]\nfunctions = ["F12"]\nruns = 2\npop_size = 8\nmax_iter = 10\n'
+    )
     res = invoke("run", "--plan", str(plan), "--out", str(tmp_path / "p.db"), "--no-progress")
     assert res.exit_code == 0, res.output
     conn = sqlite3.connect(tmp_path / "p.db")
@@ -52,8 +81,9 @@ def test_run_with_plan_file(tmp_path):
 
 
 def test_invalid_plan_names_the_field(tmp_path):
-    res = invoke("run", "--preset", "smoke", "--algorithms", "gwo,mawod", "--out",
-                 str(tmp_path / "x.db"))
+    res = invoke(
+        "run", "--preset", "smoke", "--algorithms", "gwo,mawod", "--out", str(tmp_path / "x.db")
+    )
     assert res.exit_code == 2
     assert "algorithms[1]: unknown algorithm 'mawod'" in res.output
     assert not (tmp_path / "x.db").exists()
@@ -72,8 +102,22 @@ def test_plan_source_is_required_and_unique(tmp_path):
 
 def test_plan_from_flags_alone(tmp_path):
     db = tmp_path / "flags.db"
-    res = invoke("run", "--algorithms", "wdo,awdo", "--functions", "F12", "--runs", "2",
-                 "--iters", "8", "--pop-size", "6", "--out", str(db), "--no-progress")
+    res = invoke(
+        "run",
+        "--algorithms",
+        "wdo,awdo",
+        "--functions",
+        "F12",
+        "--runs",
+        "2",
+        "--iters",
+        "8",
+        "--pop-size",
+        "6",
+        "--out",
+        str(db),
+        "--no-progress",
+    )
     assert res.exit_code == 0, res.output
     with Store.read(db) as store:
         assert store.plan.algorithms == ("wdo", "awdo") and store.count() == 4
@@ -82,8 +126,19 @@ def test_plan_from_flags_alone(tmp_path):
 
 def test_store_of_another_plan_is_refused_then_forced(tmp_path):
     db = tmp_path / "s.db"
-    common = ["--preset", "smoke", "--algorithms", "gwo", "--functions", "F1", "--iters", "5",
-              "--out", str(db), "--no-progress"]
+    common = [
+        "--preset",
+        "smoke",
+        "--algorithms",
+        "gwo",
+        "--functions",
+        "F1",
+        "--iters",
+        "5",
+        "--out",
+        str(db),
+        "--no-progress",
+    ]
     assert invoke("run", *common, "--runs", "2").exit_code == 0
     res = invoke("run", *common, "--runs", "3")
     assert res.exit_code == 1 and "another plan" in res.output and "--force" in res.output
@@ -101,7 +156,12 @@ def test_report_of_a_corrupt_store_fails_clearly(tmp_path):
 def test_presets_lists_every_preset():
     res = invoke("presets")
     assert res.exit_code == 0
-    for name in ("paper-table3", "paper-ablation", "paper-table3-shifted", "paper-table3-evals",
-                 "smoke"):
+    for name in (
+        "paper-table3",
+        "paper-ablation",
+        "paper-table3-shifted",
+        "paper-table3-evals",
+        "smoke",
+    ):
         assert name in res.stdout
     assert "2880 runs" in res.stdout

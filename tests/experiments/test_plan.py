@@ -68,29 +68,49 @@ def test_tasks_cover_exactly_the_missing_runs(runs, batch, data):
 
 def test_task_grid_without_resume():
     plan = ExperimentPlan.from_dict({**BASE, "runs": 5, "batch_size": 2})
-    assert plan.tasks()[:3] == [Task("gwo", "sphere", 0, 2), Task("gwo", "sphere", 2, 2),
-                                Task("gwo", "sphere", 4, 1)]
+    assert plan.tasks()[:3] == [
+        Task("gwo", "sphere", 0, 2),
+        Task("gwo", "sphere", 2, 2),
+        Task("gwo", "sphere", 4, 1),
+    ]
 
 
 # ---------------------------------------------------------------------------- identity
 def test_plan_hash_ignores_spelling_label_and_batching():
     a = ExperimentPlan.from_dict({**BASE, "options": {"mawdo": {"groups": 4, "eta": 0.3}}})
-    b = ExperimentPlan.from_dict({
-        "algorithms": ["GWO", "MAWDO"], "functions": ["F1"], "name": "other", "batch_size": 3,
-        "options": {"MAWDO": {"eta": 0.3, "groups": 4}, "gwo": {}},
-    })
+    b = ExperimentPlan.from_dict(
+        {
+            "algorithms": ["GWO", "MAWDO"],
+            "functions": ["F1"],
+            "name": "other",
+            "batch_size": 3,
+            "options": {"MAWDO": {"eta": 0.3, "groups": 4}, "gwo": {}},
+        }
+    )
     assert a.plan_hash == b.plan_hash
     assert len(a.plan_hash) == 64
 
 
-@pytest.mark.parametrize("change", [
-    {"runs": 29}, {"seed": 1}, {"pop_size": 40}, {"max_iter": 499}, {"shifted": True},
-    {"budget": "evals"}, {"bounds_preset": "standard"}, {"options": {"mawdo": {"groups": 4}}},
-    {"functions": ["sphere", "rastrigin"]}, {"algorithms": ["mawdo", "gwo"]},
-])
+@pytest.mark.parametrize(
+    "change",
+    [
+        {"runs": 29},
+        {"seed": 1},
+        {"pop_size": 40},
+        {"max_iter": 499},
+        {"shifted": True},
+        {"budget": "evals"},
+        {"bounds_preset": "standard"},
+        {"options": {"mawdo": {"groups": 4}}},
+        {"functions": ["sphere", "rastrigin"]},
+        {"algorithms": ["mawdo", "gwo"]},
+    ],
+)
 def test_plan_hash_changes_with_anything_that_affects_numbers(change):
-    assert ExperimentPlan.from_dict({**BASE, **change}).plan_hash != \
-        ExperimentPlan.from_dict(BASE).plan_hash
+    assert (
+        ExperimentPlan.from_dict({**BASE, **change}).plan_hash
+        != ExperimentPlan.from_dict(BASE).plan_hash
+    )
 
 
 def test_plan_json_round_trip():
@@ -138,17 +158,20 @@ def test_empty_lists_are_refused(field):
     assert errors_of(**{field: []}) == f"{field}: must not be empty: list at least one name"
 
 
-@pytest.mark.parametrize("fields, expected", [
-    ({"runs": 0}, "runs: must be >= 1 (got 0)"),
-    ({"pop_size": 1}, "pop_size: must be >= 2 (got 1)"),
-    ({"max_iter": -5}, "max_iter: must be >= 1 (got -5)"),
-    ({"seed": -1}, "seed: must be >= 0 (got -1)"),
-    ({"runs": 2.5}, "runs: must be an integer (got 2.5)"),
-    ({"runs": True}, "runs: must be an integer (got True)"),
-    ({"shifted": "yes"}, "shifted: must be true or false (got 'yes')"),
-    ({"budget": "time"}, "budget: must be one of 'iterations' or 'evals' (got 'time')"),
-    ({"batch_size": 0}, "batch_size: must be >= 1 (got 0)"),
-])
+@pytest.mark.parametrize(
+    "fields, expected",
+    [
+        ({"runs": 0}, "runs: must be >= 1 (got 0)"),
+        ({"pop_size": 1}, "pop_size: must be >= 2 (got 1)"),
+        ({"max_iter": -5}, "max_iter: must be >= 1 (got -5)"),
+        ({"seed": -1}, "seed: must be >= 0 (got -1)"),
+        ({"runs": 2.5}, "runs: must be an integer (got 2.5)"),
+        ({"runs": True}, "runs: must be an integer (got True)"),
+        ({"shifted": "yes"}, "shifted: must be true or false (got 'yes')"),
+        ({"budget": "time"}, "budget: must be one of 'iterations' or 'evals' (got 'time')"),
+        ({"batch_size": 0}, "batch_size: must be >= 1 (got 0)"),
+    ],
+)
 def test_bad_scalar_fields_are_named(fields, expected):
     assert errors_of(**fields) == expected
 
@@ -158,15 +181,18 @@ def test_unknown_field_suggests_the_right_one():
 
 
 def test_duplicates_are_refused():
-    assert errors_of(functions=["sphere", "F1"]) == \
-        "functions[1]: 'sphere' is listed twice (also functions[0])"
+    assert (
+        errors_of(functions=["sphere", "F1"])
+        == "functions[1]: 'sphere' is listed twice (also functions[0])"
+    )
 
 
 def test_options_are_checked_at_plan_time():
     assert "options.mawdo" in errors_of(options={"mawdo": {"grups": 4}})
     assert "Did you mean 'groups'" in errors_of(options={"mawdo": {"grups": 4}})
     assert errors_of(options={"wdo": {"alpha": 0.1}}).startswith(
-        "options.wdo: 'wdo' is not one of the plan's algorithms")
+        "options.wdo: 'wdo' is not one of the plan's algorithms"
+    )
     assert errors_of(options={"mawdo": {"pop_size": 10}}).startswith("options.mawdo.pop_size:")
 
 
@@ -188,8 +214,10 @@ def test_overrides_are_validated():
 # ---------------------------------------------------------------------------- TOML
 def test_toml_plan_loads(tmp_path):
     f = tmp_path / "plan.toml"
-    f.write_text('algorithms = ["gwo", "MAWDO"]\nfunctions = ["F7", "F12"]\nruns = 3\n'
-                 'pop_size = 10\nmax_iter = 20\n[options.mawdo]\ngroups = 4\n')
+    f.write_text(
+        'algorithms = ["gwo", "MAWDO"]\nfunctions = ["F7", "F12"]\nruns = 3\n'
+        "pop_size = 10\nmax_iter = 20\n[options.mawdo]\ngroups = 4\n"
+    )
     plan = ExperimentPlan.from_toml(f)
     assert plan.algorithms == ("gwo", "mawdo")
     assert plan.functions == ("rastrigin", "six_hump_camel")

@@ -35,11 +35,24 @@ def report_dir(reference_store, tmp_path_factory):
 def test_report_files_are_written(report_dir):
     out, files = report_dir
     names = {p.name for p in files}
-    for stem in ("results_raw", "results_error", "wilcoxon", "wilcoxon_totals", "friedman",
-                 "paper_comparison"):
+    for stem in (
+        "results_raw",
+        "results_error",
+        "wilcoxon",
+        "wilcoxon_totals",
+        "friedman",
+        "paper_comparison",
+    ):
         assert {f"{stem}.md", f"{stem}.tex", f"{stem}.csv"} <= names
-    assert {"report.md", "summary.csv", "timing.csv", "convergence.png", "boxplots.png",
-            "convergence.svg", "boxplots.svg"} <= names
+    assert {
+        "report.md",
+        "summary.csv",
+        "timing.csv",
+        "convergence.png",
+        "boxplots.png",
+        "convergence.svg",
+        "boxplots.svg",
+    } <= names
     assert all(p.stat().st_size > 0 for p in files)
     assert "ablation_raw.csv" not in names  # no MAWDO-1..4 in this plan
 
@@ -64,8 +77,7 @@ def test_results_table_agrees_with_the_stored_runs(report_dir, reference_store):
         block = {r["Index"]: r for r in rows if r["Function"] == pid}
         eblock = {r["Index"]: r for r in err_rows if r["Function"] == pid}
         ref = np.array([r.fun for r in recs if r.algorithm == "mawdo" and r.function == fn])
-        for algo, col in (("gwo", "GWO"), ("mewdo", "MEWDO (reconstructed)"),
-                          ("mawdo", "MAWDO")):
+        for algo, col in (("gwo", "GWO"), ("mewdo", "MEWDO (reconstructed)"), ("mawdo", "MAWDO")):
             f = np.array([r.fun for r in recs if r.algorithm == algo and r.function == fn])
             e = np.array([r.error for r in recs if r.algorithm == algo and r.function == fn])
             assert float(block["Best"][col]) == f.min()
@@ -80,8 +92,14 @@ def test_results_table_agrees_with_the_stored_runs(report_dir, reference_store):
 def test_latex_is_booktabs_like_the_paper(report_dir):
     out, _ = report_dir
     tex = (out / "results_raw.tex").read_text()
-    for piece in ("\\toprule", "\\midrule", "\\bottomrule", "\\multirow{4}{*}{F6}",
-                  "MEWDO (reconstructed)", "\\begin{tabular}{ccccc}"):
+    for piece in (
+        "\\toprule",
+        "\\midrule",
+        "\\bottomrule",
+        "\\multirow{4}{*}{F6}",
+        "MEWDO (reconstructed)",
+        "\\begin{tabular}{ccccc}",
+    ):
         assert piece in tex
     body = tex.split("\\midrule")[1].split("\\bottomrule")[0]
     data_lines = [ln for ln in body.splitlines() if ln.endswith("\\\\")]
@@ -152,8 +170,13 @@ def test_report_never_recomputes(reference_store, tmp_path, monkeypatch):
 
 
 def test_ablation_table_and_partial_store(tmp_path):
-    plan = small_plan(algorithms=["mawdo1", "mawdo3", "mawdo"], functions=["sphere", "F12"],
-                      runs=3, max_iter=15, batch_size=3)
+    plan = small_plan(
+        algorithms=["mawdo1", "mawdo3", "mawdo"],
+        functions=["sphere", "F12"],
+        runs=3,
+        max_iter=15,
+        batch_size=3,
+    )
     db = tmp_path / "abl.db"
     # store only part of the sweep: a report still works and says so
     from mawdo.experiments.runner import execute_task

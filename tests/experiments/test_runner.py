@@ -38,9 +38,15 @@ batch_size = 1
 def test_execute_task_matches_a_direct_minimize_call():
     plan = small_plan()
     out = execute_task(plan.task_spec(Task("mawdo", "quartic", 2, 2)))
-    res = minimize("quartic", algorithm="mawdo", runs=1, first_run=3,
-                   seed=np.random.SeedSequence(plan.function_seed("quartic")),
-                   max_iter=plan.max_iter, pop_size=plan.pop_size)
+    res = minimize(
+        "quartic",
+        algorithm="mawdo",
+        runs=1,
+        first_run=3,
+        seed=np.random.SeedSequence(plan.function_seed("quartic")),
+        max_iter=plan.max_iter,
+        pop_size=plan.pop_size,
+    )
     row = out["rows"][1]
     assert row["run"] == 3 and row["error_text"] is None
     assert row["fun"] == res.fun[0] and row["nfev"] == res.nfev[0]
@@ -62,19 +68,29 @@ def test_workers_do_not_change_stored_values(reference_store, tmp_path):
 def test_dask_local_cluster_gives_identical_values(reference_store, tmp_path):
     from distributed import Client, LocalCluster
 
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
-                      dashboard_address=None) as cluster, Client(cluster) as client:
+    with (
+        LocalCluster(
+            n_workers=2,
+            threads_per_worker=1,
+            processes=True,
+            host="127.0.0.1",
+            dashboard_address=None,
+        ) as cluster,
+        Client(cluster) as client,
+    ):
         summary = run_plan(small_plan(), tmp_path / "dask.db", dask=client, progress=False)
         # the runner leaves a client it was given open
         assert client.status == "running"
         # and connects (then disconnects) by itself given the scheduler's address
-        by_address = run_plan(small_plan(), tmp_path / "addr.db", dask=cluster.scheduler_address,
-                              progress=False)
+        by_address = run_plan(
+            small_plan(), tmp_path / "addr.db", dask=cluster.scheduler_address, progress=False
+        )
     assert summary.complete and by_address.complete
     assert stored_values(tmp_path / "addr.db") == stored_values(reference_store)
     with Store.read(tmp_path / "dask.db") as store:
-        assert all(not w.endswith(f":{os.getpid()}") for w in
-                   (t["worker"] for t in store.task_log()))
+        assert all(
+            not w.endswith(f":{os.getpid()}") for w in (t["worker"] for t in store.task_log())
+        )
     assert stored_values(tmp_path / "dask.db") == stored_values(reference_store)
 
 
@@ -107,9 +123,21 @@ def _wait_for_tasks(db: Path, proc: subprocess.Popen, at_least: int, timeout: fl
 
 def _start(plan_file: Path, db: Path, *extra: str) -> subprocess.Popen:
     return subprocess.Popen(
-        [sys.executable, "-m", "mawdo.experiments", "run", "--plan", str(plan_file),
-         "--out", str(db), "--no-progress", *extra],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        [
+            sys.executable,
+            "-m",
+            "mawdo.experiments",
+            "run",
+            "--plan",
+            str(plan_file),
+            "--out",
+            str(db),
+            "--no-progress",
+            *extra,
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
     )
 
 
@@ -140,8 +168,11 @@ def test_kill_9_then_resume_equals_an_uninterrupted_run(slow_plan_file, tmp_path
     assert summary.complete and summary.skipped == len(before)
     with Store.read(db) as store:
         log = store.task_log()
-    resumed = [(t["algorithm"], t["function"], k) for t in log[len(first_session):]
-               for k in range(t["first_run"], t["first_run"] + t["n_runs"])]
+    resumed = [
+        (t["algorithm"], t["function"], k)
+        for t in log[len(first_session) :]
+        for k in range(t["first_run"], t["first_run"] + t["n_runs"])
+    ]
     # no stored run computed twice, every missing run computed once
     assert len(resumed) == len(set(resumed)) == plan.total_runs - len(before)
     assert not set(resumed) & before
@@ -151,18 +182,21 @@ def test_kill_9_then_resume_equals_an_uninterrupted_run(slow_plan_file, tmp_path
     assert stored_values(db) == stored_values(clean)
 
     from mawdo.experiments import write_report
+
     a = write_report(db, tmp_path / "rep_killed", plots=False)
     b = write_report(clean, tmp_path / "rep_clean", plots=False)
     deterministic = [p.name for p in a if p.name != "timing.csv"]
     assert "results_raw.tex" in deterministic and "report.md" in deterministic
     for name in deterministic:
-        assert (tmp_path / "rep_killed" / name).read_text() == \
-            (tmp_path / "rep_clean" / name).read_text(), name
+        assert (tmp_path / "rep_killed" / name).read_text() == (
+            tmp_path / "rep_clean" / name
+        ).read_text(), name
     assert len(a) == len(b)
 
 
-def test_ctrl_c_stops_the_pool_keeps_finished_tasks_and_says_how_to_resume(slow_plan_file,
-                                                                          tmp_path):
+def test_ctrl_c_stops_the_pool_keeps_finished_tasks_and_says_how_to_resume(
+    slow_plan_file, tmp_path
+):
     plan = ExperimentPlan.from_toml(slow_plan_file)
     db = tmp_path / "sigint.db"
     proc = _start(slow_plan_file, db, "--workers", "2")
@@ -200,8 +234,10 @@ def test_a_failing_task_becomes_error_rows(monkeypatch, tmp_path):
     with Store.read(db) as store:
         failed = [r for r in store.records() if r.failed]
         assert {(r.algorithm, r.function) for r in failed} == {("gwo", "six_hump_camel")}
-        assert all(r.fun is None and "FloatingPointError: objective exploded" in r.error_text
-                   for r in failed)
+        assert all(
+            r.fun is None and "FloatingPointError: objective exploded" in r.error_text
+            for r in failed
+        )
         assert store.count(failed=False) == plan.total_runs - plan.runs
 
     # failed runs are stored (a re-run skips them) until asked to retry
@@ -213,8 +249,9 @@ def test_a_failing_task_becomes_error_rows(monkeypatch, tmp_path):
 
 def test_results_from_another_library_version_are_not_stored(monkeypatch, tmp_path):
     real = runner_mod.execute_task
-    monkeypatch.setattr(runner_mod, "execute_task",
-                        lambda spec: {**real(spec), "library_version": "9.9.9"})
+    monkeypatch.setattr(
+        runner_mod, "execute_task", lambda spec: {**real(spec), "library_version": "9.9.9"}
+    )
     plan = small_plan(functions=["rastrigin"], runs=2)
     summary = run_plan(plan, tmp_path / "v.db", progress=False)
     assert (summary.lost, summary.done, summary.complete) == (plan.total_runs, 0, False)
@@ -247,8 +284,9 @@ def test_shifted_plan_stores_the_shift_seed(tmp_path):
         recs = store.records()
     assert {r.shift_seed for r in recs} == {plan.shift_seed("rastrigin")}
     assert all(r.shifted for r in recs)
-    unshifted = execute_task(small_plan(functions=["rastrigin"]).task_spec(
-        Task("gwo", "rastrigin", 0, 1)))["rows"][0]["fun"]
+    unshifted = execute_task(
+        small_plan(functions=["rastrigin"]).task_spec(Task("gwo", "rastrigin", 0, 1))
+    )["rows"][0]["fun"]
     assert recs[0].fun != unshifted
 
 

@@ -136,8 +136,12 @@ def test_compare_applies_holm_over_the_whole_family():
         samples["r1", f] = rng.normal(size=20) + 1.0
         samples["r2", f] = rng.normal(size=20)
     comps = compare(samples, "ref", ["r1", "r2"], ["f1", "f2"])
-    assert [(c.function, c.rival) for c in comps] == [("f1", "r1"), ("f1", "r2"),
-                                                      ("f2", "r1"), ("f2", "r2")]
+    assert [(c.function, c.rival) for c in comps] == [
+        ("f1", "r1"),
+        ("f1", "r2"),
+        ("f2", "r1"),
+        ("f2", "r2"),
+    ]
     np.testing.assert_allclose([c.p_holm for c in comps], holm([c.pvalue for c in comps]))
     for c in comps:
         assert c.sign_holm == ("=" if c.p_holm >= 0.05 else c.sign)
@@ -146,10 +150,7 @@ def test_compare_applies_holm_over_the_whole_family():
 
 # ---------------------------------------------------------------------------- Friedman
 def test_friedman_hand_case():
-    table = np.array([[1.0, 2.0, 3.0],
-                      [2.0, 1.0, 3.0],
-                      [1.0, 3.0, 2.0],
-                      [1.0, 2.0, 3.0]])
+    table = np.array([[1.0, 2.0, 3.0], [2.0, 1.0, 3.0], [1.0, 3.0, 2.0], [1.0, 2.0, 3.0]])
     fr = friedman(table, ["a", "b", "c"])
     np.testing.assert_allclose(fr.mean_ranks, [5 / 4, 8 / 4, 11 / 4])
     n, k = 4, 3
@@ -161,12 +162,11 @@ def test_friedman_hand_case():
 
 
 def test_friedman_ties_are_averaged_and_match_scipy():
-    table = np.array([[0.0, 0.0, 1.0, 2.0],
-                      [1e-3, 5.0, 5.0, 5.0],
-                      [3.0, 1.0, 2.0, 4.0]])
+    table = np.array([[0.0, 0.0, 1.0, 2.0], [1e-3, 5.0, 5.0, 5.0], [3.0, 1.0, 2.0, 4.0]])
     fr = friedman(table, list("abcd"))
-    np.testing.assert_allclose(fr.mean_ranks, [(1.5 + 1 + 3) / 3, (1.5 + 3 + 1) / 3,
-                                               (3 + 3 + 2) / 3, (4 + 3 + 4) / 3])
+    np.testing.assert_allclose(
+        fr.mean_ranks, [(1.5 + 1 + 3) / 3, (1.5 + 3 + 1) / 3, (3 + 3 + 2) / 3, (4 + 3 + 4) / 3]
+    )
     ref = sps.friedmanchisquare(*table.T)
     assert fr.statistic == pytest.approx(ref.statistic) and fr.pvalue == pytest.approx(ref.pvalue)
 

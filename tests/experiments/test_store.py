@@ -19,16 +19,35 @@ def outcome(plan, task: Task, value: float = 1.5, bad_run: int | None = None) ->
     """A synthetic executed task (what a worker returns)."""
     rows = []
     for k in task.runs:
-        rows.append({
-            "run": bad_run if (bad_run is not None and k == task.runs[-1]) else k,
-            "fun": value + k, "error": value + k + 1.0, "f_star": -1.0, "nfev": 60 + k,
-            "nit": 5, "status": 0, "wall_time": 0.01, "params": {"pop_size": np.int64(12)},
-            "curve": np.linspace(10.0, value + k, 5), "curve_nfev": np.arange(12, 61, 12),
-            "seed_entropy": [123, 456], "shift_seed": None, "error_text": None,
-        })
-    return {"task": {"algorithm": task.algorithm, "function": task.function,
-                     "first_run": task.first_run, "n_runs": task.n_runs},
-            "rows": rows, "wall": 0.02, "worker": "test:1"}
+        rows.append(
+            {
+                "run": bad_run if (bad_run is not None and k == task.runs[-1]) else k,
+                "fun": value + k,
+                "error": value + k + 1.0,
+                "f_star": -1.0,
+                "nfev": 60 + k,
+                "nit": 5,
+                "status": 0,
+                "wall_time": 0.01,
+                "params": {"pop_size": np.int64(12)},
+                "curve": np.linspace(10.0, value + k, 5),
+                "curve_nfev": np.arange(12, 61, 12),
+                "seed_entropy": [123, 456],
+                "shift_seed": None,
+                "error_text": None,
+            }
+        )
+    return {
+        "task": {
+            "algorithm": task.algorithm,
+            "function": task.function,
+            "first_run": task.first_run,
+            "n_runs": task.n_runs,
+        },
+        "rows": rows,
+        "wall": 0.02,
+        "worker": "test:1",
+    }
 
 
 def test_round_trip(tmp_path):

@@ -31,8 +31,18 @@ def test_table_columns_and_values_come_from_the_store(study):
     plan, db, report = study
     rows = list(csv.reader((report.parent / "table6.csv").open()))
     header = rows[0]
-    for col in ("algorithm", "length (px)", "gap L/L*", "smoothness (rad)", "paper length",
-                "success", "collision-free", "min clearance (px)", "latency p95 (ms)", "nfev"):
+    for col in (
+        "algorithm",
+        "length (px)",
+        "gap L/L*",
+        "smoothness (rad)",
+        "paper length",
+        "success",
+        "collision-free",
+        "min clearance (px)",
+        "latency p95 (ms)",
+        "nfev",
+    ):
         assert col in header
     assert [r[0] for r in rows[1:]] == ["GWO", "MAWDO", "Oracle follower (frozen obstacles)"]
     with Store.read(db) as st:
@@ -57,15 +67,20 @@ def test_every_reported_run_passes_the_independent_checker(study):
         assert rep.ok == r["metrics"]["collision_free"]
         assert rep.ok, f"{r['algorithm']} run {r['run']} collides"
         assert r["metrics"]["length_px"] == pytest.approx(
-            float(np.hypot(*np.diff(res.route, axis=0).T).sum()))
+            float(np.hypot(*np.diff(res.route, axis=0).T).sum())
+        )
 
 
 def test_figures_are_valid_images(study):
     _, _, report = study
     out = report.parent
     pngs = sorted(out.glob("*.png"))
-    assert {p.name for p in pngs} >= {"cost_convergence.png", "box_length_px.png",
-                                      "snapshots_mawdo.png", "snapshots_gwo.png"}
+    assert {p.name for p in pngs} >= {
+        "cost_convergence.png",
+        "box_length_px.png",
+        "snapshots_mawdo.png",
+        "snapshots_gwo.png",
+    }
     for p in pngs:
         assert p.read_bytes()[:8] == PNG
         w, h = Image.open(p).size

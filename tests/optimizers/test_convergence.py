@@ -23,8 +23,15 @@ def test_woa_matches_the_woa_paper_on_f1():
 def test_reaches_the_sphere_optimum_off_centre(algo):
     # a small shifted problem every algorithm should solve: the origin bias cannot help here
     centre = np.array([0.3, -0.2, 0.1])
-    res = minimize(lambda X: ((X - centre) ** 2).sum(1), [(-1, 1)] * 3, algorithm=algo,
-                   runs=10, seed=3, max_iter=300, pop_size=30)
+    res = minimize(
+        lambda X: ((X - centre) ** 2).sum(1),
+        [(-1, 1)] * 3,
+        algorithm=algo,
+        runs=10,
+        seed=3,
+        max_iter=300,
+        pop_size=30,
+    )
     assert np.median(res.fun) < 1e-3
 
 

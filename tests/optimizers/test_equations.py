@@ -22,8 +22,19 @@ def wind_state(opt, p, u, f, pbest, pbest_f, streams, t=3, T=10):
     from mawdo.optimizers.wind import partition
 
     return WindState(
-        p=p, u=u, f=f, pbest=pbest, pbest_f=pbest_f, gid=partition(N, opt.params.groups),
-        coef=None, vmax=opt.params.vmax, low_dim=False, t=t, T=T, space=SPACE, streams=streams,
+        p=p,
+        u=u,
+        f=f,
+        pbest=pbest,
+        pbest_f=pbest_f,
+        gid=partition(N, opt.params.groups),
+        coef=None,
+        vmax=opt.params.vmax,
+        low_dim=False,
+        t=t,
+        T=T,
+        space=SPACE,
+        streams=streams,
     )
 
 
@@ -45,8 +56,12 @@ def test_wdo_step_by_hand():
     for i in range(3):
         for d in range(2):
             up = U0[0, i, PERM[0, i, d]]
-            v = ((1 - alpha) * U0[0, i, d] - g * P0[0, i, d]
-                 + abs(1 - 1 / rank[i]) * RT * (gbest[d] - P0[0, i, d]) + c * up / rank[i])
+            v = (
+                (1 - alpha) * U0[0, i, d]
+                - g * P0[0, i, d]
+                + abs(1 - 1 / rank[i]) * RT * (gbest[d] - P0[0, i, d])
+                + c * up / rank[i]
+            )
             v = max(-vmax, min(vmax, v))
             p = max(-1.0, min(1.0, P0[0, i, d] + v))
             lo, hi = SPACE.lb[d], SPACE.ub[d]
@@ -59,16 +74,21 @@ def test_wdo_step_by_hand():
 def test_awdo_step_by_hand():
     opt = make_optimizer("awdo", pop_size=3)
     coef = np.array([[[0.3, 0.6, 0.8, 0.5]]])  # a_t, g_t, RT_t, c_t drawn once per iteration
-    st = wind_state(opt, P0.copy(), U0.copy(), F0, PB, PBF,
-                    FixedStreams(permutations=[PERM], random=[coef]))
+    st = wind_state(
+        opt, P0.copy(), U0.copy(), F0, PB, PBF, FixedStreams(permutations=[PERM], random=[coef])
+    )
     opt.ask(st)
     a, g, RT, c = coef[0, 0]
     rank = {0: 2, 1: 1, 2: 3}
     for i in range(3):
         for d in range(2):
             up = U0[0, i, PERM[0, i, d]]
-            v = ((1 - a) * U0[0, i, d] - g * P0[0, i, d]
-                 + RT * ([-0.9, 0.8][d] - P0[0, i, d]) / rank[i] + c * up / rank[i])
+            v = (
+                (1 - a) * U0[0, i, d]
+                - g * P0[0, i, d]
+                + RT * ([-0.9, 0.8][d] - P0[0, i, d]) / rank[i]
+                + c * up / rank[i]
+            )
             assert st.u[0, i, d] == pytest.approx(max(-0.3, min(0.3, v)), abs=1e-15)
 
 
@@ -117,8 +137,15 @@ def test_gwo_step_by_hand():
     X0 = np.array([[[1.0, 2.0], [-3.0, 0.5]]])
     lead = np.array([[[0.5, 1.0], [2.0, 3.0], [-1.0, 0.2]]])
     r = np.random.default_rng(0).random((1, 2, 3, 2, 2))
-    st = GWOState(X=X0.copy(), lead_f=np.array([[1.0, 2.0, 3.0]]), lead_x=lead, t=4, T=10,
-                  space=SPACE, streams=FixedStreams(random=[r]))
+    st = GWOState(
+        X=X0.copy(),
+        lead_f=np.array([[1.0, 2.0, 3.0]]),
+        lead_x=lead,
+        t=4,
+        T=10,
+        space=SPACE,
+        streams=FixedStreams(random=[r]),
+    )
     X = opt.ask(st)
     a = 2 - 2 * (4 - 1) / 10
     for i in range(2):
@@ -139,10 +166,25 @@ def test_woa_step_by_hand(l_range):
     leader = np.array([[0.5, 1.5]])
     # per whale: r1, r2, p, l-draw, random-whale draw (columns), chosen to hit every branch:
     # whale 0 encircles (|A|<1, p<.5), whale 1 searches (|A|>=1), whales 2-3 spiral
-    u = np.array([[[0.5, 0.3, 0.2, 0.7, 0.9], [0.99, 0.6, 0.1, 0.2, 0.30],
-                   [0.4, 0.1, 0.8, 0.25, 0.5], [0.1, 0.9, 0.5, 0.95, 0.1]]])
-    st = WOAState(X=X0.copy(), leader_f=np.array([1.0]), leader_x=leader, t=3, T=10,
-                  space=SPACE, streams=FixedStreams(random=[u.transpose(0, 2, 1)]))
+    u = np.array(
+        [
+            [
+                [0.5, 0.3, 0.2, 0.7, 0.9],
+                [0.99, 0.6, 0.1, 0.2, 0.30],
+                [0.4, 0.1, 0.8, 0.25, 0.5],
+                [0.1, 0.9, 0.5, 0.95, 0.1],
+            ]
+        ]
+    )
+    st = WOAState(
+        X=X0.copy(),
+        leader_f=np.array([1.0]),
+        leader_x=leader,
+        t=3,
+        T=10,
+        space=SPACE,
+        streams=FixedStreams(random=[u.transpose(0, 2, 1)]),
+    )
     X = opt.ask(st)
     a = 2 - 2 * (3 - 1) / 10
     for i in range(4):

@@ -101,8 +101,9 @@ def test_restart_only_every_K_and_only_the_worst(t):
 
 
 def test_restart_samples_around_tbest_with_decaying_sigma():
-    opt = make_optimizer("mawdo3", pop_size=10, restart_every=1, restart_frac=0.2,
-                         sigma0=0.5, sigma_end=0.05)
+    opt = make_optimizer(
+        "mawdo3", pop_size=10, restart_every=1, restart_frac=0.2, sigma0=0.5, sigma_end=0.05
+    )
     st = make_state(opt, t=50, T=100)
     tb = st.pbest[0, np.argmin(st.pbest_f[0])].copy()
     z = np.full((1, 2, 4), 0.1)
@@ -144,18 +145,31 @@ def test_obl_keeps_the_better_of_each_pair():
 
 
 def test_obl_evaluations_are_counted():
-    res = minimize(lambda X: (X**2).sum(1), [(-3, 3)] * 5, algorithm="mawdo3", runs=2, seed=0,
-                   max_iter=101, pop_size=20, restart_every=10, restart_frac=0.1)
+    res = minimize(
+        lambda X: (X**2).sum(1),
+        [(-3, 3)] * 5,
+        algorithm="mawdo3",
+        runs=2,
+        seed=0,
+        max_iter=101,
+        pop_size=20,
+        restart_every=10,
+        restart_frac=0.1,
+    )
     # restarts after iterations 10, 20, ..., 100: 10 restarts x 2 opposites
     assert np.all(res.nfev == 20 * 101 + 10 * 2)
 
 
-@pytest.mark.parametrize("D,low_dim,active", [(2, 3, True), (3, 3, True), (4, 3, False),
-                                              (4, 5, True), (1, 0, False)])
+@pytest.mark.parametrize(
+    "D,low_dim,active", [(2, 3, True), (3, 3, True), (4, 3, False), (4, 5, True), (1, 0, False)]
+)
 def test_low_dim_switches_exactly_at_threshold(D, low_dim, active):
     opt = make_optimizer("mawdo", pop_size=16, low_dim=low_dim)
-    st = opt.init(Space(np.full(D, -2.0), np.full(D, 2.0)),
-                  RunStreams([np.random.default_rng(1), np.random.default_rng(2)]), 50)
+    st = opt.init(
+        Space(np.full(D, -2.0), np.full(D, 2.0)),
+        RunStreams([np.random.default_rng(1), np.random.default_rng(2)]),
+        50,
+    )
     assert st.low_dim is active
     assert st.vmax == pytest.approx(0.075 if active else 0.3)
     assert np.all(np.abs(st.u) <= st.vmax)
@@ -177,19 +191,35 @@ def test_low_dim_step_uses_group_coefficients_and_centroid_gravity():
     coef = np.array([[[0.2, 0.3, 1.0, 0.4], [0.4, 0.2, 1.2, 0.1]]])
     f = np.array([[3.0, 1.0, 4.0, 2.0]])
     perm = np.array([[[1, 0], [0, 1], [0, 1], [1, 0]]])
-    st = WindState(p=p.copy(), u=u.copy(), f=f, pbest=p.copy(), pbest_f=f.copy(),
-                   gid=wind.partition(4, 2), coef=coef, vmax=0.075, low_dim=True, t=2, T=10,
-                   space=space, streams=FixedStreams(permutations=[perm]))
+    st = WindState(
+        p=p.copy(),
+        u=u.copy(),
+        f=f,
+        pbest=p.copy(),
+        pbest_f=f.copy(),
+        gid=wind.partition(4, 2),
+        coef=coef,
+        vmax=0.075,
+        low_dim=True,
+        t=2,
+        T=10,
+        space=space,
+        streams=FixedStreams(permutations=[perm]),
+    )
     opt.ask(st)
     rank = [3, 1, 4, 2]
     B = p[0, 1]  # global best
     for i in range(4):
         g_ = i // 2
         a, g, RT, c = coef[0, g_]
-        centre = p[0, 2 * g_: 2 * g_ + 2].mean(axis=0)
+        centre = p[0, 2 * g_ : 2 * g_ + 2].mean(axis=0)
         for d in range(2):
-            v = ((1 - a) * u[0, i, d] - g * (p[0, i, d] - centre[d])
-                 + RT * (B[d] - p[0, i, d]) / rank[i] + c * u[0, i, perm[0, i, d]] / rank[i])
+            v = (
+                (1 - a) * u[0, i, d]
+                - g * (p[0, i, d] - centre[d])
+                + RT * (B[d] - p[0, i, d]) / rank[i]
+                + c * u[0, i, perm[0, i, d]] / rank[i]
+            )
             assert st.u[0, i, d] == pytest.approx(max(-0.075, min(0.075, v)), abs=1e-15)
 
 
@@ -204,9 +234,21 @@ def test_mawdo_hierarchical_step_by_hand():
     f = np.array([[3.0, 1.6, 0.7, 4.0]])
     coef = np.array([[[0.5, 0.1, 0.8, 0.2]]])
     perm = np.array([[[0, 1]] * 4])
-    st = WindState(p=p.copy(), u=u.copy(), f=f, pbest=pbest, pbest_f=pbest_f,
-                   gid=wind.partition(4, 2), coef=None, vmax=0.3, low_dim=False, t=5, T=9,
-                   space=space, streams=FixedStreams(permutations=[perm], random=[coef]))
+    st = WindState(
+        p=p.copy(),
+        u=u.copy(),
+        f=f,
+        pbest=pbest,
+        pbest_f=pbest_f,
+        gid=wind.partition(4, 2),
+        coef=None,
+        vmax=0.3,
+        low_dim=False,
+        t=5,
+        T=9,
+        space=space,
+        streams=FixedStreams(permutations=[perm], random=[coef]),
+    )
     opt.ask(st)
     lam = (5 - 1) / (9 - 1)
     w1, w2, w3 = 0.6 - 0.4 * lam, 0.3, 0.1 + 0.4 * lam
@@ -225,18 +267,29 @@ def test_mawdo_hierarchical_step_by_hand():
 
 
 def test_ablation_presets_match_paper_table_5():
-    P = {n: make_optimizer(n).params for n in ("awdo", "mawdo1", "mawdo2", "mawdo3", "mawdo4",
-                                                "mawdo")}
+    P = {
+        n: make_optimizer(n).params
+        for n in ("awdo", "mawdo1", "mawdo2", "mawdo3", "mawdo4", "mawdo")
+    }
     assert all(p.velocity == "awdo" for p in P.values())
     assert (P["awdo"].groups, P["awdo"].guidance, P["awdo"].restart) == (1, "global", False)
     assert (P["mawdo1"].groups, P["mawdo1"].guidance) == (8, "group")
     assert (P["mawdo2"].guidance, P["mawdo2"].schedule, P["mawdo2"].gate) == (
-        "hierarchical", True, True)
+        "hierarchical",
+        True,
+        True,
+    )
     assert P["mawdo3"].restart and P["mawdo3"].obl and P["mawdo3"].guidance == "global"
     assert P["mawdo4"].low_dim_stabilization and not P["mawdo4"].restart
     m = P["mawdo"]
     assert (m.groups, m.guidance, m.restart, m.obl, m.low_dim_stabilization, m.boundary) == (
-        8, "hierarchical", True, True, True, "reflect")
+        8,
+        "hierarchical",
+        True,
+        True,
+        True,
+        "reflect",
+    )
     assert OPTIMIZERS["mewdo"].reconstructed and "reconstructed" in OPTIMIZERS["mewdo"].display
 
 

@@ -22,6 +22,16 @@ from mawdo.experiments.runner import RunSummary, execute_task, run_plan
 from mawdo.experiments.store import RunRecord, Store, StoreError
 
 __all__ = [
-    "PRESETS", "ExperimentPlan", "PlanError", "RunRecord", "RunSummary", "Store", "StoreError",
-    "Task", "execute_task", "preset_plan", "run_plan", "write_report",
+    "PRESETS",
+    "ExperimentPlan",
+    "PlanError",
+    "RunRecord",
+    "RunSummary",
+    "Store",
+    "StoreError",
+    "Task",
+    "execute_task",
+    "preset_plan",
+    "run_plan",
+    "write_report",
 ]

@@ -36,8 +36,9 @@ def run_cmd(
     out: Path = typer.Option(Path("results.db"), "--out", "-o", help="Results store (SQLite)."),
     workers: int = typer.Option(1, "--workers", "-w", min=1, help="Local worker processes."),
     dask: str = typer.Option(None, "--dask", help="Dask scheduler address (tcp://host:8786)."),
-    force: bool = typer.Option(False, "--force",
-                               help="Discard a store made by another plan or version."),
+    force: bool = typer.Option(
+        False, "--force", help="Discard a store made by another plan or version."
+    ),
     retry_failed: bool = typer.Option(False, "--retry-failed", help="Recompute failed runs."),
     runs: int = typer.Option(None, "--runs", help="Override: runs per (algorithm, function)."),
     iters: int = typer.Option(None, "--iters", help="Override: iterations (max_iter)."),
@@ -69,19 +70,32 @@ def run_cmd(
             plan = ExperimentPlan.from_toml(plan_file)
         else:
             # A plan from flags alone: the paper protocol's defaults for everything not given.
-            plan = ExperimentPlan.from_dict({"name": "cli", "algorithms": _names(algorithms),
-                                             "functions": _names(functions)})
+            plan = ExperimentPlan.from_dict(
+                {"name": "cli", "algorithms": _names(algorithms), "functions": _names(functions)}
+            )
         plan = plan.with_overrides(
-            runs=runs, max_iter=iters, pop_size=pop_size, seed=seed,
-            algorithms=_names(algorithms), functions=_names(functions), batch_size=batch_size,
+            runs=runs,
+            max_iter=iters,
+            pop_size=pop_size,
+            seed=seed,
+            algorithms=_names(algorithms),
+            functions=_names(functions),
+            batch_size=batch_size,
             budget=budget,
         )
     except PlanError as exc:
         _fail(f"invalid plan:\n{exc}")
     typer.echo(f"{plan.describe()}; plan {plan.plan_hash[:12]} -> {out}", err=True)
     try:
-        summary = run_plan(plan, out, workers=workers, dask=dask, progress=progress, force=force,
-                           retry_failed=retry_failed)
+        summary = run_plan(
+            plan,
+            out,
+            workers=workers,
+            dask=dask,
+            progress=progress,
+            force=force,
+            retry_failed=retry_failed,
+        )
     except StoreError as exc:
         _fail(str(exc), code=1)
     except (ValueError, RuntimeError) as exc:
@@ -99,8 +113,9 @@ def report_cmd(
     out: Path = typer.Option(Path("report"), "--out", "-o", help="Output directory."),
     plots: bool = typer.Option(True, "--plots/--no-plots", help="Draw figures."),
     svg: bool = typer.Option(False, "--svg", help="Also write SVG figures."),
-    reference: str = typer.Option(None, "--reference",
-                                  help="Algorithm tested against the others (default mawdo)."),
+    reference: str = typer.Option(
+        None, "--reference", help="Algorithm tested against the others (default mawdo)."
+    ),
 ) -> None:
     """Write tables (Markdown, LaTeX, CSV) and figures from a store, without recomputing."""
     from mawdo.experiments.report import write_report

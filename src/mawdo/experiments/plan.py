@@ -413,8 +413,14 @@ def _format_one(err: dict, model: type[BaseModel]) -> str:
 # --------------------------------------------------------------------------- presets
 def _paper(name: str, algorithms=PAPER_ALGORITHMS, **kw) -> dict[str, Any]:
     return {
-        "name": name, "algorithms": list(algorithms), "functions": list(PAPER_SUITE),
-        "runs": 30, "pop_size": 50, "max_iter": 500, "seed": PAPER_SEED, **kw,
+        "name": name,
+        "algorithms": list(algorithms),
+        "functions": list(PAPER_SUITE),
+        "runs": 30,
+        "pop_size": 50,
+        "max_iter": 500,
+        "seed": PAPER_SEED,
+        **kw,
     }
 
 
@@ -424,9 +430,14 @@ PRESETS: dict[str, dict[str, Any]] = {
     "paper-table3-evals": _paper("paper-table3-evals", budget="evals"),
     "paper-ablation": _paper("paper-ablation", ABLATION_ALGORITHMS),
     "smoke": {
-        "name": "smoke", "algorithms": ["gwo", "wdo", "mewdo", "mawdo"],
+        "name": "smoke",
+        "algorithms": ["gwo", "wdo", "mewdo", "mawdo"],
         "functions": ["sphere", "rastrigin", "six_hump_camel"],
-        "runs": 4, "pop_size": 10, "max_iter": 30, "seed": PAPER_SEED, "batch_size": 2,
+        "runs": 4,
+        "pop_size": 10,
+        "max_iter": 30,
+        "seed": PAPER_SEED,
+        "batch_size": 2,
     },
 }
 """Named plans. ``paper-*`` follow SPEC 3 (pop 50, 500 iterations, 30 runs, F1-F16)."""

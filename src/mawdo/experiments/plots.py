@@ -71,8 +71,9 @@ def _colours(algorithms: Sequence[str]) -> dict[str, str]:
     return {a: cycle[i % 10] for i, a in enumerate(algorithms)}
 
 
-def convergence_figure(store: Store, stem: str | Path,
-                       formats: Sequence[str] = ("png",)) -> list[Path]:
+def convergence_figure(
+    store: Store, stem: str | Path, formats: Sequence[str] = ("png",)
+) -> list[Path]:
     """Median best-so-far error with interquartile band, one panel per function.
 
     Parameters
@@ -107,21 +108,22 @@ def convergence_figure(store: Store, stem: str | Path,
         for algo, x, err in series:
             band(ax, err, label(algo), x=x, color=colours[algo], floor=floor, lw=1.2)
         ax.set_yscale("log")
-        ax.set_title(f"{function_label(fn)} ({fn})" + (" [0 drawn at floor]" if clipped else ""),
-                     fontsize=9)
+        ax.set_title(
+            f"{function_label(fn)} ({fn})" + (" [0 drawn at floor]" if clipped else ""), fontsize=9
+        )
         ax.set_xlabel("evaluations" if by_evals else "iteration", fontsize=8)
         ax.set_ylabel("best-so-far f - f*", fontsize=8)
         ax.tick_params(labelsize=7)
     if axes:
         handles, names = axes[0].get_legend_handles_labels()
-        fig.legend(handles, names, loc="outside lower center", ncols=min(6, max(1, len(names))),
-                   fontsize=8)
+        fig.legend(
+            handles, names, loc="outside lower center", ncols=min(6, max(1, len(names))), fontsize=8
+        )
     fig.suptitle(f"{plan.name}: median and interquartile range over runs", fontsize=11)
     return _save(fig, Path(stem), formats)
 
 
-def boxplot_figure(store: Store, stem: str | Path,
-                   formats: Sequence[str] = ("png",)) -> list[Path]:
+def boxplot_figure(store: Store, stem: str | Path, formats: Sequence[str] = ("png",)) -> list[Path]:
     """Box plots of the final errors ``f - f*``, one panel per function."""
     label, function_label = _labels()
     plan = store.plan
@@ -138,12 +140,17 @@ def boxplot_figure(store: Store, stem: str | Path,
             for patch, a in zip(bp["boxes"], algos, strict=True):
                 patch.set_facecolor(colours[a])
                 patch.set_alpha(0.5)
-            ax.set_xticks(range(1, len(algos) + 1),
-                          [label(a).replace(" (reconstructed)", "*") for a in algos],
-                          rotation=45, ha="right", fontsize=7)
+            ax.set_xticks(
+                range(1, len(algos) + 1),
+                [label(a).replace(" (reconstructed)", "*") for a in algos],
+                rotation=45,
+                ha="right",
+                fontsize=7,
+            )
         ax.set_yscale("log")
-        ax.set_title(f"{function_label(fn)} ({fn})" + (" [0 drawn at floor]" if clipped else ""),
-                     fontsize=9)
+        ax.set_title(
+            f"{function_label(fn)} ({fn})" + (" [0 drawn at floor]" if clipped else ""), fontsize=9
+        )
         ax.set_ylabel("final f - f*", fontsize=8)
         ax.tick_params(axis="y", labelsize=7)
     fig.suptitle(f"{plan.name}: final errors over runs (* reconstructed)", fontsize=11)

@@ -39,8 +39,13 @@ from mawdo.functions import FUNCTIONS
 from mawdo.optimizers import ABLATION_ALGORITHMS, OPTIMIZERS
 
 REFERENCE = "mawdo"
-PAPER_PROTOCOL = {"pop_size": 50, "max_iter": 500, "runs": 30, "budget": "iterations",
-                  "bounds_preset": "paper"}
+PAPER_PROTOCOL = {
+    "pop_size": 50,
+    "max_iter": 500,
+    "runs": 30,
+    "budget": "iterations",
+    "bounds_preset": "paper",
+}
 
 
 def label(algorithm: str) -> str:
@@ -102,11 +107,21 @@ def load(store: Store, reference: str | None = None) -> SweepData:
     if reference is None:
         reference = REFERENCE if REFERENCE in algos else (algos[-1] if algos else REFERENCE)
     elif reference.lower() not in algos:
-        raise ValueError(f"reference {reference!r} is not an algorithm of this store "
-                         f"({', '.join(algos)})")
+        raise ValueError(
+            f"reference {reference!r} is not an algorithm of this store ({', '.join(algos)})"
+        )
     reference = reference.lower()
-    return SweepData(plan, algos, fns, finals, reference, store.count(), plan.total_runs,
-                     store.meta["plan_hash"], store.meta["library_version"])
+    return SweepData(
+        plan,
+        algos,
+        fns,
+        finals,
+        reference,
+        store.count(),
+        plan.total_runs,
+        store.meta["plan_hash"],
+        store.meta["library_version"],
+    )
 
 
 # ---------------------------------------------------------------------- tables
@@ -120,36 +135,47 @@ def _comparisons(data: SweepData) -> list[stats.Comparison]:
     return stats.compare(data.values("fun"), data.reference, rivals, data.functions)
 
 
-def results_table(data: SweepData, kind: str, algorithms: Sequence[str], name: str, title: str,
-                  wilcoxon: bool) -> Table:
+def results_table(
+    data: SweepData, kind: str, algorithms: Sequence[str], name: str, title: str, wilcoxon: bool
+) -> Table:
     """Paper Table 3 / 5 layout: per function Best, Ave, Std (and P) rows, algorithms across."""
     summ = _summaries(data, kind)
     signs = {(c.function, c.rival): c.sign for c in _comparisons(data)} if wilcoxon else {}
     idx = [("Best", "best"), ("Ave", "mean"), ("Std", "std")]
-    t = Table(name, title, ["Function", "Index", *(label(a) for a in algorithms)],
-              block=len(idx) + bool(wilcoxon))
+    t = Table(
+        name,
+        title,
+        ["Function", "Index", *(label(a) for a in algorithms)],
+        block=len(idx) + bool(wilcoxon),
+    )
     for fn in data.functions:
         for text, attr in idx:
-            t.rows.append([function_label(fn), text, *(
-                getattr(summ[a, fn], attr) if (a, fn) in summ else None for a in algorithms)])
+            t.rows.append(
+                [
+                    function_label(fn),
+                    text,
+                    *(getattr(summ[a, fn], attr) if (a, fn) in summ else None for a in algorithms),
+                ]
+            )
         if wilcoxon:
-            t.rows.append([function_label(fn), "P", *(
-                signs.get((fn, a), "") for a in algorithms)])
+            t.rows.append([function_label(fn), "P", *(signs.get((fn, a), "") for a in algorithms)])
     what = "final value f" if kind == "fun" else "error f - f*"
     t.notes.append(f"Best / Ave / Std (ddof=1) of the {what} over {data.plan.runs} runs.")
     if wilcoxon:
         t.notes.append(
             f"P: Wilcoxon rank-sum (two-sided, 5%) of {label(data.reference)} against each "
             f"algorithm on f: + {label(data.reference)} significantly better, - worse, "
-            f"= no significant difference.")
+            f"= no significant difference."
+        )
     _note_failures(t, data, algorithms)
     _note_partial(t, data)
     return t
 
 
 def _note_failures(t: Table, data: SweepData, algorithms: Sequence[str]) -> None:
-    failed = [(a, f, v["failed"]) for (a, f), v in data.finals.items()
-              if v["failed"] and a in algorithms]
+    failed = [
+        (a, f, v["failed"]) for (a, f), v in data.finals.items() if v["failed"] and a in algorithms
+    ]
     for a, f, n in failed:
         t.notes.append(f"{label(a)} on {function_label(f)}: {n} failed runs excluded.")
 
@@ -163,42 +189,75 @@ def wilcoxon_tables(data: SweepData) -> tuple[Table, Table]:
     """Per-cell test results and the per-rival ``+/=/-`` totals (plain and Holm-corrected)."""
     comps = _comparisons(data)
     ref = label(data.reference)
-    detail = Table("wilcoxon", f"Wilcoxon rank-sum of {ref} against each rival",
-                   ["Function", "Rival", "U", "p", "p (Holm)", "sign", "sign (Holm)"],
-                   formats={"U": "g", "p": ".3g", "p (Holm)": ".3g"})
+    detail = Table(
+        "wilcoxon",
+        f"Wilcoxon rank-sum of {ref} against each rival",
+        ["Function", "Rival", "U", "p", "p (Holm)", "sign", "sign (Holm)"],
+        formats={"U": "g", "p": ".3g", "p (Holm)": ".3g"},
+    )
     for c in comps:
-        detail.rows.append([function_label(c.function), label(c.rival), c.statistic, c.pvalue,
-                            c.p_holm, c.sign, c.sign_holm])
+        detail.rows.append(
+            [
+                function_label(c.function),
+                label(c.rival),
+                c.statistic,
+                c.pvalue,
+                c.p_holm,
+                c.sign,
+                c.sign_holm,
+            ]
+        )
     detail.notes.append(
         f"U of {ref}; two-sided asymptotic test with continuity and tie correction; Holm "
-        f"correction over all {len(comps)} (rival, function) pairs.")
-    totals = Table("wilcoxon_totals", f"Wins, ties and losses of {ref}",
-                   ["Rival", "+", "=", "-", "+ (Holm)", "= (Holm)", "- (Holm)"])
+        f"correction over all {len(comps)} (rival, function) pairs."
+    )
+    totals = Table(
+        "wilcoxon_totals",
+        f"Wins, ties and losses of {ref}",
+        ["Rival", "+", "=", "-", "+ (Holm)", "= (Holm)", "- (Holm)"],
+    )
     for rival in (a for a in data.algorithms if a != data.reference):
         mine = [c for c in comps if c.rival == rival]
-        totals.rows.append([label(rival), *(sum(c.sign == s for c in mine) for s in "+=-"),
-                            *(sum(c.sign_holm == s for c in mine) for s in "+=-")])
+        totals.rows.append(
+            [
+                label(rival),
+                *(sum(c.sign == s for c in mine) for s in "+=-"),
+                *(sum(c.sign_holm == s for c in mine) for s in "+=-"),
+            ]
+        )
     return detail, totals
 
 
 def friedman_table(data: SweepData) -> Table:
     """Average Friedman ranks of the mean error, best first."""
     errs = _summaries(data, "error")
-    m = np.array([[errs[a, f].mean if (a, f) in errs else np.nan for a in data.algorithms]
-                  for f in data.functions], dtype=float).reshape(len(data.functions),
-                                                                 len(data.algorithms))
+    m = np.array(
+        [
+            [errs[a, f].mean if (a, f) in errs else np.nan for a in data.algorithms]
+            for f in data.functions
+        ],
+        dtype=float,
+    ).reshape(len(data.functions), len(data.algorithms))
     fr = stats.friedman(m, data.algorithms)
-    t = Table("friedman", "Friedman average ranks (mean error per function, 1 = best)",
-              ["Position", "Algorithm", "Average rank"], formats={"Average rank": ".3f"})
+    t = Table(
+        "friedman",
+        "Friedman average ranks (mean error per function, 1 = best)",
+        ["Position", "Algorithm", "Average rank"],
+        formats={"Average rank": ".3f"},
+    )
     order = np.argsort(fr.mean_ranks, kind="stable")
     for pos, j in enumerate(order, start=1):
         t.rows.append([pos, label(data.algorithms[j]), float(fr.mean_ranks[j])])
     if np.isfinite(fr.statistic):
-        t.notes.append(f"Friedman chi-square = {fr.statistic:.4g}, p = {fr.pvalue:.3g} over "
-                       f"{fr.n_functions} functions and {len(data.algorithms)} algorithms.")
+        t.notes.append(
+            f"Friedman chi-square = {fr.statistic:.4g}, p = {fr.pvalue:.3g} over "
+            f"{fr.n_functions} functions and {len(data.algorithms)} algorithms."
+        )
     else:
-        t.notes.append(f"Friedman test not computed (needs >= 3 algorithms and >= 2 functions; "
-                       f"have {len(data.algorithms)} and {fr.n_functions}).")
+        t.notes.append(
+            f"Friedman test not computed (needs >= 3 algorithms and >= 2 functions; "
+            f"have {len(data.algorithms)} and {fr.n_functions})."
+        )
     return t
 
 
@@ -206,8 +265,9 @@ def paper_table(data: SweepData) -> Table | None:
     """Ours beside the paper's Table 3 / 5 values, for algorithms and functions the paper has."""
     if data.plan.shifted:
         return None
-    algos = [a for a in data.algorithms
-             if any(paper_entry(a, function_label(f)) for f in data.functions)]
+    algos = [
+        a for a in data.algorithms if any(paper_entry(a, function_label(f)) for f in data.functions)
+    ]
     if not algos:
         return None
     summ = _summaries(data, "fun")
@@ -215,16 +275,24 @@ def paper_table(data: SweepData) -> Table | None:
     cols = ["Function", "Index"]
     for a in algos:
         cols += [f"{label(a)} ours", f"{label(a)} paper"]
-    t = Table("paper_comparison", "Our results beside the paper's (raw final values f)", cols,
-              block=4)
+    t = Table(
+        "paper_comparison", "Our results beside the paper's (raw final values f)", cols, block=4
+    )
     for fn in data.functions:
         pid = function_label(fn)
-        for text, attr, field in (("Best", "best", "best"), ("Ave", "mean", "ave"),
-                                  ("Std", "std", "std"), ("P", None, "sign")):
+        for text, attr, field in (
+            ("Best", "best", "best"),
+            ("Ave", "mean", "ave"),
+            ("Std", "std", "std"),
+            ("P", None, "sign"),
+        ):
             row: list = [pid, text]
             for a in algos:
-                ours = (signs.get((fn, a), "") if attr is None
-                        else (getattr(summ[a, fn], attr) if (a, fn) in summ else None))
+                ours = (
+                    signs.get((fn, a), "")
+                    if attr is None
+                    else (getattr(summ[a, fn], attr) if (a, fn) in summ else None)
+                )
                 pe = paper_entry(a, pid)
                 if pe is None:
                     theirs = ""
@@ -235,12 +303,18 @@ def paper_table(data: SweepData) -> Table | None:
                     theirs = "" if v is None else v
                 row += [ours, theirs]
             t.rows.append(row)
-    t.notes.append("Paper values from Tables 3 and 5 of arXiv 2511.20394 "
-                   "(src/mawdo/experiments/paper_values.py).")
-    t.notes.append("n.c.: not comparable; the paper's F12-F16 rows do not fit its own function "
-                   "table (SPEC 2).")
-    diffs = [f"{k}={getattr(data.plan, k)} (paper {v})" for k, v in PAPER_PROTOCOL.items()
-             if getattr(data.plan, k) != v]
+    t.notes.append(
+        "Paper values from Tables 3 and 5 of arXiv 2511.20394 "
+        "(src/mawdo/experiments/paper_values.py)."
+    )
+    t.notes.append(
+        "n.c.: not comparable; the paper's F12-F16 rows do not fit its own function table (SPEC 2)."
+    )
+    diffs = [
+        f"{k}={getattr(data.plan, k)} (paper {v})"
+        for k, v in PAPER_PROTOCOL.items()
+        if getattr(data.plan, k) != v
+    ]
     if diffs:
         t.notes.append("This plan differs from the paper's protocol: " + ", ".join(diffs) + ".")
     if data.reference != REFERENCE:
@@ -284,18 +358,42 @@ def build_tables(data: SweepData) -> list[Table]:
     plan = data.plan
     suite = " (shifted suite)" if plan.shifted else ""
     out = [
-        results_table(data, "fun", data.algorithms, "results_raw",
-                      f"Results on the final value f{suite}", wilcoxon=True),
-        results_table(data, "error", data.algorithms, "results_error",
-                      f"Results on the error f - f*{suite}", wilcoxon=True),
+        results_table(
+            data,
+            "fun",
+            data.algorithms,
+            "results_raw",
+            f"Results on the final value f{suite}",
+            wilcoxon=True,
+        ),
+        results_table(
+            data,
+            "error",
+            data.algorithms,
+            "results_error",
+            f"Results on the error f - f*{suite}",
+            wilcoxon=True,
+        ),
     ]
     abl = [a for a in ABLATION_ALGORITHMS if a in data.algorithms]
     if any(a != REFERENCE for a in abl):
         out += [
-            results_table(data, "fun", abl, "ablation_raw",
-                          f"Ablation (paper Table 5 layout), final value f{suite}", False),
-            results_table(data, "error", abl, "ablation_error",
-                          f"Ablation (paper Table 5 layout), error f - f*{suite}", False),
+            results_table(
+                data,
+                "fun",
+                abl,
+                "ablation_raw",
+                f"Ablation (paper Table 5 layout), final value f{suite}",
+                False,
+            ),
+            results_table(
+                data,
+                "error",
+                abl,
+                "ablation_error",
+                f"Ablation (paper Table 5 layout), error f - f*{suite}",
+                False,
+            ),
         ]
     out += [*wilcoxon_tables(data), friedman_table(data)]
     pt = paper_table(data)
@@ -305,8 +403,14 @@ def build_tables(data: SweepData) -> list[Table]:
 
 
 # ---------------------------------------------------------------------- writing
-def write_report(store_path: str | Path, out_dir: str | Path, *, plots: bool = True,
-                 svg: bool = False, reference: str | None = None) -> list[Path]:
+def write_report(
+    store_path: str | Path,
+    out_dir: str | Path,
+    *,
+    plots: bool = True,
+    svg: bool = False,
+    reference: str | None = None,
+) -> list[Path]:
     """Write every table (Markdown, LaTeX, CSV) and figure for the store at ``store_path``.
 
     Parameters
@@ -349,8 +453,10 @@ def write_report(store_path: str | Path, out_dir: str | Path, *, plots: bool = T
     source = f"mawdo {data.library_version}, plan {data.plan_hash[:12]}"
     for t in tables:
         put(f"{t.name}.md", to_markdown(t))
-        put(f"{t.name}.tex", to_latex(t, label=f"tab:mawdo-{t.name.replace('_', '-')}",
-                                      source=source))
+        put(
+            f"{t.name}.tex",
+            to_latex(t, label=f"tab:mawdo-{t.name.replace('_', '-')}", source=source),
+        )
         put(f"{t.name}.csv", to_csv(t))
     put("summary.csv", to_csv(summary_table(data)))
     put("timing.csv", to_csv(timing_table(data)))
@@ -361,7 +467,8 @@ def write_report(store_path: str | Path, out_dir: str | Path, *, plots: bool = T
 def _markdown_report(data: SweepData, tables: list[Table], figures: list[Path]) -> str:
     p = data.plan
     lines = [
-        f"# Benchmark report: {p.name}", "",
+        f"# Benchmark report: {p.name}",
+        "",
         f"- Plan: {p.describe()}",
         f"- Plan hash: `{data.plan_hash}`; mawdo {data.library_version}",
         f"- Runs stored: {data.stored} of {data.total}",

@@ -80,8 +80,10 @@ class RunSummary:
         if self.lost:
             parts.append(f"{self.lost} lost")
         state = "interrupted" if self.interrupted else ("complete" if self.complete else "partial")
-        return (f"{state}: {', '.join(parts)}; {self.skipped + self.done}/{self.total} runs in "
-                f"{self.store} ({self.wall_time:.1f} s)")
+        return (
+            f"{state}: {', '.join(parts)}; {self.skipped + self.done}/{self.total} runs in "
+            f"{self.store} ({self.wall_time:.1f} s)"
+        )
 
 
 # ---------------------------------------------------------------------- the unit of work
@@ -106,31 +108,54 @@ def execute_task(spec: dict[str, Any]) -> dict[str, Any]:
         budget = {"max_evals": spec["pop_size"] * spec["max_iter"]}
     try:
         res = minimize(
-            spec["function"], algorithm=spec["algorithm"], runs=n,
-            seed=np.random.SeedSequence(spec["seed_entropy"]), first_run=first,
-            shifted=spec["shifted"], shift_seed=spec["shift_seed"] or 0,
-            preset=spec["bounds_preset"], pop_size=spec["pop_size"], **spec["options"], **budget,
+            spec["function"],
+            algorithm=spec["algorithm"],
+            runs=n,
+            seed=np.random.SeedSequence(spec["seed_entropy"]),
+            first_run=first,
+            shifted=spec["shifted"],
+            shift_seed=spec["shift_seed"] or 0,
+            preset=spec["bounds_preset"],
+            pop_size=spec["pop_size"],
+            **spec["options"],
+            **budget,
         )
         wall = time.perf_counter() - t0
         f_star = None if res.f_star is None else float(res.f_star)
         rows = []
         for i in range(n):
             fun = float(res.fun[i])
-            rows.append({
-                "run": first + i, "fun": fun, "f_star": f_star,
-                "error": None if f_star is None else fun - f_star,
-                "nfev": int(res.nfev[i]), "nit": int(res.nit[i]), "status": int(res.status[i]),
-                # Runs share one vectorised batch; a run's time is the batch's share.
-                "wall_time": wall / n, "params": res.params,
-                "curve": np.asarray(res.history[i], dtype=float),
-                "curve_nfev": np.asarray(res.history_nfev[i], dtype=np.int64),
-                "error_text": None, **common,
-            })
+            rows.append(
+                {
+                    "run": first + i,
+                    "fun": fun,
+                    "f_star": f_star,
+                    "error": None if f_star is None else fun - f_star,
+                    "nfev": int(res.nfev[i]),
+                    "nit": int(res.nit[i]),
+                    "status": int(res.status[i]),
+                    # Runs share one vectorised batch; a run's time is the batch's share.
+                    "wall_time": wall / n,
+                    "params": res.params,
+                    "curve": np.asarray(res.history[i], dtype=float),
+                    "curve_nfev": np.asarray(res.history_nfev[i], dtype=np.int64),
+                    "error_text": None,
+                    **common,
+                }
+            )
     except Exception as exc:  # noqa: BLE001 - any failure of user/algorithm code is recorded
         wall = time.perf_counter() - t0
         text = "".join(traceback.format_exception_only(exc)).strip()
-        rows = [{"run": first + i, "params": {"pop_size": spec["pop_size"], **spec["options"]},
-                 "wall_time": wall / n, "error_text": text, **common} for i in range(n)]
+        rows = [
+            {
+                "run": first + i,
+                "params": {"pop_size": spec["pop_size"], **spec["options"]},
+                "wall_time": wall / n,
+                "error_text": text,
+                **common,
+            }
+            for i in range(n)
+        ]
     return {
         "task": {k: spec[k] for k in ("algorithm", "function", "first_run", "n_runs")},
         "rows": rows,
@@ -164,8 +189,9 @@ def _pool(specs: list[dict], workers: int) -> Iterator[dict]:
     # forkserver/spawn rather than fork: the parent may hold threads (rich's refresh thread,
     # Dask, BLAS pools), and forking a threaded process can deadlock.
     method = "forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn"
-    pool = ProcessPoolExecutor(max_workers=workers, mp_context=mp.get_context(method),
-                               initializer=_ignore_sigint)
+    pool = ProcessPoolExecutor(
+        max_workers=workers, mp_context=mp.get_context(method), initializer=_ignore_sigint
+    )
     futures = {pool.submit(execute_task, s): s for s in specs}
     finished = False
     try:
@@ -237,9 +263,15 @@ class _Bar:
         )
 
         self.progress = Progress(
-            TextColumn("[bold]{task.description}"), BarColumn(), MofNCompleteColumn(),
-            TextColumn("runs"), TimeElapsedColumn(), TextColumn("ETA"), TimeRemainingColumn(),
-            TextColumn("{task.fields[note]}"), console=Console(stderr=True),
+            TextColumn("[bold]{task.description}"),
+            BarColumn(),
+            MofNCompleteColumn(),
+            TextColumn("runs"),
+            TimeElapsedColumn(),
+            TextColumn("ETA"),
+            TimeRemainingColumn(),
+            TextColumn("{task.fields[note]}"),
+            console=Console(stderr=True),
         )
         self.task = self.progress.add_task(label, total=total, note="")
         self.progress.start()
@@ -327,9 +359,13 @@ def run_plan(
                 for out in outcomes:
                     n = out["task"]["n_runs"]
                     if "lost" not in out and out["library_version"] != version:
-                        out = {"task": out["task"], "lost": (
-                            f"worker {out['worker']} runs mawdo {out['library_version']}, "
-                            f"this process {version}")}
+                        out = {
+                            "task": out["task"],
+                            "lost": (
+                                f"worker {out['worker']} runs mawdo {out['library_version']}, "
+                                f"this process {version}"
+                            ),
+                        }
                     if "lost" in out:
                         summary.lost += n
                         _say(f"task lost ({_task_name(out['task'])}): {out['lost']}")
@@ -345,11 +381,15 @@ def run_plan(
             bar.close()
     summary.wall_time = time.perf_counter() - t0
     if summary.interrupted:
-        _say(f"Interrupted. {summary.skipped + summary.done}/{summary.total} runs are stored in "
-             f"{store_path}; run the same command again to resume (stored runs are skipped).")
+        _say(
+            f"Interrupted. {summary.skipped + summary.done}/{summary.total} runs are stored in "
+            f"{store_path}; run the same command again to resume (stored runs are skipped)."
+        )
     elif summary.lost:
-        _say(f"{summary.lost} runs were lost to worker failures; run the same command again to "
-             f"compute them.")
+        _say(
+            f"{summary.lost} runs were lost to worker failures; run the same command again to "
+            f"compute them."
+        )
     return summary
 
 

@@ -180,8 +180,15 @@ def compare(
                 cells.append((fn, rival, r))
     adj = holm([c[2].pvalue for c in cells]) if cells else np.empty(0)
     return [
-        Comparison(fn, rival, r.statistic, r.pvalue, r.sign, float(pa),
-                   sign_of(r.statistic, r.n1, r.n2, float(pa), alpha))
+        Comparison(
+            fn,
+            rival,
+            r.statistic,
+            r.pvalue,
+            r.sign,
+            float(pa),
+            sign_of(r.statistic, r.n1, r.n2, float(pa), alpha),
+        )
         for (fn, rival, r), pa in zip(cells, adj, strict=True)
     ]
 

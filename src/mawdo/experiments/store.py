@@ -82,9 +82,28 @@ CREATE TABLE IF NOT EXISTS tasks (
 """
 
 _RUN_COLUMNS = (
-    "plan_hash", "algorithm", "function", "shifted", "run", "params_json", "seed_entropy",
-    "shift_seed", "fun", "error", "f_star", "nfev", "nit", "status", "wall_time", "curve",
-    "curve_nfev", "curve_len", "library_version", "error_text", "task_id", "metrics_json",
+    "plan_hash",
+    "algorithm",
+    "function",
+    "shifted",
+    "run",
+    "params_json",
+    "seed_entropy",
+    "shift_seed",
+    "fun",
+    "error",
+    "f_star",
+    "nfev",
+    "nit",
+    "status",
+    "wall_time",
+    "curve",
+    "curve_nfev",
+    "curve_len",
+    "library_version",
+    "error_text",
+    "task_id",
+    "metrics_json",
     "payload",
 )
 
@@ -170,8 +189,14 @@ class Store:
         Whether this handle may write.
     """
 
-    def __init__(self, path: Path, conn: sqlite3.Connection, plan: ExperimentPlan,
-                 meta: dict[str, Any], writable: bool) -> None:
+    def __init__(
+        self,
+        path: Path,
+        conn: sqlite3.Connection,
+        plan: ExperimentPlan,
+        meta: dict[str, Any],
+        writable: bool,
+    ) -> None:
         self.path = path
         self.conn = conn
         self.plan = plan
@@ -201,20 +226,27 @@ class Store:
         """
         path = Path(path)
         if path.is_dir():
-            raise StoreError(f"results store {path} is a directory; give a file name like "
-                             f"{path / 'results.db'}")
+            raise StoreError(
+                f"results store {path} is a directory; give a file name like {path / 'results.db'}"
+            )
         if path.exists() and not _writable(path):
-            raise StoreError(f"results store {path} is read-only; cannot write results to it "
-                             f"(make it writable or choose another --out file)")
+            raise StoreError(
+                f"results store {path} is read-only; cannot write results to it "
+                f"(make it writable or choose another --out file)"
+            )
         try:
             path.parent.mkdir(parents=True, exist_ok=True)
         except OSError as exc:
-            raise StoreError(f"cannot create directory {path.parent} for results store {path}: "
-                             f"{exc.strerror or exc}") from None
+            raise StoreError(
+                f"cannot create directory {path.parent} for results store {path}: "
+                f"{exc.strerror or exc}"
+            ) from None
         if not _writable(path.parent):
             # WAL mode creates PATH-wal and PATH-shm next to the file.
-            raise StoreError(f"directory {path.parent} is read-only; cannot write results store "
-                             f"{path} (SQLite needs to create {path.name}-wal there)")
+            raise StoreError(
+                f"directory {path.parent} is read-only; cannot write results store "
+                f"{path} (SQLite needs to create {path.name}-wal there)"
+            )
         conn = _connect(path, readonly=False)
         try:
             _check_foreign(conn, path)
@@ -261,8 +293,9 @@ class Store:
             _check_foreign(conn, path)
             meta = _read_meta(conn, path)
             if meta is None:
-                raise StoreError(f"{path} is a SQLite file but not a mawdo results store "
-                                 f"(no meta row)")
+                raise StoreError(
+                    f"{path} is a SQLite file but not a mawdo results store (no meta row)"
+                )
             try:
                 from mawdo.experiments.study import plan_from_json
 
@@ -316,27 +349,49 @@ class Store:
             cur = self.conn.execute(
                 "INSERT INTO tasks (algorithm, function, first_run, n_runs, wall_time, worker, "
                 "finished) VALUES (?, ?, ?, ?, ?, ?, ?)",
-                (t["algorithm"], t["function"], t["first_run"], t["n_runs"], outcome["wall"],
-                 outcome.get("worker"), _now()),
+                (
+                    t["algorithm"],
+                    t["function"],
+                    t["first_run"],
+                    t["n_runs"],
+                    outcome["wall"],
+                    outcome.get("worker"),
+                    _now(),
+                ),
             )
             task_id = cur.lastrowid
             values = []
             for r in outcome["rows"]:
                 curve = r.get("curve")
-                values.append((
-                    self.plan.plan_hash, t["algorithm"], t["function"], shifted, r["run"],
-                    json.dumps(r.get("params") or {}, sort_keys=True, default=_json_default),
-                    json.dumps(r["seed_entropy"]), r.get("shift_seed"),
-                    r.get("fun"), r.get("error"), r.get("f_star"), r.get("nfev"), r.get("nit"),
-                    r.get("status"), r.get("wall_time"),
-                    None if curve is None else encode_f64(curve),
-                    None if curve is None else encode_i64(r["curve_nfev"]),
-                    None if curve is None else int(len(curve)),
-                    version, r.get("error_text"), task_id,
-                    None if r.get("metrics") is None else json.dumps(r["metrics"],
-                                                                     default=_json_default),
-                    r.get("payload"),
-                ))
+                values.append(
+                    (
+                        self.plan.plan_hash,
+                        t["algorithm"],
+                        t["function"],
+                        shifted,
+                        r["run"],
+                        json.dumps(r.get("params") or {}, sort_keys=True, default=_json_default),
+                        json.dumps(r["seed_entropy"]),
+                        r.get("shift_seed"),
+                        r.get("fun"),
+                        r.get("error"),
+                        r.get("f_star"),
+                        r.get("nfev"),
+                        r.get("nit"),
+                        r.get("status"),
+                        r.get("wall_time"),
+                        None if curve is None else encode_f64(curve),
+                        None if curve is None else encode_i64(r["curve_nfev"]),
+                        None if curve is None else int(len(curve)),
+                        version,
+                        r.get("error_text"),
+                        task_id,
+                        None
+                        if r.get("metrics") is None
+                        else json.dumps(r["metrics"], default=_json_default),
+                        r.get("payload"),
+                    )
+                )
             self.conn.executemany(
                 f"INSERT INTO runs ({', '.join(_RUN_COLUMNS)}) "
                 f"VALUES ({', '.join('?' * len(_RUN_COLUMNS))})",
@@ -358,12 +413,16 @@ class Store:
 
     def count(self, failed: bool | None = None) -> int:
         """Number of stored runs (all, only failed, or only successful)."""
-        where = {None: "", True: " WHERE error_text IS NOT NULL",
-                 False: " WHERE error_text IS NULL"}[failed]
+        where = {
+            None: "",
+            True: " WHERE error_text IS NOT NULL",
+            False: " WHERE error_text IS NULL",
+        }[failed]
         return int(self.conn.execute(f"SELECT COUNT(*) FROM runs{where}").fetchone()[0])
 
-    def records(self, algorithm: str | None = None, function: str | None = None,
-                curves: bool = True) -> list[RunRecord]:
+    def records(
+        self, algorithm: str | None = None, function: str | None = None, curves: bool = True
+    ) -> list[RunRecord]:
         """Stored runs, ordered by algorithm, function and run; optionally filtered."""
         cond, args = [], []
         if algorithm is not None:
@@ -373,23 +432,39 @@ class Store:
             cond.append("function = ?")
             args.append(function)
         where = f" WHERE {' AND '.join(cond)}" if cond else ""
-        cols = ("algorithm, function, shifted, run, fun, error, f_star, nfev, nit, status, "
-                "wall_time, params_json, seed_entropy, shift_seed, "
-                + ("curve, curve_nfev, curve_len, " if curves else "NULL, NULL, NULL, ")
-                + "library_version, error_text")
+        cols = (
+            "algorithm, function, shifted, run, fun, error, f_star, nfev, nit, status, "
+            "wall_time, params_json, seed_entropy, shift_seed, "
+            + ("curve, curve_nfev, curve_len, " if curves else "NULL, NULL, NULL, ")
+            + "library_version, error_text"
+        )
         rows = self.conn.execute(
             f"SELECT {cols} FROM runs{where} ORDER BY algorithm, function, run", args
         ).fetchall()
         out = []
-        for (a, f, sh, k, fun, err, fs, nfev, nit, st, wall, pj, se, ss, c, cn, cl, lv,
-             et) in rows:
-            out.append(RunRecord(
-                algorithm=a, function=f, shifted=bool(sh), run=int(k), fun=fun, error=err,
-                f_star=fs, nfev=nfev, nit=nit, status=st, wall_time=wall,
-                params=json.loads(pj), seed_entropy=json.loads(se), shift_seed=ss,
-                curve=decode(c, "<f8", cl), curve_nfev=decode(cn, "<i8", cl),
-                library_version=lv, error_text=et,
-            ))
+        for a, f, sh, k, fun, err, fs, nfev, nit, st, wall, pj, se, ss, c, cn, cl, lv, et in rows:
+            out.append(
+                RunRecord(
+                    algorithm=a,
+                    function=f,
+                    shifted=bool(sh),
+                    run=int(k),
+                    fun=fun,
+                    error=err,
+                    f_star=fs,
+                    nfev=nfev,
+                    nit=nit,
+                    status=st,
+                    wall_time=wall,
+                    params=json.loads(pj),
+                    seed_entropy=json.loads(se),
+                    shift_seed=ss,
+                    curve=decode(c, "<f8", cl),
+                    curve_nfev=decode(cn, "<i8", cl),
+                    library_version=lv,
+                    error_text=et,
+                )
+            )
         return out
 
     def finals(self) -> dict[tuple[str, str], dict[str, np.ndarray]]:
@@ -432,8 +507,7 @@ class Store:
             return np.empty((0, 0)), np.empty((0, 0)), float("nan")
         T = max(r.curve.size for r in recs)
         c = np.stack([np.pad(r.curve, (0, T - r.curve.size), mode="edge") for r in recs])
-        n = np.stack([np.pad(r.curve_nfev, (0, T - r.curve_nfev.size), mode="edge")
-                      for r in recs])
+        n = np.stack([np.pad(r.curve_nfev, (0, T - r.curve_nfev.size), mode="edge") for r in recs])
         fs = recs[0].f_star
         return c, n, float("nan") if fs is None else float(fs)
 
@@ -443,11 +517,20 @@ class Store:
         where, args = ("WHERE algorithm = ?", [algorithm]) if algorithm else ("", [])
         rows = self.conn.execute(
             f"SELECT algorithm, run, metrics_json, {'payload' if payload else 'NULL'}, "
-            f"error_text, curve, curve_len FROM runs {where} ORDER BY algorithm, run", args
+            f"error_text, curve, curve_len FROM runs {where} ORDER BY algorithm, run",
+            args,
         ).fetchall()
-        return [{"algorithm": a, "run": int(k), "metrics": None if mj is None else json.loads(mj),
-                 "payload": pl, "error_text": et, "curve": decode(c, "<f8", cl)}
-                for a, k, mj, pl, et, c, cl in rows]
+        return [
+            {
+                "algorithm": a,
+                "run": int(k),
+                "metrics": None if mj is None else json.loads(mj),
+                "payload": pl,
+                "error_text": et,
+                "curve": decode(c, "<f8", cl),
+            }
+            for a, k, mj, pl, et, c, cl in rows
+        ]
 
     def task_log(self) -> list[dict[str, Any]]:
         """Every executed task, in execution order."""
@@ -455,8 +538,16 @@ class Store:
             "SELECT id, algorithm, function, first_run, n_runs, wall_time, worker, finished "
             "FROM tasks ORDER BY id"
         ).fetchall()
-        keys = ("id", "algorithm", "function", "first_run", "n_runs", "wall_time", "worker",
-                "finished")
+        keys = (
+            "id",
+            "algorithm",
+            "function",
+            "first_run",
+            "n_runs",
+            "wall_time",
+            "worker",
+            "finished",
+        )
         return [dict(zip(keys, r, strict=True)) for r in rows]
 
 
@@ -474,8 +565,10 @@ def _connect(path: Path, readonly: bool) -> sqlite3.Connection:
 def _check_foreign(conn: sqlite3.Connection, path: Path) -> None:
     """Fail clearly on a file that is not SQLite, or SQLite that is not ours."""
     try:
-        tables = {r[0] for r in conn.execute(
-            "SELECT name FROM sqlite_master WHERE type = 'table'").fetchall()}
+        tables = {
+            r[0]
+            for r in conn.execute("SELECT name FROM sqlite_master WHERE type = 'table'").fetchall()
+        }
     except sqlite3.DatabaseError as exc:
         raise StoreError(
             f"{path} is not a readable SQLite results store ({exc}); the file is corrupt or "
@@ -483,8 +576,10 @@ def _check_foreign(conn: sqlite3.Connection, path: Path) -> None:
         ) from None
     ours = {"meta", "runs", "tasks"}
     if tables and not ours & tables:
-        raise StoreError(f"{path} is a SQLite database of something else (tables: "
-                         f"{', '.join(sorted(tables))}), not a mawdo results store")
+        raise StoreError(
+            f"{path} is a SQLite database of something else (tables: "
+            f"{', '.join(sorted(tables))}), not a mawdo results store"
+        )
 
 
 class _translate:
@@ -501,12 +596,14 @@ class _translate:
             return False
         msg = str(exc)
         if "readonly" in msg or "read-only" in msg:
-            raise StoreError(f"cannot {self.action} results store {self.path}: it is read-only "
-                             f"({msg})") from None
+            raise StoreError(
+                f"cannot {self.action} results store {self.path}: it is read-only ({msg})"
+            ) from None
         if isinstance(exc, sqlite3.IntegrityError):
-            raise StoreError(f"cannot {self.action} results store {self.path}: {msg} (a run "
-                             f"was computed twice; is another sweep writing to this file?)"
-                             ) from None
+            raise StoreError(
+                f"cannot {self.action} results store {self.path}: {msg} (a run "
+                f"was computed twice; is another sweep writing to this file?)"
+            ) from None
         raise StoreError(f"cannot {self.action} results store {self.path}: {msg}") from None
 
 
@@ -525,8 +622,11 @@ def _read_meta(conn: sqlite3.Connection, path: Path) -> dict[str, Any] | None:
 
 def _write_meta(conn: sqlite3.Connection, path: Path, plan: ExperimentPlan) -> dict[str, Any]:
     meta = {
-        "schema_version": SCHEMA_VERSION, "plan_hash": plan.plan_hash,
-        "plan_json": plan.to_json(), "library_version": library_version(), "created": _now(),
+        "schema_version": SCHEMA_VERSION,
+        "plan_hash": plan.plan_hash,
+        "plan_json": plan.to_json(),
+        "library_version": library_version(),
+        "created": _now(),
     }
     with _translate(path, "initialise"), conn:
         conn.execute(
@@ -542,19 +642,25 @@ def _mismatch(meta: dict[str, Any], plan: ExperimentPlan) -> str | None:
     if meta["schema_version"] != SCHEMA_VERSION:
         return f"store schema {meta['schema_version']} (this library writes {SCHEMA_VERSION})"
     if meta["library_version"] != library_version():
-        return (f"mawdo {meta['library_version']} (this is mawdo {library_version()}; results "
-                f"of different versions may differ)")
+        return (
+            f"mawdo {meta['library_version']} (this is mawdo {library_version()}; results "
+            f"of different versions may differ)"
+        )
     if meta["plan_hash"] != plan.plan_hash:
         try:
             old = ExperimentPlan.from_json(meta["plan_json"]).numbers_spec()
             new = plan.numbers_spec()
-            diff = [f"{k} ({_short(old.get(k))} -> {_short(new.get(k))})"
-                    for k in new if old.get(k) != new.get(k)]
+            diff = [
+                f"{k} ({_short(old.get(k))} -> {_short(new.get(k))})"
+                for k in new
+                if old.get(k) != new.get(k)
+            ]
             what = "; differs in " + ", ".join(diff) if diff else ""
         except PlanError:
             what = ""
-        return (f"another plan (hash {meta['plan_hash'][:12]}, this plan "
-                f"{plan.plan_hash[:12]}{what})")
+        return (
+            f"another plan (hash {meta['plan_hash'][:12]}, this plan {plan.plan_hash[:12]}{what})"
+        )
     return None
 
 
@@ -573,4 +679,3 @@ def _json_default(o: Any) -> Any:
     if isinstance(o, np.ndarray):
         return o.tolist()
     return str(o)
-

@@ -172,10 +172,9 @@ class StudyPlan(BaseModel):
         done = set(done)
         out = []
         for algo in self.algorithms:
-            missing = [k for k in range(self.runs_of(algo))
-                       if (algo, self.scenario, k) not in done]
+            missing = [k for k in range(self.runs_of(algo)) if (algo, self.scenario, k) not in done]
             for i in range(0, len(missing), self.batch_size):
-                chunk = missing[i: i + self.batch_size]
+                chunk = missing[i : i + self.batch_size]
                 # tasks are contiguous stretches so first_run + n_runs describes them
                 if chunk == list(range(chunk[0], chunk[0] + len(chunk))):
                     out.append(Task(algo, self.scenario, chunk[0], len(chunk)))
@@ -185,15 +184,22 @@ class StudyPlan(BaseModel):
 
     def task_spec(self, task: Task) -> dict[str, Any]:
         return {
-            "kind": "planning", "algorithm": task.algorithm, "function": task.function,
-            "first_run": task.first_run, "n_runs": task.n_runs,
-            "seeds": [self.run_seed(k) for k in task.runs], "planner": self.planner,
-            "overrides": dict(self.overrides), "snapshots": self.snapshots,
+            "kind": "planning",
+            "algorithm": task.algorithm,
+            "function": task.function,
+            "first_run": task.first_run,
+            "n_runs": task.n_runs,
+            "seeds": [self.run_seed(k) for k in task.runs],
+            "planner": self.planner,
+            "overrides": dict(self.overrides),
+            "snapshots": self.snapshots,
         }
 
     def describe(self) -> str:
-        return (f"{self.name}: {len(self.algorithms)} algorithms x {self.runs} runs on "
-                f"'{self.scenario}', planner preset {self.planner!r}, seed {self.seed}")
+        return (
+            f"{self.name}: {len(self.algorithms)} algorithms x {self.runs} runs on "
+            f"'{self.scenario}', planner preset {self.planner!r}, seed {self.seed}"
+        )
 
 
 def execute_study_task(spec: dict[str, Any]) -> dict[str, Any]:
@@ -214,48 +220,89 @@ def execute_study_task(spec: dict[str, Any]) -> dict[str, Any]:
             if spec["algorithm"] == BASELINE:
                 res = follow_oracle(sc)
             else:
-                res = plan(sc, algorithm=spec["algorithm"], seed=seed, config=spec["planner"],
-                           **spec["overrides"])
+                res = plan(
+                    sc,
+                    algorithm=spec["algorithm"],
+                    seed=seed,
+                    config=spec["planner"],
+                    **spec["overrides"],
+                )
             m = run_metrics(res, l_star=l_star, snapshots=spec["snapshots"])
-            rows.append({
-                "run": run, "fun": m["length_px"], "f_star": l_star,
-                "error": m["length_px"] - l_star, "nfev": int(m["nfev"]),
-                "nit": int(m["steps"]), "status": 0 if m["success"] else 1,
-                "wall_time": time.perf_counter() - t1, "params": {"planner": spec["planner"],
-                                                                  **spec["overrides"]},
-                "curve": res.replans[0].history if res.replans else np.zeros(0),
-                "curve_nfev": np.zeros(len(res.replans[0].history) if res.replans else 0,
-                                       dtype=np.int64),
-                "metrics": m, "payload": result_to_bytes(res),
-                "seed_entropy": [seed], "shift_seed": None, "error_text": None,
-            })
+            rows.append(
+                {
+                    "run": run,
+                    "fun": m["length_px"],
+                    "f_star": l_star,
+                    "error": m["length_px"] - l_star,
+                    "nfev": int(m["nfev"]),
+                    "nit": int(m["steps"]),
+                    "status": 0 if m["success"] else 1,
+                    "wall_time": time.perf_counter() - t1,
+                    "params": {"planner": spec["planner"], **spec["overrides"]},
+                    "curve": res.replans[0].history if res.replans else np.zeros(0),
+                    "curve_nfev": np.zeros(
+                        len(res.replans[0].history) if res.replans else 0, dtype=np.int64
+                    ),
+                    "metrics": m,
+                    "payload": result_to_bytes(res),
+                    "seed_entropy": [seed],
+                    "shift_seed": None,
+                    "error_text": None,
+                }
+            )
         except Exception as exc:  # noqa: BLE001 - a failing run is a row, not a dead study
-            rows.append({"run": run, "params": {"planner": spec["planner"]},
-                         "wall_time": time.perf_counter() - t1, "seed_entropy": [seed],
-                         "shift_seed": None,
-                         "error_text": "".join(traceback.format_exception_only(exc)).strip()})
+            rows.append(
+                {
+                    "run": run,
+                    "params": {"planner": spec["planner"]},
+                    "wall_time": time.perf_counter() - t1,
+                    "seed_entropy": [seed],
+                    "shift_seed": None,
+                    "error_text": "".join(traceback.format_exception_only(exc)).strip(),
+                }
+            )
     return {
         "task": {k: spec[k] for k in ("algorithm", "function", "first_run", "n_runs")},
-        "rows": rows, "wall": time.perf_counter() - t0,
-        "worker": f"{socket.gethostname()}:{os.getpid()}", "library_version": library_version(),
+        "rows": rows,
+        "wall": time.perf_counter() - t0,
+        "worker": f"{socket.gethostname()}:{os.getpid()}",
+        "library_version": library_version(),
     }
 
 
 STUDY_PRESETS: dict[str, dict[str, Any]] = {
-    "paper-table6": {"name": "paper-table6", "algorithms": [*PAPER_ALGORITHMS, BASELINE],
-                     "scenario": "paper", "runs": 50, "planner": "study"},
-    "study-quick": {"name": "study-quick", "algorithms": [*PAPER_ALGORITHMS, BASELINE],
-                    "scenario": "paper", "runs": 5, "planner": "realtime", "snapshots": 4},
-    "study-smoke": {"name": "study-smoke", "algorithms": ["gwo", "mawdo", BASELINE],
-                    "scenario": "paper", "runs": 2, "planner": "quick", "snapshots": 2,
-                    "overrides": {"max_steps": 25}},
+    "paper-table6": {
+        "name": "paper-table6",
+        "algorithms": [*PAPER_ALGORITHMS, BASELINE],
+        "scenario": "paper",
+        "runs": 50,
+        "planner": "study",
+    },
+    "study-quick": {
+        "name": "study-quick",
+        "algorithms": [*PAPER_ALGORITHMS, BASELINE],
+        "scenario": "paper",
+        "runs": 5,
+        "planner": "realtime",
+        "snapshots": 4,
+    },
+    "study-smoke": {
+        "name": "study-smoke",
+        "algorithms": ["gwo", "mawdo", BASELINE],
+        "scenario": "paper",
+        "runs": 2,
+        "planner": "quick",
+        "snapshots": 2,
+        "overrides": {"max_steps": 25},
+    },
 }
 
 
 def study_preset(name: str) -> StudyPlan:
     if name not in STUDY_PRESETS:
-        raise PlanError(f"preset: unknown study preset {name!r}; presets: "
-                        f"{', '.join(STUDY_PRESETS)}")
+        raise PlanError(
+            f"preset: unknown study preset {name!r}; presets: {', '.join(STUDY_PRESETS)}"
+        )
     return StudyPlan.from_dict(STUDY_PRESETS[name])
 
 

@@ -20,8 +20,12 @@ from mawdo.experiments.tables import Table, to_csv, to_latex, to_markdown
 
 # Paper Table 6 ("Performance index"); the paper calls MAWDO "DPAWDO" in that table.
 PAPER_TABLE6 = {
-    "mawdo": (469.28, 1.01, 0.71), "mewdo": (486.37, 1.05, 0.47), "awdo": (531.06, 1.15, 13.50),
-    "wdo": (551.65, 1.19, 15.67), "woa": (472.72, 1.02, 0.81), "gwo": (471.86, 1.02, 0.74),
+    "mawdo": (469.28, 1.01, 0.71),
+    "mewdo": (486.37, 1.05, 0.47),
+    "awdo": (531.06, 1.15, 13.50),
+    "wdo": (551.65, 1.19, 15.67),
+    "woa": (472.72, 1.02, 0.81),
+    "gwo": (471.86, 1.02, 0.74),
 }
 COMPARED = (("length_px", "length"), ("gap", "gap"), ("smoothness_rad", "smoothness"))
 
@@ -43,18 +47,47 @@ def study_tables(store: Store) -> list[Table]:
     plan = store.plan
     by = {a: store.study_runs(a) for a in plan.algorithms}
     main = Table(
-        name="table6", title=f"Path planning on '{plan.scenario}' ({plan.describe()}); ours "
+        name="table6",
+        title=f"Path planning on '{plan.scenario}' ({plan.describe()}); ours "
         "beside the paper's Table 6 (the map is a reconstruction: compare ratios and ranks)",
-        columns=["algorithm", "runs", "length (px)", "std", "gap L/L*", "smoothness (rad)",
-                 "paper length", "paper gap", "paper smooth", "success", "collision-free",
-                 "collisions", "min clearance (px)", "snapshot gap", "latency p50 (ms)",
-                 "latency p95 (ms)", "first plan (s)", "nfev"],
-        formats={"length (px)": ".2f", "std": ".2f", "gap L/L*": ".3f",
-                 "smoothness (rad)": ".2f", "paper length": ".2f", "paper gap": ".2f",
-                 "paper smooth": ".2f", "success": ".0%", "collision-free": ".0%",
-                 "collisions": ".2f", "min clearance (px)": ".2f", "snapshot gap": ".3f",
-                 "latency p50 (ms)": ".1f", "latency p95 (ms)": ".1f", "first plan (s)": ".2f",
-                 "nfev": ".3g"},
+        columns=[
+            "algorithm",
+            "runs",
+            "length (px)",
+            "std",
+            "gap L/L*",
+            "smoothness (rad)",
+            "paper length",
+            "paper gap",
+            "paper smooth",
+            "success",
+            "collision-free",
+            "collisions",
+            "min clearance (px)",
+            "snapshot gap",
+            "latency p50 (ms)",
+            "latency p95 (ms)",
+            "first plan (s)",
+            "nfev",
+        ],
+        formats={
+            "length (px)": ".2f",
+            "std": ".2f",
+            "gap L/L*": ".3f",
+            "smoothness (rad)": ".2f",
+            "paper length": ".2f",
+            "paper gap": ".2f",
+            "paper smooth": ".2f",
+            "success": ".0%",
+            "collision-free": ".0%",
+            "collisions": ".2f",
+            "min clearance (px)": ".2f",
+            "snapshot gap": ".3f",
+            "latency p50 (ms)": ".1f",
+            "latency p95 (ms)": ".1f",
+            "first plan (s)": ".2f",
+            "nfev": ".3g",
+        },
     )
     for a in plan.algorithms:
         runs = [r for r in by[a] if r["metrics"] is not None]
@@ -63,38 +96,47 @@ def study_tables(store: Store) -> list[Table]:
         length = _metric(runs, "length_px")
         paper = PAPER_TABLE6.get(a, (None, None, None))
         lat50, lat95 = _metric(runs, "latency_p50_ms"), _metric(runs, "latency_p95_ms")
-        main.rows.append([
-            label(a), len(runs),
-            float(np.mean(length[ok])) if ok.any() else float("nan"),
-            float(np.std(length[ok], ddof=1)) if ok.sum() > 1 else float("nan"),
-            float(np.nanmean(_metric(runs, "gap"))) if ok.any() else float("nan"),
-            float(np.mean(_metric(runs, "smoothness_rad")[ok])) if ok.any() else float("nan"),
-            *paper,
-            float(ok.mean()) if runs else float("nan"),
-            float(_metric(runs, "collision_free").mean()) if runs else float("nan"),
-            float(_metric(runs, "collisions").mean()) if runs else float("nan"),
-            float(_metric(runs, "min_clearance_px").min()) if runs else float("nan"),
-            float(np.nanmedian(_metric(runs, "snapshot_gap_median"))) if runs else float("nan"),
-            float(np.nanmedian(lat50)) if runs else float("nan"),
-            float(np.nanmedian(lat95)) if runs else float("nan"),
-            float(np.mean(_metric(runs, "first_plan_s"))) if runs else float("nan"),
-            float(np.mean(_metric(runs, "nfev"))) if runs else float("nan"),
-        ])
+        main.rows.append(
+            [
+                label(a),
+                len(runs),
+                float(np.mean(length[ok])) if ok.any() else float("nan"),
+                float(np.std(length[ok], ddof=1)) if ok.sum() > 1 else float("nan"),
+                float(np.nanmean(_metric(runs, "gap"))) if ok.any() else float("nan"),
+                float(np.mean(_metric(runs, "smoothness_rad")[ok])) if ok.any() else float("nan"),
+                *paper,
+                float(ok.mean()) if runs else float("nan"),
+                float(_metric(runs, "collision_free").mean()) if runs else float("nan"),
+                float(_metric(runs, "collisions").mean()) if runs else float("nan"),
+                float(_metric(runs, "min_clearance_px").min()) if runs else float("nan"),
+                float(np.nanmedian(_metric(runs, "snapshot_gap_median"))) if runs else float("nan"),
+                float(np.nanmedian(lat50)) if runs else float("nan"),
+                float(np.nanmedian(lat95)) if runs else float("nan"),
+                float(np.mean(_metric(runs, "first_plan_s"))) if runs else float("nan"),
+                float(np.mean(_metric(runs, "nfev"))) if runs else float("nan"),
+            ]
+        )
         if failed:
             main.notes.append(f"{label(a)}: {failed} runs failed (error text in the store)")
-    main.notes.append("Length, gap and smoothness are means over runs that reached the goal; "
-                      "gap = executed length / exact optimum around the static obstacles; "
-                      "smoothness = total turning of the executed route (rad); collisions by "
-                      "the independent shapely checker in space and time; latency = per-replan "
-                      "wall time after the first plan, median over runs of each run's p50/p95.")
-    main.notes.append("The paper's map coordinates are unpublished: our 'paper' scenario is a "
-                      "reconstruction, so pixel values are not comparable, ratios and ranks are.")
+    main.notes.append(
+        "Length, gap and smoothness are means over runs that reached the goal; "
+        "gap = executed length / exact optimum around the static obstacles; "
+        "smoothness = total turning of the executed route (rad); collisions by "
+        "the independent shapely checker in space and time; latency = per-replan "
+        "wall time after the first plan, median over runs of each run's p50/p95."
+    )
+    main.notes.append(
+        "The paper's map coordinates are unpublished: our 'paper' scenario is a "
+        "reconstruction, so pixel values are not comparable, ratios and ranks are."
+    )
 
-    wil = Table(name="table6_wilcoxon",
-                title="Wilcoxon rank-sum of MAWDO against each rival (two-sided, 5%): + MAWDO "
-                      "significantly better, - worse, = no significant difference",
-                columns=["rival", *[f"{n} p" for _, n in COMPARED], *[n for _, n in COMPARED]],
-                formats={f"{n} p": ".3g" for _, n in COMPARED})
+    wil = Table(
+        name="table6_wilcoxon",
+        title="Wilcoxon rank-sum of MAWDO against each rival (two-sided, 5%): + MAWDO "
+        "significantly better, - worse, = no significant difference",
+        columns=["rival", *[f"{n} p" for _, n in COMPARED], *[n for _, n in COMPARED]],
+        formats={f"{n} p": ".3g" for _, n in COMPARED},
+    )
     if "mawdo" in by:
         # only runs that reached the goal: a truncated run is "shorter" for the wrong reason
         ref = [r for r in by["mawdo"] if r["metrics"] and r["metrics"]["success"]]
@@ -102,8 +144,10 @@ def study_tables(store: Store) -> list[Table]:
             if a in ("mawdo", BASELINE):
                 continue
             rival = [r for r in by[a] if r["metrics"] and r["metrics"]["success"]]
-            res = [stats.ranksum(_finite(_metric(ref, k)), _finite(_metric(rival, k)))
-                   for k, _ in COMPARED]
+            res = [
+                stats.ranksum(_finite(_metric(ref, k)), _finite(_metric(rival, k)))
+                for k, _ in COMPARED
+            ]
             wil.rows.append([label(a), *[r.pvalue for r in res], *[r.sign for r in res]])
         wil.notes.append("The oracle follower is deterministic (one run): no test.")
     return [main, wil]
@@ -147,19 +191,26 @@ def study_figures(store: Store, out: Path, gif: bool = True) -> list[Path]:
             boxes[k][label(a)] = _metric([r for r in runs if r["metrics"]], k)
     for lab, (res, m) in best.items():
         safe = "".join(ch if ch.isalnum() else "_" for ch in lab.lower()).strip("_")
-        figs.append(render.snapshot_grid({lab: res}, out / f"snapshots_{safe}.png",
-                                         metrics={lab: m}))
+        figs.append(
+            render.snapshot_grid({lab: res}, out / f"snapshots_{safe}.png", metrics={lab: m})
+        )
     if curves:
         figs.append(render.plot_cost_convergence(curves, out / "cost_convergence.png"))
-    names = {"length_px": "executed length (px)", "gap": "gap L / L*",
-             "smoothness_rad": "total turning (rad)"}
+    names = {
+        "length_px": "executed length (px)",
+        "gap": "gap L / L*",
+        "smoothness_rad": "total turning (rad)",
+    }
     for k, _ in COMPARED:
         figs.append(render.plot_metric_boxes(boxes[k], out / f"box_{k}.png", names[k]))
     if gif and "mawdo" in plan.algorithms:
         pick = _pick(store.study_runs("mawdo", payload=True), "median")
         if pick is not None:
-            figs.append(render.animate(result_from_bytes(pick["payload"], sc),
-                                       out / "mawdo_median_run.gif", every=2))
+            figs.append(
+                render.animate(
+                    result_from_bytes(pick["payload"], sc), out / "mawdo_median_run.gif", every=2
+                )
+            )
     return figs
 
 

@@ -6,6 +6,12 @@ from mawdo.optimizers.catalog import ABLATION_ALGORITHMS, PAPER_ALGORITHMS
 from mawdo.optimizers.registry import OPTIMIZERS, AlgorithmSpec, make_optimizer
 
 __all__ = [
-    "ABLATION_ALGORITHMS", "OPTIMIZERS", "PAPER_ALGORITHMS", "AlgorithmSpec", "Optimizer",
-    "Params", "Space", "make_optimizer",
+    "ABLATION_ALGORITHMS",
+    "OPTIMIZERS",
+    "PAPER_ALGORITHMS",
+    "AlgorithmSpec",
+    "Optimizer",
+    "Params",
+    "Space",
+    "make_optimizer",
 ]

@@ -75,7 +75,7 @@ class AWDOCMA(Wind):
                 worst = fr[finite].max() + 1.0 if finite.any() else 1.0
                 fr = np.where(finite, fr, worst)
                 cma.tell([(state.arx[r, i], float(fr[i])) for i in range(fr.size)])
-        state.arx = np.stack([
-            np.stack([cma.ask() for _ in range(state.arx.shape[1])]) for cma in state.cmas
-        ])
+        state.arx = np.stack(
+            [np.stack([cma.ask() for _ in range(state.arx.shape[1])]) for cma in state.cmas]
+        )
         return state

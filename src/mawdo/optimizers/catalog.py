@@ -23,39 +23,107 @@ PGR = {"restart": True, "obl": True}
 LOWD = {"low_dim_stabilization": True, "groups": 8}
 
 register(AlgorithmSpec("wdo", Wind, {}, WDO_REF, "Wind Driven Optimization", label="WDO"))
-register(AlgorithmSpec(
-    "awdo", Wind, AWDO, AWDO_REF,
-    "Adaptive WDO: coefficients ~ U[0,1] each iteration, rank-divided pressure", label="AWDO"))
-register(AlgorithmSpec(
-    "awdo_cmaes", AWDOCMA, {}, "Bayraktar & Komurcu, 'Adaptive WDO', 2015; authors' AWDO_v03.m",
-    "AWDO with per-parcel coefficients adapted by CMA-ES (no extra evaluations)",
-    label="AWDO-CMA"))
-register(AlgorithmSpec(
-    "mawdo1", Wind, {**AWDO, **GROUPS, "guidance": "group"}, MAWDO_REF,
-    "ablation: AWDO + 8 groups (B = group best)", label="MAWDO-1"))
-register(AlgorithmSpec(
-    "mawdo2", Wind, {**AWDO, **GROUPS, **HIER}, MAWDO_REF,
-    "ablation: AWDO + scheduled triple guidance + distance gate (G = 8)", label="MAWDO-2"))
-register(AlgorithmSpec(
-    "mawdo3", Wind, {**AWDO, **PGR}, MAWDO_REF,
-    "ablation: AWDO + periodic guided restart + opposition-based learning", label="MAWDO-3"))
-register(AlgorithmSpec(
-    "mawdo4", Wind, {**AWDO, **LOWD}, MAWDO_REF,
-    "ablation: AWDO + low-dimensional stabilisation (D <= 3)", label="MAWDO-4"))
-register(AlgorithmSpec(
-    "mawdo", Wind, {**AWDO, **GROUPS, **HIER, **PGR, **LOWD, "boundary": "reflect"}, MAWDO_REF,
-    "MAWDO: all components (groups, guidance, gate, PGR+OBL, reflection, low-D)",
-    label="MAWDO"))
-register(AlgorithmSpec(
-    "mewdo", MEWDO, {}, "Zhang, Yang & Chen, Math. Comput. Simul. 231, 2025 (text unavailable)",
-    "multi-strategy ensemble WDO with success-adaptive shares", reconstructed=True,
-    label="MEWDO"))
-register(AlgorithmSpec(
-    "gwo", GWO, {}, "Mirjalili, Mirjalili & Lewis, Adv. Eng. Softw. 69:46-61, 2014; GWO.m",
-    "Grey Wolf Optimizer", label="GWO"))
-register(AlgorithmSpec(
-    "woa", WOA, {}, "Mirjalili & Lewis, Adv. Eng. Softw. 95:51-67, 2016; WOA.m",
-    "Whale Optimization Algorithm", label="WOA"))
+register(
+    AlgorithmSpec(
+        "awdo",
+        Wind,
+        AWDO,
+        AWDO_REF,
+        "Adaptive WDO: coefficients ~ U[0,1] each iteration, rank-divided pressure",
+        label="AWDO",
+    )
+)
+register(
+    AlgorithmSpec(
+        "awdo_cmaes",
+        AWDOCMA,
+        {},
+        "Bayraktar & Komurcu, 'Adaptive WDO', 2015; authors' AWDO_v03.m",
+        "AWDO with per-parcel coefficients adapted by CMA-ES (no extra evaluations)",
+        label="AWDO-CMA",
+    )
+)
+register(
+    AlgorithmSpec(
+        "mawdo1",
+        Wind,
+        {**AWDO, **GROUPS, "guidance": "group"},
+        MAWDO_REF,
+        "ablation: AWDO + 8 groups (B = group best)",
+        label="MAWDO-1",
+    )
+)
+register(
+    AlgorithmSpec(
+        "mawdo2",
+        Wind,
+        {**AWDO, **GROUPS, **HIER},
+        MAWDO_REF,
+        "ablation: AWDO + scheduled triple guidance + distance gate (G = 8)",
+        label="MAWDO-2",
+    )
+)
+register(
+    AlgorithmSpec(
+        "mawdo3",
+        Wind,
+        {**AWDO, **PGR},
+        MAWDO_REF,
+        "ablation: AWDO + periodic guided restart + opposition-based learning",
+        label="MAWDO-3",
+    )
+)
+register(
+    AlgorithmSpec(
+        "mawdo4",
+        Wind,
+        {**AWDO, **LOWD},
+        MAWDO_REF,
+        "ablation: AWDO + low-dimensional stabilisation (D <= 3)",
+        label="MAWDO-4",
+    )
+)
+register(
+    AlgorithmSpec(
+        "mawdo",
+        Wind,
+        {**AWDO, **GROUPS, **HIER, **PGR, **LOWD, "boundary": "reflect"},
+        MAWDO_REF,
+        "MAWDO: all components (groups, guidance, gate, PGR+OBL, reflection, low-D)",
+        label="MAWDO",
+    )
+)
+register(
+    AlgorithmSpec(
+        "mewdo",
+        MEWDO,
+        {},
+        "Zhang, Yang & Chen, Math. Comput. Simul. 231, 2025 (text unavailable)",
+        "multi-strategy ensemble WDO with success-adaptive shares",
+        reconstructed=True,
+        label="MEWDO",
+    )
+)
+register(
+    AlgorithmSpec(
+        "gwo",
+        GWO,
+        {},
+        "Mirjalili, Mirjalili & Lewis, Adv. Eng. Softw. 69:46-61, 2014; GWO.m",
+        "Grey Wolf Optimizer",
+        label="GWO",
+    )
+)
+register(
+    AlgorithmSpec(
+        "woa",
+        WOA,
+        {},
+        "Mirjalili & Lewis, Adv. Eng. Softw. 95:51-67, 2016; WOA.m",
+        "Whale Optimization Algorithm",
+        label="WOA",
+    )
+)
 
 # Sets the experiment presets and reports use.
 PAPER_ALGORITHMS = ("gwo", "woa", "wdo", "awdo", "mewdo", "mawdo")

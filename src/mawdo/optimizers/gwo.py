@@ -134,8 +134,13 @@ class GWO(Optimizer):
         N, D, R = self.params.pop_size, space.dim, streams.runs
         X = initial_population(streams, N, space.lb, space.ub, x0)
         return GWOState(
-            X=X, lead_f=np.full((R, 3), np.inf), lead_x=np.zeros((R, 3, D)),
-            t=0, T=max_iter, space=space, streams=streams,
+            X=X,
+            lead_f=np.full((R, 3), np.inf),
+            lead_x=np.zeros((R, 3, D)),
+            t=0,
+            T=max_iter,
+            space=space,
+            streams=streams,
         )
 
     def ask(self, state: GWOState) -> np.ndarray:

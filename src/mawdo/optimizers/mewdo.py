@@ -109,10 +109,17 @@ class MEWDO(Optimizer):
         p0 = None if x0 is None else space.to_unit(as_x0(x0, streams.runs, D, N))
         p = initial_population(streams, N, -np.ones(D), np.ones(D), p0)
         return MEWDOState(
-            p=p, u=streams.uniform(-P.vmax, P.vmax, (N, D)), f=np.full((R, N), np.inf),
-            pbest=p.copy(), pbest_f=np.full((R, N), np.inf),
-            q=np.full((R, N_STRATEGIES), 1.0 / N_STRATEGIES), strategy=np.full((R, N), -1),
-            t=0, T=max_iter, space=space, streams=streams,
+            p=p,
+            u=streams.uniform(-P.vmax, P.vmax, (N, D)),
+            f=np.full((R, N), np.inf),
+            pbest=p.copy(),
+            pbest_f=np.full((R, N), np.inf),
+            q=np.full((R, N_STRATEGIES), 1.0 / N_STRATEGIES),
+            strategy=np.full((R, N), -1),
+            t=0,
+            T=max_iter,
+            space=space,
+            streams=streams,
         )
 
     def ask(self, state: MEWDOState) -> np.ndarray:
@@ -153,8 +160,9 @@ class MEWDO(Optimizer):
             n_used = used.sum(axis=1)
             n_succ = (used & success[..., None]).sum(axis=1)
             rate = np.where(n_used > 0, n_succ / np.maximum(n_used, 1), 0.0)
-            s.q = np.where(n_used.sum(axis=1, keepdims=True) > 0,
-                           update_shares(rate, s.q, P.lr, P.q_min), s.q)
+            s.q = np.where(
+                n_used.sum(axis=1, keepdims=True) > 0, update_shares(rate, s.q, P.lr, P.q_min), s.q
+            )
         s.f = F.copy()
         improved = F < s.pbest_f
         s.pbest_f = np.where(improved, F, s.pbest_f)

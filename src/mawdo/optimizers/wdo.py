@@ -174,9 +174,19 @@ class Wind(Optimizer):
         coef = self._group_coefficients(streams) if low else None
         R = streams.runs
         return WindState(
-            p=p, u=u, f=np.full((R, N), np.inf), pbest=p.copy(), pbest_f=np.full((R, N), np.inf),
-            gid=wind.partition(N, P.groups), coef=coef, vmax=vmax, low_dim=low, t=0,
-            T=max_iter, space=space, streams=streams,
+            p=p,
+            u=u,
+            f=np.full((R, N), np.inf),
+            pbest=p.copy(),
+            pbest_f=np.full((R, N), np.inf),
+            gid=wind.partition(N, P.groups),
+            coef=coef,
+            vmax=vmax,
+            low_dim=low,
+            t=0,
+            T=max_iter,
+            space=space,
+            streams=streams,
         )
 
     def _group_coefficients(self, streams: RunStreams) -> np.ndarray:
@@ -229,7 +239,7 @@ class Wind(Optimizer):
         extra = None
         if P.restart and s.t % P.restart_every == 0:
             m = P.n_restart
-            worst = np.argsort(s.f, axis=1, kind="stable")[:, N - m:]  # (R, m)
+            worst = np.argsort(s.f, axis=1, kind="stable")[:, N - m :]  # (R, m)
             sigma = wind.restart_sigma(s.t, s.T, P.sigma0, P.sigma_end)
             fresh = tbest[:, None, :] + sigma * s.streams.normal((m, D))  # Eq. 12
             fresh, _ = apply_boundary(P.boundary, fresh, np.zeros_like(fresh), -1.0, 1.0, P.eta)

@@ -18,8 +18,11 @@ def wdo_velocity(u, p, B, rank, u_perm, alpha, g, RT, c, centre=0.0):
     ``i`` is the parcel's 1-based rank (1 = best); the best parcel feels no pressure term.
     Coefficients broadcast against ``(R, N, 1)``; ``centre`` is 0 (the origin) in WDO.
     """
-    return (1.0 - alpha) * u - g * (p - centre) + np.abs(1.0 - 1.0 / rank) * RT * (B - p) + (
-        c * u_perm / rank
+    return (
+        (1.0 - alpha) * u
+        - g * (p - centre)
+        + np.abs(1.0 - 1.0 / rank) * RT * (B - p)
+        + (c * u_perm / rank)
     )
 
 

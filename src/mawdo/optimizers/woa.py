@@ -82,8 +82,15 @@ class WOA(Optimizer):
     def init(self, space: Space, streams: RunStreams, max_iter: int, x0=None) -> WOAState:
         N, D, R = self.params.pop_size, space.dim, streams.runs
         X = initial_population(streams, N, space.lb, space.ub, x0)
-        return WOAState(X=X, leader_f=np.full(R, np.inf), leader_x=np.zeros((R, D)),
-                        t=0, T=max_iter, space=space, streams=streams)
+        return WOAState(
+            X=X,
+            leader_f=np.full(R, np.inf),
+            leader_x=np.zeros((R, D)),
+            t=0,
+            T=max_iter,
+            space=space,
+            streams=streams,
+        )
 
     def ask(self, state: WOAState) -> np.ndarray:
         if state.t > 0:

@@ -109,8 +109,10 @@ def study_cmd(
 
     try:
         plan = study_preset(preset).with_overrides(
-            runs=runs, scenario=scenario,
-            algorithms=None if algorithms is None else [a.strip() for a in algorithms.split(",")])
+            runs=runs,
+            scenario=scenario,
+            algorithms=None if algorithms is None else [a.strip() for a in algorithms.split(",")],
+        )
     except PlanError as exc:
         console.print(f"[bold red]error:[/] {exc}")
         raise typer.Exit(2) from None

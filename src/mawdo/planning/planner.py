@@ -185,7 +185,15 @@ def _config(config, overrides) -> PlannerConfig:
 
 
 def _optimise(
-    cost: PathCost, pos, t, algorithm, config: PlannerConfig, iters, seed_seq, x0, max_time,
+    cost: PathCost,
+    pos,
+    t,
+    algorithm,
+    config: PlannerConfig,
+    iters,
+    seed_seq,
+    x0,
+    max_time,
     pop_size,
 ):
     from mawdo.minimize import minimize
@@ -396,16 +404,34 @@ def follow_oracle(scenario, max_steps: int | None = None) -> PlanResult:
             waypoints = path[1:-1]
         else:
             waypoints = np.zeros((0, 2))
-        replans.append(Replan(step=step, position=traj[-1].copy(), waypoints=waypoints,
-                              cost=float("nan"), length=float(opt.length), collisions=0,
-                              latency=latency, nfev=0, history=np.zeros(0)))
+        replans.append(
+            Replan(
+                step=step,
+                position=traj[-1].copy(),
+                waypoints=waypoints,
+                cost=float("nan"),
+                length=float(opt.length),
+                collisions=0,
+                latency=latency,
+                nfev=0,
+                history=np.zeros(0),
+            )
+        )
         route.append(pos.copy())
         stamps.append(step + 1.0)
         traj.append(pos.copy())
-    return PlanResult(scenario=sc, algorithm=ORACLE_FOLLOWER, seed=0,
-                      config=PlannerConfig(), trajectory=np.array(traj),
-                      success=reason == "goal reached", reason=reason, replans=replans,
-                      route=np.array(route), route_times=np.array(stamps))
+    return PlanResult(
+        scenario=sc,
+        algorithm=ORACLE_FOLLOWER,
+        seed=0,
+        config=PlannerConfig(),
+        trajectory=np.array(traj),
+        success=reason == "goal reached",
+        reason=reason,
+        replans=replans,
+        route=np.array(route),
+        route_times=np.array(stamps),
+    )
 
 
 def result_to_bytes(result: PlanResult) -> bytes:
@@ -424,13 +450,20 @@ def result_to_bytes(result: PlanResult) -> bytes:
         hist[i, : len(r.history)] = r.history
     buf = io.BytesIO()
     np.savez_compressed(
-        buf, trajectory=result.trajectory, route=result.route, route_times=result.route_times,
-        step=np.array([r.step for r in reps]), position=np.array([r.position for r in reps]),
-        waypoints=wp, cost=np.array([r.cost for r in reps]),
+        buf,
+        trajectory=result.trajectory,
+        route=result.route,
+        route_times=result.route_times,
+        step=np.array([r.step for r in reps]),
+        position=np.array([r.position for r in reps]),
+        waypoints=wp,
+        cost=np.array([r.cost for r in reps]),
         length=np.array([r.length for r in reps]),
         collisions=np.array([r.collisions for r in reps]),
-        latency=np.array([r.latency for r in reps]), nfev=np.array([r.nfev for r in reps]),
-        history=hist, meta=np.array([result.algorithm, str(result.seed), result.reason]),
+        latency=np.array([r.latency for r in reps]),
+        nfev=np.array([r.nfev for r in reps]),
+        history=hist,
+        meta=np.array([result.algorithm, str(result.seed), result.reason]),
         success=np.array(result.success),
     )
     return buf.getvalue()
@@ -445,14 +478,29 @@ def result_from_bytes(data: bytes, scenario) -> PlanResult:
     for i in range(len(z["step"])):
         w = z["waypoints"][i]
         h = z["history"][i]
-        reps.append(Replan(step=int(z["step"][i]), position=z["position"][i],
-                           waypoints=w[~np.isnan(w[:, 0])], cost=float(z["cost"][i]),
-                           length=float(z["length"][i]), collisions=int(z["collisions"][i]),
-                           latency=float(z["latency"][i]), nfev=int(z["nfev"][i]),
-                           history=h[~np.isnan(h)]))
+        reps.append(
+            Replan(
+                step=int(z["step"][i]),
+                position=z["position"][i],
+                waypoints=w[~np.isnan(w[:, 0])],
+                cost=float(z["cost"][i]),
+                length=float(z["length"][i]),
+                collisions=int(z["collisions"][i]),
+                latency=float(z["latency"][i]),
+                nfev=int(z["nfev"][i]),
+                history=h[~np.isnan(h)],
+            )
+        )
     algorithm, seed, reason = (str(x) for x in z["meta"])
-    return PlanResult(scenario=_resolve(scenario), algorithm=algorithm,
-                      seed=int(seed) if seed.lstrip("-").isdigit() else 0,
-                      config=PlannerConfig(), trajectory=z["trajectory"],
-                      success=bool(z["success"]), reason=reason, replans=reps,
-                      route=z["route"], route_times=z["route_times"])
+    return PlanResult(
+        scenario=_resolve(scenario),
+        algorithm=algorithm,
+        seed=int(seed) if seed.lstrip("-").isdigit() else 0,
+        config=PlannerConfig(),
+        trajectory=z["trajectory"],
+        success=bool(z["success"]),
+        reason=reason,
+        replans=reps,
+        route=z["route"],
+        route_times=z["route_times"],
+    )
