@@ -42,7 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mawdo.planning.geometry import FlatObstacles, MotionTable
-from mawdo.planning.kernel import population_cost
+from mawdo.planning.kernel import population_cost, scratch_size
 from mawdo.planning.scenario import Scenario
 
 __all__ = ["CostWeights", "PathCost", "assemble_paths"]
@@ -155,6 +155,12 @@ class PathCost:
         self.n_waypoints = int(n_waypoints)
         self.flat = FlatObstacles.from_scenario(scenario)
         self._table: MotionTable | None = None
+        # the kernel's per-t0 inputs, kept for the next call with the same t0 (an optimizer
+        # calls many times per planning step): (t0, offsets) and (table, t0, kernel arrays)
+        self._snap: tuple | None = None
+        self._motion: tuple | None = None
+        self._frozen = MotionTable.frozen(len(self.flat.thresh)).kernel_arrays(0.0)
+        self._scratch = np.empty(0)  # the kernel's work space, kept from call to call
 
     @property
     def dim(self) -> int:
@@ -231,7 +237,11 @@ class PathCost:
             raise ValueError(
                 f"X must have shape (n, {self.dim}) for {self.n_waypoints} waypoints, got {X.shape}"
             )
-        start = self.scenario.start if start is None else np.asarray(start, dtype=np.float64)
+        start = (
+            self.scenario.start
+            if start is None
+            else np.ascontiguousarray(start, dtype=np.float64)  # one compiled layout
+        )
         if start.shape != (2,) or not np.all(np.isfinite(start)):
             raise ValueError(f"start must be a finite (x, y) pair, got {start!r}")
         t0 = float(t0)
@@ -248,10 +258,19 @@ class PathCost:
         spacetime = self.mode == "spacetime"
         if spacetime:
             table = self._motion_table(X2, start, t0)
+            if self._motion is None or self._motion[0] is not table or self._motion[1] != t0:
+                self._motion = (table, t0, table.kernel_arrays(t0))
+            motion = self._motion[2]
             snap = np.zeros((n_obs, 2))
         else:
-            table = MotionTable.frozen(n_obs)
-            snap = np.ascontiguousarray(self.scenario.offsets(t0), dtype=np.float64)
+            motion = self._frozen
+            if self._snap is None or self._snap[0] != t0:
+                offsets = np.ascontiguousarray(self.scenario.offsets(t0), dtype=np.float64)
+                self._snap = (t0, offsets)
+            snap = self._snap[1]
+        need = scratch_size(n, self.n_waypoints + 2, motion[3], spacetime)
+        if self._scratch.shape[0] < need:
+            self._scratch = np.empty(need + need // 4)
         w = self.weights
         population_cost(
             X2,
@@ -262,9 +281,10 @@ class PathCost:
             spacetime,
             self.flat.arrays(),
             snap,
-            table.kernel_arrays(t0),
+            motion,
             (float(w.alpha), float(w.beta), float(w.lam), float(w.k)),
             (out_cost, out_len, out_ncol, out_turn),
+            self._scratch,
         )
         if single:
             return out_cost[0], out_len[0], out_ncol[0], out_turn[0]
