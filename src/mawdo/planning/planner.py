@@ -170,6 +170,31 @@ class PlanResult:
 PLANNING_OPTIONS = {"mawdo": {"low_dim": 10_000}}
 
 
+class _Drive:
+    """The executed motion: positions at integer steps, and the route with every vertex passed
+    between two steps, time-stamped (what the checker and the metrics judge)."""
+
+    def __init__(self, start: np.ndarray) -> None:
+        self.traj, self.route, self.stamps = [start.copy()], [start.copy()], [0.0]
+
+    def move(self, step: int, pos: np.ndarray, passed=(), frac=()) -> None:
+        self.route.extend(passed)
+        self.stamps.extend(step + np.asarray(frac, dtype=float))
+        self.route.append(pos.copy())
+        self.stamps.append(step + 1.0)
+        self.traj.append(pos.copy())
+
+    def result(self, reason: str, **fields) -> PlanResult:
+        return PlanResult(
+            trajectory=np.array(self.traj),
+            success=reason == "goal reached",
+            reason=reason,
+            route=np.array(self.route),
+            route_times=np.array(self.stamps),
+            **fields,
+        )
+
+
 def _resolve(scenario) -> Scenario:
     return get_scenario(scenario) if isinstance(scenario, str) else scenario
 
@@ -281,8 +306,7 @@ def plan(
     master = seed if isinstance(seed, np.random.SeedSequence) else np.random.SeedSequence(seed)
     goal = sc.goal
     pos = sc.start.copy()
-    traj = [pos.copy()]
-    route, stamps = [pos.copy()], [0.0]  # executed polyline, vertices included, with times
+    drive = _Drive(pos)
     replans: list[Replan] = []
     remainder = None
     reason = "step limit reached before the goal"
@@ -344,22 +368,9 @@ def plan(
             )
             remainder = assemble_paths(best[None, :], pos, goal)[0]
         pos, remainder, passed, frac = advance(remainder, v)
-        route.extend(passed)
-        stamps.extend(step + frac)
-        route.append(pos.copy())
-        stamps.append(step + 1.0)
-        traj.append(pos.copy())
-    return PlanResult(
-        scenario=sc,
-        algorithm=algorithm,
-        seed=seed,
-        config=cfg,
-        trajectory=np.array(traj),
-        success=reason == "goal reached",
-        reason=reason,
-        replans=replans,
-        route=np.array(route),
-        route_times=np.array(stamps),
+        drive.move(step, pos, passed, frac)
+    return drive.result(
+        reason, scenario=sc, algorithm=algorithm, seed=seed, config=cfg, replans=replans
     )
 
 
@@ -384,7 +395,7 @@ def follow_oracle(scenario, max_steps: int | None = None) -> PlanResult:
     v = sc.robot_speed
     max_steps = max_steps or int(np.ceil(4 * sc.straight_line_length() / v)) + 10
     pos = sc.start.copy()
-    traj, route, stamps = [pos.copy()], [pos.copy()], [0.0]
+    drive = _Drive(pos)
     replans: list[Replan] = []
     reason = "step limit reached before the goal"
     for step in range(max_steps + 1):
@@ -396,18 +407,17 @@ def follow_oracle(scenario, max_steps: int | None = None) -> PlanResult:
         t0 = time.perf_counter()
         opt = scenario_optimum(sc, t=float(step), static_only=False, start=pos)
         latency = time.perf_counter() - t0
+        here = pos.copy()
+        passed, frac = (), ()
         if opt.reachable:
-            path = opt.path
-            pos, _, passed, frac = advance(path, v)
-            route.extend(passed)
-            stamps.extend(step + frac)
-            waypoints = path[1:-1]
+            pos, _, passed, frac = advance(opt.path, v)
+            waypoints = opt.path[1:-1]
         else:
             waypoints = np.zeros((0, 2))
         replans.append(
             Replan(
                 step=step,
-                position=traj[-1].copy(),
+                position=here,
                 waypoints=waypoints,
                 cost=float("nan"),
                 length=float(opt.length),
@@ -417,20 +427,14 @@ def follow_oracle(scenario, max_steps: int | None = None) -> PlanResult:
                 history=np.zeros(0),
             )
         )
-        route.append(pos.copy())
-        stamps.append(step + 1.0)
-        traj.append(pos.copy())
-    return PlanResult(
+        drive.move(step, pos, passed, frac)
+    return drive.result(
+        reason,
         scenario=sc,
         algorithm=ORACLE_FOLLOWER,
         seed=0,
         config=PlannerConfig(),
-        trajectory=np.array(traj),
-        success=reason == "goal reached",
-        reason=reason,
         replans=replans,
-        route=np.array(route),
-        route_times=np.array(stamps),
     )
 
 
