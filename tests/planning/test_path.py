@@ -36,6 +36,14 @@ def test_advance_passes_the_corner():
     assert rem.shape == (1, 2) and len(passed) == 1
 
 
+def test_advance_by_zero_passes_nothing():
+    pts = np.array([[1.0, 0.0], [1.0, 0.0], [0.0, 0.0]])  # found by hypothesis: 0/0 before
+    pos, rem, passed, frac = advance(pts, 0.0)
+    np.testing.assert_array_equal(pos, [1.0, 0.0])
+    np.testing.assert_array_equal(rem, pts)
+    assert passed.shape == (0, 2) and frac.shape == (0,)
+
+
 def test_densify_keeps_the_geometry_and_respread_does_not():
     d = densify(L_SHAPE, 5)
     assert d.shape == (5, 2)

@@ -56,7 +56,7 @@ import math
 import numpy as np
 from numba import njit
 
-__all__ = ["ZERO_LENGTH", "population_cost"]
+__all__ = ["ZERO_LENGTH", "population_cost", "scratch_size"]
 
 #: Segments shorter than this (pixels) have no direction and contribute no turning.
 ZERO_LENGTH = 1e-9
@@ -1040,7 +1040,7 @@ def population_cost(
     # Per moving obstacle a grid of its centre's positions over time, filled as far as the
     # blocks need: cells of gdt time steps from t0, the piece at each cell's start, and per cell
     # how far the centre can stray from the chord between its ends (0 without a knot inside,
-    # else vmax gdt / 2 = 1 px).
+    # else vmax gdt / 2: 1 px, more where the table is too long for 1 px cells).
     gdt = np.ones(n_obs)
     ggap = np.zeros(n_obs)
     grow = np.zeros(n_obs, dtype=np.int64)  # row of each moving obstacle's grid

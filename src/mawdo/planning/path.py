@@ -49,6 +49,8 @@ def advance(points: np.ndarray, distance: float):
     fractions : numpy.ndarray, shape (q,)
         Where each passed vertex lies, as a fraction of ``distance`` (for time stamps).
     """
+    if distance <= 0:  # standing still passes no vertex (and has no fraction to speak of)
+        return points[0].copy(), points.copy(), np.zeros((0, 2)), np.zeros(0)
     seg = segment_lengths(points)
     cum = np.concatenate([[0.0], np.cumsum(seg)])
     if distance >= cum[-1]:
