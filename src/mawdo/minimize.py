@@ -196,6 +196,23 @@ def minimize(
     t0 = time.perf_counter()
     bar = _progress(progress, opt.name, problem.name, max_iter, max_evals)
     it = 0
+
+    def snapshot(msg: str) -> OptimizeResult:
+        return _result(
+            opt,
+            problem,
+            seed,
+            best_x,
+            best_f,
+            evaluator.nfev,
+            nit,
+            hist,
+            hist_nfev,
+            status,
+            msg,
+            time.perf_counter() - t0,
+        )
+
     try:
         while True:
             it += 1
@@ -235,20 +252,7 @@ def minimize(
                 message = STATUS_MESSAGES[3]
                 break
             if callback is not None:
-                snap = _result(
-                    opt,
-                    problem,
-                    seed,
-                    best_x,
-                    best_f,
-                    evaluator.nfev,
-                    nit,
-                    hist,
-                    hist_nfev,
-                    status,
-                    "in progress",
-                    time.perf_counter() - t0,
-                )
+                snap = snapshot("in progress")
                 if callback(snap):
                     status[active], active[:] = 4, False
                     message = STATUS_MESSAGES[4]
@@ -256,20 +260,7 @@ def minimize(
     finally:
         if bar is not None:
             bar.close()
-    return _result(
-        opt,
-        problem,
-        seed,
-        best_x,
-        best_f,
-        evaluator.nfev,
-        nit,
-        hist,
-        hist_nfev,
-        status,
-        message,
-        time.perf_counter() - t0,
-    )
+    return snapshot(message)
 
 
 def _result(
