@@ -32,7 +32,7 @@ def test_bad_bounds(bounds, match):
 
 def test_bounds_forms_agree_and_mismatched_lengths_are_named():
     a = as_bounds([(-1, 1), (0, 2), (3, 4)])
-    b = as_bounds((np.array([-1, 0, 3]), np.array([1, 2, 4])))
+    b = as_bounds(lb=np.array([-1, 0, 3]), ub=np.array([1, 2, 4]))
     # a (2, 2) array is read as two (low, high) pairs, as scipy.optimize does
     np.testing.assert_array_equal(as_bounds([(-1, 1), (0, 2)])[1], [1, 2])
     np.testing.assert_array_equal(a[0], b[0])
@@ -43,6 +43,9 @@ def test_bounds_forms_agree_and_mismatched_lengths_are_named():
         as_bounds([(0, 1)] * 3, dim=2)
     with pytest.raises(ValueError, match="give dim"):
         as_bounds((0, 1))
+    # the former (lb_array, ub_array) form is refused for every D, not only where it is ambiguous
+    with pytest.raises(ValueError, match="ambiguous.*lb=..., ub=..."):
+        as_bounds((np.array([-1, 0, 3]), np.array([1, 2, 4])))
 
 
 @pytest.mark.parametrize(

@@ -1,30 +1,33 @@
 """The driver loop: init -> (ask, evaluate, tell)* -> OptimizeResult.
 
-Budgets (``max_iter``, ``max_evals``, ``target``, ``max_time``) and the callback live here, not
-in the algorithms, so every optimizer is stopped and counted the same way.
+Budgets (``max_iter``, ``max_evals``, ``target``, ``max_time``; :mod:`mawdo.budget`) and the
+callback are applied here, not in the algorithms, so every optimizer is stopped and counted the
+same way. Arguments are checked before anything runs (:mod:`mawdo.validate`).
 """
 
 from __future__ import annotations
 
-import math
-import time
 from collections.abc import Callable
 
 import numpy as np
 
+from mawdo.budget import CALLBACK, DEFAULT_MAX_ITER, Budget, RunLog
 from mawdo.optimizers.base import Optimizer, Space
 from mawdo.optimizers.registry import make_optimizer
 from mawdo.problem import Evaluator, Problem, as_bounds
-from mawdo.result import STATUS_MESSAGES, OptimizeResult
+from mawdo.result import OptimizeResult
 from mawdo.streams import RunStreams, run_seed_sequences
+from mawdo.validate import ArgumentTypeError, check_bool, check_int, check_seed, real_array
 
-DEFAULT_MAX_ITER = 500
+__all__ = ["DEFAULT_MAX_ITER", "make_problem", "minimize"]
 
 
 def make_problem(
     fun,
     bounds=None,
     *,
+    lb=None,
+    ub=None,
     dim: int | None = None,
     vectorized: bool = True,
     shifted: bool = False,
@@ -38,10 +41,14 @@ def make_problem(
     ----------
     fun : str, BenchmarkFunction or callable
         A registered benchmark name (``"sphere"``, ``"F7"``), a benchmark object, or an objective.
-    bounds : optional
-        Box bounds; required for a plain callable, overrides a benchmark's bounds when given.
+    bounds : sequence of (low, high) pairs, (low, high) scalars, or scipy.optimize.Bounds
+        Box bounds (see :func:`~mawdo.problem.as_bounds`): ``[(-5, 5)] * 10``, ``(-5, 5)`` with
+        ``dim=10``, or ``Bounds(lb, ub)``. Required for a plain callable (or ``lb``/``ub``);
+        overrides a benchmark's bounds when given.
+    lb, ub : float or array_like, optional
+        Lower and upper bounds, shape ``(D,)`` or scalars (with ``dim``), instead of ``bounds``.
     dim : int, optional
-        Dimension for scalable benchmarks, or with ``bounds=(lo, hi)``.
+        Dimension D >= 1 for scalable benchmarks, or with scalar bounds.
     vectorized : bool
         Whether a plain callable takes ``(n, D)`` batches.
     shifted : bool
@@ -53,6 +60,12 @@ def make_problem(
     """
     from mawdo.functions import BenchmarkFunction, get_function
 
+    if dim is not None:
+        check_int("dim", dim, 1)
+    check_bool("vectorized", vectorized)
+    check_bool("shifted", shifted)
+    check_int("shift_seed", shift_seed, 0)
+    box = bounds is not None or lb is not None or ub is not None
     if isinstance(fun, str):
         fun = get_function(fun, dim=dim, preset=preset, shifted=shifted, shift_seed=shift_seed)
     elif isinstance(fun, BenchmarkFunction):
@@ -65,8 +78,8 @@ def make_problem(
     elif shifted:
         raise ValueError("shifted=True applies to benchmark functions, not to a plain callable")
     if isinstance(fun, BenchmarkFunction):
-        if bounds is not None:
-            fun = fun.with_bounds(*as_bounds(bounds, fun.dim))
+        if box:
+            fun = fun.with_bounds(*as_bounds(bounds, fun.dim, lb=lb, ub=ub))
         return Problem(
             fun=fun.func,
             lb=np.asarray(fun.lb, float),
@@ -82,15 +95,17 @@ def make_problem(
             f"fun must be a function name, a BenchmarkFunction or a callable; "
             f"got {type(fun).__name__}"
         )
-    lb, ub = as_bounds(bounds, dim)
+    lo, hi = as_bounds(bounds, dim, lb=lb, ub=ub)
     name = getattr(fun, "__name__", "objective")
-    return Problem(fun=fun, lb=lb, ub=ub, vectorized=vectorized, name=name)
+    return Problem(fun=fun, lb=lo, ub=hi, vectorized=vectorized, name=name)
 
 
 def minimize(
     fun,
     bounds=None,
     *,
+    lb=None,
+    ub=None,
     algorithm: str | Optimizer = "mawdo",
     runs: int = 1,
     seed=None,
@@ -114,27 +129,25 @@ def minimize(
     Parameters
     ----------
     fun : str, BenchmarkFunction or callable
-        See :func:`make_problem`. A callable takes ``X`` of shape ``(n, D)`` and returns ``(n,)``
-        (or, with ``vectorized=False``, takes ``(D,)`` and returns a float).
-    bounds : sequence of (low, high), optional
-        Required for a callable.
+        See :func:`make_problem`. A callable takes ``X`` of shape ``(n, D)`` (a copy it may
+        modify) and returns ``(n,)`` real values (or, with ``vectorized=False``, takes ``(D,)``
+        and returns a float). NaN and inf count as worst; complex or string values are errors.
+    bounds, lb, ub, dim, vectorized, shifted, shift_seed, preset
+        The problem: see :func:`make_problem` (``bounds=[(lo, hi)] * D``, or ``lb=``/``ub=``).
     algorithm : str or Optimizer
         A registered name (``mawdo list``) or an optimizer instance.
     runs : int
         Independent runs, executed as one vectorised batch; >= 1.
-    seed : int, SeedSequence or None
+    seed : int >= 0, sequence of int, SeedSequence or None
         Master seed; run ``r`` uses the ``r``-th spawned child, so its result is the same alone
         or in any batch.
     first_run : int
         Index of the first run of this batch under ``seed`` (to recompute runs ``k..k+R-1``).
-    max_iter : int, optional
-        Iterations (the initial population is iteration 1). Default 500 when no budget is set.
-    max_evals : int, optional
-        Exact evaluation budget per run; the last iteration is truncated to hit it exactly.
-    target : float, optional
-        A run stops once its best value is <= ``target`` (its result freezes; others go on).
-    max_time : float, optional
-        Wall-clock seconds for the whole batch.
+    max_iter, max_evals, target, max_time
+        The budget, see :class:`~mawdo.budget.Budget`: iterations (the initial population is
+        iteration 1; default 500 when neither is set), exact evaluations per run (the last
+        iteration is truncated), a target value freezing each run that reaches it, and
+        wall-clock seconds for the batch.
     callback : callable, optional
         ``callback(result_so_far) -> bool``, called after every iteration with an
         :class:`OptimizeResult` snapshot; returning True stops all runs.
@@ -144,142 +157,88 @@ def minimize(
     progress : bool
         Show a progress bar (rich).
     **options
-        Algorithm coefficients, e.g. ``pop_size=50``, ``groups=8``.
+        Algorithm coefficients, e.g. ``pop_size=50``, ``groups=8``; each a finite number in its
+        range (:data:`mawdo.validate.OPTION_RANGES`).
 
     Returns
     -------
     OptimizeResult
         Per-run arrays ``x (R, D)``, ``fun (R,)``, ``nfev (R,)``, ``history (R, T)``.
     """
-    if not isinstance(runs, int | np.integer) or runs < 1:
-        raise ValueError(f"runs={runs!r} must be an integer >= 1")
-    for name, val in (("max_iter", max_iter), ("max_evals", max_evals)):
-        if val is not None and (not isinstance(val, int | np.integer) or val < 1):
-            raise ValueError(f"{name}={val!r} must be a positive integer")
-    if max_time is not None and not max_time > 0:
-        raise ValueError(f"max_time={max_time!r} must be > 0 seconds")
+    _check_driver_arguments(runs, seed, first_run, callback, progress, x0)
+    budget = Budget(max_iter, max_evals, target, max_time)
     problem = make_problem(
-        fun,
-        bounds,
-        dim=dim,
-        vectorized=vectorized,
-        shifted=shifted,
-        shift_seed=shift_seed,
-        preset=preset,
-    )
+        fun, bounds, lb=lb, ub=ub, dim=dim, vectorized=vectorized, shifted=shifted,
+        shift_seed=shift_seed, preset=preset,
+    )  # fmt: skip
     opt = make_optimizer(algorithm, **options)
-    pop = opt.params.pop_size
-    if max_iter is None and max_evals is None:
-        max_iter = DEFAULT_MAX_ITER
-    # Schedules (MAWDO's mixing, GWO's a) need T up front; under an evaluation budget it is the
-    # number of plain iterations that budget buys.
-    T = max_iter if max_iter is not None else math.ceil(max_evals / pop)
-
-    if not isinstance(first_run, int | np.integer) or first_run < 0:
-        raise ValueError(f"first_run={first_run!r} must be an integer >= 0")
-    seqs = run_seed_sequences(seed, runs, first_run)
-    children = [s.spawn(2) for s in seqs]
-    algo_streams = RunStreams.from_seed_sequences([c[0] for c in children])
-    noise_streams = RunStreams.from_seed_sequences([c[1] for c in children])
+    algo_streams, noise_streams = _streams(seed, runs, first_run)
     evaluator = Evaluator(problem, noise_streams, opt.name)
     space = Space(problem.lb, problem.ub)
-    state = opt.init(space, algo_streams, T, x0)
+    state = opt.init(space, algo_streams, budget.horizon(opt.params.pop_size), x0)
+    log = RunLog(budget, runs, space.from_unit(np.zeros(problem.dim)))
+    bar = _progress(progress, opt.name, problem.name, budget.max_iter, budget.max_evals)
 
-    R, D = runs, problem.dim
-    best_f = np.full(R, np.inf)
-    best_x = np.tile(space.from_unit(np.zeros(D)), (R, 1))
-    active = np.ones(R, dtype=bool)
-    status = np.zeros(R, dtype=np.int64)
-    nit = np.zeros(R, dtype=np.int64)
-    hist, hist_nfev = [], []
-    message = STATUS_MESSAGES[0]
-    t0 = time.perf_counter()
-    bar = _progress(progress, opt.name, problem.name, max_iter, max_evals)
-    it = 0
-
-    def snapshot(msg: str) -> OptimizeResult:
-        return _result(
-            opt,
-            problem,
-            seed,
-            best_x,
-            best_f,
-            evaluator.nfev,
-            nit,
-            hist,
-            hist_nfev,
-            status,
-            msg,
-            time.perf_counter() - t0,
-        )
+    def snapshot(message: str) -> OptimizeResult:
+        return _result(opt, problem, seed, log, evaluator.nfev, message)
 
     try:
+        it = 0
         while True:
             it += 1
             X = opt.ask(state)
-            limit = None
-            if max_evals is not None:
-                limit = int(max_evals - evaluator.nfev[active].max(initial=0))
-            F = evaluator(X, it, active, limit)
+            limit = log.eval_limit(evaluator.nfev)
+            F = evaluator(X, it, log.active, limit)
             state = opt.tell(state, X, F)
-            # The driver keeps its own best-so-far from evaluated points only.
-            j = np.argmin(F, axis=1)
-            fj = F[np.arange(R), j]
-            better = active & (fj < best_f)
-            best_f = np.where(better, fj, best_f)
-            best_x[better] = X[better, j[better]]
-            nit[active] = it
-            hist.append(best_f.copy())
-            hist_nfev.append(evaluator.nfev.copy())
+            log.record(it, X, F, evaluator.nfev)
             if bar is not None:
-                bar.advance(it, evaluator.nfev.max(), best_f.min())
-            # Termination, per run first, then for the batch.
-            if target is not None:
-                hit = active & (best_f <= target)
-                status[hit], active[hit] = 2, False
-            if max_evals is not None and limit is not None and limit <= X.shape[1]:
-                status[active], active[:] = 1, False
-                message = STATUS_MESSAGES[1]
-            if max_iter is not None and it >= max_iter:
-                status[active], active[:] = 0, False
-                message = STATUS_MESSAGES[0]
-            if not active.any():
-                if target is not None and (status == 2).all():
-                    message = STATUS_MESSAGES[2]
+                bar.advance(it, evaluator.nfev.max(), log.best_f.min())
+            if log.finished(it, X.shape[1], limit):
                 break
-            if max_time is not None and time.perf_counter() - t0 >= max_time:
-                status[active], active[:] = 3, False
-                message = STATUS_MESSAGES[3]
+            if callback is not None and callback(snapshot("in progress")):
+                log.stop(CALLBACK)
                 break
-            if callback is not None:
-                snap = snapshot("in progress")
-                if callback(snap):
-                    status[active], active[:] = 4, False
-                    message = STATUS_MESSAGES[4]
-                    break
     finally:
         if bar is not None:
             bar.close()
-    return snapshot(message)
+    return snapshot(log.message)
 
 
-def _result(
-    opt, problem, seed, best_x, best_f, nfev, nit, hist, hist_nfev, status, message, elapsed
-) -> OptimizeResult:
+def _check_driver_arguments(runs, seed, first_run, callback, progress, x0) -> None:
+    check_int("runs", runs, 1)
+    check_int("first_run", first_run, 0)
+    check_seed(seed)
+    check_bool("progress", progress)
+    if callback is not None and not callable(callback):
+        raise ArgumentTypeError(f"callback={callback!r} must be a callable or None")
+    if x0 is not None:
+        real_array("x0", x0)  # shape and finiteness are the optimizer's check (as_x0)
+
+
+def _streams(seed, runs: int, first_run: int) -> tuple[RunStreams, RunStreams]:
+    """Each run's algorithm and noise streams: two children of the run's seed sequence."""
+    children = [s.spawn(2) for s in run_seed_sequences(seed, runs, first_run)]
+    algo = RunStreams.from_seed_sequences([c[0] for c in children])
+    noise = RunStreams.from_seed_sequences([c[1] for c in children])
+    return algo, noise
+
+
+def _result(opt, problem, seed, log: RunLog, nfev, message: str) -> OptimizeResult:
+    history, history_nfev = log.history()
     return OptimizeResult(
-        x=best_x.copy(),
-        fun=best_f.copy(),
+        x=log.best_x.copy(),
+        fun=log.best_f.copy(),
         nfev=nfev.copy(),
-        nit=nit.copy(),
-        history=np.stack(hist, axis=1) if hist else np.empty((best_f.size, 0)),
-        history_nfev=np.stack(hist_nfev, axis=1) if hist_nfev else np.empty((best_f.size, 0)),
-        status=status.copy(),
+        nit=log.nit.copy(),
+        history=history,
+        history_nfev=history_nfev,
+        status=log.status.copy(),
         message=message,
         algorithm=opt.name,
         params=opt.params.as_dict(),
         problem=problem.name,
         seed=seed,
-        time=elapsed,
+        time=log.elapsed(),
         f_star=problem.f_star,
         metadata=dict(opt.metadata),
     )

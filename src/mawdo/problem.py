@@ -14,49 +14,116 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mawdo.streams import RunStreams
+from mawdo.validate import check_int, real_array
 
 
 class ObjectiveError(RuntimeError):
     """The objective raised or returned something unusable."""
 
 
-def as_bounds(bounds, dim: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+_LB_UB_FIX = (
+    "pass lb=..., ub=... (arrays or scalars) or scipy.optimize.Bounds(lb, ub); "
+    "bounds= takes (low, high) pairs, e.g. bounds=list(zip(lb, ub))"
+)
+
+
+def as_bounds(
+    bounds=None, dim: int | None = None, *, lb=None, ub=None
+) -> tuple[np.ndarray, np.ndarray]:
     """Validate box bounds and return ``(lb, ub)`` as float arrays of shape ``(D,)``.
+
+    Each form has one reading, whatever ``D`` is:
+
+    - ``bounds=[(low, high), ...]`` (or a ``(D, 2)`` array): one pair per coordinate, as in
+      ``scipy.optimize.minimize``;
+    - ``bounds=(low, high)`` of two scalars with ``dim=D``: the same pair for every coordinate;
+    - ``bounds=scipy.optimize.Bounds(lb, ub)`` (any object with ``lb`` and ``ub``), or the
+      keywords ``lb=``, ``ub=``: lower and upper arrays (a scalar broadcasts).
+
+    A pair of arrays ``(lb_array, ub_array)`` is refused: for ``D = 2`` it cannot be told from
+    two ``(low, high)`` pairs, so it once silently became a different box.
 
     Parameters
     ----------
-    bounds : sequence of (low, high) pairs, or a pair of arrays ``(lb, ub)``
-        ``[(-5, 5)] * 10`` and ``(np.full(10, -5), np.full(10, 5))`` are both accepted. A single
-        pair ``(-5, 5)`` with ``dim`` given is broadcast to ``dim`` coordinates.
+    bounds : sequence of (low, high) pairs, (low, high) scalars, or scipy.optimize.Bounds
+        See above. ``None`` when ``lb`` and ``ub`` are given.
     dim : int, optional
-        Expected dimension; required when ``bounds`` is a single pair.
+        Expected dimension D >= 1; required when neither form fixes it (scalar bounds).
+    lb, ub : float or array_like, optional
+        Lower and upper bounds, shape ``(D,)`` or scalars; only without ``bounds``.
 
     Raises
     ------
     ValueError
-        Mismatched lengths, non-finite values, or ``lb >= ub`` in any coordinate.
+        Ambiguous or malformed bounds, mismatched lengths, no coordinates, non-finite values, or
+        ``lb >= ub`` in any coordinate.
     """
-    if bounds is None:
-        raise ValueError("bounds are required for a callable objective: pass bounds=[(lo, hi)] * D")
-    arr = np.asarray(bounds, dtype=float)
-    if arr.ndim == 1 and arr.shape == (2,):
+    if dim is not None:
+        check_int("dim", dim, 1)
+    if lb is not None or ub is not None:
+        if bounds is not None:
+            raise ValueError("give either bounds= or lb=/ub=, not both")
+        if lb is None or ub is None:
+            raise ValueError("lb= and ub= go together: give both (scalars broadcast with dim=D)")
+        lo, hi = _lb_ub(lb, ub, dim, "lb", "ub")
+    elif bounds is None:
+        raise ValueError(
+            "bounds are required for a callable objective: pass bounds=[(lo, hi)] * D "
+            "or lb=..., ub=..."
+        )
+    elif hasattr(bounds, "lb") and hasattr(bounds, "ub"):
+        lo, hi = _lb_ub(bounds.lb, bounds.ub, dim, "Bounds.lb", "Bounds.ub")
+    else:
+        lo, hi = _pairs(bounds, dim)
+    return _check_box(lo, hi, dim)
+
+
+def _pairs(bounds, dim: int | None) -> tuple[np.ndarray, np.ndarray]:
+    if (
+        isinstance(bounds, list | tuple)
+        and len(bounds) == 2
+        and all(isinstance(b, np.ndarray) and b.ndim == 1 for b in bounds)
+    ):
+        raise ValueError(
+            "bounds=(lb_array, ub_array) is ambiguous (with D = 2 it reads as two (low, high) "
+            f"pairs) and is not accepted: {_LB_UB_FIX}; write pairs as tuples, [(lo, hi), ...]"
+        )
+    arr = real_array("bounds", bounds)
+    if arr.shape == (2,):
         if dim is None:
             raise ValueError(
                 "bounds=(lo, hi) is one pair; give dim=D too, or pass bounds=[(lo, hi)] * D"
             )
-        lb, ub = np.full(dim, arr[0]), np.full(dim, arr[1])
-    elif arr.ndim == 2 and arr.shape[1] == 2 and arr.shape[0] != 2:
-        lb, ub = arr[:, 0].copy(), arr[:, 1].copy()
-    elif arr.ndim == 2 and arr.shape[0] == 2 and arr.shape[1] != 2:
-        lb, ub = arr[0].copy(), arr[1].copy()
-    elif arr.ndim == 2 and arr.shape == (2, 2):
-        # ambiguous only in shape; read as [(lo, hi), (lo, hi)] like scipy.optimize
-        lb, ub = arr[:, 0].copy(), arr[:, 1].copy()
-    else:
+        return np.full(dim, arr[0]), np.full(dim, arr[1])
+    if arr.ndim == 2 and arr.shape[1] == 2:
+        return arr[:, 0].copy(), arr[:, 1].copy()
+    if arr.ndim == 2 and arr.shape[0] == 2:
         raise ValueError(
-            f"bounds must be a sequence of (low, high) pairs or (lb_array, ub_array); "
-            f"got an array of shape {arr.shape}"
+            f"bounds has shape {arr.shape}, which looks like (lb, ub) arrays; {_LB_UB_FIX}"
         )
+    raise ValueError(
+        f"bounds must be a sequence of (low, high) pairs, shape (D, 2); got an array of shape "
+        f"{arr.shape}. For lower and upper arrays, {_LB_UB_FIX}"
+    )
+
+
+def _lb_ub(lb, ub, dim, lb_name: str, ub_name: str) -> tuple[np.ndarray, np.ndarray]:
+    lo, hi = real_array(lb_name, lb), real_array(ub_name, ub)
+    for name, a in ((lb_name, lo), (ub_name, hi)):
+        if a.ndim > 1:
+            raise ValueError(f"{name} must be a scalar or a 1-D array; got shape {a.shape}")
+    sizes = {a.shape[0] for a in (lo, hi) if a.ndim == 1}
+    if len(sizes) > 1:
+        raise ValueError(f"{lb_name} has {lo.shape[0]} coordinates but {ub_name} has {hi.shape[0]}")
+    n = sizes.pop() if sizes else dim
+    if n is None:
+        raise ValueError(f"{lb_name} and {ub_name} are scalars; give dim=D too")
+    return np.broadcast_to(lo, (n,)).copy(), np.broadcast_to(hi, (n,)).copy()
+
+
+def _check_box(lb: np.ndarray, ub: np.ndarray, dim: int | None) -> tuple[np.ndarray, np.ndarray]:
+    if lb.shape[0] == 0:
+        raise ValueError("bounds have no coordinates; the box needs D >= 1 (low, high) pairs")
     if dim is not None and lb.shape[0] != dim:
         raise ValueError(f"bounds have {lb.shape[0]} coordinates but dim={dim}")
     if not (np.all(np.isfinite(lb)) and np.all(np.isfinite(ub))):
@@ -111,12 +178,7 @@ class Problem:
             out = self.fun(X)
         else:
             out = [self.fun(x) for x in X]
-        try:
-            out = np.asarray(out, dtype=float)
-        except (TypeError, ValueError) as exc:
-            raise ObjectiveError(
-                f"objective {self.name!r} returned values that are not numbers ({exc})"
-            ) from exc
+        out = self._as_real(out)
         n = X.shape[0]
         if out.shape != (n,):
             if self.vectorized:
@@ -128,6 +190,22 @@ class Problem:
                 f"{X.shape[1]}; expected ({n},): {fix}"
             )
         return out
+
+    def _as_real(self, out) -> np.ndarray:
+        """The objective's values as floats; complex, string and bool output is an error, since
+        ``np.asarray(..., dtype=float)`` would drop an imaginary part or parse ``"1.5"``."""
+        try:
+            return real_array("values", out)
+        except (TypeError, ValueError) as exc:
+            if "complex" in str(exc):
+                fix = "minimisation needs real values: return e.g. abs(z), or z.real if exact"
+                raise ObjectiveError(
+                    f"objective {self.name!r} returned complex values; {fix}"
+                ) from exc
+            raise ObjectiveError(
+                f"objective {self.name!r} returned values that are not numbers ({exc}); "
+                f"return floats"
+            ) from exc
 
 
 class Evaluator:
@@ -171,7 +249,9 @@ class Evaluator:
         F = np.full((R, n), np.inf)
         if m == 0:
             return F
-        flat = X[:, :m].reshape(R * m, D)
+        # A copy: an objective that writes into its argument must not move the candidates the
+        # optimizer keeps (and the driver returns) out of the box.
+        flat = X[:, :m].reshape(R * m, D).copy()
         try:
             vals = self.problem(flat).reshape(R, m)
         except ObjectiveError as exc:
@@ -194,7 +274,7 @@ class Evaluator:
     def _failing_run(self, X: np.ndarray) -> int | None:
         for r in range(X.shape[0]):
             try:
-                self.problem(X[r])
+                self.problem(X[r].copy())
             except Exception:
                 return r
         return None

@@ -13,6 +13,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from mawdo.validate import check_int, check_seed
+
 
 def run_seed_sequences(seed, runs: int, first: int = 0) -> list[np.random.SeedSequence]:
     """The seed sequences of runs ``first .. first+runs-1`` derived from one master ``seed``.
@@ -22,13 +24,17 @@ def run_seed_sequences(seed, runs: int, first: int = 0) -> list[np.random.SeedSe
 
     Parameters
     ----------
-    seed : int, numpy.random.SeedSequence or None
-        Master seed. ``None`` draws fresh entropy (not reproducible).
+    seed : int, sequence of int, numpy.random.SeedSequence or None
+        Master seed, integers >= 0 (bools and floats are refused, naming ``seed``). ``None``
+        draws fresh entropy (not reproducible).
     runs : int
         Number of runs, >= 1.
     first : int
         Index of the first run, >= 0.
     """
+    check_seed(seed)
+    check_int("runs", runs, 1)
+    check_int("first_run", first, 0)
     ss = seed if isinstance(seed, np.random.SeedSequence) else np.random.SeedSequence(seed)
     return [
         np.random.SeedSequence(ss.entropy, spawn_key=(*ss.spawn_key, k), pool_size=ss.pool_size)

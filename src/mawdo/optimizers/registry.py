@@ -11,6 +11,7 @@ from typing import Any
 
 from mawdo.optimizers.base import Optimizer
 from mawdo.registry import Registry
+from mawdo.validate import check_options, check_params
 
 
 @dataclass(frozen=True)
@@ -74,13 +75,27 @@ def make_optimizer(algorithm: str | Optimizer, **options) -> Optimizer:
         options are given).
     **options
         Coefficients of the algorithm (``pop_size``, ``groups``, ...); unknown names raise
-        ``ValueError`` listing the valid ones.
+        ``ValueError`` listing the valid ones. Every numeric option must be a finite real number
+        in its range (:data:`mawdo.validate.OPTION_RANGES`); bools and strings are refused.
+
+    Raises
+    ------
+    ValueError
+        An unknown option, or a value out of its range (NaN and inf included).
+    mawdo.validate.ArgumentTypeError
+        A value of the wrong type (also a ``ValueError``).
     """
+    # Options are checked here, before any Params is built: NaN and inf pass comparison-based
+    # range checks, and a string or bool would reach the algorithm's arithmetic.
     if isinstance(algorithm, Optimizer):
+        check_options(type(algorithm.params), options)
         if options:
-            return type(algorithm)(algorithm.params, name=algorithm.name, **options)
+            algorithm = type(algorithm)(algorithm.params, name=algorithm.name, **options)
+        check_params(algorithm.params)
         return algorithm
     spec = OPTIMIZERS[algorithm]
+    check_options(spec.cls.params_class, options)
     opt = spec.cls(name=spec.name, **{**spec.preset, **options})
+    check_params(opt.params)
     opt.metadata = spec.metadata()
     return opt

@@ -227,7 +227,8 @@ def _optimise(
     opts = {**PLANNING_OPTIONS.get(algorithm, {}), **config.options}
     res = minimize(
         lambda X: cost(X, start=pos, t0=t),
-        bounds=(lb, ub),
+        lb=lb,
+        ub=ub,
         algorithm=algorithm,
         runs=1,
         seed=seed_seq,
