@@ -72,7 +72,11 @@ def as_bounds(
             "or lb=..., ub=..."
         )
     elif hasattr(bounds, "lb") and hasattr(bounds, "ub"):
-        lo, hi = _lb_ub(bounds.lb, bounds.ub, dim, "Bounds.lb", "Bounds.ub")
+        lo, hi = bounds.lb, bounds.ub
+        if dim is not None and np.size(lo) == 1 and np.size(hi) == 1:
+            # scipy stores Bounds(-1, 2) as 1-element arrays and broadcasts them; so do we
+            lo, hi = np.reshape(lo, ()), np.reshape(hi, ())
+        lo, hi = _lb_ub(lo, hi, dim, "Bounds.lb", "Bounds.ub")
     else:
         lo, hi = _pairs(bounds, dim)
     return _check_box(lo, hi, dim)

@@ -29,9 +29,18 @@ def _what(value) -> str:
 
 
 def _interval(low, high, low_open: bool, high_open: bool) -> str:
-    lo = "(" if low_open else "["
-    hi = ")" if high_open else "]"
-    return f"{lo}{'-inf' if low is None else low}, {'inf' if high is None else high}{hi}"
+    if low is None and high is None:
+        return "a finite number"
+    lo = "(-inf" if low is None else ("(" if low_open else "[") + f"{low}"
+    hi = "inf)" if high is None else f"{high}" + (")" if high_open else "]")
+    return f"a finite number in {lo}, {hi}"
+
+
+def _text_hint(name: str, value: str, example: str) -> str:
+    try:
+        return f" (write {name}={float(value)!r}, not {name}={value!r})"
+    except ValueError:
+        return f" (write a number, e.g. {name}={example})"
 
 
 def check_real(
@@ -61,14 +70,12 @@ def check_real(
     if isinstance(value, bool | np.bool_) or not isinstance(value, numbers.Real):
         hint = ""
         if isinstance(value, str):
-            hint = f" (write {name}=0.5, not {name}='0.5')"
+            hint = _text_hint(name, value, "0.5")
         elif isinstance(value, bool | np.bool_):
             hint = "; bools are not numbers here"
         elif isinstance(value, numbers.Complex):
             hint = "; complex numbers are not accepted"
-        raise ArgumentTypeError(
-            f"{name}={value!r} must be a real number in {where}, not a {_what(value)}{hint}"
-        )
+        raise ArgumentTypeError(f"{name}={value!r} must be {where}, not a {_what(value)}{hint}")
     x = float(value)
     ok = math.isfinite(x)
     if ok and low is not None:
@@ -76,7 +83,7 @@ def check_real(
     if ok and high is not None:
         ok = x < high if high_open else x <= high
     if not ok:
-        raise ValueError(f"{name}={value!r} must be a finite number in {where}")
+        raise ValueError(f"{name}={value!r} must be {where}")
     return x
 
 
@@ -108,7 +115,7 @@ def check_int(
     if isinstance(value, bool | np.bool_) or not isinstance(value, numbers.Integral):
         hint = "; bools are not integers here" if isinstance(value, bool | np.bool_) else ""
         if isinstance(value, str):
-            hint = f" (write {name}=3, not {name}='3')"
+            hint = _text_hint(name, value, "3").replace(".0,", ",")
         elif isinstance(value, float) and value.is_integer():
             hint = f" (write {name}={int(value)})"
         raise ArgumentTypeError(f"{name}={value!r} must be {where}, not a {_what(value)}{hint}")
@@ -148,7 +155,8 @@ def real_array(name: str, value) -> np.ndarray:
         label = {"U": "strings", "S": "bytes", "c": "complex numbers", "b": "bools"}.get(
             kind, f"values of dtype {arr.dtype}"
         )
-        raise ArgumentTypeError(f"{name} must contain real numbers, not {label}")
+        fix = "; convert text with float() first" if kind in "US" else ""
+        raise ArgumentTypeError(f"{name} must contain real numbers, not {label}{fix}")
     return arr.astype(float, copy=False)
 
 
