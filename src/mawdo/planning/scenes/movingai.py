@@ -33,7 +33,7 @@ def _map_file(name: str):
     return resources.files("mawdo.planning.scenes").joinpath("data", f"{name}.map")
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def map_grid(name: str) -> np.ndarray:
     """Blocked cells of a shipped map (read-only bool array, row 0 at the top)."""
     with resources.as_file(_map_file(name)) as path:
@@ -42,7 +42,7 @@ def map_grid(name: str) -> np.ndarray:
     return grid
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _free_distance(name: str) -> np.ndarray:
     """Per cell, a lower bound on the distance (cells) from its centre to the nearest blocked
     cell or the map border (the map is padded with a ring of blocked cells)."""

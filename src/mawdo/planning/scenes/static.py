@@ -1,4 +1,4 @@
-"""Static scene families: open, forest, rooms, maze, u_trap, narrow.
+"""Static scene families: open, forest, rooms, maze (u_trap and narrow: :mod:`.traps`).
 
 Every family draws on a ``size x size`` map (pixels) and returns a scenario draft; the common
 machinery (:mod:`mawdo.planning.scenes.base`) validates it and computes ``L*``.
@@ -21,7 +21,7 @@ from mawdo.planning.scenes.shapes import (
     polygon,
 )
 
-__all__ = ["FOREST", "MAZE", "NARROW", "OPEN", "ROOMS", "U_TRAP"]
+__all__ = ["FOREST", "MAZE", "OPEN", "ROOMS"]
 
 
 def _margin(p: dict) -> float:
