@@ -102,3 +102,26 @@ def test_missing_ompl_names_the_pip_command(monkeypatch):
     monkeypatch.setitem(sys.modules, "ompl", None)  # import ompl -> ImportError
     with pytest.raises(ImportError, match=r"pip install 'mawdo\[ompl\]'"):
         plan_ompl(_easy())
+
+
+def test_validity_grid_agrees_with_shapely_everywhere():
+    from mawdo.planning.baselines.sampling import _blocked, _Validity
+
+    sc = generate_scene("open", 2, seed=8).scenario
+    blocked = _blocked(sc, 0.5)
+    valid = _Validity(blocked, sc.width, sc.height)
+    rng = np.random.default_rng(0)
+    pts = rng.uniform(0, sc.width, (20000, 2))
+    # points on cell edges and corners, and on the obstacles' boundary
+    edges = np.arange(0, valid.nx + 1) * valid.cell
+    pts = np.vstack(
+        [pts, np.column_stack([edges, edges]), np.column_stack([edges, pts[: len(edges), 1]])]
+    )
+    ring = shapely.get_coordinates(shapely.segmentize(blocked.boundary, 0.7))
+    pts = np.vstack([pts, ring, ring + 1e-9, ring - 1e-9])
+    ours = np.array([valid(p) for p in pts])
+    truth = ~shapely.intersects_xy(blocked, pts[:, 0], pts[:, 1])
+    np.testing.assert_array_equal(ours, truth)
+    assert 0 < truth.mean() < 1 and valid.calls == len(pts)
+    grid = np.array(valid.grid)
+    assert (grid == 0).any() and (grid == 1).any() and (grid == 2).any()
