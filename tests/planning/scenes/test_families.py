@@ -196,3 +196,12 @@ def test_bad_draws_are_redrawn_deterministically():
     assert [s.attempts for s in scenes] == [s.attempts for s in again]
     assert max(s.attempts for s in scenes) > 1
     assert all(s.l_star == pytest.approx(math.dist((20, 20), (340, 340))) for s in scenes)
+
+
+def test_describe_family_lists_every_parameter_with_its_range():
+    from mawdo.planning.scenes import describe_family
+
+    text = describe_family("narrow")
+    for p in FAMILIES["narrow"].all_params:
+        assert f"  {p.name} = {p.default!r}  [{p.low:g}, {p.high:g}]" in text
+    assert "one of ['warehouse', 'rooms']" in describe_family("movingai")

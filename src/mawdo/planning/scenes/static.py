@@ -86,9 +86,9 @@ FOREST = Family(
     "forest",
     "many small static discs (trees) scattered uniformly",
     (
-        Param("n", 20, 5, 200, integer=True, doc="number of trees"),
+        Param("n", 30, 5, 200, integer=True, doc="number of trees"),
         Param("rmin", 4.0, 1.0, 30.0, doc="smallest tree radius, pixels"),
-        Param("rmax", 9.0, 1.0, 30.0, doc="largest tree radius, pixels"),
+        Param("rmax", 10.0, 1.0, 30.0, doc="largest tree radius, pixels"),
     ),
     _draw_forest,
     check=lambda p: _range_check(p, "rmin", "rmax"),
