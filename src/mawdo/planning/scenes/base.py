@@ -21,7 +21,7 @@ import difflib
 import math
 import zlib
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -279,8 +279,9 @@ def _attempt(family: Family, p: dict, seed: int, index: int, attempt: int):
     opt = scenario_optimum(scenario)
     if not opt.reachable:
         return None, f"no static route ({opt.reason})"
-    data["description"] = _describe(family, p, seed, index, opt.length)
-    scenario = scenario_from_dict(data, source=data["name"])
+    # only the description changes: the validated spec is copied, not validated again
+    text = _describe(family, p, seed, index, opt.length)
+    scenario = replace(scenario, spec=scenario.spec.model_copy(update={"description": text}))
     return Scene(family.name, seed, index, p, scenario, opt.length, opt.path, attempt + 1), None
 
 
