@@ -205,3 +205,8 @@ def test_describe_family_lists_every_parameter_with_its_range():
     for p in FAMILIES["narrow"].all_params:
         assert f"  {p.name} = {p.default!r}  [{p.low:g}, {p.high:g}]" in text
     assert "one of ['warehouse', 'rooms']" in describe_family("movingai")
+
+
+def test_rooms_too_small_for_the_robot_is_a_clear_error():
+    with pytest.raises(ValueError, match="leave no room for the robot beside the walls"):
+        generate_scene("rooms", params={"size": 100.0, "rows": 6, "clearance": 5.0})

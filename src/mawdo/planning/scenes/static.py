@@ -167,6 +167,12 @@ def _check_rooms(p: dict) -> None:
             f"(2 x robot_radius = {2 * p['robot_radius']:g} px)"
         )
     room = p["size"] / max(p["rows"], p["cols"])
+    need = p["thickness"] + 2 * (p["robot_radius"] + p["clearance"] + 1.0)
+    if need >= room:
+        raise ValueError(
+            f"rooms of {room:g} px leave no room for the robot beside the walls ({need:g} px): "
+            "fewer rooms, thinner walls or a larger size"
+        )
     if p["door"] + 2 * p["thickness"] >= room:
         raise ValueError(
             f"rooms door + 2 x thickness = {p['door'] + 2 * p['thickness']:g} px must be "
