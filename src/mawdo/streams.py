@@ -96,3 +96,25 @@ class RunStreams:
         """``n`` independent permutations of ``range(d)`` per run, shape ``(R, n, d)``."""
         # argsort of uniform keys: one vectorised sort for the whole batch
         return self.random((n, d)).argsort(axis=2)
+
+
+def keyed_seed_sequence(seed, *key: int) -> np.random.SeedSequence:
+    """The seed sequence at spawn key ``key`` below the master ``seed``.
+
+    ``keyed_seed_sequence(s, k)`` is run ``k``'s sequence (:func:`run_seed_sequences`); longer
+    keys name deeper descendants, e.g. ``(family, index, attempt)`` for a generated scene, so an
+    item's stream depends only on its key, never on how many items were drawn or in which order.
+
+    Parameters
+    ----------
+    seed : int or numpy.random.SeedSequence
+        Master seed (an int >= 0).
+    *key : int
+        Spawn key below the master, each >= 0.
+    """
+    ss = seed if isinstance(seed, np.random.SeedSequence) else np.random.SeedSequence(seed)
+    if any(not isinstance(k, int | np.integer) or k < 0 for k in key):
+        raise ValueError(f"spawn key entries must be integers >= 0, got {key!r}")
+    return np.random.SeedSequence(
+        ss.entropy, spawn_key=(*ss.spawn_key, *map(int, key)), pool_size=ss.pool_size
+    )
