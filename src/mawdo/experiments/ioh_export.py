@@ -6,8 +6,10 @@ One folder per algorithm holds, per function, ``IOHprofiler_f{id}_{name}.json`` 
 then one ``evaluation value`` line per improvement of the best-so-far, and a last line at the
 run's final evaluation (what ``ioh.logger.Analyzer`` writes with its default improvement trigger;
 ioh puts the last *evaluated* value on that line, we put the best-so-far, which IOHanalyzer reads
-the same since it takes the running minimum). Values are written with the shortest decimal that
-reads back to the same float, so the logs round-trip exactly.
+the same since it takes the running minimum). Like ioh, the logged ``raw_y`` is the precision
+``f - f_opt`` (ioh logs its problems' internal value, which for BBOB is ``f - f_opt``), in the
+meta data's ``best.y`` too. ioh prints 10 decimals; we print the shortest decimal that reads back
+to the same float, so the logs round-trip exactly.
 
 We write the files ourselves rather than through ``ioh``'s logger because our runs are batched:
 one ``problem(X)`` call holds the candidates of every run, which ioh's per-problem logger would
@@ -50,6 +52,8 @@ class IOHRun:
         Evaluations the run spent, ``>= evals[-1]``.
     best_x : numpy.ndarray, optional
         The best point, shape ``(D,)``.
+    f_opt : float
+        The problem's optimum value; the logs hold ``best_y - f_opt``.
     """
 
     function_id: int
@@ -60,6 +64,7 @@ class IOHRun:
     best_y: np.ndarray
     total_evals: int
     best_x: np.ndarray | None = None
+    f_opt: float = 0.0
 
 
 def runs_from_traces(problem, traces: Sequence) -> list[IOHRun]:
@@ -74,6 +79,7 @@ def runs_from_traces(problem, traces: Sequence) -> list[IOHRun]:
             np.asarray(t.best_y),
             int(t.total_evals),
             None if np.isnan(t.best_x).any() else np.asarray(t.best_x),
+            float(problem.f_star),
         )
         for t in traces
     ]
@@ -102,16 +108,17 @@ def _check(run: IOHRun) -> None:
 
 def _dat_block(run: IOHRun) -> list[str]:
     lines = [HEADER]
-    lines += [f"{int(e)} {_num(y)}" for e, y in zip(run.evals, run.best_y, strict=True)]
+    prec = np.asarray(run.best_y, dtype=float) - run.f_opt
+    lines += [f"{int(e)} {_num(y)}" for e, y in zip(run.evals, prec, strict=True)]
     if run.evals.size and run.total_evals > run.evals[-1]:
-        lines.append(f"{int(run.total_evals)} {_num(run.best_y[-1])}")
+        lines.append(f"{int(run.total_evals)} {_num(prec[-1])}")
     return lines
 
 
 def _run_meta(run: IOHRun) -> dict:
     best = {"evals": 0, "y": None}
     if run.evals.size:
-        best = {"evals": int(run.evals[-1]), "y": float(run.best_y[-1])}
+        best = {"evals": int(run.evals[-1]), "y": float(run.best_y[-1] - run.f_opt)}
     if run.best_x is not None:
         best["x"] = [float(v) for v in run.best_x]
     return {"instance": int(run.instance), "evals": int(run.total_evals), "best": best}
@@ -181,9 +188,10 @@ def read_analyzer_logs(folder) -> list[dict]:
     -------
     list of dict
         One per run, in file order: ``algorithm``, ``function_id``, ``function_name``, ``dim``,
-        ``instance``, ``total_evals`` (from the meta data), ``evals`` and ``best_y`` (the
-        improvements of the running minimum of the ``.dat`` block), ``last_eval`` (the block's
-        last evaluation), ``best`` (the meta data's best entry).
+        ``instance``, ``total_evals`` (from the meta data), ``evals`` and ``precision`` (the
+        improvements of the running minimum of the ``.dat`` block's ``raw_y``, i.e.
+        ``f - f_opt``), ``last_eval`` (the block's last evaluation), ``best`` (the meta data's
+        best entry).
     """
     out = []
     for meta_path in sorted(Path(folder).glob("IOHprofiler_*.json")):
@@ -205,7 +213,7 @@ def read_analyzer_logs(folder) -> list[dict]:
                         "instance": info["instance"],
                         "total_evals": info["evals"],
                         "evals": e[imp].astype(np.int64),
-                        "best_y": run_min[imp],
+                        "precision": run_min[imp],
                         "last_eval": int(e[-1]) if e.size else 0,
                         "best": info["best"],
                     }

@@ -184,8 +184,9 @@ def get_problem(suite: str, function, instance: int = 1, dim: int = 10) -> Suite
     instance : int
         Instance, >= 1 (BBOB instances change the optimum's place and value; CEC has one).
     dim : int
-        Dimension D: BBOB 2-40, CEC 2017 {2, 10, 20, 30, 50, 100} (hybrid and two composition
-        functions not in D=2), CEC 2022 {2, 10, 20} (hybrid functions not in D=2).
+        Dimension D: BBOB 2-40; CEC 2017 {2, 10, 20, 30, 50, 100}, but {10, 30, 50, 100} for
+        its hybrid functions F10-F19 and compositions F28-F29; CEC 2022 {2, 10, 20}, but
+        {10, 20} for its hybrid functions F6-F8.
 
     Examples
     --------

@@ -17,7 +17,8 @@ from mawdo.suites.base import SuiteFunction, SuiteSpec, register_suite, require
 
 # The dimensions each suite's data define (opfunu 1.0.4's dim_supported; tests check them).
 CEC2017_DIMS = (2, 10, 20, 30, 50, 100)
-CEC2017_NO_D2 = (*range(10, 20), 28, 29)  # hybrid functions and compositions 9-10
+CEC2017_HYBRID_DIMS = (10, 30, 50, 100)  # no D=2 or D=20 data for these (hybrid, F28, F29)
+CEC2017_HYBRID = (*range(10, 20), 28, 29)
 CEC2022_DIMS = (2, 10, 20)
 CEC2022_NO_D2 = (6, 7, 8)  # hybrid functions
 
@@ -25,7 +26,7 @@ CEC2022_NO_D2 = (6, 7, 8)  # hybrid functions
 def cec_dims(year: int, fid: int) -> tuple[int, ...]:
     """Dimensions defined for CEC ``year`` function ``fid``."""
     if year == 2017:
-        return CEC2017_DIMS[1:] if fid in CEC2017_NO_D2 else CEC2017_DIMS
+        return CEC2017_HYBRID_DIMS if fid in CEC2017_HYBRID else CEC2017_DIMS
     return CEC2022_DIMS[1:] if fid in CEC2022_NO_D2 else CEC2022_DIMS
 
 
