@@ -106,8 +106,11 @@ def test_unknown_suite_and_function_suggest_close_names():
 
 
 def test_undefined_dimensions_are_named_with_the_defined_ones():
-    with pytest.raises(ValueError, match=r"cec2017 f5 is not defined in dimension 7; its dim.*"
-                       r"2, 10, 20, 30, 50, 100"):
+    with pytest.raises(
+        ValueError,
+        match=r"cec2017 f5 is not defined in dimension 7; its dim.*"
+        r"2, 10, 20, 30, 50, 100",
+    ):
         get_problem("cec2017", 5, dim=7)
     with pytest.raises(ValueError, match=r"cec2022 f6 is not defined in dimension 2; .* 10, 20"):
         get_problem("cec2022", 6, dim=2)

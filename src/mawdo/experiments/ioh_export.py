@@ -199,7 +199,8 @@ def read_analyzer_logs(folder) -> list[dict]:
         for sc in meta["scenarios"]:
             blocks = _dat_blocks(Path(folder) / sc["path"])
             if len(blocks) != len(sc["runs"]):
-                raise ValueError(f"{sc['path']}: {len(blocks)} runs in data, {len(sc['runs'])} in meta")
+                n_meta = len(sc["runs"])
+                raise ValueError(f"{sc['path']}: {len(blocks)} runs in data, {n_meta} in meta")
             for block, info in zip(blocks, sc["runs"], strict=True):
                 e, y = block[:, 0], block[:, 1]
                 run_min = np.minimum.accumulate(y)

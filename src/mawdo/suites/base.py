@@ -113,8 +113,7 @@ class SuiteSpec:
             if 1 <= function <= n:
                 return int(function)
             raise UnknownNameError(
-                f"unknown {self.name} function {int(function)}: {self.name} defines functions "
-                f"1-{n}"
+                f"unknown {self.name} function {int(function)}: {self.name} defines functions 1-{n}"
             )
         if not isinstance(function, str):
             raise TypeError(
