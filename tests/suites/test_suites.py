@@ -54,6 +54,7 @@ def test_cec_values_equal_opfunu(year, fid, dim):
     assert f.f_star == ref.f_global
     np.testing.assert_array_equal(f.x_star, ref.x_global)
     np.testing.assert_array_equal(np.stack([f.lb, f.ub], axis=1), ref.bounds)
+    assert f(f.x_star) == pytest.approx(f.f_star, abs=1e-6)  # the optimum is where opfunu says
 
 
 @pytest.mark.parametrize(("year", "n"), [(2017, 29), (2022, 12)])
