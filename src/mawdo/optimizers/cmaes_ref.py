@@ -10,7 +10,8 @@ The search happens in the unit box ``u = (x - lb) / (ub - lb) in [0, 1]^D`` (``c
 ``x0`` in ``[-4, 4]^D`` on BBOB); ``sigma0 = 0.2`` of the box side (2 on BBOB's ``[-5, 5]``).
 When ``CMA.should_stop()`` fires, the run restarts from a new uniform mean with the same
 ``lambda`` (no IPOP doubling: the runs of a batch share one candidate count per iteration, so one
-run cannot double its population alone; docs/deviations.md). Warm start: the ``x0`` points are
+run cannot double its population alone; docs/bbob.md). ``result.metadata["restarts"]`` counts
+each run's restarts. Warm start: the ``x0`` points are
 evaluated first, alone, and the CMA-ES starts from the best of them.
 """
 
@@ -84,6 +85,7 @@ class CMAES(Optimizer):
             self.params = dataclasses.replace(self.params, pop_size=default_pop_size(D))
         state = CMAESState(cmas=[None] * R, U=None, space=space, streams=streams)
         state.restarts = np.zeros(R, np.int64)
+        self.metadata["restarts"] = [0] * R
         if x0 is not None:
             x0 = as_x0(x0, R, D, self.params.pop_size)
             state.x0 = np.clip(x0, space.lb, space.ub)
@@ -132,4 +134,5 @@ class CMAES(Optimizer):
             if self.params.restarts and cma.should_stop():
                 state.cmas[r] = self._new_cma(state.streams.generators[r], sp.dim)
                 state.restarts[r] += 1
+                self.metadata["restarts"] = state.restarts.tolist()  # per run, in the result
         return state
