@@ -128,3 +128,28 @@ register(
 # Sets the experiment presets and reports use.
 PAPER_ALGORITHMS = ("gwo", "woa", "wdo", "awdo", "mewdo", "mawdo")
 ABLATION_ALGORITHMS = ("mawdo1", "mawdo2", "mawdo3", "mawdo4", "mawdo")
+
+# Reference algorithms for standard black-box benchmarking (BBOB, CEC; issue 13).
+from mawdo.optimizers.cmaes_ref import CMAES  # noqa: E402
+from mawdo.optimizers.random_search import RandomSearch  # noqa: E402
+
+register(
+    AlgorithmSpec(
+        "cmaes",
+        CMAES,
+        {},
+        "Hansen & Ostermeier, Evol. Comput. 9(2), 2001; the 'cmaes' library (CyberAgentAILab)",
+        "CMA-ES, one cmaes.CMA per run, restarts with the same lambda when it stalls",
+        label="CMA-ES",
+    )
+)
+register(
+    AlgorithmSpec(
+        "random",
+        RandomSearch,
+        {},
+        "uniform random search (baseline)",
+        "uniform random sampling in the box",
+        label="Random",
+    )
+)

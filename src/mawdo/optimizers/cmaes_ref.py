@@ -1,0 +1,138 @@
+"""CMA-ES reference: the ``cmaes`` library (CyberAgentAILab), one instance per run, with restarts.
+
+Hansen's CMA-ES is the reference any BBOB comparison is read against; we drive the maintained
+``cmaes.CMA`` rather than our own. Every run owns one ``CMA`` (seeded from the run's stream), so a
+run is the same alone or in any batch; ``ask`` stacks the runs' samples into ``(R, lambda, D)``.
+
+The search happens in the unit box ``u = (x - lb) / (ub - lb) in [0, 1]^D`` (``cmaes``'s
+``bounds`` resamples infeasible points), so one step size fits boxes of unequal sides. Defaults:
+``lambda = 4 + floor(3 ln D)``; mean uniform in the middle 80% of the box (COCO's example draws
+``x0`` in ``[-4, 4]^D`` on BBOB); ``sigma0 = 0.2`` of the box side (2 on BBOB's ``[-5, 5]``).
+When ``CMA.should_stop()`` fires, the run restarts from a new uniform mean with the same
+``lambda`` (no IPOP doubling: the runs of a batch share one candidate count per iteration, so one
+run cannot double its population alone; docs/bbob.md). ``result.metadata["restarts"]`` counts
+each run's restarts. Warm start: the ``x0`` points are
+evaluated first, alone, and the CMA-ES starts from the best of them.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from mawdo.optimizers.base import Optimizer, Params, Space, as_x0, check_range
+from mawdo.streams import RunStreams
+
+
+@dataclass(frozen=True)
+class CMAESParams(Params):
+    """CMA-ES coefficients.
+
+    Parameters
+    ----------
+    pop_size : int
+        Offspring per generation ``lambda``, >= 2. Used only when ``auto_pop_size`` is false;
+        passing ``pop_size`` alone turns ``auto_pop_size`` off.
+    auto_pop_size : bool
+        Use ``lambda = 4 + floor(3 ln D)`` (Hansen's default). True by default.
+    sigma0 : float
+        Initial step size as a fraction of the box side, in (0, 1].
+    restarts : bool
+        Restart a run (same ``lambda``, new uniform mean) when ``CMA.should_stop()`` fires.
+    """
+
+    auto_pop_size: bool = True
+    sigma0: float = 0.2
+    restarts: bool = True
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        check_range("sigma0", self.sigma0, 0.0, 1.0, low_open=True)
+
+
+def default_pop_size(dim: int) -> int:
+    """Hansen's default offspring number ``4 + floor(3 ln D)``."""
+    return 4 + math.floor(3 * math.log(dim))
+
+
+@dataclass
+class CMAESState:
+    cmas: list
+    U: np.ndarray | None  # (R, lambda, D) unit-box samples of the last ask; None after x0
+    space: Space
+    streams: RunStreams
+    x0: np.ndarray | None = None  # (R, k, D) warm-start points still to evaluate
+    restarts: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
+
+
+class CMAES(Optimizer):
+    """CMA-ES (``cmaes.CMA``) per run with restarts; see the module docstring."""
+
+    name = "cmaes"
+    params_class = CMAESParams
+
+    def __init__(self, params: Params | None = None, name: str | None = None, **options) -> None:
+        if params is None and "pop_size" in options and "auto_pop_size" not in options:
+            options["auto_pop_size"] = False  # an explicit lambda means that lambda
+        super().__init__(params, name, **options)
+
+    def init(self, space: Space, streams: RunStreams, max_iter: int, x0=None) -> CMAESState:
+        D, R = space.dim, streams.runs
+        if self.params.auto_pop_size:
+            self.params = dataclasses.replace(self.params, pop_size=default_pop_size(D))
+        state = CMAESState(cmas=[None] * R, U=None, space=space, streams=streams)
+        state.restarts = np.zeros(R, np.int64)
+        self.metadata["restarts"] = [0] * R
+        if x0 is not None:
+            x0 = as_x0(x0, R, D, self.params.pop_size)
+            state.x0 = np.clip(x0, space.lb, space.ub)
+            return state
+        for r in range(R):
+            state.cmas[r] = self._new_cma(streams.generators[r], D)
+        return state
+
+    def _new_cma(self, rng: np.random.Generator, D: int, mean: np.ndarray | None = None):
+        from cmaes import CMA
+
+        if mean is None:
+            mean = rng.uniform(0.1, 0.9, D)
+        bounds = np.tile([0.0, 1.0], (D, 1))
+        return CMA(
+            mean=np.clip(mean, 0.0, 1.0),
+            sigma=self.params.sigma0,
+            bounds=bounds,
+            seed=int(rng.integers(2**31 - 1)),
+            population_size=self.params.pop_size,
+        )
+
+    def ask(self, state: CMAESState) -> np.ndarray:
+        sp = state.space
+        if state.x0 is not None:
+            return state.x0
+        lam = self.params.pop_size
+        state.U = np.stack([np.stack([c.ask() for _ in range(lam)]) for c in state.cmas])
+        return np.clip(sp.lb + state.U * (sp.ub - sp.lb), sp.lb, sp.ub)
+
+    def tell(self, state: CMAESState, X: np.ndarray, F: np.ndarray) -> CMAESState:
+        sp = state.space
+        if state.x0 is not None:  # warm start: the CMA-ES starts at each run's best x0 point
+            best = X[np.arange(X.shape[0]), np.argmin(F, axis=1)]
+            for r, g in enumerate(state.streams.generators):
+                state.cmas[r] = self._new_cma(g, sp.dim, sp.to_unit(best[r]) * 0.5 + 0.5)
+            state.x0 = None
+            return state
+        for r, cma in enumerate(state.cmas):
+            fr = F[r]
+            finite = np.isfinite(fr)
+            # cmaes ranks by value; +inf (invalid) becomes just worse than the worst valid value
+            worst = fr[finite].max() + 1.0 + abs(fr[finite].max()) if finite.any() else 1.0
+            fr = np.where(finite, fr, worst)
+            cma.tell([(state.U[r, i], float(fr[i])) for i in range(fr.size)])
+            if self.params.restarts and cma.should_stop():
+                state.cmas[r] = self._new_cma(state.streams.generators[r], sp.dim)
+                state.restarts[r] += 1
+                self.metadata["restarts"] = state.restarts.tolist()  # per run, in the result
+        return state

@@ -1,0 +1,93 @@
+"""Exported logs match the files ioh's own Analyzer writes, and read back to the input."""
+
+import json
+
+import ioh
+import numpy as np
+import pytest
+
+from mawdo.experiments.ioh_export import (
+    IOHRun,
+    read_analyzer_logs,
+    runs_from_traces,
+    write_analyzer_logs,
+)
+from mawdo.suites import EvaluationRecorder, get_problem, run_problem
+
+
+def ioh_and_ours(tmp_path, fid, iid, dims, runs=2, batches=25, n=6):
+    """The same evaluations logged by ioh.logger.Analyzer and recorded by us."""
+    lg = ioh.logger.Analyzer(
+        root=str(tmp_path), folder_name="ioh", algorithm_name="rs", algorithm_info="uniform"
+    )
+    rng = np.random.default_rng(fid)
+    ours = []
+    for dim in dims:
+        f = get_problem("bbob", fid, instance=iid, dim=dim)
+        p = ioh.get_problem(fid, iid, dim, ioh.ProblemClass.REAL)
+        p.attach_logger(lg)
+        for _ in range(runs):
+            rec = EvaluationRecorder(f.func, 1)
+            for _ in range(batches):
+                X = rng.uniform(-5, 5, (n, dim))
+                p(X)
+                rec(X)
+            p.reset()
+            ours += runs_from_traces(f, rec.traces())
+    lg.close()
+    write_analyzer_logs(tmp_path / "ours", ours, "rs", "uniform")
+    return tmp_path / "ioh", tmp_path / "ours", ours
+
+
+@pytest.mark.parametrize(("fid", "iid"), [(3, 2), (8, 1), (21, 4)])
+def test_files_match_ioh_analyzer(tmp_path, fid, iid):
+    ioh_dir, our_dir, _ = ioh_and_ours(tmp_path, fid, iid, dims=(2, 5))
+    theirs, mine = read_analyzer_logs(ioh_dir), read_analyzer_logs(our_dir)
+    assert len(theirs) == len(mine) == 4
+    for a, b in zip(theirs, mine, strict=True):
+        for key in ("function_id", "function_name", "dim", "instance", "total_evals", "last_eval"):
+            assert a[key] == b[key], key
+        np.testing.assert_array_equal(a["evals"], b["evals"])
+        np.testing.assert_allclose(a["precision"], b["precision"], rtol=0, atol=2e-10)  # 10 dp
+        assert a["best"]["evals"] == b["best"]["evals"]
+        assert b["best"]["y"] == pytest.approx(a["best"]["y"], abs=1e-12)
+    # same file names and meta-data keys as ioh's
+    names = sorted(p.relative_to(ioh_dir).as_posix() for p in ioh_dir.rglob("*") if p.is_file())
+    assert names == sorted(p.relative_to(our_dir).as_posix() for p in our_dir.rglob("*.*"))
+    mj = json.loads(next(our_dir.glob("*.json")).read_text())
+    ij = json.loads(next(ioh_dir.glob("*.json")).read_text())
+    assert set(mj) == set(ij)
+    assert mj["attributes"] == ij["attributes"] and mj["maximization"] is False
+
+
+def test_round_trip_of_a_batched_run_is_exact(tmp_path):
+    written = []
+    for fid, dim in ((1, 3), (1, 5), (17, 3)):
+        f = get_problem("bbob", fid, instance=3, dim=dim)
+        res, traces = run_problem(f, "mawdo", runs=3, budget=80, seed=fid, final_target=None)
+        written += runs_from_traces(f, traces)
+    files = write_analyzer_logs(tmp_path, written, "mawdo", "test")
+    assert sorted(p.name for p in files) == [
+        "IOHprofiler_f17_Schaffers10.json",
+        "IOHprofiler_f1_Sphere.json",
+    ]
+    back = read_analyzer_logs(tmp_path)
+    assert len(back) == len(written) == 9
+    for fid, dim in ((1, 3), (1, 5), (17, 3)):
+        mine = [w for w in written if (w.function_id, w.dim) == (fid, dim)]
+        read = [r for r in back if (r["function_id"], r["dim"]) == (fid, dim)]
+        for w, r in zip(mine, read, strict=True):  # runs keep their order
+            np.testing.assert_array_equal(r["evals"], w.evals)
+            np.testing.assert_array_equal(r["precision"], w.best_y - w.f_opt)  # exact floats
+            assert r["total_evals"] == r["last_eval"] == w.total_evals == 80 * dim
+            assert r["best"]["y"] == w.best_y[-1] - w.f_opt
+            np.testing.assert_array_equal(r["best"]["x"], w.best_x)
+
+
+def test_bad_runs_are_refused(tmp_path):
+    run = IOHRun(1, "Sphere", 2, 1, np.array([1, 3]), np.array([2.0, 3.0]), 5)
+    with pytest.raises(ValueError, match="best_y strictly decrease"):
+        write_analyzer_logs(tmp_path, [run], "x")
+    run = IOHRun(1, "Sphere", 2, 1, np.array([1, 3]), np.array([2.0, 1.0]), 2)
+    with pytest.raises(ValueError, match="total_evals 2 < last eval"):
+        write_analyzer_logs(tmp_path, [run], "x")
