@@ -1,4 +1,6 @@
-"""Every record of ``tests/data/function_vectors.json`` is reproduced (SPEC 2).
+"""Every record of ``tests/data/function_vectors.json`` is reproduced.
+
+See docs/functions.md#f-exactness.
 
 The vectors are the project's independent reference values for F1-F16 and the alternates; they
 ship with the repository so a clone can run the test on its own.
