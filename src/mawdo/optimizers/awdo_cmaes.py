@@ -11,8 +11,8 @@ rand(4, 1)``, ``sigma = 0.5``). From the second move on the coefficients are CMA
 can be negative or above 1: the reference does not bound them.
 
 The velocity is WDO's (``|1 - 1/i|`` pressure weight, ``c/i`` Coriolis) with the true ranks; the
-reference code indexes with the sort permutation instead (docs/deviations.md). The CMA-ES is the
-maintained ``cmaes`` library (CyberAgentAILab), not our own.
+reference code indexes with the sort permutation instead (docs/deviations.md#d-awdo-cmaes). The
+CMA-ES is the maintained ``cmaes`` library (CyberAgentAILab), not our own.
 """
 
 from __future__ import annotations
