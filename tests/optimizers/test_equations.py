@@ -1,7 +1,5 @@
-"""One update step of WDO, AWDO, GWO and WOA on tiny hand-set populations with fixed draws,
-compared with the update worked out independently here (plain scalar loops, no mawdo code)."""
-
-import math
+"""One update step of WDO, AWDO and GWO on tiny hand-set populations with fixed draws (WOA:
+test_woa_reference.py), compared with the update worked out independently here (scalar loops)."""
 
 import numpy as np
 import pytest
@@ -10,7 +8,6 @@ from mawdo import make_optimizer
 from mawdo.optimizers.base import Space
 from mawdo.optimizers.gwo import GWOState, update_leaders_demoting, update_leaders_reference
 from mawdo.optimizers.wdo import WindState
-from mawdo.optimizers.woa import WOAState
 
 from .fixed_streams import FixedStreams
 
@@ -157,47 +154,3 @@ def test_gwo_step_by_hand():
                 acc += lead[0, k, d] - A * abs(C * lead[0, k, d] - X0[0, i, d])
             expect = min(max(acc / 3, SPACE.lb[d]), SPACE.ub[d])
             assert X[0, i, d] == pytest.approx(expect, abs=1e-12)
-
-
-@pytest.mark.parametrize("l_range", ["paper", "matlab"])
-def test_woa_step_by_hand(l_range):
-    opt = make_optimizer("woa", pop_size=4, l_range=l_range)
-    X0 = np.array([[[1.0, 2.0], [-3.0, 0.5], [4.0, 3.5], [0.0, 1.0]]])
-    leader = np.array([[0.5, 1.5]])
-    # per whale: r1, r2, p, l-draw, random-whale draw (columns), chosen to hit every branch:
-    # whale 0 encircles (|A|<1, p<.5), whale 1 searches (|A|>=1), whales 2-3 spiral
-    u = np.array(
-        [
-            [
-                [0.5, 0.3, 0.2, 0.7, 0.9],
-                [0.99, 0.6, 0.1, 0.2, 0.30],
-                [0.4, 0.1, 0.8, 0.25, 0.5],
-                [0.1, 0.9, 0.5, 0.95, 0.1],
-            ]
-        ]
-    )
-    st = WOAState(
-        X=X0.copy(),
-        leader_f=np.array([1.0]),
-        leader_x=leader,
-        t=3,
-        T=10,
-        space=SPACE,
-        streams=FixedStreams(random=[u.transpose(0, 2, 1)]),
-    )
-    X = opt.ask(st)
-    a = 2 - 2 * (3 - 1) / 10
-    for i in range(4):
-        r1, r2, p, ul, ur = u[0, i]
-        A, C = 2 * a * r1 - a, 2 * r2
-        l = 2 * ul - 1 if l_range == "paper" else ((-1 - 2 / 10) - 1) * ul + 1
-        k = min(int(ur * 4), 3)
-        for d in range(2):
-            x, L, xr = X0[0, i, d], leader[0, d], X0[0, k, d]
-            if p < 0.5:
-                new = L - A * abs(C * L - x) if abs(A) < 1 else xr - A * abs(C * xr - x)
-            else:
-                new = abs(L - x) * math.exp(l) * math.cos(2 * math.pi * l) + L
-            expect = min(max(new, SPACE.lb[d]), SPACE.ub[d])
-            assert X[0, i, d] == pytest.approx(expect, abs=1e-12)
-    assert abs(2 * a * 0.99 - a) >= 1 and abs(2 * a * 0.5 - a) < 1  # branches really taken

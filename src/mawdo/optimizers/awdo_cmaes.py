@@ -3,9 +3,16 @@
 Each parcel carries its own coefficient vector ``(alpha, g, RT, c)``, one sample of a 4-D CMA-ES
 per run whose population is the air population (``lambda = N``). The CMA-ES fitness of a sample is
 the pressure of the parcel that used it, after it moved, so no extra evaluations are spent.
+
+As in ``AWDO_v03.m``, the first move uses coefficients drawn from ``U[0, 1]`` (``rec.arx =
+rand(4, popsize)``), and those draws, with the pressures they produced, are the first generation
+the CMA-ES is told (``purecmaes_wdo`` is first called after the first move, with ``xmean =
+rand(4, 1)``, ``sigma = 0.5``). From the second move on the coefficients are CMA-ES samples, which
+can be negative or above 1: the reference does not bound them.
+
 The velocity is WDO's (``|1 - 1/i|`` pressure weight, ``c/i`` Coriolis) with the true ranks; the
-reference code indexes with the sort permutation instead (docs/deviations.md). The CMA-ES is the
-maintained ``cmaes`` library (CyberAgentAILab), not our own.
+reference code indexes with the sort permutation instead (docs/deviations.md#d-awdo-cmaes). The
+CMA-ES is the maintained ``cmaes`` library (CyberAgentAILab), not our own.
 """
 
 from __future__ import annotations
@@ -51,7 +58,8 @@ class AWDOCMA(Wind):
             raise ImportError("AWDO variant 'cmaes' needs the 'cmaes' package") from exc
         base = super().init(space, streams, max_iter, x0)
         N = self.params.pop_size
-        # The first coefficients are U[0,1] (rec.arx = rand(4, popsize)); the CMA-ES mean too.
+        # AWDO_v03.m: rec.arx = rand(4, popsize) moves the parcels once before the CMA-ES starts;
+        # the CMA-ES's own initial mean is a separate U[0,1]^4 draw (rec.xmean = rand(4, 1)).
         arx = streams.random((N, 4))
         means = streams.random((4,))
         seeds = streams.integers(2**31 - 1)
@@ -67,14 +75,17 @@ class AWDOCMA(Wind):
     def tell(self, state: AWDOCMAState, X: np.ndarray, F: np.ndarray) -> AWDOCMAState:
         first = state.t == 0
         state = super().tell(state, X, F)
-        if not first:  # the initial population did not use CMA-ES coefficients
-            f = state.f
-            for r, cma in enumerate(state.cmas):
-                fr = f[r]
-                finite = np.isfinite(fr)
-                worst = fr[finite].max() + 1.0 if finite.any() else 1.0
-                fr = np.where(finite, fr, worst)
-                cma.tell([(state.arx[r, i], float(fr[i])) for i in range(fr.size)])
+        if first:  # the initial population used no coefficients: the U[0,1] arx moves it first
+            return state
+        # The pressures of the move just made score the coefficient samples that made it (for the
+        # first CMA-ES update these are the U[0,1] draws, as in AWDO_v03.m), then new samples.
+        f = state.f
+        for r, cma in enumerate(state.cmas):
+            fr = f[r]
+            finite = np.isfinite(fr)
+            worst = fr[finite].max() + 1.0 if finite.any() else 1.0
+            fr = np.where(finite, fr, worst)
+            cma.tell([(state.arx[r, i], float(fr[i])) for i in range(fr.size)])
         state.arx = np.stack(
             [np.stack([cma.ask() for _ in range(state.arx.shape[1])]) for cma in state.cmas]
         )

@@ -120,7 +120,7 @@ register(
         WOA,
         {},
         "Mirjalili & Lewis, Adv. Eng. Softw. 95:51-67, 2016; WOA.m",
-        "Whale Optimization Algorithm",
+        "Whale Optimization Algorithm as WOA.m (random whale per coordinate, in-place moves)",
         label="WOA",
     )
 )
