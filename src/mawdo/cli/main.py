@@ -1,7 +1,8 @@
 """The ``mawdo`` command: a thin layer over the library.
 
-``mawdo list`` and ``mawdo optimize`` live here; ``mawdo bench`` (experiments) and
-``mawdo plan`` (path planning) are sub-apps mounted from their packages.
+``mawdo list``, ``optimize``, ``demo`` and ``reproduce`` live here; ``mawdo bench``
+(:mod:`mawdo.cli.bench`) and ``mawdo plan`` (:mod:`mawdo.cli.plan`) are sub-apps mounted below.
+The command layer is the top floor: it calls the library and nothing imports it.
 """
 
 from __future__ import annotations
@@ -244,8 +245,8 @@ def reproduce(
 
 
 def _mount_subapps() -> None:
-    from mawdo.experiments.cli import bench_app
-    from mawdo.planning.cli import plan_app
+    from mawdo.cli.bench import bench_app
+    from mawdo.cli.plan import plan_app
 
     app.add_typer(bench_app, name="bench", help="Benchmark study: run plans, make reports.")
     app.add_typer(plan_app, name="plan", help="Path planning among moving obstacles.")

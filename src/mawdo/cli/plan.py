@@ -102,10 +102,8 @@ def study_cmd(
     progress: bool = typer.Option(True, help="show a progress bar"),
 ):
     """Run the planning study (paper Table 6) into a resumable store."""
-    from mawdo.experiments.plan import PlanError
-    from mawdo.experiments.runner import run_plan
-    from mawdo.experiments.store import StoreError
-    from mawdo.experiments.study import study_preset
+    from mawdo.experiments import PlanError, StoreError, run_plan
+    from mawdo.experiments.planning import study_preset
 
     try:
         plan = study_preset(preset).with_overrides(
@@ -136,12 +134,12 @@ def report_cmd(
     gif: bool = typer.Option(True, help="write the animated GIF"),
 ):
     """Tables and figures of a planning study, read from its store (nothing is recomputed)."""
-    from mawdo.experiments.store import StoreError
-    from mawdo.experiments.study_report import write_study_report
+    from mawdo.experiments import StoreError
+    from mawdo.experiments.planning import write_study_report
 
     try:
         path = write_study_report(store, out, gif=gif)
-    except StoreError as exc:
+    except (StoreError, ValueError) as exc:
         console.print(f"[bold red]error:[/] {exc}")
         raise typer.Exit(1) from None
     console.print(f"report: {path}")
