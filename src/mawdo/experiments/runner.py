@@ -248,6 +248,8 @@ def run_plan(
 ) -> RunSummary:
     """Compute every run of ``plan`` that ``store_path`` does not hold yet, and store it.
 
+    Long only by its numpydoc docstring; the loop over outcomes is :func:`_store_outcomes`.
+
     Parameters
     ----------
     plan : Study
@@ -301,28 +303,8 @@ def run_plan(
         else:
             outcomes = _in_process(specs, execute)
         bar = _Bar(progress, sum(t.n_runs for t in tasks), plan.name)
-        version = library_version()
         try:
-            with closing(outcomes):
-                for out in outcomes:
-                    n = out["task"]["n_runs"]
-                    if "lost" not in out and out["library_version"] != version:
-                        out = {
-                            "task": out["task"],
-                            "lost": (
-                                f"worker {out['worker']} runs mawdo {out['library_version']}, "
-                                f"this process {version}"
-                            ),
-                        }
-                    if "lost" in out:
-                        summary.lost += n
-                        _say(f"task lost ({_task_name(out['task'])}): {out['lost']}")
-                    else:
-                        store.write_task(out)
-                        summary.tasks += 1
-                        summary.done += n
-                        summary.failed += sum(r.failed for r in out["rows"])
-                    bar.advance(n, f"{summary.failed} failed" if summary.failed else "")
+            _store_outcomes(outcomes, store, summary, bar)
         except KeyboardInterrupt:
             summary.interrupted = True
         finally:
@@ -339,6 +321,32 @@ def run_plan(
             f"compute them."
         )
     return summary
+
+
+def _store_outcomes(outcomes, store: Store, summary: RunSummary, bar: _Bar) -> None:
+    """Store each outcome as it arrives; count lost tasks (worker failure, other version)."""
+    version = library_version()
+    with closing(outcomes):
+        for out in outcomes:
+            n = out["task"]["n_runs"]
+            if "lost" not in out and out["library_version"] != version:
+                out = {
+                    "task": out["task"],
+                    "lost": (
+                        f"worker {out['worker']} runs mawdo {out['library_version']}, "
+                        f"this process {version}"
+                    ),
+                }
+            if "lost" in out:
+                summary.lost += n
+                _say(f"task lost ({_task_name(out['task'])}): {out['lost']}")
+            else:
+                # later guard: check each row's plan hash here before writing
+                store.write_task(out)
+                summary.tasks += 1
+                summary.done += n
+                summary.failed += sum(r.failed for r in out["rows"])
+            bar.advance(n, f"{summary.failed} failed" if summary.failed else "")
 
 
 def _task_name(t: dict[str, Any]) -> str:

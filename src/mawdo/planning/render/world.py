@@ -34,6 +34,8 @@ def _draw_world(
 ) -> None:
     """Draw the world at time ``t`` on ``ax``, and a run's state at ``t`` if ``result`` is given.
 
+    Long because each layer of the panel is a few plotting calls in drawing order.
+
     Parameters
     ----------
     ax : matplotlib.axes.Axes
