@@ -116,8 +116,10 @@ def report_cmd(
     ),
 ) -> None:
     """Write tables (Markdown, LaTeX, CSV) and figures from a store, without recomputing."""
+    from mawdo.cli.errors import check_output_dir
     from mawdo.experiments import StoreError, write_report
 
+    check_output_dir(out, "--out folder")
     try:
         files = write_report(store, out, plots=plots, svg=svg, reference=reference)
     except (StoreError, ValueError) as exc:

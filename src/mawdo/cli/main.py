@@ -16,7 +16,10 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from mawdo.cli.errors import IMAGE_SUFFIXES, GuardedGroup, check_output_dir, check_output_file
+
 app = typer.Typer(
+    cls=GuardedGroup,
     help="Wind driven optimization (WDO, AWDO, MAWDO) and real-time path planning.",
     no_args_is_help=True,
     add_completion=False,
@@ -110,6 +113,11 @@ def optimize(
 
     algos = [a.strip() for a in algorithm.split(",") if a.strip()]
     opts = _parse_options(option)
+    # outputs are checked before minutes of computing, not after
+    if plot:
+        check_output_file(plot, IMAGE_SUFFIXES, what="--plot")
+    if json_out:
+        check_output_file(json_out, what="--json")
     results = {}
     for algo in algos:
         try:
@@ -185,7 +193,7 @@ def demo(
     from mawdo.planning.planner import plan
 
     t0 = time.perf_counter()
-    out.mkdir(parents=True, exist_ok=True)
+    check_output_dir(out, "--out folder")
     sc = get_scenario("paper")
     console.print(
         f"[bold]mawdo demo[/]: MAWDO on the '{sc.name}' scenario ({sc.width:g} x "
@@ -234,6 +242,7 @@ def reproduce(
     """Reproduce the paper: benchmark, shifted suite, ablation and planning study, one report."""
     from mawdo.reproduce import reproduce as run
 
+    check_output_dir(out, "--out folder")
     try:
         path = run(
             out, quick=quick, workers=workers, dask=dask, progress=progress, say=console.print
