@@ -126,6 +126,7 @@ def _in_process(specs: list[dict], execute: Callable) -> Iterator[dict]:
 
 
 def _ignore_sigint() -> None:
+    # (a later guard, "workers exit when the parent dies", belongs in this initializer)
     # Only the parent handles Ctrl-C: it stops the pool and keeps what finished. A terminal's
     # Ctrl-C reaches the whole process group, and a worker dying of it mid-task would break
     # the pool before the parent can shut it down in order.
