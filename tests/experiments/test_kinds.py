@@ -229,3 +229,11 @@ def test_an_old_store_is_refused_with_what_to_do(tmp_path):
     assert run_plan(plan, db, progress=False, force=True).complete
     with Store.read(db) as store:
         assert store.meta["schema_version"] == 3 and store.count() == 2
+
+
+def test_a_store_of_an_unregistered_kind_says_what_to_import(tmp_path, monkeypatch):
+    run_plan(DicePlan(runs=1), tmp_path / "u.db", progress=False)
+    items = {k: v for k, v in STUDY_KINDS._items.items() if k != "dice"}
+    monkeypatch.setattr(STUDY_KINDS, "_items", items)
+    with pytest.raises(StoreError, match="unknown study kind 'dice'.*import the module"):
+        Store.read(tmp_path / "u.db")
