@@ -3,7 +3,8 @@ is at each path time, which segments come within reach of it (a lens test), and 
 of those, piece by piece of the obstacle's motion.
 
 One compiled function per step; :func:`_moving_pass` runs them for one obstacle and one block.
-The arithmetic is that of the single function they were cut from, statement for statement.
+The arithmetic is that of the single function they were cut from, statement for statement, and
+the steps are inlined into it (Numba IR inlining), so the compiled pass is the one it was.
 """
 
 from __future__ import annotations
@@ -46,7 +47,7 @@ def _moving_pass(i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, g
         _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, pre, ncol)
 
 
-@njit(cache=True, fastmath=False, error_model="numpy")
+@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
 def _centres(i, blk, path, work, obs, motion, grid):
     """Step 1: obstacle i's centre at each path time into ``work`` (cxp, cyp, cep, kpt).
 
@@ -134,7 +135,7 @@ def _centres(i, blk, path, work, obs, motion, grid):
                 cep[p] = 0.0
 
 
-@njit(cache=True, fastmath=False, error_model="numpy")
+@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
 def _room(i, blk, pre):
     """Room for rounding (pixels) of obstacle i's tests in this block."""
     vmax, omax = pre[0], pre[1]
@@ -149,7 +150,7 @@ def _room(i, blk, pre):
     return room
 
 
-@njit(cache=True, fastmath=False, error_model="numpy")
+@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
 def _near_segments(i, blk, room, path, work, obs, pre):
     """Step 2: flag the segments that come within reach of obstacle i; returns how many.
 
@@ -193,7 +194,7 @@ def _near_segments(i, blk, room, path, work, obs, pre):
     return nf
 
 
-@njit(cache=True, fastmath=False, error_model="numpy")
+@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
 def _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, pre, ncol):
     """Step 3: exact tests of the ``nf`` flagged segments on obstacle i, piece by piece.
 
