@@ -10,11 +10,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from mawdo.experiments.plan import preset_plan
-from mawdo.experiments.report import write_report
-from mawdo.experiments.runner import run_plan
-from mawdo.experiments.study import study_preset
-from mawdo.experiments.study_report import write_study_report
+from mawdo.experiments import run_plan
+from mawdo.experiments.benchmark import preset_plan, write_report
+from mawdo.experiments.planning import study_preset, write_study_report
 
 # --quick: the same protocol on a reduced budget (minutes, not an hour).
 QUICK_BENCH = {"runs": 5, "max_iter": 100}

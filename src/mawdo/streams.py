@@ -118,3 +118,28 @@ def keyed_seed_sequence(seed, *key: int) -> np.random.SeedSequence:
     return np.random.SeedSequence(
         ss.entropy, spawn_key=(*ss.spawn_key, *map(int, key)), pool_size=ss.pool_size
     )
+
+
+# ---------------------------------------------------------------------- derived seeds
+# Studies derive every per-run and per-problem seed here, so one module says how a seed follows
+# from (master seed, names, indices).
+
+
+def name_word(name: str) -> int:
+    """A 32-bit word naming ``name`` in seed entropy: CRC-32 of its UTF-8 bytes.
+
+    Stable across Python processes and versions (unlike ``hash``), so a seed derived from a
+    function or scenario name is the same on every host.
+    """
+    import zlib
+
+    return zlib.crc32(name.encode("utf-8"))
+
+
+def seed_word(entropy) -> int:
+    """One 32-bit seed drawn from ``SeedSequence(entropy)`` (``entropy``: int or list of ints).
+
+    Used where a consumer needs a plain integer seed (a planning run, a shifted optimum) that
+    depends on nothing but ``entropy``; distinct entropies give independent seeds.
+    """
+    return int(np.random.SeedSequence(entropy).generate_state(1, dtype=np.uint32)[0])

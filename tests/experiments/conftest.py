@@ -28,8 +28,8 @@ def small_plan(**changes) -> ExperimentPlan:
 
 # Columns that are the same whoever computed a run and when (not wall times, not task ids).
 VALUE_COLUMNS = (
-    "plan_hash, algorithm, function, shifted, run, params_json, seed_entropy, shift_seed, fun, "
-    "error, f_star, nfev, nit, status, curve, curve_nfev, curve_len, library_version, error_text"
+    "plan_hash, algorithm, problem, run, params, seed_entropy, shift_seed, fun, "
+    "error, f_star, nfev, nit, status, curve, curve_nfev, library_version, error_text"
 )
 
 
@@ -38,7 +38,7 @@ def stored_values(path) -> list[tuple]:
     conn = sqlite3.connect(path)
     try:
         return conn.execute(
-            f"SELECT {VALUE_COLUMNS} FROM runs ORDER BY algorithm, function, run"
+            f"SELECT {VALUE_COLUMNS} FROM runs ORDER BY algorithm, problem, run"
         ).fetchall()
     finally:
         conn.close()

@@ -6,8 +6,8 @@ import sqlite3
 
 from typer.testing import CliRunner
 
+from mawdo.cli.bench import bench_app
 from mawdo.experiments import Store
-from mawdo.experiments.cli import bench_app
 
 runner = CliRunner()
 

@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mawdo.experiments.plan import PRESETS, ExperimentPlan, PlanError, Task, preset_plan
+from mawdo.experiments import PRESETS, ExperimentPlan, PlanError, Task, preset_plan
 from mawdo.functions import PAPER_SUITE, get_function
 from mawdo.optimizers import ABLATION_ALGORITHMS, PAPER_ALGORITHMS
 
@@ -60,7 +60,7 @@ def test_tasks_cover_exactly_the_missing_runs(runs, batch, data):
     keys = [(a, f, k) for a in plan.algorithms for f in plan.functions for k in range(runs)]
     done = set(data.draw(st.lists(st.sampled_from(keys), unique=True)))
     tasks = plan.tasks(done)
-    computed = [(t.algorithm, t.function, k) for t in tasks for k in t.runs]
+    computed = [(t.algorithm, t.problem, k) for t in tasks for k in t.runs]
     assert len(computed) == len(set(computed))  # no run twice
     assert set(computed) == set(keys) - done  # exactly the missing ones
     assert all(1 <= t.n_runs <= batch for t in tasks)

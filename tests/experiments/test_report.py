@@ -12,7 +12,8 @@ import pytest
 
 from mawdo.experiments import Store, run_plan, write_report
 from mawdo.experiments import runner as runner_mod
-from mawdo.experiments.paper_values import TABLE3, TABLE5, paper_entry
+from mawdo.experiments.benchmark import execute as bench_exec_mod
+from mawdo.experiments.benchmark.paper_values import TABLE3, TABLE5, paper_entry
 from mawdo.experiments.stats import ranksum
 
 from .conftest import small_plan
@@ -72,14 +73,14 @@ def test_results_table_agrees_with_the_stored_runs(report_dir, reference_store):
     rows = read_csv(out / "results_raw.csv")
     err_rows = read_csv(out / "results_error.csv")
     with Store.read(reference_store) as store:
-        recs = store.records(curves=False)
+        recs = store.rows(skip=("curve", "curve_nfev"))
     for fn, pid in (("quartic", "F6"), ("six_hump_camel", "F12"), ("rastrigin", "F7")):
         block = {r["Index"]: r for r in rows if r["Function"] == pid}
         eblock = {r["Index"]: r for r in err_rows if r["Function"] == pid}
-        ref = np.array([r.fun for r in recs if r.algorithm == "mawdo" and r.function == fn])
+        ref = np.array([r.fun for a, f, r in recs if a == "mawdo" and f == fn])
         for algo, col in (("gwo", "GWO"), ("mewdo", "MEWDO (reconstructed)"), ("mawdo", "MAWDO")):
-            f = np.array([r.fun for r in recs if r.algorithm == algo and r.function == fn])
-            e = np.array([r.error for r in recs if r.algorithm == algo and r.function == fn])
+            f = np.array([r.fun for a, g, r in recs if a == algo and g == fn])
+            e = np.array([r.error for a, g, r in recs if a == algo and g == fn])
             assert float(block["Best"][col]) == f.min()
             assert float(block["Ave"][col]) == pytest.approx(f.mean(), rel=1e-14)
             assert float(block["Std"][col]) == pytest.approx(f.std(ddof=1), rel=1e-12)
@@ -160,7 +161,7 @@ def test_report_never_recomputes(reference_store, tmp_path, monkeypatch):
 
     import mawdo
 
-    monkeypatch.setattr(runner_mod, "minimize", boom)
+    monkeypatch.setattr(bench_exec_mod, "minimize", boom)
     monkeypatch.setattr(runner_mod, "execute_task", boom)
     monkeypatch.setattr(mawdo, "minimize", boom)
     monkeypatch.setattr(sys.modules["mawdo.minimize"], "minimize", boom)
@@ -198,14 +199,14 @@ def test_ablation_table_and_partial_store(tmp_path):
 
 
 def test_failed_runs_are_excluded_and_noted(tmp_path, monkeypatch):
-    real = runner_mod.minimize
+    real = bench_exec_mod.minimize
 
     def flaky(fun, **kw):
         if kw["algorithm"] == "gwo" and kw["first_run"] == 0 and fun == "rastrigin":
             raise RuntimeError("boom")
         return real(fun, **kw)
 
-    monkeypatch.setattr(runner_mod, "minimize", flaky)
+    monkeypatch.setattr(bench_exec_mod, "minimize", flaky)
     db = tmp_path / "f.db"
     run_plan(small_plan(), db, progress=False)
     out = tmp_path / "rep"

@@ -15,9 +15,9 @@ import numpy as np
 import pytest
 
 from mawdo import minimize
-from mawdo.experiments import ExperimentPlan, Store, execute_task, run_plan
+from mawdo.experiments import ExperimentPlan, Store, Task, execute_task, run_plan
 from mawdo.experiments import runner as runner_mod
-from mawdo.experiments.plan import Task
+from mawdo.experiments.benchmark import execute as bench_exec_mod
 
 from .conftest import small_plan, stored_values
 
@@ -48,9 +48,9 @@ def test_execute_task_matches_a_direct_minimize_call():
         pop_size=plan.pop_size,
     )
     row = out["rows"][1]
-    assert row["run"] == 3 and row["error_text"] is None
-    assert row["fun"] == res.fun[0] and row["nfev"] == res.nfev[0]
-    np.testing.assert_array_equal(row["curve"], res.history[0])
+    assert row.run == 3 and row.error_text is None
+    assert row.fun == res.fun[0] and row.nfev == res.nfev[0]
+    np.testing.assert_array_equal(row.curve, res.history[0])
 
 
 def test_workers_do_not_change_stored_values(reference_store, tmp_path):
@@ -126,7 +126,8 @@ def _start(plan_file: Path, db: Path, *extra: str) -> subprocess.Popen:
         [
             sys.executable,
             "-m",
-            "mawdo.experiments",
+            "mawdo.cli",
+            "bench",
             "run",
             "--plan",
             str(plan_file),
@@ -169,7 +170,7 @@ def test_kill_9_then_resume_equals_an_uninterrupted_run(slow_plan_file, tmp_path
     with Store.read(db) as store:
         log = store.task_log()
     resumed = [
-        (t["algorithm"], t["function"], k)
+        (t["algorithm"], t["problem"], k)
         for t in log[len(first_session) :]
         for k in range(t["first_run"], t["first_run"] + t["n_runs"])
     ]
@@ -219,30 +220,30 @@ def test_ctrl_c_stops_the_pool_keeps_finished_tasks_and_says_how_to_resume(
 
 
 def test_a_failing_task_becomes_error_rows(monkeypatch, tmp_path):
-    real = runner_mod.minimize
+    real = bench_exec_mod.minimize
 
     def flaky(fun, **kw):
         if fun == "six_hump_camel" and kw["algorithm"] == "gwo":
             raise FloatingPointError("objective exploded")
         return real(fun, **kw)
 
-    monkeypatch.setattr(runner_mod, "minimize", flaky)
+    monkeypatch.setattr(bench_exec_mod, "minimize", flaky)
     plan = small_plan()
     db = tmp_path / "fail.db"
     summary = run_plan(plan, db, progress=False)
     assert summary.complete and summary.failed == plan.runs
     with Store.read(db) as store:
-        failed = [r for r in store.records() if r.failed]
-        assert {(r.algorithm, r.function) for r in failed} == {("gwo", "six_hump_camel")}
+        failed = [(a, f, r) for a, f, r in store.rows() if r.failed]
+        assert {(a, f) for a, f, _ in failed} == {("gwo", "six_hump_camel")}
         assert all(
             r.fun is None and "FloatingPointError: objective exploded" in r.error_text
-            for r in failed
+            for _, _, r in failed
         )
         assert store.count(failed=False) == plan.total_runs - plan.runs
 
     # failed runs are stored (a re-run skips them) until asked to retry
     assert run_plan(plan, db, progress=False).done == 0
-    monkeypatch.setattr(runner_mod, "minimize", real)
+    monkeypatch.setattr(bench_exec_mod, "minimize", real)
     again = run_plan(plan, db, progress=False, retry_failed=True)
     assert (again.done, again.failed) == (plan.runs, 0)
 
@@ -250,7 +251,9 @@ def test_a_failing_task_becomes_error_rows(monkeypatch, tmp_path):
 def test_results_from_another_library_version_are_not_stored(monkeypatch, tmp_path):
     real = runner_mod.execute_task
     monkeypatch.setattr(
-        runner_mod, "execute_task", lambda spec: {**real(spec), "library_version": "9.9.9"}
+        runner_mod,
+        "execute_task",
+        lambda spec, execute=None: {**real(spec, execute), "library_version": "9.9.9"},
     )
     plan = small_plan(functions=["rastrigin"], runs=2)
     summary = run_plan(plan, tmp_path / "v.db", progress=False)
@@ -267,26 +270,26 @@ def test_equal_evaluation_budget_is_exact_for_every_algorithm(tmp_path):
     run_plan(plan, tmp_path / "evals.db", progress=False)
     run_plan(plan.with_overrides(budget="iterations"), tmp_path / "iters.db", progress=False)
     with Store.read(tmp_path / "evals.db") as store:
-        evals = store.records()
+        evals = store.rows()
     with Store.read(tmp_path / "iters.db") as store:
-        iters = store.records()
+        iters = store.rows()
     budget = plan.pop_size * plan.max_iter
-    assert all(r.nfev == budget for r in evals)
-    assert all(r.nit == plan.max_iter for r in iters)
-    assert any(r.nfev > budget for r in iters if r.algorithm == "mawdo")
-    assert all(r.curve_nfev[-1] == r.nfev for r in evals + iters)
+    assert all(r.nfev == budget for _, _, r in evals)
+    assert all(r.nit == plan.max_iter for _, _, r in iters)
+    assert any(r.nfev > budget for a, _, r in iters if a == "mawdo")
+    assert all(r.curve_nfev[-1] == r.nfev for _, _, r in evals + iters)
 
 
 def test_shifted_plan_stores_the_shift_seed(tmp_path):
     plan = small_plan(shifted=True, functions=["rastrigin"], runs=2, algorithms=["gwo", "mawdo"])
     run_plan(plan, tmp_path / "sh.db", progress=False)
     with Store.read(tmp_path / "sh.db") as store:
-        recs = store.records()
+        recs = [r for _, _, r in store.rows()]
+        assert store.plan.shifted
     assert {r.shift_seed for r in recs} == {plan.shift_seed("rastrigin")}
-    assert all(r.shifted for r in recs)
     unshifted = execute_task(
         small_plan(functions=["rastrigin"]).task_spec(Task("gwo", "rastrigin", 0, 1))
-    )["rows"][0]["fun"]
+    )["rows"][0].fun
     assert recs[0].fun != unshifted
 
 

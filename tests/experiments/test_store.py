@@ -9,8 +9,9 @@ import stat
 import numpy as np
 import pytest
 
-from mawdo.experiments import Store, StoreError, run_plan
-from mawdo.experiments.plan import Task
+from mawdo.experiments import Store, StoreError, Task, run_plan
+from mawdo.experiments.benchmark import BenchmarkRow
+from mawdo.experiments.benchmark.data import curves
 
 from .conftest import small_plan
 
@@ -20,27 +21,27 @@ def outcome(plan, task: Task, value: float = 1.5, bad_run: int | None = None) ->
     rows = []
     for k in task.runs:
         rows.append(
-            {
-                "run": bad_run if (bad_run is not None and k == task.runs[-1]) else k,
-                "fun": value + k,
-                "error": value + k + 1.0,
-                "f_star": -1.0,
-                "nfev": 60 + k,
-                "nit": 5,
-                "status": 0,
-                "wall_time": 0.01,
-                "params": {"pop_size": np.int64(12)},
-                "curve": np.linspace(10.0, value + k, 5),
-                "curve_nfev": np.arange(12, 61, 12),
-                "seed_entropy": [123, 456],
-                "shift_seed": None,
-                "error_text": None,
-            }
+            BenchmarkRow(
+                run=bad_run if (bad_run is not None and k == task.runs[-1]) else k,
+                fun=value + k,
+                error=value + k + 1.0,
+                f_star=-1.0,
+                nfev=60 + k,
+                nit=5,
+                status=0,
+                wall_time=0.01,
+                params={"pop_size": np.int64(12)},
+                curve=np.linspace(10.0, value + k, 5),
+                curve_nfev=np.arange(12, 61, 12),
+                seed_entropy=[123, 456],
+                shift_seed=None,
+                error_text=None,
+            )
         )
     return {
         "task": {
             "algorithm": task.algorithm,
-            "function": task.function,
+            "problem": task.problem,
             "first_run": task.first_run,
             "n_runs": task.n_runs,
         },
@@ -58,14 +59,15 @@ def test_round_trip(tmp_path):
         assert store.done_keys() == {("gwo", "quartic", 2), ("gwo", "quartic", 3)}
     with Store.read(tmp_path / "s.db") as store:
         assert store.plan == plan
-        recs = store.records()
+        recs = [r for _, _, r in store.rows()]
+        assert all(type(r) is BenchmarkRow for r in recs)
         assert [r.run for r in recs] == [2, 3]
         np.testing.assert_array_equal(recs[1].curve, np.linspace(10.0, 4.5, 5))
         np.testing.assert_array_equal(recs[1].curve_nfev, [12, 24, 36, 48, 60])
         assert recs[0].fun == 3.5 and recs[0].params == {"pop_size": 12}
         assert recs[0].seed_entropy == [123, 456] and not recs[0].failed
         assert store.task_log()[0]["n_runs"] == 2
-        c, n, f_star = store.curves("gwo", "quartic")
+        c, n, f_star = curves(store, "gwo", "quartic")
         assert c.shape == n.shape == (2, 5) and f_star == -1.0
 
 

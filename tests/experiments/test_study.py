@@ -6,11 +6,9 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from mawdo.experiments.plan import PlanError
-from mawdo.experiments.runner import run_plan
-from mawdo.experiments.store import Store, StoreError
-from mawdo.experiments.study import BASELINE, StudyPlan, study_preset
-from mawdo.experiments.study_report import write_study_report
+from mawdo.experiments import PlanError, Store, StoreError, run_plan
+from mawdo.experiments.planning import BASELINE, StudyPlan, study_preset, write_study_report
+from mawdo.experiments.planning.report import study_runs
 from mawdo.planning import check_trajectory, get_scenario
 from mawdo.planning.planner import result_from_bytes
 
@@ -46,7 +44,7 @@ def test_table_columns_and_values_come_from_the_store(study):
         assert col in header
     assert [r[0] for r in rows[1:]] == ["GWO", "MAWDO", "Oracle follower (frozen obstacles)"]
     with Store.read(db) as st:
-        mawdo = st.study_runs("mawdo")
+        mawdo = study_runs(st, "mawdo")
         share = np.mean([r["metrics"]["collision_free"] for r in mawdo])
     row = rows[2]
     assert float(row[header.index("collision-free")]) == pytest.approx(share)
@@ -59,10 +57,10 @@ def test_every_reported_run_passes_the_independent_checker(study):
     plan, db, _ = study
     sc = get_scenario(plan.scenario)
     with Store.read(db) as st:
-        runs = st.study_runs(payload=True)
+        runs = study_runs(st, route=True)
     assert len(runs) == plan.total_runs == 5
     for r in runs:
-        res = result_from_bytes(r["payload"], sc)
+        res = result_from_bytes(r["route"], sc)
         rep = check_trajectory(res.route, sc, times=res.route_times)
         assert rep.ok == r["metrics"]["collision_free"]
         assert rep.ok, f"{r['algorithm']} run {r['run']} collides"

@@ -1,4 +1,4 @@
-"""Benchmark sweeps (SPEC 3): plans -> runner -> SQLite store -> statistics, reports, plots.
+"""Studies (SPEC 3): plans -> runner -> SQLite store -> statistics, reports, plots.
 
 >>> from mawdo.experiments import preset_plan, run_plan, write_report
 >>> plan = preset_plan("smoke")
@@ -8,30 +8,39 @@
 Data flows one way: a plan is cut into tasks, the runner computes them (in process, on a local
 process pool or on a Dask cluster) and the parent process stores every finished task in one
 transaction; reports and plots read the store only.
+
+Layout: the harness (:mod:`.protocol` with the study-kind registry, :mod:`.plans`, :mod:`.rows`,
+:mod:`.runner`, :mod:`.store`, :mod:`.stats`, :mod:`.tables`) knows no concrete kind; each kind
+is a package that registers itself (:mod:`.benchmark`, :mod:`.planning`). Importing this package
+registers the built-in kinds.
 """
 
-from mawdo.experiments.plan import (
-    PRESETS,
-    ExperimentPlan,
-    PlanError,
-    Task,
-    preset_plan,
-)
-from mawdo.experiments.report import write_report
+from mawdo.experiments import benchmark, planning  # noqa: F401 - registers the built-in kinds
+from mawdo.experiments.benchmark import ExperimentPlan, preset_plan, write_report
+from mawdo.experiments.benchmark.plan import PRESETS
+from mawdo.experiments.plans import PlanError, StudyPlanBase
+from mawdo.experiments.protocol import STUDY_KINDS, Study, StudyKind, Task, register_kind
+from mawdo.experiments.rows import RunRow, column
 from mawdo.experiments.runner import RunSummary, execute_task, run_plan
-from mawdo.experiments.store import RunRecord, Store, StoreError
+from mawdo.experiments.store import Store, StoreError
 
 __all__ = [
     "PRESETS",
+    "STUDY_KINDS",
     "ExperimentPlan",
     "PlanError",
-    "RunRecord",
+    "RunRow",
     "RunSummary",
     "Store",
     "StoreError",
+    "Study",
+    "StudyKind",
+    "StudyPlanBase",
     "Task",
+    "column",
     "execute_task",
     "preset_plan",
+    "register_kind",
     "run_plan",
     "write_report",
 ]

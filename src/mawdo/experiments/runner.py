@@ -2,8 +2,8 @@
 
 The parent process is the only writer to SQLite; workers (processes of a local pool, or Dask
 workers) compute tasks and send their rows back. Every task is a pure function of its spec
-(:meth:`ExperimentPlan.task_spec`), and ``mawdo.minimize`` makes run ``k`` identical whether it is
-computed alone or in any batch, so the stored values do not depend on the worker count, the
+(the plan's ``task_spec``), and every kind makes run ``k`` identical whether it is computed alone
+or in any batch, so the stored values do not depend on the worker count, the
 backend, the order of completion or on where a sweep was interrupted.
 """
 
@@ -15,19 +15,17 @@ import signal
 import socket
 import sys
 import time
-import traceback
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from contextlib import closing
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
-from mawdo.experiments.plan import ExperimentPlan
+from mawdo.experiments.protocol import STUDY_KINDS, Study, kind_of
 from mawdo.experiments.store import Store, library_version
-from mawdo.minimize import minimize
+
+TASK_KEYS = ("algorithm", "problem", "first_run", "n_runs")
 
 
 @dataclass
@@ -87,79 +85,28 @@ class RunSummary:
 
 
 # ---------------------------------------------------------------------- the unit of work
-def execute_task(spec: dict[str, Any]) -> dict[str, Any]:
-    """Compute one task (see :meth:`ExperimentPlan.task_spec`) and return its rows.
+def execute_task(spec: dict[str, Any], execute: Callable | None = None) -> dict[str, Any]:
+    """Compute one task (a spec from the plan's ``task_spec``) and return its outcome.
 
-    Runs on a worker; must stay a module-level function (pickled by reference). An exception
-    from the algorithm or the objective becomes one row per run with ``error_text`` set, so a
-    bad corner of a sweep is recorded rather than killing it.
+    Runs on a worker; must stay a module-level function (pickled by reference). The kind's
+    ``execute`` computes the rows; it is looked up in the registry by ``spec["kind"]`` unless
+    given (the runner passes it, so a worker process imports the kind's module when it
+    unpickles the function, which registers the kind there too).
+
+    Returns
+    -------
+    dict
+        ``task`` (the task key), ``rows`` (the kind's row objects), ``wall`` (s), ``worker``
+        (host:pid) and ``library_version``.
     """
-    if spec.get("kind") == "planning":
-        from mawdo.experiments.study import execute_study_task
-
-        return execute_study_task(spec)
+    if execute is None:
+        execute = STUDY_KINDS[spec["kind"]].execute
     t0 = time.perf_counter()
-    first, n = spec["first_run"], spec["n_runs"]
-    common = {"seed_entropy": spec["seed_entropy"], "shift_seed": spec["shift_seed"]}
-    if spec["budget"] == "iterations":
-        budget = {"max_iter": spec["max_iter"]}
-    else:
-        # Equal evaluations: pop_size * max_iter each; minimize derives T from it for schedules.
-        budget = {"max_evals": spec["pop_size"] * spec["max_iter"]}
-    try:
-        res = minimize(
-            spec["function"],
-            algorithm=spec["algorithm"],
-            runs=n,
-            seed=np.random.SeedSequence(spec["seed_entropy"]),
-            first_run=first,
-            shifted=spec["shifted"],
-            shift_seed=spec["shift_seed"] or 0,
-            preset=spec["bounds_preset"],
-            pop_size=spec["pop_size"],
-            **spec["options"],
-            **budget,
-        )
-        wall = time.perf_counter() - t0
-        f_star = None if res.f_star is None else float(res.f_star)
-        rows = []
-        for i in range(n):
-            fun = float(res.fun[i])
-            rows.append(
-                {
-                    "run": first + i,
-                    "fun": fun,
-                    "f_star": f_star,
-                    "error": None if f_star is None else fun - f_star,
-                    "nfev": int(res.nfev[i]),
-                    "nit": int(res.nit[i]),
-                    "status": int(res.status[i]),
-                    # Runs share one vectorised batch; a run's time is the batch's share.
-                    "wall_time": wall / n,
-                    "params": res.params,
-                    "curve": np.asarray(res.history[i], dtype=float),
-                    "curve_nfev": np.asarray(res.history_nfev[i], dtype=np.int64),
-                    "error_text": None,
-                    **common,
-                }
-            )
-    except Exception as exc:  # noqa: BLE001 - any failure of user/algorithm code is recorded
-        wall = time.perf_counter() - t0
-        text = "".join(traceback.format_exception_only(exc)).strip()
-        rows = [
-            {
-                "run": first + i,
-                "params": {"pop_size": spec["pop_size"], **spec["options"]},
-                "wall_time": wall / n,
-                "error_text": text,
-                **common,
-            }
-            for i in range(n)
-        ]
+    rows = execute(spec)
     return {
-        "task": {k: spec[k] for k in ("algorithm", "function", "first_run", "n_runs")},
+        "task": {k: spec[k] for k in TASK_KEYS},
         "rows": rows,
-        "wall": wall,
+        "wall": time.perf_counter() - t0,
         "worker": f"{socket.gethostname()}:{os.getpid()}",
         "library_version": library_version(),
     }
@@ -167,32 +114,33 @@ def execute_task(spec: dict[str, Any]) -> dict[str, Any]:
 
 def _lost(spec: dict[str, Any], exc: BaseException) -> dict[str, Any]:
     return {
-        "task": {k: spec[k] for k in ("algorithm", "function", "first_run", "n_runs")},
+        "task": {k: spec[k] for k in TASK_KEYS},
         "lost": f"{type(exc).__name__}: {exc}",
     }
 
 
 # ---------------------------------------------------------------------- backends
-def _in_process(specs: list[dict]) -> Iterator[dict]:
+def _in_process(specs: list[dict], execute: Callable) -> Iterator[dict]:
     for spec in specs:
-        yield execute_task(spec)
+        yield execute_task(spec, execute)
 
 
 def _ignore_sigint() -> None:
+    # (a later guard, "workers exit when the parent dies", belongs in this initializer)
     # Only the parent handles Ctrl-C: it stops the pool and keeps what finished. A terminal's
     # Ctrl-C reaches the whole process group, and a worker dying of it mid-task would break
     # the pool before the parent can shut it down in order.
     signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
-def _pool(specs: list[dict], workers: int) -> Iterator[dict]:
+def _pool(specs: list[dict], workers: int, execute: Callable) -> Iterator[dict]:
     # forkserver/spawn rather than fork: the parent may hold threads (rich's refresh thread,
     # Dask, BLAS pools), and forking a threaded process can deadlock.
     method = "forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn"
     pool = ProcessPoolExecutor(
         max_workers=workers, mp_context=mp.get_context(method), initializer=_ignore_sigint
     )
-    futures = {pool.submit(execute_task, s): s for s in specs}
+    futures = {pool.submit(execute_task, s, execute): s for s in specs}
     finished = False
     try:
         for fut in as_completed(futures):
@@ -213,7 +161,7 @@ def _pool(specs: list[dict], workers: int) -> Iterator[dict]:
                 proc.join(timeout=5)
 
 
-def _dask(specs: list[dict], dask) -> Iterator[dict]:
+def _dask(specs: list[dict], dask, execute: Callable) -> Iterator[dict]:
     from distributed import Client
     from distributed import as_completed as dask_as_completed
 
@@ -227,7 +175,7 @@ def _dask(specs: list[dict], dask) -> Iterator[dict]:
         client = dask
     futures = {}
     for s in specs:
-        f = client.submit(execute_task, s, pure=False)
+        f = client.submit(execute_task, s, execute, pure=False)
         futures[f] = s
     finished = False
     try:
@@ -291,7 +239,7 @@ def _say(msg: str) -> None:
 
 # ---------------------------------------------------------------------- driver
 def run_plan(
-    plan: ExperimentPlan,
+    plan: Study,
     store_path: str | Path,
     workers: int = 1,
     dask=None,
@@ -301,10 +249,12 @@ def run_plan(
 ) -> RunSummary:
     """Compute every run of ``plan`` that ``store_path`` does not hold yet, and store it.
 
+    Long only by its numpydoc docstring; the loop over outcomes is :func:`_store_outcomes`.
+
     Parameters
     ----------
-    plan : ExperimentPlan
-        The sweep.
+    plan : Study
+        The study: a plan of a registered kind (:data:`~mawdo.experiments.protocol.STUDY_KINDS`).
     store_path : str or Path
         SQLite results store; created if absent, resumed if it holds part of this plan.
     workers : int
@@ -336,6 +286,7 @@ def run_plan(
         raise ValueError(f"workers={workers!r} must be an integer >= 1")
     if dask is not None and workers > 1:
         raise ValueError("give either workers > 1 (local pool) or dask (cluster), not both")
+    execute = kind_of(plan).execute
     t0 = time.perf_counter()
     store_path = Path(store_path)
     summary = RunSummary(store=store_path, total=plan.total_runs)
@@ -347,34 +298,14 @@ def run_plan(
         summary.skipped = plan.total_runs - sum(t.n_runs for t in tasks)
         specs = [plan.task_spec(t) for t in tasks]
         if dask is not None:
-            outcomes = _dask(specs, dask)
+            outcomes = _dask(specs, dask, execute)
         elif workers > 1 and len(specs) > 1:
-            outcomes = _pool(specs, min(workers, len(specs)))
+            outcomes = _pool(specs, min(workers, len(specs)), execute)
         else:
-            outcomes = _in_process(specs)
+            outcomes = _in_process(specs, execute)
         bar = _Bar(progress, sum(t.n_runs for t in tasks), plan.name)
-        version = library_version()
         try:
-            with closing(outcomes):
-                for out in outcomes:
-                    n = out["task"]["n_runs"]
-                    if "lost" not in out and out["library_version"] != version:
-                        out = {
-                            "task": out["task"],
-                            "lost": (
-                                f"worker {out['worker']} runs mawdo {out['library_version']}, "
-                                f"this process {version}"
-                            ),
-                        }
-                    if "lost" in out:
-                        summary.lost += n
-                        _say(f"task lost ({_task_name(out['task'])}): {out['lost']}")
-                    else:
-                        store.write_task(out)
-                        summary.tasks += 1
-                        summary.done += n
-                        summary.failed += sum(r["error_text"] is not None for r in out["rows"])
-                    bar.advance(n, f"{summary.failed} failed" if summary.failed else "")
+            _store_outcomes(outcomes, store, summary, bar)
         except KeyboardInterrupt:
             summary.interrupted = True
         finally:
@@ -393,6 +324,32 @@ def run_plan(
     return summary
 
 
+def _store_outcomes(outcomes, store: Store, summary: RunSummary, bar: _Bar) -> None:
+    """Store each outcome as it arrives; count lost tasks (worker failure, other version)."""
+    version = library_version()
+    with closing(outcomes):
+        for out in outcomes:
+            n = out["task"]["n_runs"]
+            if "lost" not in out and out["library_version"] != version:
+                out = {
+                    "task": out["task"],
+                    "lost": (
+                        f"worker {out['worker']} runs mawdo {out['library_version']}, "
+                        f"this process {version}"
+                    ),
+                }
+            if "lost" in out:
+                summary.lost += n
+                _say(f"task lost ({_task_name(out['task'])}): {out['lost']}")
+            else:
+                # later guard: check each row's plan hash here before writing
+                store.write_task(out)
+                summary.tasks += 1
+                summary.done += n
+                summary.failed += sum(r.failed for r in out["rows"])
+            bar.advance(n, f"{summary.failed} failed" if summary.failed else "")
+
+
 def _task_name(t: dict[str, Any]) -> str:
     last = t["first_run"] + t["n_runs"] - 1
-    return f"{t['algorithm']} on {t['function']}, runs {t['first_run']}-{last}"
+    return f"{t['algorithm']} on {t['problem']}, runs {t['first_run']}-{last}"

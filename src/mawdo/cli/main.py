@@ -1,7 +1,8 @@
 """The ``mawdo`` command: a thin layer over the library.
 
-``mawdo list`` and ``mawdo optimize`` live here; ``mawdo bench`` (experiments) and
-``mawdo plan`` (path planning) are sub-apps mounted from their packages.
+``mawdo list``, ``optimize``, ``demo`` and ``reproduce`` live here; ``mawdo bench``
+(:mod:`mawdo.cli.bench`) and ``mawdo plan`` (:mod:`mawdo.cli.plan`) are sub-apps mounted below.
+The command layer is the top floor: it calls the library and nothing imports it.
 """
 
 from __future__ import annotations
@@ -15,7 +16,10 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from mawdo.cli.errors import IMAGE_SUFFIXES, GuardedGroup, check_output_dir, check_output_file
+
 app = typer.Typer(
+    cls=GuardedGroup,
     help="Wind driven optimization (WDO, AWDO, MAWDO) and real-time path planning.",
     no_args_is_help=True,
     add_completion=False,
@@ -109,6 +113,11 @@ def optimize(
 
     algos = [a.strip() for a in algorithm.split(",") if a.strip()]
     opts = _parse_options(option)
+    # outputs are checked before minutes of computing, not after
+    if plot:
+        check_output_file(plot, IMAGE_SUFFIXES, what="--plot")
+    if json_out:
+        check_output_file(json_out, what="--json")
     results = {}
     for algo in algos:
         try:
@@ -184,7 +193,7 @@ def demo(
     from mawdo.planning.planner import plan
 
     t0 = time.perf_counter()
-    out.mkdir(parents=True, exist_ok=True)
+    check_output_dir(out, "--out folder")
     sc = get_scenario("paper")
     console.print(
         f"[bold]mawdo demo[/]: MAWDO on the '{sc.name}' scenario ({sc.width:g} x "
@@ -233,6 +242,7 @@ def reproduce(
     """Reproduce the paper: benchmark, shifted suite, ablation and planning study, one report."""
     from mawdo.reproduce import reproduce as run
 
+    check_output_dir(out, "--out folder")
     try:
         path = run(
             out, quick=quick, workers=workers, dask=dask, progress=progress, say=console.print
@@ -244,8 +254,8 @@ def reproduce(
 
 
 def _mount_subapps() -> None:
-    from mawdo.experiments.cli import bench_app
-    from mawdo.planning.cli import plan_app
+    from mawdo.cli.bench import bench_app
+    from mawdo.cli.plan import plan_app
 
     app.add_typer(bench_app, name="bench", help="Benchmark study: run plans, make reports.")
     app.add_typer(plan_app, name="plan", help="Path planning among moving obstacles.")

@@ -14,8 +14,8 @@ from pathlib import Path
 import numpy as np
 
 from mawdo.experiments import stats
+from mawdo.experiments.planning.plan import BASELINE, StudyPlan
 from mawdo.experiments.store import Store
-from mawdo.experiments.study import BASELINE
 from mawdo.experiments.tables import Table, to_csv, to_latex, to_markdown
 
 # Paper Table 6 ("Performance index"); the paper calls MAWDO "DPAWDO" in that table.
@@ -38,6 +38,24 @@ def label(algorithm: str) -> str:
     return OPTIMIZERS[algorithm].display if algorithm in OPTIMIZERS else algorithm
 
 
+def study_runs(store: Store, algorithm: str | None = None, route: bool = False) -> list[dict]:
+    """Stored runs of a planning study as dicts: ``algorithm, run, metrics`` (None for a failed
+    run), ``error_text``, ``curve`` (first plan's convergence) and, when asked, ``route``
+    (bytes of the serialised run)."""
+    skip = () if route else ("route",)
+    return [
+        {
+            "algorithm": a,
+            "run": r.run,
+            "metrics": r.metrics,
+            "route": r.route,
+            "error_text": r.error_text,
+            "curve": r.first_plan_curve,
+        }
+        for a, _, r in store.rows(algorithm, skip=skip)
+    ]
+
+
 def _metric(runs, key) -> np.ndarray:
     return np.array([r["metrics"][key] for r in runs if r["metrics"] is not None], dtype=float)
 
@@ -45,7 +63,20 @@ def _metric(runs, key) -> np.ndarray:
 def study_tables(store: Store) -> list[Table]:
     """Table 6 with our extra columns, and the Wilcoxon table."""
     plan = store.plan
-    by = {a: store.study_runs(a) for a in plan.algorithms}
+    if plan.kind != StudyPlan.study_kind:
+        raise ValueError(
+            f"{store.path} holds a {plan.kind!r} study, not a planning study; "
+            f"write its report with its own command (mawdo bench report for benchmarks)"
+        )
+    by = {a: study_runs(store, a) for a in plan.algorithms}
+    return [_table6(plan, by), _wilcoxon_table(plan, by)]
+
+
+def _table6(plan: StudyPlan, by: dict[str, list[dict]]) -> Table:
+    """Our Table 6 beside the paper's, with the extra columns.
+
+    Long because it spells out the table's 18 columns and their formats, one line each.
+    """
     main = Table(
         name="table6",
         title=f"Path planning on '{plan.scenario}' ({plan.describe()}); ours "
@@ -130,6 +161,11 @@ def study_tables(store: Store) -> list[Table]:
         "reconstruction, so pixel values are not comparable, ratios and ranks are."
     )
 
+    return main
+
+
+def _wilcoxon_table(plan: StudyPlan, by: dict[str, list[dict]]) -> Table:
+    """Wilcoxon rank-sum of MAWDO against each rival on length, gap and smoothness."""
     wil = Table(
         name="table6_wilcoxon",
         title="Wilcoxon rank-sum of MAWDO against each rival (two-sided, 5%): + MAWDO "
@@ -150,7 +186,7 @@ def study_tables(store: Store) -> list[Table]:
             ]
             wil.rows.append([label(a), *[r.pvalue for r in res], *[r.sign for r in res]])
         wil.notes.append("The oracle follower is deterministic (one run): no test.")
-    return [main, wil]
+    return wil
 
 
 def _finite(x):
@@ -179,10 +215,10 @@ def study_figures(store: Store, out: Path, gif: bool = True) -> list[Path]:
     figs = []
     best, curves, boxes = {}, {}, {k: {} for k, _ in COMPARED}
     for a in plan.algorithms:
-        runs = store.study_runs(a, payload=True)
+        runs = study_runs(store, a, route=True)
         pick = _pick(runs, "best")
         if pick is not None:
-            best[label(a)] = (result_from_bytes(pick["payload"], sc), pick["metrics"])
+            best[label(a)] = (result_from_bytes(pick["route"], sc), pick["metrics"])
         c = [r["curve"] for r in runs if r["metrics"] and r["curve"].size]
         if c and a != BASELINE:
             T = max(len(x) for x in c)
@@ -204,11 +240,11 @@ def study_figures(store: Store, out: Path, gif: bool = True) -> list[Path]:
     for k, _ in COMPARED:
         figs.append(render.plot_metric_boxes(boxes[k], out / f"box_{k}.png", names[k]))
     if gif and "mawdo" in plan.algorithms:
-        pick = _pick(store.study_runs("mawdo", payload=True), "median")
+        pick = _pick(study_runs(store, "mawdo", route=True), "median")
         if pick is not None:
             figs.append(
                 render.animate(
-                    result_from_bytes(pick["payload"], sc), out / "mawdo_median_run.gif", every=2
+                    result_from_bytes(pick["route"], sc), out / "mawdo_median_run.gif", every=2
                 )
             )
     return figs

@@ -1,7 +1,7 @@
 """``mawdo bench``: run benchmark plans into a results store and report from it.
 
 A thin Typer layer over :mod:`mawdo.experiments`; every decision lives in the library.
-Mounted by the main CLI as ``mawdo bench``; also runnable as ``python -m mawdo.experiments``.
+Mounted by the main CLI as ``mawdo bench``.
 """
 
 from __future__ import annotations
@@ -55,9 +55,7 @@ def run_cmd(
     The plan comes from --preset, --plan, or from --algorithms and --functions alone (paper
     defaults: 30 runs, pop 50, 500 iterations); the other flags override its fields.
     """
-    from mawdo.experiments.plan import ExperimentPlan, PlanError, preset_plan
-    from mawdo.experiments.runner import run_plan
-    from mawdo.experiments.store import StoreError
+    from mawdo.experiments import ExperimentPlan, PlanError, StoreError, preset_plan, run_plan
 
     if preset is not None and plan_file is not None:
         _fail("give one of --preset NAME or --plan FILE.toml, not both")
@@ -118,9 +116,10 @@ def report_cmd(
     ),
 ) -> None:
     """Write tables (Markdown, LaTeX, CSV) and figures from a store, without recomputing."""
-    from mawdo.experiments.report import write_report
-    from mawdo.experiments.store import StoreError
+    from mawdo.cli.errors import check_output_dir
+    from mawdo.experiments import StoreError, write_report
 
+    check_output_dir(out, "--out folder")
     try:
         files = write_report(store, out, plots=plots, svg=svg, reference=reference)
     except (StoreError, ValueError) as exc:
@@ -131,7 +130,7 @@ def report_cmd(
 @bench_app.command("presets")
 def presets_cmd() -> None:
     """List the named plans."""
-    from mawdo.experiments.plan import PRESET_HELP, preset_plan
+    from mawdo.experiments.benchmark import PRESET_HELP, preset_plan
 
     for name, text in PRESET_HELP.items():
         p = preset_plan(name)

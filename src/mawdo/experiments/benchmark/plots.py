@@ -23,17 +23,14 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from mawdo.experiments.benchmark.data import curves as read_curves
+from mawdo.experiments.benchmark.data import finals as read_finals
+from mawdo.experiments.benchmark.labels import function_label, label
 from mawdo.experiments.store import Store
 from mawdo.viz import band
 
 NCOLS = 4
 DPI = 110
-
-
-def _labels():
-    from mawdo.experiments.report import function_label, label
-
-    return label, function_label
 
 
 def _grid(n: int) -> tuple[Figure, list]:
@@ -90,7 +87,6 @@ def convergence_figure(
     list of Path
         Files written.
     """
-    label, function_label = _labels()
     plan = store.plan
     colours = _colours(plan.algorithms)
     fig, axes = _grid(len(plan.functions))
@@ -98,7 +94,7 @@ def convergence_figure(
     for ax, fn in zip(axes, plan.functions, strict=True):
         series = []
         for algo in plan.algorithms:
-            curve, nfev, f_star = store.curves(algo, fn)
+            curve, nfev, f_star = read_curves(store, algo, fn)
             if curve.size == 0:
                 continue
             err = curve - (0.0 if math.isnan(f_star) else f_star)
@@ -125,9 +121,8 @@ def convergence_figure(
 
 def boxplot_figure(store: Store, stem: str | Path, formats: Sequence[str] = ("png",)) -> list[Path]:
     """Box plots of the final errors ``f - f*``, one panel per function."""
-    label, function_label = _labels()
     plan = store.plan
-    finals = store.finals()
+    finals = read_finals(store)
     colours = _colours(plan.algorithms)
     fig, axes = _grid(len(plan.functions))
     for ax, fn in zip(axes, plan.functions, strict=True):

@@ -20,27 +20,18 @@ all algorithms face the same shifted optimum.
 from __future__ import annotations
 
 import difflib
-import hashlib
-import json
 import tomllib
-import zlib
-from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
+from collections.abc import Iterable
 from pathlib import Path
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, ClassVar, Literal
 
-import numpy as np
-from pydantic import (
-    AfterValidator,
-    BaseModel,
-    ConfigDict,
-    Field,
-    ValidationError,
-    field_validator,
-)
+from pydantic import AfterValidator, Field, field_validator
 
+from mawdo.experiments.plans import PlanError, StudyPlanBase
+from mawdo.experiments.protocol import Task
 from mawdo.functions import FUNCTIONS, PAPER_SUITE
 from mawdo.optimizers import ABLATION_ALGORITHMS, OPTIMIZERS, PAPER_ALGORITHMS, make_optimizer
+from mawdo.streams import name_word, seed_word
 
 PAPER_SEED = 20251125
 """Master seed of the paper presets (the paper's arXiv submission date)."""
@@ -50,10 +41,6 @@ PLAN_SCHEMA = 1
 
 # Salt that separates the shift-seed stream from the run-seed stream of the same function.
 _SHIFT_SALT = 0x53484654  # "SHFT"
-
-
-class PlanError(ValueError):
-    """An invalid experiment plan; the message has one ``field: problem`` line per error."""
 
 
 def _check_algorithm(name: str) -> str:
@@ -72,35 +59,7 @@ FunctionName = Annotated[str, AfterValidator(_check_function)]
 PositiveInt = Annotated[int, Field(strict=True, ge=1)]
 
 
-@dataclass(frozen=True, order=True)
-class Task:
-    """The unit of work: runs ``first_run .. first_run + n_runs - 1`` of one algorithm on one
-    function, executed as one vectorised batch.
-
-    Attributes
-    ----------
-    algorithm : str
-        Registered algorithm name.
-    function : str
-        Canonical function name.
-    first_run : int
-        Index of the first run (runs are numbered ``0 .. plan.runs - 1``).
-    n_runs : int
-        Number of consecutive runs.
-    """
-
-    algorithm: str
-    function: str
-    first_run: int
-    n_runs: int
-
-    @property
-    def runs(self) -> range:
-        """The run indices this task computes."""
-        return range(self.first_run, self.first_run + self.n_runs)
-
-
-class ExperimentPlan(BaseModel):
+class ExperimentPlan(StudyPlanBase):
     """A benchmark sweep: ``algorithms x functions x runs`` under one budget and master seed.
 
     Parameters
@@ -134,8 +93,8 @@ class ExperimentPlan(BaseModel):
         Runs per task (one vectorised batch on one worker). Does not affect numbers.
     """
 
-    model_config = ConfigDict(frozen=True, extra="forbid")
-
+    study_kind: ClassVar[str] = "benchmark"
+    kind: Literal["benchmark"] = "benchmark"
     name: str = "custom"
     algorithms: Annotated[tuple[AlgorithmName, ...], Field(min_length=1)]
     functions: Annotated[tuple[FunctionName, ...], Field(min_length=1)]
@@ -196,16 +155,6 @@ class ExperimentPlan(BaseModel):
 
     # ----------------------------------------------------------------------- construction
     @classmethod
-    def from_dict(cls, data: Mapping[str, Any]) -> ExperimentPlan:
-        """Validate ``data`` (e.g. parsed TOML); raise :class:`PlanError` naming each field."""
-        if not isinstance(data, Mapping):
-            raise PlanError(f"a plan must be a table of fields, got {type(data).__name__}")
-        try:
-            return cls.model_validate(dict(data))
-        except ValidationError as exc:
-            raise PlanError(format_errors(exc, cls)) from None
-
-    @classmethod
     def from_toml(cls, path: str | Path) -> ExperimentPlan:
         """Load a plan from a TOML file.
 
@@ -234,19 +183,13 @@ class ExperimentPlan(BaseModel):
         except PlanError as exc:
             raise PlanError(f"{path}: {exc}") from None
 
-    def with_overrides(self, **changes: Any) -> ExperimentPlan:
-        """A new, re-validated plan with some fields replaced (``None`` values are ignored)."""
-        changes = {k: v for k, v in changes.items() if v is not None}
-        if not changes:
-            return self
-        data = self.model_dump()
-        data.update(changes)
+    def _adjust_overrides(self, data: dict[str, Any], changes: dict[str, Any]) -> dict[str, Any]:
         if "algorithms" in changes and "options" not in changes:
             # Options of algorithms no longer in the plan would be an error; drop them.
             names = changes["algorithms"]
             keep = {str(a).lower() for a in ([names] if isinstance(names, str) else names)}
             data["options"] = {k: v for k, v in data["options"].items() if k in keep}
-        return type(self).from_dict(data)
+        return data
 
     # ----------------------------------------------------------------------- identity
     def numbers_spec(self) -> dict[str, Any]:
@@ -269,29 +212,14 @@ class ExperimentPlan(BaseModel):
             "options": {k: self.options[k] for k in sorted(self.options)},
         }
 
-    @property
-    def plan_hash(self) -> str:
-        """SHA-256 of the canonical JSON of :meth:`numbers_spec` (hex)."""
-        blob = json.dumps(self.numbers_spec(), sort_keys=True, separators=(",", ":"))
-        return hashlib.sha256(blob.encode("utf-8")).hexdigest()
-
-    def to_json(self) -> str:
-        """The full plan (name and batch size included) as JSON, for the store's meta table."""
-        return json.dumps(self.model_dump(mode="json"), sort_keys=True)
-
-    @classmethod
-    def from_json(cls, text: str) -> ExperimentPlan:
-        return cls.from_dict(json.loads(text))
-
     # ----------------------------------------------------------------------- seeds
     def function_seed(self, function: str) -> list[int]:
         """Entropy of the seed sequence whose run ``k`` child seeds run ``k`` on ``function``."""
-        return [self.seed, zlib.crc32(function.encode("utf-8"))]
+        return [self.seed, name_word(function)]
 
     def shift_seed(self, function: str) -> int:
         """Seed of ``function``'s shifted optimum: one 32-bit word from ``(seed, function)``."""
-        ss = np.random.SeedSequence([*self.function_seed(function), _SHIFT_SALT])
-        return int(ss.generate_state(1, dtype=np.uint32)[0])
+        return seed_word([*self.function_seed(function), _SHIFT_SALT])
 
     # ----------------------------------------------------------------------- work
     @property
@@ -299,7 +227,8 @@ class ExperimentPlan(BaseModel):
         return len(self.algorithms) * len(self.functions) * self.runs
 
     def tasks(self, done: Iterable[tuple[str, str, int]] = ()) -> list[Task]:
-        """Tasks computing every run not in ``done`` (``(algorithm, function, run)`` keys).
+        """Tasks computing every run not in ``done`` (``(algorithm, function, run)`` keys; the
+        task's ``problem`` is the function).
 
         Missing runs of each (algorithm, function) are grouped into maximal consecutive
         stretches, each cut into batches of at most ``batch_size``; with nothing done this is
@@ -318,13 +247,11 @@ class ExperimentPlan(BaseModel):
     def task_spec(self, task: Task) -> dict[str, Any]:
         """Everything a worker needs to compute ``task``, as plain picklable data."""
         return {
-            "algorithm": task.algorithm,
-            "function": task.function,
-            "first_run": task.first_run,
-            "n_runs": task.n_runs,
-            "seed_entropy": self.function_seed(task.function),
+            "kind": self.kind,
+            **task.key(),
+            "seed_entropy": self.function_seed(task.problem),
             "shifted": self.shifted,
-            "shift_seed": self.shift_seed(task.function) if self.shifted else None,
+            "shift_seed": self.shift_seed(task.problem) if self.shifted else None,
             "pop_size": self.pop_size,
             "max_iter": self.max_iter,
             "budget": self.budget,
@@ -351,63 +278,6 @@ def _stretches(indices: list[int]) -> list[tuple[int, int]]:
         else:
             out.append((k, k + 1))
     return out
-
-
-# --------------------------------------------------------------------------- error messages
-def format_errors(exc: ValidationError, model: type[BaseModel] = ExperimentPlan) -> str:
-    """One ``field: problem`` line per pydantic error, in the project's wording."""
-    errors = exc.errors()
-    # A list whose every item failed is also reported "too short" by pydantic; the item
-    # errors already say what is wrong.
-    failed_items = {e["loc"][0] for e in errors if len(e["loc"]) > 1}
-    errors = [e for e in errors if not (e["type"] == "too_short" and e["loc"][0] in failed_items)]
-    return "\n".join(_format_one(err, model) for err in errors)
-
-
-def _loc(loc: tuple) -> str:
-    out = ""
-    for part in loc:
-        if isinstance(part, int):
-            out += f"[{part}]"
-        else:
-            out += f".{part}" if out else str(part)
-    return out
-
-
-def _format_one(err: dict, model: type[BaseModel]) -> str:
-    typ, ctx, loc = err["type"], err.get("ctx") or {}, _loc(err["loc"])
-    got = err.get("input")
-    if typ == "greater_than_equal":
-        msg = f"must be >= {ctx['ge']} (got {got!r})"
-    elif typ in ("int_type", "int_parsing", "int_from_float"):
-        msg = f"must be an integer (got {got!r})"
-    elif typ == "bool_type":
-        msg = f"must be true or false (got {got!r})"
-    elif typ == "string_type":
-        msg = f"must be a string (got {got!r})"
-    elif typ == "literal_error":
-        msg = f"must be one of {ctx['expected']} (got {got!r})"
-    elif typ == "too_short":
-        msg = "must not be empty: list at least one name"
-    elif typ == "missing":
-        msg = "is required"
-    elif typ == "extra_forbidden":
-        fields = list(model.model_fields)
-        close = difflib.get_close_matches(str(err["loc"][-1]), fields, n=1)
-        hint = f" Did you mean {close[0]!r}?" if close else ""
-        msg = f"unknown field.{hint} Plan fields: {', '.join(fields)}"
-    elif typ in ("tuple_type", "list_type"):
-        msg = f"must be a list of names (got {got!r})"
-    elif typ == "dict_type":
-        msg = f"must be a table (got {got!r})"
-    elif typ == "value_error":
-        msg = str(ctx.get("error", err["msg"]))
-        # Validators that know a finer location put it in front of their message.
-        if not loc or msg.startswith(f"{loc}[") or msg.startswith(f"{loc}."):
-            return msg
-    else:
-        msg = err["msg"]
-    return f"{loc}: {msg}" if loc else msg
 
 
 # --------------------------------------------------------------------------- presets

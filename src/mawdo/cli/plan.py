@@ -56,9 +56,11 @@ def run_cmd(
     figures: bool = typer.Option(True, help="write the snapshot grid and the GIF"),
 ):
     """Plan and execute one run; print and save its metrics."""
+    from mawdo.cli.errors import check_output_dir
     from mawdo.planning.metrics import run_metrics
     from mawdo.planning.planner import plan
 
+    check_output_dir(out, "--out folder")
     try:
         sc = _scenario(scenario)
         res = plan(sc, algorithm=algorithm, seed=seed, config=preset, dynamic=not static)
@@ -66,7 +68,6 @@ def run_cmd(
         console.print(f"[bold red]error:[/] {exc.args[0] if isinstance(exc, KeyError) else exc}")
         raise typer.Exit(2) from None
     m = run_metrics(res)
-    out.mkdir(parents=True, exist_ok=True)
     payload = {
         "scenario": sc.name,
         "algorithm": algorithm,
@@ -102,11 +103,12 @@ def study_cmd(
     progress: bool = typer.Option(True, help="show a progress bar"),
 ):
     """Run the planning study (paper Table 6) into a resumable store."""
-    from mawdo.experiments.plan import PlanError
-    from mawdo.experiments.runner import run_plan
-    from mawdo.experiments.store import StoreError
-    from mawdo.experiments.study import study_preset
+    from mawdo.cli.errors import check_output_dir
+    from mawdo.experiments import PlanError, StoreError, run_plan
+    from mawdo.experiments.planning import study_preset
 
+    if report is not None:
+        check_output_dir(report, "--report folder")
     try:
         plan = study_preset(preset).with_overrides(
             runs=runs,
@@ -136,12 +138,14 @@ def report_cmd(
     gif: bool = typer.Option(True, help="write the animated GIF"),
 ):
     """Tables and figures of a planning study, read from its store (nothing is recomputed)."""
-    from mawdo.experiments.store import StoreError
-    from mawdo.experiments.study_report import write_study_report
+    from mawdo.cli.errors import check_output_dir
+    from mawdo.experiments import StoreError
+    from mawdo.experiments.planning import write_study_report
 
+    check_output_dir(out, "--out folder")
     try:
         path = write_study_report(store, out, gif=gif)
-    except StoreError as exc:
+    except (StoreError, ValueError) as exc:
         console.print(f"[bold red]error:[/] {exc}")
         raise typer.Exit(1) from None
     console.print(f"report: {path}")

@@ -31,12 +31,13 @@ from pathlib import Path
 import numpy as np
 
 from mawdo.experiments import stats
-from mawdo.experiments.paper_values import NOT_COMPARABLE, paper_entry
-from mawdo.experiments.plan import ExperimentPlan
+from mawdo.experiments.benchmark.data import finals as read_finals
+from mawdo.experiments.benchmark.labels import function_label, label
+from mawdo.experiments.benchmark.paper_values import NOT_COMPARABLE, paper_entry
+from mawdo.experiments.benchmark.plan import ExperimentPlan
 from mawdo.experiments.store import Store
 from mawdo.experiments.tables import Table, to_csv, to_latex, to_markdown
-from mawdo.functions import FUNCTIONS
-from mawdo.optimizers import ABLATION_ALGORITHMS, OPTIMIZERS
+from mawdo.optimizers import ABLATION_ALGORITHMS
 
 REFERENCE = "mawdo"
 PAPER_PROTOCOL = {
@@ -46,23 +47,6 @@ PAPER_PROTOCOL = {
     "budget": "iterations",
     "bounds_preset": "paper",
 }
-
-
-def label(algorithm: str) -> str:
-    """Display label of an algorithm ("MEWDO (reconstructed)" for reconstructions)."""
-    try:
-        return OPTIMIZERS[algorithm].display
-    except KeyError:
-        return algorithm
-
-
-def function_label(function: str) -> str:
-    """Paper id (``F7``) of a suite function, else its name."""
-    try:
-        pid = FUNCTIONS[function].paper_id
-    except KeyError:
-        pid = None
-    return pid or function
 
 
 @dataclass
@@ -100,7 +84,12 @@ class SweepData:
 def load(store: Store, reference: str | None = None) -> SweepData:
     """Read a store into :class:`SweepData`."""
     plan = store.plan
-    finals = store.finals()
+    if plan.kind != ExperimentPlan.study_kind:
+        raise ValueError(
+            f"{store.path} holds a {plan.kind!r} study, not a benchmark sweep; "
+            f"write its report with its own command (mawdo plan report for planning studies)"
+        )
+    finals = read_finals(store)
     have = {k for k, v in finals.items() if v["fun"].size}
     algos = tuple(a for a in plan.algorithms if any((a, f) in have for f in plan.functions))
     fns = tuple(f for f in plan.functions if any((a, f) in have for a in plan.algorithms))
@@ -445,7 +434,7 @@ def write_report(
         tables = build_tables(data)
         figures: list[Path] = []
         if plots and data.algorithms:
-            from mawdo.experiments import plots as plotting
+            from mawdo.experiments.benchmark import plots as plotting
 
             formats = ("png", "svg") if svg else ("png",)
             figures += plotting.convergence_figure(store, out / "convergence", formats)

@@ -1,0 +1,90 @@
+"""The command layer's one error edge: expected errors become a message and an exit code.
+
+Errors a user can cause and fix (a bad name or value, a missing or unwritable file, a results
+store that cannot be used) are printed as ``error: ...`` on stderr with exit code 1, never as a
+traceback; anything else is a bug and keeps its traceback. Output paths are checked with
+:func:`check_output_file` / :func:`check_output_dir` before any computing starts.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import typer
+from typer.core import TyperGroup
+
+# Typer vendors its own click; its ClickException is what Typer's main loop shows and exits on.
+_ClickException = next(c for c in typer.BadParameter.__mro__ if c.__name__ == "ClickException")
+
+
+class CommandError(_ClickException):
+    """An expected error, shown as ``error: <message>`` on stderr; exit code 1."""
+
+    exit_code = 1
+
+    def show(self, file=None) -> None:
+        typer.echo(f"error: {self.format_message()}", err=True)
+
+
+def _expected() -> tuple[type[BaseException], ...]:
+    # imported here: `mawdo list` should not pay for the experiments package
+    from mawdo.experiments.sqlitefile import StoreError
+
+    return (ValueError, KeyError, OSError, StoreError)
+
+
+def message(exc: BaseException) -> str:
+    """The text of an expected error (a KeyError's message without its quotes)."""
+    if isinstance(exc, KeyError) and exc.args and isinstance(exc.args[0], str):
+        return str(exc) if type(exc).__str__ is not KeyError.__str__ else exc.args[0]
+    if isinstance(exc, OSError) and exc.filename is not None and exc.strerror:
+        return f"{exc.filename}: {exc.strerror}"
+    return str(exc) or type(exc).__name__
+
+
+class GuardedGroup(TyperGroup):
+    """A Typer group whose commands (sub-groups included) end in :class:`CommandError` on an
+    expected error."""
+
+    def invoke(self, ctx):
+        try:
+            return super().invoke(ctx)
+        except _ClickException:
+            raise
+        except Exception as exc:
+            if isinstance(exc, _expected()):
+                raise CommandError(message(exc)) from None
+            raise
+
+
+IMAGE_SUFFIXES = (".png", ".svg", ".pdf")
+
+
+def check_output_dir(path: Path, what: str = "output folder") -> Path:
+    """Make ``path`` (a directory) now, and make sure files can be written into it."""
+    path = Path(path)
+    if path.exists() and not path.is_dir():
+        raise ValueError(f"{what} {path} is a file; give a folder")
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise OSError(f"cannot create {what} ({path}): {exc.strerror or exc}") from None
+    if not os.access(path, os.W_OK | os.X_OK):
+        raise OSError(f"{what} ({path}) is not writable; choose another one")
+    return path
+
+
+def check_output_file(path: Path, suffixes: tuple[str, ...] | None = None, what="output") -> Path:
+    """Check an output file before computing: its suffix, and a writable parent folder."""
+    path = Path(path)
+    if suffixes is not None and path.suffix.lower() not in suffixes:
+        raise ValueError(
+            f"{what} {path} must end in one of {', '.join(suffixes)} (got {path.suffix or 'none'})"
+        )
+    if path.is_dir():
+        raise ValueError(f"{what} {path} is a folder; give a file name")
+    check_output_dir(path.parent, what=f"the folder of {what} {path}")
+    if path.exists() and not os.access(path, os.W_OK):
+        raise OSError(f"{what} {path} is not writable")
+    return path

@@ -1,0 +1,42 @@
+"""The path-planning study (paper Table 6, Figs. 2-3): algorithms x runs on a scenario.
+
+Plan (:class:`StudyPlan`, presets), one task on a worker (:func:`execute_planning_task`, rows
+:class:`PlanningRow`) and the report (:func:`write_study_report`). Importing this package
+registers the ``planning`` study kind. (The planner itself is :mod:`mawdo.planning`, a floor
+below.)
+"""
+
+from mawdo.experiments.planning.execute import PlanningRow, execute_planning_task
+from mawdo.experiments.planning.plan import (
+    BASELINE,
+    STUDY_PRESETS,
+    StudyPlan,
+    study_preset,
+)
+from mawdo.experiments.planning.report import write_study_report
+from mawdo.experiments.protocol import STUDY_KINDS, StudyKind, register_kind
+
+KIND = "planning"
+
+if KIND not in STUDY_KINDS:  # a reload must not register twice
+    register_kind(
+        StudyKind(
+            name=KIND,
+            plan=StudyPlan,
+            execute=execute_planning_task,
+            row=PlanningRow,
+            report=write_study_report,
+            description="path planning: algorithms x runs on a scenario (Table 6)",
+        )
+    )
+
+__all__ = [
+    "BASELINE",
+    "KIND",
+    "STUDY_PRESETS",
+    "PlanningRow",
+    "StudyPlan",
+    "execute_planning_task",
+    "study_preset",
+    "write_study_report",
+]

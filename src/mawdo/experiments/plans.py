@@ -1,0 +1,144 @@
+"""The shared base of every study plan: validation messages, identity (plan hash), JSON round
+trip and overrides.
+
+A plan is data: a frozen pydantic model that is validated once, with messages that name the
+offending field (``runs: must be >= 1``). Each study kind subclasses :class:`StudyPlanBase`,
+declares its fields and says which of them affect stored numbers (:meth:`numbers_spec`); the
+hash of that spec ties a results store to its plan.
+"""
+
+from __future__ import annotations
+
+import difflib
+import hashlib
+import json
+from collections.abc import Mapping
+from typing import Any, ClassVar
+
+from pydantic import BaseModel, ConfigDict, ValidationError
+
+
+class PlanError(ValueError):
+    """An invalid study plan; the message has one ``field: problem`` line per error."""
+
+
+class StudyPlanBase(BaseModel):
+    """Plan hashing, serialisation and overrides, shared by every study kind.
+
+    Subclasses set the class attribute ``study_kind`` (their registered kind's name), declare a
+    field ``kind: Literal[<that name>]`` so the stored JSON names its kind, and implement
+    :meth:`numbers_spec`, ``tasks``, ``task_spec``, ``describe`` and ``total_runs``
+    (:class:`mawdo.experiments.protocol.Study`).
+    """
+
+    model_config = ConfigDict(frozen=True, extra="forbid")
+
+    study_kind: ClassVar[str] = ""
+    name: str = "custom"
+
+    # ----------------------------------------------------------------------- construction
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any]):
+        """Validate ``data`` (e.g. parsed TOML); raise :class:`PlanError` naming each field."""
+        if not isinstance(data, Mapping):
+            raise PlanError(f"a plan must be a table of fields, got {type(data).__name__}")
+        try:
+            return cls.model_validate(dict(data))
+        except ValidationError as exc:
+            raise PlanError(format_errors(exc, cls)) from None
+
+    @classmethod
+    def from_json(cls, text: str):
+        """The plan written by :meth:`to_json`."""
+        return cls.from_dict(json.loads(text))
+
+    def to_json(self) -> str:
+        """The full plan (name and batch size included) as JSON, for the store's meta table."""
+        return json.dumps(self.model_dump(mode="json"), sort_keys=True)
+
+    def with_overrides(self, **changes: Any):
+        """A new, re-validated plan with some fields replaced (``None`` values are ignored)."""
+        changes = {k: v for k, v in changes.items() if v is not None}
+        if not changes:
+            return self
+        data = self.model_dump()
+        data.update(changes)
+        return type(self).from_dict(self._adjust_overrides(data, changes))
+
+    def _adjust_overrides(self, data: dict[str, Any], changes: dict[str, Any]) -> dict[str, Any]:
+        """Hook: fix up dependent fields after ``changes`` were applied to ``data``."""
+        return data
+
+    # ----------------------------------------------------------------------- identity
+    NUMBER_FREE: ClassVar[tuple[str, ...]] = ("name", "batch_size")
+    """Fields that never change a stored number (left out of the default numbers spec)."""
+
+    def numbers_spec(self) -> dict[str, Any]:
+        """Everything that affects stored numbers, as plain JSON data (default: every field but
+        :attr:`NUMBER_FREE`); part of the plan hash."""
+        d = self.model_dump(mode="json")
+        for k in self.NUMBER_FREE:
+            d.pop(k, None)
+        return d
+
+    @property
+    def plan_hash(self) -> str:
+        """SHA-256 of the canonical JSON of :meth:`numbers_spec` (hex)."""
+        blob = json.dumps(self.numbers_spec(), sort_keys=True, separators=(",", ":"))
+        return hashlib.sha256(blob.encode("utf-8")).hexdigest()
+
+
+def format_errors(exc: ValidationError, model: type[BaseModel]) -> str:
+    """One ``field: problem`` line per pydantic error, in the project's wording."""
+    errors = exc.errors()
+    # A list whose every item failed is also reported "too short" by pydantic; the item
+    # errors already say what is wrong.
+    failed_items = {e["loc"][0] for e in errors if len(e["loc"]) > 1}
+    errors = [e for e in errors if not (e["type"] == "too_short" and e["loc"][0] in failed_items)]
+    return "\n".join(_format_one(err, model) for err in errors)
+
+
+def _loc(loc: tuple) -> str:
+    out = ""
+    for part in loc:
+        if isinstance(part, int):
+            out += f"[{part}]"
+        else:
+            out += f".{part}" if out else str(part)
+    return out
+
+
+def _format_one(err: dict, model: type[BaseModel]) -> str:
+    typ, ctx, loc = err["type"], err.get("ctx") or {}, _loc(err["loc"])
+    got = err.get("input")
+    if typ == "greater_than_equal":
+        msg = f"must be >= {ctx['ge']} (got {got!r})"
+    elif typ in ("int_type", "int_parsing", "int_from_float"):
+        msg = f"must be an integer (got {got!r})"
+    elif typ == "bool_type":
+        msg = f"must be true or false (got {got!r})"
+    elif typ == "string_type":
+        msg = f"must be a string (got {got!r})"
+    elif typ == "literal_error":
+        msg = f"must be one of {ctx['expected']} (got {got!r})"
+    elif typ == "too_short":
+        msg = "must not be empty: list at least one name"
+    elif typ == "missing":
+        msg = "is required"
+    elif typ == "extra_forbidden":
+        fields = list(model.model_fields)
+        close = difflib.get_close_matches(str(err["loc"][-1]), fields, n=1)
+        hint = f" Did you mean {close[0]!r}?" if close else ""
+        msg = f"unknown field.{hint} Plan fields: {', '.join(fields)}"
+    elif typ in ("tuple_type", "list_type"):
+        msg = f"must be a list of names (got {got!r})"
+    elif typ == "dict_type":
+        msg = f"must be a table (got {got!r})"
+    elif typ == "value_error":
+        msg = str(ctx.get("error", err["msg"]))
+        # Validators that know a finer location put it in front of their message.
+        if not loc or msg.startswith(f"{loc}[") or msg.startswith(f"{loc}."):
+            return msg
+    else:
+        msg = err["msg"]
+    return f"{loc}: {msg}" if loc else msg

@@ -1,0 +1,188 @@
+"""What every study kind provides, and the registry the runner and the store look kinds up in.
+
+A *study kind* (the function benchmark, the planning study, ...) is a package under
+``mawdo.experiments`` (or anywhere else: a test registers its own) that registers one
+:class:`StudyKind` in :data:`STUDY_KINDS`:
+
+- a plan class satisfying :class:`Study` (usually a :class:`~mawdo.experiments.plans.
+  StudyPlanBase` subclass), which cuts itself into :class:`Task` objects and turns each into a
+  plain, picklable spec;
+- ``execute``: a module-level function ``spec -> list of rows`` that computes one task on a
+  worker (pickled by reference, so the worker imports the kind's module and registers it);
+- ``row``: the kind's typed row (:class:`~mawdo.experiments.rows.RunRow` subclass), which fixes
+  the columns of the store's ``runs`` table;
+- ``report`` (optional): ``(store_path, out_dir, **options) -> Path``.
+
+The runner and the store know only this module; they never import a concrete kind.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Protocol, runtime_checkable
+
+from mawdo.experiments.plans import PlanError
+from mawdo.experiments.rows import RunRow, schema
+from mawdo.registry import Registry
+
+
+@dataclass(frozen=True, order=True)
+class Task:
+    """The unit of work: runs ``first_run .. first_run + n_runs - 1`` of one algorithm on one
+    problem (a benchmark function, a scenario ...), executed as one batch on one worker.
+
+    Attributes
+    ----------
+    algorithm : str
+        Registered algorithm name (or a kind's baseline).
+    problem : str
+        Canonical name of what is solved (the kind says what: function, scenario).
+    first_run : int
+        Index of the first run (runs are numbered ``0 .. runs - 1``).
+    n_runs : int
+        Number of consecutive runs.
+    """
+
+    algorithm: str
+    problem: str
+    first_run: int
+    n_runs: int
+
+    @property
+    def runs(self) -> range:
+        """The run indices this task computes."""
+        return range(self.first_run, self.first_run + self.n_runs)
+
+    def key(self) -> dict[str, Any]:
+        """The task as plain data (part of every spec and outcome)."""
+        return {
+            "algorithm": self.algorithm,
+            "problem": self.problem,
+            "first_run": self.first_run,
+            "n_runs": self.n_runs,
+        }
+
+
+@runtime_checkable
+class Study(Protocol):
+    """The interface of a plan that :func:`~mawdo.experiments.runner.run_plan` can compute into
+    a :class:`~mawdo.experiments.store.Store`.
+
+    Attributes
+    ----------
+    kind : str
+        The registered study kind (also a field of the plan's JSON).
+    name : str
+        A label for reports and logs.
+    plan_hash : str
+        Hash of everything that affects stored numbers (ties a store to its plan).
+    total_runs : int
+        Runs in the plan.
+    """
+
+    kind: str
+    name: str
+
+    @property
+    def plan_hash(self) -> str: ...
+
+    @property
+    def total_runs(self) -> int: ...
+
+    def to_json(self) -> str:
+        """The full plan as JSON (read back by the kind's plan class ``from_json``)."""
+
+    def numbers_spec(self) -> dict[str, Any]:
+        """Everything that affects stored numbers (shown when a store belongs to another plan)."""
+
+    def tasks(self, done: Iterable[tuple[str, str, int]] = ()) -> list[Task]:
+        """Tasks computing every run not in ``done`` (``(algorithm, problem, run)`` keys)."""
+
+    def task_spec(self, task: Task) -> dict[str, Any]:
+        """Everything a worker needs to compute ``task``, as plain picklable data; includes
+        ``kind`` and :meth:`Task.key`."""
+
+    def describe(self) -> str:
+        """One line for logs and reports."""
+
+
+@dataclass(frozen=True)
+class StudyKind:
+    """A registered study kind (see the module docstring).
+
+    Attributes
+    ----------
+    name : str
+        Kind name, the ``kind`` field of its plans.
+    plan : type
+        Plan class: ``from_json``/``from_dict`` classmethods, instances satisfy :class:`Study`.
+    execute : callable
+        ``spec -> list[row]``: computes one task; module-level (pickled by reference). A run
+        whose algorithm raises must become a row with ``error_text``, not an exception.
+    row : type
+        The kind's :class:`~mawdo.experiments.rows.RunRow` subclass.
+    report : callable, optional
+        ``(store_path, out_dir, **options) -> Path`` of the main report file.
+    description : str
+        One line for listings.
+    """
+
+    name: str
+    plan: type
+    execute: Callable[[dict[str, Any]], list[RunRow]]
+    row: type[RunRow]
+    report: Callable[..., Path] | None = None
+    description: str = ""
+
+    def __post_init__(self) -> None:
+        schema(self.row)  # fails now, at registration, on an undeclared field
+        if getattr(self.plan, "study_kind", None) != self.name:
+            raise ValueError(
+                f"study kind {self.name!r}: its plan class {self.plan.__name__} must set "
+                f"study_kind = {self.name!r}"
+            )
+
+
+STUDY_KINDS: Registry[StudyKind] = Registry("study kind")
+"""Every registered study kind. The built-in kinds register when :mod:`mawdo.experiments` is
+imported; a plug-in kind registers when its module is."""
+
+
+def register_kind(kind: StudyKind) -> StudyKind:
+    """Add ``kind`` to :data:`STUDY_KINDS` (a duplicate name is an error)."""
+    return STUDY_KINDS.register(kind.name, kind)
+
+
+def kind_of(plan: Any) -> StudyKind:
+    """The registered kind of a plan object."""
+    name = getattr(plan, "kind", None)
+    if not isinstance(name, str):
+        raise TypeError(
+            f"{type(plan).__name__} is not a study plan (no 'kind'); plans are made by a "
+            f"registered study kind, e.g. mawdo.experiments.ExperimentPlan"
+        )
+    return STUDY_KINDS[name]
+
+
+def plan_from_json(text: str) -> Any:
+    """The plan stored in a results store, whichever registered kind it is.
+
+    A plan without a ``kind`` field is a benchmark plan (stores written before kinds existed).
+    """
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise PlanError(f"stored plan is not valid JSON: {exc}") from None
+    if not isinstance(data, dict):
+        raise PlanError("stored plan is not a table of fields")
+    name = data.get("kind", "benchmark")
+    try:
+        kind = STUDY_KINDS[name]
+    except KeyError as exc:
+        raise PlanError(
+            f"{exc}; import the module that registers it before reading this store"
+        ) from None
+    return kind.plan.from_dict(data)

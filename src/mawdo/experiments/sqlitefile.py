@@ -1,0 +1,231 @@
+"""Low-level pieces of the results store: the SQLite file, its tables and its meta row.
+
+Schema (``SCHEMA_VERSION`` 3)
+-----------------------------
+``meta``  one row: ``schema_version, study_kind, plan_hash, plan_json, library_version,
+          created``.
+``runs``  one row per finished run, primary key ``(algorithm, problem, run)``: ``plan_hash,
+          algorithm, problem``, then one column per field of the study kind's row type
+          (:mod:`mawdo.experiments.rows`; ``run, wall_time, error_text`` first), then
+          ``library_version, task_id``.
+``tasks`` one row per executed task (the log of what was computed, and where).
+
+Version 3 (mawdo 0.1.0 after the study-kind redesign) replaced the one wide ``runs`` table,
+whose planning rows reused the benchmark's ``function``/``fun``/``nit`` columns, by one typed
+table per kind; older stores are refused with a message that says how to re-run them.
+"""
+
+from __future__ import annotations
+
+import os
+import sqlite3
+import stat
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any
+
+from mawdo.experiments.rows import STORAGE_SQL, RunRow, schema
+
+SCHEMA_VERSION = 3
+"""Layout of the store's tables. Bumped from 2: typed per-kind ``runs`` columns (see above)."""
+
+
+class StoreError(RuntimeError):
+    """The results store cannot be used as asked (wrong plan, corrupt, read-only ...)."""
+
+
+def library_version() -> str:
+    from mawdo import __version__
+
+    return __version__
+
+
+_META = """
+CREATE TABLE meta (
+    id INTEGER PRIMARY KEY CHECK (id = 1),
+    schema_version INTEGER NOT NULL,
+    study_kind TEXT NOT NULL,
+    plan_hash TEXT NOT NULL,
+    plan_json TEXT NOT NULL,
+    library_version TEXT NOT NULL,
+    created TEXT NOT NULL
+)"""
+
+_TASKS = """
+CREATE TABLE tasks (
+    id INTEGER PRIMARY KEY AUTOINCREMENT,
+    algorithm TEXT NOT NULL,
+    problem TEXT NOT NULL,
+    first_run INTEGER NOT NULL,
+    n_runs INTEGER NOT NULL,
+    wall_time REAL,
+    worker TEXT,
+    finished TEXT NOT NULL
+)"""
+
+TASK_COLUMNS = (
+    "id",
+    "algorithm",
+    "problem",
+    "first_run",
+    "n_runs",
+    "wall_time",
+    "worker",
+    "finished",
+)
+META_COLUMNS = (
+    "schema_version",
+    "study_kind",
+    "plan_hash",
+    "plan_json",
+    "library_version",
+    "created",
+)
+
+
+def runs_columns(row_type: type[RunRow]) -> tuple[str, ...]:
+    """Every column of the ``runs`` table of a kind, in table order."""
+    return (
+        "plan_hash",
+        "algorithm",
+        "problem",
+        *(n for n, _ in schema(row_type)),
+        "library_version",
+        "task_id",
+    )
+
+
+def create_tables(conn: sqlite3.Connection, row_type: type[RunRow]) -> None:
+    """The three tables of a fresh store, ``runs`` typed by ``row_type`` (in one transaction)."""
+    cols = ",\n    ".join(
+        f"{name} {STORAGE_SQL[storage]}{' NOT NULL' if name == 'run' else ''}"
+        for name, storage in schema(row_type)
+    )
+    runs = (
+        "CREATE TABLE runs (\n    plan_hash TEXT NOT NULL,\n    algorithm TEXT NOT NULL,\n"
+        f"    problem TEXT NOT NULL,\n    {cols},\n    library_version TEXT NOT NULL,\n"
+        "    task_id INTEGER,\n    PRIMARY KEY (algorithm, problem, run)\n)"
+    )
+    with conn:
+        for stmt in (_META, runs, _TASKS):
+            conn.execute(stmt)
+
+
+def drop_tables(conn: sqlite3.Connection) -> None:
+    with conn:
+        for t in ("runs", "tasks", "meta"):
+            conn.execute(f"DROP TABLE IF EXISTS {t}")
+
+
+def read_meta(conn: sqlite3.Connection, path: Path) -> dict[str, Any] | None:
+    """The meta row as a dict; None for a file without one. A store of an older layout gives
+    its ``schema_version`` (and whatever else it has) so the caller can say what to do."""
+    try:
+        have = [r[1] for r in conn.execute("PRAGMA table_info(meta)").fetchall()]
+        if not have:
+            return None
+        cols = [c for c in META_COLUMNS if c in have]
+        row = conn.execute(f"SELECT {', '.join(cols)} FROM meta").fetchone()
+    except sqlite3.DatabaseError as exc:
+        raise StoreError(f"{path} is not a mawdo results store ({exc})") from None
+    if row is None:
+        return None
+    return dict(zip(cols, row, strict=True))
+
+
+def write_meta(conn: sqlite3.Connection, path: Path, plan: Any) -> dict[str, Any]:
+    meta = {
+        "schema_version": SCHEMA_VERSION,
+        "study_kind": plan.kind,
+        "plan_hash": plan.plan_hash,
+        "plan_json": plan.to_json(),
+        "library_version": library_version(),
+        "created": now(),
+    }
+    with translate(path, "initialise"), conn:
+        conn.execute(
+            f"INSERT INTO meta (id, {', '.join(META_COLUMNS)}) VALUES (1, ?, ?, ?, ?, ?, ?)",
+            tuple(meta[c] for c in META_COLUMNS),
+        )
+    return meta
+
+
+def old_schema_message(path: Path, meta: dict[str, Any]) -> str:
+    """What to do with a store written by an older layout."""
+    return (
+        f"results store {path} has store schema {meta.get('schema_version')} (this mawdo reads "
+        f"and writes schema {SCHEMA_VERSION}: typed rows per study kind). Its runs cannot be "
+        f"read by this version. Re-run the sweep into a new file (the same command with another "
+        f"--out), or add --force (force=True) to discard its runs and recompute them in place; "
+        f"to report from it, use the mawdo version that wrote it "
+        f"({meta.get('library_version', 'unknown')})."
+    )
+
+
+def writable(p: Path) -> bool:
+    # Root passes os.access on any file, so the permission bits are checked as well: a store
+    # someone marked read-only is treated as read-only whoever runs the sweep.
+    try:
+        mode = p.stat().st_mode
+    except OSError:
+        return False
+    return os.access(p, os.W_OK) and bool(mode & (stat.S_IWUSR | stat.S_IWGRP | stat.S_IWOTH))
+
+
+def now() -> str:
+    return datetime.now(UTC).isoformat(timespec="seconds")
+
+
+def connect(path: Path, readonly: bool) -> sqlite3.Connection:
+    try:
+        if readonly:
+            # mode=ro: a report never writes, and works on a store someone made read-only.
+            return sqlite3.connect(f"{path.resolve().as_uri()}?mode=ro", uri=True, timeout=30)
+        return sqlite3.connect(path, timeout=30)
+    except sqlite3.Error as exc:
+        raise StoreError(f"cannot open results store {path}: {exc}") from None
+
+
+def check_foreign(conn: sqlite3.Connection, path: Path) -> None:
+    """Fail clearly on a file that is not SQLite, or SQLite that is not ours."""
+    try:
+        tables = {
+            r[0]
+            for r in conn.execute("SELECT name FROM sqlite_master WHERE type = 'table'").fetchall()
+        }
+    except sqlite3.DatabaseError as exc:
+        raise StoreError(
+            f"{path} is not a readable SQLite results store ({exc}); the file is corrupt or "
+            f"of another kind. Move it away or choose another --out file."
+        ) from None
+    ours = {"meta", "runs", "tasks"}
+    if tables and not ours & tables:
+        raise StoreError(
+            f"{path} is a SQLite database of something else (tables: "
+            f"{', '.join(sorted(tables))}), not a mawdo results store"
+        )
+
+
+class translate:
+    """Turn sqlite3 errors into StoreError messages that name the file and the action."""
+
+    def __init__(self, path: Path, action: str) -> None:
+        self.path, self.action = path, action
+
+    def __enter__(self) -> None:
+        return None
+
+    def __exit__(self, typ, exc, tb) -> bool:
+        if exc is None or not isinstance(exc, sqlite3.Error):
+            return False
+        msg = str(exc)
+        if "readonly" in msg or "read-only" in msg:
+            raise StoreError(
+                f"cannot {self.action} results store {self.path}: it is read-only ({msg})"
+            ) from None
+        if isinstance(exc, sqlite3.IntegrityError):
+            raise StoreError(
+                f"cannot {self.action} results store {self.path}: {msg} (a run "
+                f"was computed twice; is another sweep writing to this file?)"
+            ) from None
+        raise StoreError(f"cannot {self.action} results store {self.path}: {msg}") from None

@@ -1,0 +1,377 @@
+"""The pass over moving obstacles (spacetime mode) in three steps: where the obstacle's centre
+is at each path time, which segments come within reach of it (a lens test), and the exact tests
+of those, piece by piece of the obstacle's motion.
+
+One compiled function per step; :func:`_moving_pass` runs them for one obstacle and one block.
+The arithmetic is that of the single function they were cut from, statement for statement, and
+the steps are inlined into it (Numba IR inlining), so the compiled pass is the one it was.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import namedtuple
+
+import numpy as np
+from numba import njit
+
+from mawdo.planning.kernel.classify import _classify
+from mawdo.planning.kernel.constants import _COUNT, _GRID_CELLS, _MARGIN, _PIECES
+from mawdo.planning.kernel.passes import _fill_boxes
+from mawdo.planning.kernel.primitives import (
+    _point_segment_d2,
+    _polygon_hit,
+    _segment_hits_polygon,
+)
+
+Block = namedtuple("Block", ["t0", "speed", "bn", "npts", "sane", "cmax", "tmax"])
+"""A block's scalars: planning time and robot speed (time steps, px per step), candidates in the
+block and points per path, whether all coordinates are sane, the largest coordinate (px) and the
+latest path time (time steps); as :func:`mawdo.planning.kernel.passes._block_paths` finds them."""
+
+
+@njit(cache=True, fastmath=False, error_model="numpy")
+def _moving_pass(i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, grid, ncol):
+    """Hits of the block's segments on moving obstacle i (spacetime); adds them to ``ncol``.
+
+    The exact test walks the robot's segments and the obstacle's constant-velocity pieces
+    together (both are ordered in time): on each common piece the robot's position relative to
+    the obstacle moves along a straight segment, tested against the shape at offset zero. Past
+    the table's last knot the last piece is extrapolated (callers size tables so that this does
+    not happen). Filters in front of it only skip pieces whose outcome is certain.
+    """
+    _centres(i, blk, path, work, obs, motion, grid)
+    room = _room(i, blk, pre)
+    nf = _near_segments(i, blk, room, path, work, obs, pre)
+    if nf > 0:
+        _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, pre, ncol)
+
+
+@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+def _centres(i, blk, path, work, obs, motion, grid):
+    """Step 1: obstacle i's centre at each path time into ``work`` (cxp, cyp, cep, kpt).
+
+    Long because its three ways (count knots, interpolate in the grid, walk) share one set of
+    outputs and are each a tight loop; splitting them would only pass the same arrays around.
+    """
+    t0, tmax, bn, npts = blk.t0, blk.tmax, blk.bn, blk.npts
+    tt = path[2]
+    kpt, cxp, cyp, cep = work[4], work[5], work[6], work[7]
+    bound = obs[4]
+    kt, ko, kv, nk, k_start = motion
+    gdt, ggap, grow, gfill, gwalk, gx, gy, ge, gk = grid
+    gr = grow[i]  # this obstacle's row in the grid
+    last = nk[i] - 2  # index of the last piece
+    ks = k_start[i]
+    bcx = bound[i, 4]
+    bcy = bound[i, 5]
+    npt = bn * npts
+    # the obstacle's centre at each path time: (cxp, cyp), within cep of the true one
+    kw = ks  # the last knot at or before the block's latest time
+    while kw < last and kt[i, kw + 1] <= tmax:
+        kw += 1
+    gi = 1.0 / gdt[i]
+    gneed = int((tmax - t0) * gi) + 2 if tmax - t0 < (_GRID_CELLS - 2) * gdt[i] else -1
+    on_grid = gneed > 0 and kw - ks > _COUNT
+    if kw - ks <= _COUNT:
+        # few knots: place the centre on each piece in turn where the piece has begun
+        # (branch-free)
+        tw = kt[i, ks]
+        ox = bcx + ko[i, ks, 0]
+        oy = bcy + ko[i, ks, 1]
+        vx = kv[i, ks, 0]
+        vy = kv[i, ks, 1]
+        for p in range(npt):
+            kpt[p] = ks  # (a hint; the exact tests walk on from it)
+            cxp[p] = ox + vx * (tt[p] - tw)
+            cyp[p] = oy + vy * (tt[p] - tw)
+            cep[p] = 0.0
+        for w in range(ks + 1, kw + 1):
+            tw = kt[i, w]
+            ox = bcx + ko[i, w, 0]
+            oy = bcy + ko[i, w, 1]
+            vx = kv[i, w, 0]
+            vy = kv[i, w, 1]
+            for p in range(npt):
+                t = tt[p]
+                on = tw <= t
+                cxp[p] = ox + vx * (t - tw) if on else cxp[p]
+                cyp[p] = oy + vy * (t - tw) if on else cyp[p]
+    elif on_grid:
+        # many knots: interpolate in the grid (extended as far as this block needs)
+        g = gfill[i]
+        k = gwalk[i]
+        while g < gneed:
+            t = t0 + g * gdt[i]
+            while k < last and kt[i, k + 1] <= t:
+                k += 1
+            gk[gr, g] = k
+            gx[gr, g] = bcx + ko[i, k, 0] + kv[i, k, 0] * (t - kt[i, k])
+            gy[gr, g] = bcy + ko[i, k, 1] + kv[i, k, 1] * (t - kt[i, k])
+            if g > 0:
+                ge[gr, g - 1] = ggap[i] if k != gk[gr, g - 1] else 0.0
+            g += 1
+        gfill[i] = g
+        gwalk[i] = k
+        for p in range(npt):
+            u = (tt[p] - t0) * gi
+            g = int(u) if u > 0.0 else 0
+            fr = u - g
+            cxp[p] = gx[gr, g] + fr * (gx[gr, g + 1] - gx[gr, g])
+            cyp[p] = gy[gr, g] + fr * (gy[gr, g + 1] - gy[gr, g])
+            cep[p] = ge[gr, g]
+            kpt[p] = gk[gr, g]  # the piece at the cell's start: at most one before (a hint)
+    else:
+        # (times beyond the grid) walk
+        for b in range(bn):
+            k = ks
+            for p in range(b * npts, b * npts + npts):
+                t = tt[p]
+                while k < last and kt[i, k + 1] <= t:
+                    k += 1
+                kpt[p] = k
+                cxp[p] = bcx + ko[i, k, 0] + kv[i, k, 0] * (t - kt[i, k])
+                cyp[p] = bcy + ko[i, k, 1] + kv[i, k, 1] * (t - kt[i, k])
+                cep[p] = 0.0
+
+
+@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+def _room(i, blk, pre):
+    """Room for rounding (pixels) of obstacle i's tests in this block."""
+    vmax, omax = pre[0], pre[1]
+    sane, cmax, tmax, speed = blk.sane, blk.cmax, blk.tmax, blk.speed
+    vm = vmax[i]
+    # relative to the coordinates and times involved
+    room = (
+        _MARGIN * (1.0 + 4.0 * cmax + 4.0 * omax[i]) + 1e-9 * tmax * (2.0 * speed + vm)
+        if sane
+        else np.inf
+    )
+    return room
+
+
+@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+def _near_segments(i, blk, room, path, work, obs, pre):
+    """Step 2: flag the segments that come within reach of obstacle i; returns how many.
+
+    While the robot is on a segment, the centre moves at most vmax from where it was at
+    ta and where it will be at tb, so it stays within sqrt(a^2 - d^2) (a = vmax (tb - ta) / 2,
+    d half the distance between the two) of the point that moves uniformly between them; the
+    robot, relative to that point, moves along a segment. Branch-free.
+    """
+    px, py, tt = path[0], path[1], path[2]
+    near, flagged, real = work[0], work[1], work[2]
+    cxp, cyp, cep = work[5], work[6], work[7]
+    bound = obs[4]
+    rho = bound[i, 6]
+    npt = blk.bn * blk.npts
+    vm = pre[0][i]
+    nnear = 0
+    for p in range(npt - 1):
+        dcx = cxp[p + 1] - cxp[p]
+        dcy = cyp[p + 1] - cyp[p]
+        ha = 0.5 * vm * (tt[p + 1] - tt[p])
+        ea = cep[p]
+        eb = cep[p + 1]
+        e = 0.5 * (ea + eb)  # the true half distance is at least d - e
+        dev = math.sqrt(
+            max(ha * ha - 0.25 * (dcx * dcx + dcy * dcy) + 2.0 * e * (ha + e), 0.0)
+        ) + max(ea, eb)
+        reach = (rho + dev) * (1.0 + _MARGIN) + room
+        d = _point_segment_d2(
+            0.0, 0.0, px[p] - cxp[p], py[p] - cyp[p], px[p + 1] - cxp[p + 1],
+            py[p + 1] - cyp[p + 1],
+        )  # fmt: skip
+        close = d <= reach * reach and real[p]
+        nnear += 1 if close else 0
+        near[p] = close
+    if nnear == 0:
+        return 0
+    nf = 0
+    for p in range(npt - 1):
+        flagged[nf] = p
+        nf += 1 if near[p] else 0
+    return nf
+
+
+@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+def _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, pre, ncol):
+    """Step 3: exact tests of the ``nf`` flagged segments on obstacle i, piece by piece.
+
+    Long because it is one loop that fills a bounded list of relative segments, tests the list
+    in one pass and resumes where it stopped; its phases share the loop's state.
+    """
+    px, py, tt, rvx, rvy = path[0], path[1], path[2], path[6], path[7]
+    flagged, cand, kpt = work[1], work[3], work[4]
+    qax, qay, qbx, qby, qd2 = work[8], work[9], work[10], work[11], work[12]
+    qseg, done = work[13], work[14]
+    is_circle, thresh, verts, nverts, bound, hull, nhull = obs
+    kt, ko, kv, nk, k_start = motion
+    boxes, bbase, lg, boxed = pre[2], pre[3], pre[4], pre[5]
+    last = nk[i] - 2  # index of the last piece
+    ks = k_start[i]
+    bcx = bound[i, 4]
+    bcy = bound[i, 5]
+    rho = bound[i, 6]
+    rho2 = rho * rho
+    convex = extra[1][i] and not is_circle[i]  # (polygon tests all at once)
+    # 3. Exact tests, piece by piece, for the segments that come within reach: their relative
+    # segments on each piece (exactly as the walk computes them) go to a list, then their
+    # distances to the bounding-circle centre are found in one pass, then the exact tests run
+    # for those within it, each segment counted once.
+    cap = qax.shape[0]
+    f = 0
+    while True:
+        ne = 0
+        while f < nf:
+            p = flagged[f]
+            ax = px[p]
+            ay = py[p]
+            ta = tt[p]
+            tb = tt[p + 1]
+            # the pieces the segment needs, from the one ta falls in (last knot <= ta) to the
+            # one tb falls in (last knot < tb), as the walk finds them
+            k = kpt[p]
+            while k > ks and kt[i, k] > ta:
+                k -= 1
+            while k < last and kt[i, k + 1] <= ta:
+                k += 1
+            kb = max(k, kpt[p + 1])
+            while kb > k and not kt[i, kb] < tb:
+                kb -= 1
+            while kb < last and kt[i, kb + 1] < tb:
+                kb += 1
+            if kb - k > _PIECES:
+                # many pieces: first the box of the offsets over them
+                if not boxed[i]:
+                    _fill_boxes(i, ko, nk, boxes, bbase, lg)
+                    boxed[i] = True
+                k0 = kt[i, k]
+                sa = max(ta, k0)
+                oxa = ko[i, k, 0] + kv[i, k, 0] * (sa - k0)
+                oya = ko[i, k, 1] + kv[i, k, 1] * (sa - k0)
+                oxb = ko[i, kb, 0] + kv[i, kb, 0] * (tb - kt[i, kb])
+                oyb = ko[i, kb, 1] + kv[i, kb, 1] * (tb - kt[i, kb])
+                lv = lg[kb - k]
+                r0 = bbase[i] + lv * nk[i] + k + 1
+                r1 = bbase[i] + lv * nk[i] + kb - (1 << lv) + 1
+                xlo = min(min(oxa, oxb), min(boxes[r0, 0], boxes[r1, 0]))
+                ylo = min(min(oya, oyb), min(boxes[r0, 1], boxes[r1, 1]))
+                xhi = max(max(oxa, oxb), max(boxes[r0, 2], boxes[r1, 2]))
+                yhi = max(max(oya, oyb), max(boxes[r0, 3], boxes[r1, 3]))
+                # the robot's segment must come within rho of the centre's box: separating
+                # axes x, y and the segment's normal, and the box's circumcircle
+                bx = px[p + 1]
+                by = py[p + 1]
+                hx = 0.5 * (xhi - xlo)
+                hy = 0.5 * (yhi - ylo)
+                mx = bcx + 0.5 * (xlo + xhi)
+                my = bcy + 0.5 * (ylo + yhi)
+                r_ = rho * (1.0 + _MARGIN) + room
+                ex = bx - ax
+                ey = by - ay
+                reach = (rho + math.sqrt(hx * hx + hy * hy)) * (1.0 + _MARGIN) + room
+                if (
+                    max(ax, bx) < mx - hx - r_
+                    or min(ax, bx) > mx + hx + r_
+                    or max(ay, by) < my - hy - r_
+                    or min(ay, by) > my + hy + r_
+                    or abs(ex * (my - ay) - ey * (mx - ax))
+                    > r_ * math.sqrt(ex * ex + ey * ey) + hx * abs(ey) + hy * abs(ex)
+                    or _point_segment_d2(mx, my, ax, ay, bx, by) > reach * reach
+                ):
+                    f += 1
+                    continue
+            if ne + kb - k < cap:
+                done[p] = False
+                for kk in range(k, kb + 1):
+                    k0 = kt[i, kk]
+                    k1 = kt[i, kk + 1] if kk < last else np.inf
+                    sa = max(ta, k0)
+                    sb = min(tb, k1)
+                    vx = kv[i, kk, 0]
+                    vy = kv[i, kk, 1]
+                    qax[ne] = ax + rvx[p] * (sa - ta) - (ko[i, kk, 0] + vx * (sa - k0))
+                    qay[ne] = ay + rvy[p] * (sa - ta) - (ko[i, kk, 1] + vy * (sa - k0))
+                    qbx[ne] = ax + rvx[p] * (sb - ta) - (ko[i, kk, 0] + vx * (sb - k0))
+                    qby[ne] = ay + rvy[p] * (sb - ta) - (ko[i, kk, 1] + vy * (sb - k0))
+                    qseg[ne] = p
+                    ne += 1
+                f += 1
+                continue
+            if ne > 0:
+                break  # test the list first, then come back to this segment
+            # more pieces than the list holds: test them on the spot
+            for kk in range(k, kb + 1):
+                k0 = kt[i, kk]
+                k1 = kt[i, kk + 1] if kk < last else np.inf
+                sa = max(ta, k0)
+                sb = min(tb, k1)
+                vx = kv[i, kk, 0]
+                vy = kv[i, kk, 1]
+                pax = ax + rvx[p] * (sa - ta) - (ko[i, kk, 0] + vx * (sa - k0))
+                pay = ay + rvy[p] * (sa - ta) - (ko[i, kk, 1] + vy * (sa - k0))
+                pbx = ax + rvx[p] * (sb - ta) - (ko[i, kk, 0] + vx * (sb - k0))
+                pby = ay + rvy[p] * (sb - ta) - (ko[i, kk, 1] + vy * (sb - k0))
+                d = _point_segment_d2(bcx, bcy, pax, pay, pbx, pby)
+                if d <= rho2 and (
+                    d <= a2
+                    or (
+                        not is_circle[i]
+                        and _polygon_hit(
+                            pax, pay, pbx, pby, i, thresh, verts, nverts, hull, nhull, extra,
+                            margin,
+                        )
+                    )
+                ):  # fmt: skip
+                    ncol[cand[p]] += 1
+                    break
+            f += 1
+        for e in range(ne):
+            qd2[e] = _point_segment_d2(bcx, bcy, qax[e], qay[e], qbx[e], qby[e])
+        if convex:
+            # the polygon tests of the entries within the bounding circle, all at once
+            sax, say, sbx, sby = cls[0]
+            verdict = cls[1]
+            sidx = cls[3]
+            vmap = cls[4]
+            nt = 0
+            for e in range(ne):
+                d = qd2[e]
+                sax[nt] = qax[e]
+                say[nt] = qay[e]
+                sbx[nt] = qbx[e]
+                sby[nt] = qby[e]
+                sidx[nt] = e
+                vmap[e] = 2  # (not tested)
+                nt += 1 if (d <= rho2) & (d > a2) else 0
+            _classify(i, nt, cls[0], verdict, cls[2], obs, extra, margin)
+            for t in range(nt):
+                vmap[sidx[t]] = verdict[t]
+        for e in range(ne):
+            d = qd2[e]
+            if d <= rho2:
+                p = qseg[e]
+                if done[p]:
+                    continue
+                if convex and d > a2:
+                    v = vmap[e]
+                    hit = v == 1 or (
+                        v < 0
+                        and _segment_hits_polygon(
+                            qax[e], qay[e], qbx[e], qby[e], verts, i, nverts[i], thresh[i]
+                        )
+                    )
+                else:
+                    hit = d <= a2 or (
+                        not is_circle[i]
+                        and _polygon_hit(
+                            qax[e], qay[e], qbx[e], qby[e], i, thresh, verts, nverts, hull,
+                            nhull, extra, margin,
+                        )
+                    )  # fmt: skip
+                if hit:
+                    ncol[cand[p]] += 1
+                    done[p] = True
+        if f >= nf:
+            return

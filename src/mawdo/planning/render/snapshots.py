@@ -1,0 +1,197 @@
+"""The snapshot grid (paper Fig. 2): per algorithm a row of map panels over time."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from pathlib import Path
+
+import numpy as np
+
+from mawdo.planning.planner import PlanResult
+from mawdo.planning.render.style import (
+    _IMAGE_SUFFIXES,
+    GRID_DPI,
+    PANEL_IN,
+    _as_results,
+    _display,
+    _new_figure,
+    _optimum_path,
+    _output_path,
+    _route,
+    _save,
+)
+from mawdo.planning.render.world import _draw_world, _legend_handles
+
+
+def _headline(label: str, result: PlanResult, metrics: dict | None) -> str:
+    parts = [f"{label}  (seed {result.seed})"]
+    if metrics:
+        if "length_px" in metrics:
+            parts.append(f"length {metrics['length_px']:.1f} px")
+        if "gap" in metrics:
+            gap = metrics["gap"]
+            parts.append(f"gap L/L* {gap:.3f}" if np.isfinite(gap) else "gap n/a")
+        if "smoothness_rad" in metrics:
+            parts.append(f"smoothness {metrics['smoothness_rad']:.2f} rad")
+    if not result.success:
+        parts.append(f"goal not reached: {result.reason}")
+    return "  |  ".join(parts)
+
+
+def _default_times(result: PlanResult, n: int) -> np.ndarray:
+    """``n`` integer times spread evenly from 0 to the end of the run."""
+    end = float(_route(result)[1][-1])
+    return np.round(np.linspace(0.0, end, n))
+
+
+# --------------------------------------------------------------------------------------------
+# snapshot grid (paper Fig. 2)
+
+
+def snapshot_figure(
+    results,
+    times=None,
+    rows: int = 2,
+    cols: int = 4,
+    optimum: bool = True,
+    metrics: Mapping[str, Mapping] | None = None,
+    dpi: int = GRID_DPI,
+):
+    """Build the snapshot grid (see :func:`snapshot_grid`) and return the Figure, unsaved.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        One sub-figure per result (its title is the algorithm and the headline metrics) with
+        ``rows x cols`` map panels titled ``"t = <t>"``, and one legend sub-figure at the bottom.
+    """
+    items = _as_results(results)
+    for name, v in (("rows", rows), ("cols", cols)):
+        if not isinstance(v, int | np.integer) or v < 1:
+            raise ValueError(f"{name}={v!r} must be a positive integer")
+    n_panels = rows * cols
+    if times is not None:
+        times = np.atleast_1d(np.asarray(times, dtype=float))
+        if times.ndim != 1 or times.size == 0:
+            raise ValueError("times must be a non-empty 1-D sequence of time steps")
+        if not np.all(np.isfinite(times)) or np.any(times < 0):
+            raise ValueError(f"times must be finite and >= 0, got {times.tolist()}")
+        if times.size > n_panels:
+            raise ValueError(f"{times.size} times do not fit in rows x cols = {n_panels} panels")
+    metrics = dict(metrics or {})
+
+    block_h = rows * PANEL_IN + 0.75  # title row and x labels
+    legend_h = 0.75
+    width = cols * PANEL_IN + 0.5
+    fig = _new_figure((width, len(items) * block_h + legend_h), dpi)
+    fig.get_layout_engine().set(w_pad=0.03, h_pad=0.05, hspace=0.02, wspace=0.02)
+    subfigs = fig.subfigures(
+        len(items) + 1, 1, height_ratios=[block_h] * len(items) + [legend_h], squeeze=False
+    )[:, 0]
+    cache: dict = {}
+    for (key, res), sub in zip(items, subfigs[:-1], strict=False):
+        label = _display(key)
+        m = metrics.get(key, metrics.get(label))
+        sub.suptitle(_headline(label, res, m), fontsize=11, fontweight="bold")
+        ts = _default_times(res, n_panels) if times is None else times
+        opt = _optimum_path(res.scenario, cache) if optimum else None
+        axes = sub.subplots(rows, cols, squeeze=False)
+        for i, ax in enumerate(axes.flat):
+            r, c = divmod(i, cols)
+            if i >= len(ts):
+                ax.set_visible(False)
+                continue
+            _draw_world(ax, res.scenario, float(ts[i]), result=res, optimum=opt)
+            if c == 0:
+                ax.set_ylabel("y (px)", fontsize=8)
+            else:
+                ax.tick_params(labelleft=False)
+            if r == rows - 1 or i + cols >= len(ts):
+                ax.set_xlabel("x (px)", fontsize=8)
+            else:
+                ax.tick_params(labelbottom=False)
+    r0 = items[0][1].scenario.robot_radius
+    handles = _legend_handles(r0)
+    subfigs[-1].legend(
+        handles=handles,
+        loc="center",
+        ncols=min(len(handles), 5),
+        fontsize=9,
+        frameon=False,
+        handlelength=2.4,
+        columnspacing=1.6,
+    )
+    return fig
+
+
+def snapshot_grid(
+    results,
+    path,
+    times=None,
+    rows: int = 2,
+    cols: int = 4,
+    optimum: bool = True,
+    metrics: Mapping[str, Mapping] | None = None,
+    dpi: int = GRID_DPI,
+) -> Path:
+    """Per algorithm a ``rows x cols`` grid of snapshots of its run over time (paper Fig. 2).
+
+    Each panel shows the map at time ``t``: static obstacles (goldenrod), moving obstacles (dark)
+    with their outline inflated by the robot radius and their recent track, the executed path up
+    to ``t``, the plan active at ``t`` (position -> waypoints -> goal), the static optimum path,
+    start, goal and the robot disc (to scale).
+
+    Parameters
+    ----------
+    results : list of PlanResult or dict label -> PlanResult
+        One run per algorithm (a list is labelled by each result's ``algorithm``); registered
+        algorithm names are shown by their display label.
+    path : str or Path
+        Output image (``.png``, ``.svg`` or ``.pdf``); missing directories are created.
+    times : sequence of float, optional
+        Snapshot times (time steps) for every run, at most ``rows x cols``; default
+        ``rows x cols`` integer times spread evenly over each run.
+    rows, cols : int
+        Panels per algorithm.
+    optimum : bool
+        Draw the exact shortest path around the static obstacles.
+    metrics : dict label -> dict, optional
+        Headline metrics per label (``length_px``, ``gap``, ``smoothness_rad``), as returned by
+        :func:`mawdo.planning.metrics.run_metrics`.
+    dpi : int
+        Resolution; the image is ``figure size x dpi`` pixels (about 1600 px wide for 4 columns).
+
+    Returns
+    -------
+    Path
+        The written file.
+
+    Raises
+    ------
+    ValueError
+        No results, bad ``rows``/``cols``/``times``, or an unsupported suffix.
+    OSError
+        The path cannot be written (the message names it).
+    """
+    out = _output_path(path, _IMAGE_SUFFIXES)
+    fig = snapshot_figure(
+        results, times=times, rows=rows, cols=cols, optimum=optimum, metrics=metrics, dpi=dpi
+    )
+    return _save(fig, out)
+
+
+# --------------------------------------------------------------------------------------------
+# animation
+
+
+def _panel_count(fig) -> int:
+    """Map panels of a snapshot figure (axes titled ``"t = ..."``), for tests and checks."""
+    axes = [ax for sub in [fig, *_all_subfigures(fig)] for ax in sub.axes]
+    return sum(1 for ax in set(axes) if ax.get_visible() and ax.get_title().startswith("t = "))
+
+
+def _all_subfigures(fig) -> list:
+    out = []
+    for sub in getattr(fig, "subfigs", []):
+        out += [sub, *_all_subfigures(sub)]
+    return out

@@ -1,0 +1,183 @@
+"""The package's import graph: one-way floors and no cycles (docs/architecture.md, issue 11).
+
+Every ``import`` statement in ``src/mawdo/**.py`` is read with ``ast``, lazy imports inside
+functions included (a lazy import is still a dependency, and the circles this test guards
+against were lazy ones). A module may import its own floor or lower floors, never a higher one.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+import mawdo
+
+SRC = Path(mawdo.__file__).parent
+
+# (prefix, floor): the longest matching prefix decides. Documented in docs/architecture.md.
+FLOORS = (
+    ("mawdo.registry", 0),
+    ("mawdo.streams", 0),
+    ("mawdo.problem", 0),
+    ("mawdo.result", 0),
+    ("mawdo.viz", 0),
+    ("mawdo.optimizers", 1),
+    ("mawdo.functions", 1),
+    # the driver resolves algorithm and function names in their registries, so it sits on them
+    ("mawdo.minimize", 2),
+    ("mawdo", 2),  # the package facade re-exports minimize, OPTIMIZERS, FUNCTIONS
+    ("mawdo.planning", 3),
+    ("mawdo.experiments", 4),  # the harness: protocol, plans, rows, store, runner, stats, tables
+    ("mawdo.experiments.benchmark", 5),  # study kinds: each imports the harness only
+    ("mawdo.experiments.planning", 5),
+    ("mawdo.experiments.__init__", 6),  # registers the built-in kinds
+    ("mawdo.reproduce", 7),  # runs every kind's study: above the kinds, below the commands
+    ("mawdo.cli", 8),
+)
+NAMES = {
+    0: "core",
+    1: "optimizers/functions",
+    2: "driver",
+    3: "planning",
+    4: "experiments harness",
+    5: "study kinds",
+    6: "experiments facade",
+    7: "reproduce",
+    8: "commands",
+}
+KIND_PACKAGES = ("mawdo.experiments.benchmark", "mawdo.experiments.planning")
+
+
+def module_name(path: Path) -> str:
+    rel = path.relative_to(SRC.parent).with_suffix("")
+    parts = list(rel.parts)
+    if parts[-1] == "__init__" and len(parts) > 2 and parts[-2] != "experiments":
+        parts = parts[:-1]
+    elif parts == ["mawdo", "__init__"]:
+        parts = ["mawdo"]
+    return ".".join(parts)
+
+
+def floor_of(module: str) -> int:
+    best, floor = -1, None
+    for prefix, f in FLOORS:
+        if (module == prefix or module.startswith(prefix + ".")) and len(prefix) > best:
+            best, floor = len(prefix), f
+    if floor is None:
+        raise AssertionError(f"{module} has no floor: add it to FLOORS and docs/architecture.md")
+    return floor
+
+
+def all_modules() -> dict[str, Path]:
+    return {module_name(p): p for p in sorted(SRC.rglob("*.py"))}
+
+
+def resolve(target: str, modules: dict[str, Path]) -> str | None:
+    """The module an imported name lives in (``mawdo.x.y`` may be a module or a name in x)."""
+    while target and target not in modules:
+        if target == "mawdo.experiments":
+            return "mawdo.experiments.__init__"
+        target = target.rpartition(".")[0]
+    return target or None
+
+
+def imports_of(name: str, path: Path, modules: dict[str, Path]) -> set[str]:
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    package = name.rpartition(".")[0] if not path.name == "__init__.py" else name
+    package = package.removesuffix(".__init__")
+    out = set()
+    for node in ast.walk(tree):
+        targets = []
+        if isinstance(node, ast.Import):
+            targets = [a.name for a in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                up = package.split(".")
+                up = up[: len(up) - (node.level - 1)]
+                base = ".".join(up + ([base] if base else []))
+            targets = [f"{base}.{a.name}" for a in node.names]
+        for t in targets:
+            if t == "mawdo" or t.startswith("mawdo."):
+                mod = resolve(t, modules)
+                if mod is not None and mod != name:
+                    out.add(mod)
+    return out
+
+
+@pytest.fixture(scope="module")
+def graph() -> dict[str, set[str]]:
+    modules = all_modules()
+    return {name: imports_of(name, path, modules) for name, path in modules.items()}
+
+
+def test_every_module_has_a_floor(graph):
+    for name in graph:
+        floor_of(name)
+
+
+def test_no_import_from_a_higher_floor(graph):
+    upward = [
+        f"{a} ({NAMES[floor_of(a)]}) imports {b} ({NAMES[floor_of(b)]})"
+        for a, deps in graph.items()
+        for b in deps
+        if floor_of(b) > floor_of(a)
+    ]
+    assert not upward, "upward imports:\n" + "\n".join(sorted(upward))
+
+
+def test_study_kinds_do_not_import_each_other(graph):
+    def kind(m):
+        return next((k for k in KIND_PACKAGES if m == k or m.startswith(k + ".")), None)
+
+    crossing = [
+        f"{a} imports {b}"
+        for a, deps in graph.items()
+        for b in deps
+        if kind(a) and kind(b) and kind(a) != kind(b)
+    ]
+    assert not crossing
+
+
+def test_no_import_cycle(graph):
+    cycle = find_cycle(graph)
+    assert cycle is None, "import cycle: " + " -> ".join(cycle)
+
+
+def find_cycle(graph: dict[str, set[str]]) -> list[str] | None:
+    """A cycle of ``graph`` as a path ``a -> ... -> a``, or None (iterative DFS)."""
+    colour: dict[str, int] = {}
+    for root in sorted(graph):
+        if colour.get(root):
+            continue
+        stack = [(root, iter(sorted(graph.get(root, ()))))]
+        path = [root]
+        colour[root] = 1
+        while stack:
+            node, it = stack[-1]
+            nxt = next(it, None)
+            if nxt is None:
+                colour[node] = 2
+                stack.pop()
+                path.pop()
+            elif colour.get(nxt) == 1:
+                return path[path.index(nxt) :] + [nxt]
+            elif not colour.get(nxt):
+                colour[nxt] = 1
+                path.append(nxt)
+                stack.append((nxt, iter(sorted(graph.get(nxt, ())))))
+    return None
+
+
+def test_the_checks_catch_what_they_claim():
+    # the cycle finder and the floor map on hand-made graphs, so a green run means something
+    assert find_cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == ["a", "b", "c", "a"]
+    assert find_cycle({"a": {"b"}, "b": {"c"}, "c": set()}) is None
+    assert floor_of("mawdo.cli.bench") > floor_of("mawdo.experiments.store")
+    assert floor_of("mawdo.experiments.benchmark.report") > floor_of("mawdo.experiments.runner")
+    assert floor_of("mawdo.planning.kernel") < floor_of("mawdo.experiments.runner")
+    assert floor_of("mawdo.optimizers.wdo") < floor_of("mawdo.planning.planner")
+    assert floor_of("mawdo.registry") < floor_of("mawdo.optimizers.wdo")
+    assert floor_of("mawdo.experiments.__init__") > floor_of("mawdo.experiments.planning.plan")

@@ -1,0 +1,67 @@
+"""The command's error edge, through the real command in a subprocess: expected errors end in a
+message on stderr and a non-zero exit code, never a traceback, and bad output paths are refused
+before any computing starts."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import pytest
+
+
+def mawdo(*args: str, cwd=None) -> subprocess.CompletedProcess:
+    env = {**os.environ, "MPLBACKEND": "Agg", "COLUMNS": "200"}
+    # A budget that would run for hours: the command must stop before computing. (timeout ->
+    # the test fails with TimeoutExpired, which is what computing first would mean)
+    return subprocess.run(
+        [sys.executable, "-m", "mawdo.cli", *args],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env=env,
+        cwd=cwd,
+    )
+
+
+HOURS = ("--runs", "1000", "--iters", "100000000", "--no-progress")
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (("optimize", "sphere", *HOURS, "--plot", "out.xyz"), ["out.xyz", ".png"]),
+        (("optimize", "sphere", *HOURS, "--json", "/proc/nope/x.json"), ["/proc/nope"]),
+        (("bench", "report", "missing.db", "--out", "/proc/nope/rep"), ["/proc/nope/rep"]),
+        (("plan", "missing.toml"), ["missing.toml"]),
+        (("bench", "report", "missing.db", "--out", "rep"), ["no results store", "missing.db"]),
+    ],
+)
+def test_expected_errors_are_a_message_not_a_traceback(args, words, tmp_path):
+    res = mawdo(*args, cwd=tmp_path)
+    assert res.returncode != 0
+    assert "Traceback" not in res.stderr + res.stdout
+    assert "╭─ Traceback" not in res.stderr
+    for w in words:
+        assert w in res.stderr, res.stderr
+    assert not (tmp_path / "out.xyz").exists()
+
+
+def test_an_unwritable_report_folder_is_refused_before_reading(tmp_path):
+    ro = tmp_path / "ro"
+    ro.mkdir()
+    ro.chmod(0o500)
+    try:
+        if os.access(ro, os.W_OK):
+            # root writes anywhere: a file where the folder should be is just as unwritable
+            target = tmp_path / "afile"
+            target.write_text("x")
+        else:
+            target = ro / "rep"
+        res = mawdo("bench", "report", "missing.db", "--out", str(target), cwd=tmp_path)
+    finally:
+        ro.chmod(0o700)
+    assert res.returncode == 1
+    assert str(target) in res.stderr and "Traceback" not in res.stderr
+    assert "no results store" not in res.stderr  # the output was checked first
