@@ -23,8 +23,11 @@ FLOORS = (
     ("mawdo.problem", 0),
     ("mawdo.result", 0),
     ("mawdo.viz", 0),
+    ("mawdo.validate", 0),  # argument checks: used by the core itself
+    ("mawdo.budget", 0),
     ("mawdo.optimizers", 1),
     ("mawdo.functions", 1),
+    ("mawdo.suites", 2),  # BBOB/CEC problems (ioh/opfunu); run_problem drives minimize
     # the driver resolves algorithm and function names in their registries, so it sits on them
     ("mawdo.minimize", 2),
     ("mawdo", 2),  # the package facade re-exports minimize, OPTIMIZERS, FUNCTIONS
