@@ -52,11 +52,12 @@ def make_problem(
     vectorized : bool
         Whether a plain callable takes ``(n, D)`` batches.
     shifted : bool
-        Move a benchmark's optimum to a seeded point in the middle 80% of the box (SPEC 2).
+        Move a benchmark's optimum to a seeded point in the middle 80% of the box
+        (docs/functions.md#f-shift).
     shift_seed : int
         Seed of that shift.
     preset : {"paper", "standard"}
-        Benchmark bounds preset (SPEC 2 table).
+        Benchmark bounds preset (docs/functions.md#f-preset table).
     """
     from mawdo.functions import BenchmarkFunction, get_function
 

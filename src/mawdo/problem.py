@@ -1,6 +1,7 @@
 """The objective wrapper: the one place that calls user code and counts evaluations.
 
-Optimizers never call the objective themselves (SPEC 1): the driver hands each batch of
+Optimizers never call the objective themselves (docs/deviations.md#d-evaluator): the driver hands
+each batch of
 candidates ``(R, n, D)`` to an :class:`Evaluator`, which calls the objective once on all ``R*n``
 rows, counts ``nfev`` per run, maps NaN/inf to +inf ("worst"), and turns bad output shapes and
 exceptions into errors that name the algorithm, run and iteration.

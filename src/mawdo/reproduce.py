@@ -89,7 +89,8 @@ def _gather(out: Path, parts, quick: bool) -> Path:
         ),
         "",
         "Readings of the paper and every departure from it: `docs/deviations.md`. "
-        "F12-F16 paper values are not comparable (SPEC 2); the planning map is a "
+        "F12-F16 paper values are not comparable (docs/functions.md#f-f12-f16); the planning map "
+        "is a "
         "reconstruction (compare ratios and ranks).",
         "",
     ]

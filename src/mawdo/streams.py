@@ -2,7 +2,8 @@
 
 A batch of ``R`` independent runs draws every random number from each run's own
 :class:`numpy.random.Generator`, so run ``r``'s result does not depend on which other runs share
-its batch (SPEC 1). ``RunStreams`` stacks one draw per run into arrays shaped ``(R, ...)``.
+its batch (docs/deviations.md#d-streams). ``RunStreams`` stacks one draw per run into arrays shaped
+``(R, ...)``.
 Each run owns two streams spawned from its seed: one for the algorithm, one for objective noise
 (so adding noise to a function never shifts the algorithm's random numbers).
 """

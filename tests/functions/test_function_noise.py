@@ -1,4 +1,5 @@
-"""F6 noise: one U[0,1) draw per evaluated point, from an explicit generator (SPEC 2)."""
+"""F6 noise: one U[0,1) draw per evaluated point, from an explicit generator
+(docs/functions.md#f-noise)."""
 
 from __future__ import annotations
 

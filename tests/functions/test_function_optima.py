@@ -1,4 +1,5 @@
-"""Optima: ``f(x_star) == f_star`` for every function, and SPEC 2's table (bounds, D, f*).
+"""Optima: ``f(x_star) == f_star`` for every function, and docs/functions.md#f-table's table
+(bounds, D, f*).
 
 Equality is exact (``==``) for every registered function: the formulas are written so that the
 optimum evaluates to the stated value bit for bit on any CPU (no SIMD ``pow``; Ackley, Easom and
@@ -15,7 +16,7 @@ from mawdo.functions import ALTERNATES, FUNCTIONS, PAPER_SUITE, get_function
 
 ALL = list(FUNCTIONS)
 
-# SPEC 2 table, copied independently of the package: id -> (name, D, lb, ub, f*).
+# docs/functions.md#f-table table, copied independently of the package: id -> (name, D, lb, ub, f*).
 SPEC_TABLE = {
     "F1": ("sphere", 30, -100, 100, 0.0),
     "F2": ("schwefel_2_22", 30, -100, 100, 0.0),
@@ -35,7 +36,7 @@ SPEC_TABLE = {
     "F16": ("shekel_10", 4, 0, 10, -10.536409816692043),
 }
 
-# Customary boxes and optima of the alternates (SPEC 2 and the brief).
+# Customary boxes and optima of the alternates (docs/functions.md#f-f12-f16 and the brief).
 ALT_TABLE = {
     "easom": (2, -100, 100, -1.0),
     "goldstein_price": (2, -2, 2, 3.0),
@@ -114,7 +115,8 @@ def test_known_minimisers_of_alternates():
 
 
 def test_printed_f8_and_f11_are_not_minimised_at_the_origin():
-    """Why SPEC 2 rejects the printed formulas: the paper's minf = 0 is not their minimum."""
+    """Why docs/functions.md#f-f8 rejects the printed formulas: the paper's minf = 0 is not
+    their minimum."""
     for name in ("f8_paper_literal", "f11_paper_literal"):
         f = FUNCTIONS[name]
         assert f(np.zeros(30)) == 0.0

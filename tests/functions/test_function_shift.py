@@ -1,4 +1,5 @@
-"""The shift wrapper (SPEC 2, origin bias): optimum moved into the middle 80% of the box."""
+"""The shift wrapper (docs/functions.md#f-shift, origin bias): optimum moved into the middle 80%
+of the box."""
 
 from __future__ import annotations
 

@@ -1,4 +1,5 @@
-"""Literal and variant readings of the paper's printed formulas (forensic alternates, SPEC 2).
+"""Literal and variant readings of the paper's printed formulas (forensic alternates,
+docs/functions.md#f-decisions).
 
 These reproduce what the paper's Table 2 literally prints where the printed formula is ill-posed
 (F8, F11) or where reference codes differ (F9 without ``pi/n``). They are registered beside the

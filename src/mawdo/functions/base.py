@@ -1,7 +1,8 @@
 """The :class:`BenchmarkFunction` record: a pure vectorised formula plus its box and optimum.
 
 A benchmark function is data (name, bounds, optimum, flags) around one pure array formula
-``func(X: (n, D)) -> (n,)`` (SPEC 2). Calling the record validates shapes and, for F6, adds the
+``func(X: (n, D)) -> (n,)`` (docs/functions.md#f-table). Calling the record validates shapes and,
+for F6, adds the
 ``U[0,1)`` noise from an explicit generator; ``func`` itself stays noiseless and deterministic.
 Variants (another dimension, other bounds, a shifted optimum) are new records, never mutations.
 """

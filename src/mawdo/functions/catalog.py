@@ -1,8 +1,10 @@
-"""The benchmark records: every formula with its paper bounds, dimension and optimum (SPEC 2).
+"""The benchmark records: every formula with its paper bounds, dimension and optimum
+(docs/functions.md#f-table).
 
 This module only builds :class:`BenchmarkFunction` records; :mod:`mawdo.functions.registry`
 puts them in the registry. Optima of the low-dimensional functions are hard-coded: ``f_star`` is
-SPEC 2's exact value (or, for alternates without one, the best known value), and ``x_star`` is a
+docs/functions.md#f-table's exact value (or, for alternates without one, the best known value), and
+``x_star`` is a
 float64 point within about 1e-9 of the minimiser refined with ``scipy.optimize.minimize`` at
 which this package's evaluation returns exactly ``f_star`` (on any CPU: the formulas avoid
 CPU-specific SIMD powers, and Hartmann's point was checked with both numpy's and libm's ``exp``).
@@ -91,7 +93,8 @@ def _fixed(name, paper_id, func, lb, ub, x_star, f_star, *, description, multimo
 
 
 def paper_suite() -> list[BenchmarkFunction]:
-    """F1-F16 with the paper's bounds and dimensions, in paper order (SPEC 2 table)."""
+    """F1-F16 with the paper's bounds and dimensions, in paper order (the table in
+    docs/functions.md#f-table)."""
     return [
         _scalable("sphere", "F1", unimodal.sphere, -100, 100, 0.0, 0.0,
                   multimodal=False, description="sum x_i^2"),
@@ -147,7 +150,8 @@ def paper_suite() -> list[BenchmarkFunction]:
 
 
 def alternate_functions() -> list[BenchmarkFunction]:
-    """Literal readings and forensic alternates (SPEC 2), with their customary boxes."""
+    """Literal readings and forensic alternates (docs/functions.md#f-decisions), with their
+    customary boxes."""
     f8_x, f8_f = f8_literal_optimum(
         PAPER_DIM, np.full(PAPER_DIM, -100.0), np.full(PAPER_DIM, 100.0)
     )

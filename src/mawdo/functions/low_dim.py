@@ -1,7 +1,8 @@
 """Fixed-dimension functions (paper F12-F16 and the forensic alternates), vectorised formulas.
 
 Each formula maps ``X`` of shape ``(n, D)`` to ``(n,)`` for its one dimension ``D``. Constants
-are the Dixon-Szego values printed in SPEC 2 (Hartmann 6, Shekel) and the customary published
+are the Dixon-Szego values printed in docs/functions.md#f-constants (Hartmann 6, Shekel) and the
+customary published
 data for the alternates (Kowalik's 11-point data set).
 """
 
@@ -9,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-# --- Hartmann 6 (F13), SPEC 2 -----------------------------------------------------------------
+# --- Hartmann 6 (F13), docs/functions.md#f-constants ----------------------------------------------
 HARTMANN6_C = np.array([1.0, 1.2, 3.0, 3.2])
 HARTMANN6_A = np.array(
     [
@@ -32,7 +33,8 @@ HARTMANN6_P = 1e-4 * np.array(
 HARTMANN6_P_MIRJALILI = HARTMANN6_P.copy()
 HARTMANN6_P_MIRJALILI[2, 1] = 0.1415
 
-# --- Shekel (F14-F16), SPEC 2: rows a_i and widths c_i; shekel_m uses the first m -----------
+# --- Shekel (F14-F16), docs/functions.md#f-constants: rows a_i and widths c_i; shekel_m uses the
+# first m ---
 SHEKEL_A = np.array(
     [
         [4.0, 4.0, 4.0, 4.0],
@@ -100,7 +102,8 @@ def _hartmann_6(X: np.ndarray, P: np.ndarray) -> np.ndarray:
 
 
 def hartmann_6(X: np.ndarray) -> np.ndarray:
-    """F13 Hartmann 6 with the standard P matrix (SPEC 2); minimum -3.3223680114155147."""
+    """F13 Hartmann 6 with the standard P matrix (docs/functions.md#f-constants); minimum
+    -3.3223680114155147."""
     return _hartmann_6(X, HARTMANN6_P)
 
 

@@ -1,4 +1,5 @@
-"""Scalable multimodal paper functions F7-F11 as pure vectorised formulas (SPEC 2).
+"""Scalable multimodal paper functions F7-F11 as pure vectorised formulas
+(docs/functions.md#f-table).
 
 Each formula maps ``X`` of shape ``(n, D)`` to ``(n,)``. The readings chosen for the paper's
 ill-posed F8 and F11 and for its duplicated penalized function are documented in
@@ -37,7 +38,7 @@ def sin2_pi(T: np.ndarray) -> np.ndarray:
 
 
 def penalty_u(X: np.ndarray, a: float, k: float, m: float) -> np.ndarray:
-    """Boundary penalty ``u(x, a, k, m)``, elementwise (SPEC 2).
+    """Boundary penalty ``u(x, a, k, m)``, elementwise (docs/functions.md#f-penalized).
 
     ``k (x - a)^m`` if ``x > a``; ``k (-x - a)^m`` if ``x < -a``; 0 otherwise.
     """

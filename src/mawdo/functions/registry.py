@@ -1,4 +1,5 @@
-"""The function registry: canonical names, paper-id aliases and :func:`get_function` (SPEC 2).
+"""The function registry: canonical names, paper-id aliases and :func:`get_function`
+(docs/functions.md#f-table).
 
 ``FUNCTIONS`` maps canonical names (``"rastrigin"``) to the default records (paper bounds and
 dimensions). The paper ids ``"F1"`` .. ``"F16"`` are accepted as case-insensitive aliases for
@@ -15,7 +16,7 @@ from .shift import shifted as _shift
 
 PRESETS: dict[str, dict[str, tuple[float, float]]] = {
     "paper": {},
-    # SPEC 2 table, "decision" column: the customary boxes of F2 and F7.
+    # docs/functions.md#f-preset table, "decision" column: the customary boxes of F2 and F7.
     "standard": {"schwefel_2_22": (-10.0, 10.0), "rastrigin": (-5.12, 5.12)},
 }
 """Bound presets: ``paper`` keeps Table 2's boxes; ``standard`` overrides the named functions."""
@@ -81,7 +82,8 @@ for _f in _paper:
 PAPER_SUITE: tuple[str, ...] = tuple(f.name for f in _paper)
 """Canonical names of F1..F16, in paper order."""
 ALTERNATES: tuple[str, ...] = tuple(f.name for f in _alternates)
-"""Canonical names of the literal readings and forensic alternates (SPEC 2)."""
+"""Canonical names of the literal readings and forensic alternates
+(docs/functions.md#f-decisions)."""
 del _f, _paper, _alternates
 
 
@@ -103,7 +105,8 @@ def get_function(
         Dimension for a scalable function (default: the paper's, 30). A fixed-dimension function
         accepts only its own dimension.
     preset : {"paper", "standard"}, default "paper"
-        Bounds preset: ``"standard"`` uses [-10, 10] for F2 and [-5.12, 5.12] for F7 (SPEC 2).
+        Bounds preset: ``"standard"`` uses [-10, 10] for F2 and [-5.12, 5.12] for F7
+        (docs/functions.md#f-preset).
     shifted : bool, default False
         Move the optimum to a random point in the middle 80% of the box (see :func:`shifted`).
     shift_seed : int, default 0

@@ -1,4 +1,5 @@
-"""The shift wrapper: move a function's optimum to a seeded random point (SPEC 2, origin bias).
+"""The shift wrapper: move a function's optimum to a seeded random point
+(docs/functions.md#f-shift, origin bias).
 
 F1-F4, F6-F8 and F11 have their optimum at the centre of a symmetric box, where WDO's gravity
 term pulls; a fair suite also runs every function with its optimum moved to a seeded random point

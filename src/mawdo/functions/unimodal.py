@@ -1,4 +1,5 @@
-"""Unimodal paper functions F1-F6 as pure vectorised formulas (SPEC 2, paper Table 2).
+"""Unimodal paper functions F1-F6 as pure vectorised formulas (docs/functions.md#f-table, paper
+Table 2).
 
 Every formula maps a batch of points ``X`` of shape ``(n, D)`` to values of shape ``(n,)``; rows
 are independent points and nothing loops over them in Python. These are the noiseless formulas:
@@ -41,7 +42,8 @@ def rosenbrock(X: np.ndarray) -> np.ndarray:
 def quartic(X: np.ndarray) -> np.ndarray:
     """F6 quartic, noiseless part: ``f(x) = sum_i i x_i^4`` (``i = 1..n``); minimum 0 at 0.
 
-    The paper's ``+ random(0,1)`` term is not part of this formula (SPEC 2: one ``U[0,1)`` draw
+    The paper's ``+ random(0,1)`` term is not part of this formula (docs/functions.md#f-noise: one
+    ``U[0,1)`` draw
     per evaluation, added by the caller from the run's stream).
     """
     i = np.arange(1, X.shape[1] + 1, dtype=float)
