@@ -90,3 +90,17 @@ class RunStreams:
         """``n`` independent permutations of ``range(d)`` per run, shape ``(R, n, d)``."""
         # argsort of uniform keys: one vectorised sort for the whole batch
         return self.random((n, d)).argsort(axis=2)
+
+
+def replan_seed_sequences(seed, k: int) -> tuple[np.random.SeedSequence, np.random.SeedSequence]:
+    """Seed sequences of (re)plan ``k`` of a planning run: the optimizer's and the planner's own.
+
+    Child ``(k,)`` of the run's master seed drives the optimizer, ``(k, 1)`` the planner's draws
+    (seed paths, perturbed copies), so replan ``k`` is the same whatever happened before it.
+    """
+    ss = seed if isinstance(seed, np.random.SeedSequence) else np.random.SeedSequence(seed)
+    key = tuple(ss.spawn_key)
+    return (
+        np.random.SeedSequence(ss.entropy, spawn_key=(*key, k)),
+        np.random.SeedSequence(ss.entropy, spawn_key=(*key, k, 1)),
+    )

@@ -20,7 +20,7 @@ def polyline_length(points: np.ndarray) -> float:
 
 
 def turning_angles(points: np.ndarray, eps: float = 1e-9) -> np.ndarray:
-    """Turning angle at each interior vertex, ``|theta_i - pi|`` of Eq. 21 (radians, [0, pi]).
+    """Turning angle at each interior vertex, ``|theta_i - pi|`` of Eq. 28 (radians, [0, pi]).
 
     Zero-length segments (shorter than ``eps`` pixels) are dropped first: a robot standing still
     does not turn.

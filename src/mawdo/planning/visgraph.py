@@ -113,8 +113,17 @@ def _edges(nodes, prev, nxt, corner, edges, ring_ptr, ring_box, eps2):
             if ci and not _tangent(ax, ay, px, py, p2, qx, qy, q2, bx, by, eps2):
                 continue
             if corner[j] and not _tangent(
-                bx, by, prev[j, 0], prev[j, 1], prev[j, 2], nxt[j, 0], nxt[j, 1], nxt[j, 2],
-                ax, ay, eps2,
+                bx,
+                by,
+                prev[j, 0],
+                prev[j, 1],
+                prev[j, 2],
+                nxt[j, 0],
+                nxt[j, 1],
+                nxt[j, 2],
+                ax,
+                ay,
+                eps2,
             ):
                 continue
             if _visible(ax, ay, bx, by, edges, ring_ptr, ring_box):
@@ -132,8 +141,17 @@ def _from_point(p, nodes, prev, nxt, corner, edges, ring_ptr, ring_box, eps2):
     out = []
     for j in range(len(nodes)):
         if corner[j] and not _tangent(
-            nodes[j, 0], nodes[j, 1], prev[j, 0], prev[j, 1], prev[j, 2],
-            nxt[j, 0], nxt[j, 1], nxt[j, 2], p[0], p[1], eps2,
+            nodes[j, 0],
+            nodes[j, 1],
+            prev[j, 0],
+            prev[j, 1],
+            prev[j, 2],
+            nxt[j, 0],
+            nxt[j, 1],
+            nxt[j, 2],
+            p[0],
+            p[1],
+            eps2,
         ):
             continue
         if _visible(p[0], p[1], nodes[j, 0], nodes[j, 1], edges, ring_ptr, ring_box):
