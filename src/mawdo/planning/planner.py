@@ -132,6 +132,9 @@ PRESETS = {
     # the study: the paper's 1360 particles for the first plan, real-time replans
     "study": PlannerConfig(pop_size=240, first_pop_size=1360, first_iters=300, replan_iters=15),
     "quick": PlannerConfig(pop_size=80, first_iters=60, replan_iters=5),
+    # single-shot queries in tens of milliseconds: the guide's routes do the topology, a short
+    # refinement smooths them
+    "fast": PlannerConfig(pop_size=40, first_iters=25, replan_iters=5, warm_copies=15),
 }
 
 
