@@ -43,12 +43,14 @@ class Elite:
         if not ok.any():
             return f
         X, fv = X[ok], fv[ok]
+        if len(self.f) == self.size and fv.min() >= self.f[-1]:
+            return f  # nothing in this batch would enter (the usual case late in a run)
         take = np.argsort(fv, kind="stable")[: self.size]
         allx = np.vstack([self.X, X[take]]) if self.X.size else X[take].copy()
         allf = np.r_[self.f, fv[take]]
         keep: list[int] = []
         for i in np.argsort(allf, kind="stable"):
-            if all(np.max(np.abs(allx[i] - allx[j])) > self.min_dist for j in keep):
+            if not keep or np.min(np.max(np.abs(allx[keep] - allx[i]), axis=1)) > self.min_dist:
                 keep.append(int(i))
                 if len(keep) == self.size:
                     break
