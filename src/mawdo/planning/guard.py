@@ -45,7 +45,11 @@ class Elite:
         X, fv = X[ok], fv[ok]
         if len(self.f) == self.size and fv.min() >= self.f[-1]:
             return f  # nothing in this batch would enter (the usual case late in a run)
-        take = np.argsort(fv, kind="stable")[: self.size]
+        if len(fv) > self.size:  # the batch's best few, without sorting it all
+            part = np.argpartition(fv, self.size - 1)[: self.size]
+            take = part[np.argsort(fv[part], kind="stable")]
+        else:
+            take = np.argsort(fv, kind="stable")
         allx = np.vstack([self.X, X[take]]) if self.X.size else X[take].copy()
         allf = np.r_[self.f, fv[take]]
         keep: list[int] = []

@@ -468,6 +468,9 @@ def result_to_bytes(result: PlanResult) -> bytes:
         history=hist,
         meta=np.array([result.algorithm, str(result.seed), result.reason]),
         success=np.array(result.success),
+        collision_free=np.array(result.collision_free),
+        min_clearance=np.array(result.min_clearance),
+        events=np.array([result.waits, result.evasions, result.fallbacks, result.near_misses]),
     )
     return buf.getvalue()
 
@@ -495,6 +498,17 @@ def result_from_bytes(data: bytes, scenario) -> PlanResult:
             )
         )
     algorithm, seed, reason = (str(x) for x in z["meta"])
+    extra = {}
+    if "events" in z.files:  # payloads written since the guard (issue 10)
+        w, e, f, nm = (int(x) for x in z["events"])
+        extra = dict(
+            collision_free=bool(z["collision_free"]),
+            min_clearance=float(z["min_clearance"]),
+            waits=w,
+            evasions=e,
+            fallbacks=f,
+            near_misses=nm,
+        )
     return PlanResult(
         scenario=_resolve(scenario),
         algorithm=algorithm,
@@ -506,4 +520,5 @@ def result_from_bytes(data: bytes, scenario) -> PlanResult:
         replans=reps,
         route=z["route"],
         route_times=z["route_times"],
+        **extra,
     )
