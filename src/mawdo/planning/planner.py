@@ -1,12 +1,14 @@
 """Single-shot and receding-horizon (dynamic) path planning with any registered optimizer.
 
 Receding horizon (SPEC 4.3): every ``replan_every`` steps the robot observes the obstacles, the
-optimizer is warm-started from the previous best path (reached waypoints dropped, the rest
-re-spread along the remaining route, plus perturbed copies and fresh random candidates) and runs
-for an iteration or wall-time budget on the cost of :class:`~mawdo.planning.cost.PathCost`
-(``spacetime`` mode by default: each segment is tested against the obstacles' predicted motion
-while the robot traverses it). The robot then moves ``v`` pixels along the best path.
-"""
+optimizer is seeded with the guide's routes (exact visibility graph, distinct homotopy classes,
+re-rooted at the robot), the previous best path (reached waypoints dropped, the rest re-spread)
+and perturbed copies, and runs for an iteration or wall-time budget on the cost of
+:class:`~mawdo.planning.cost.PathCost` (``spacetime`` mode by default). The guard verifies the
+stretch to be driven before the next replan and falls back to the elite, to waiting or to an
+evasive move; the independent checker judges the executed route (:mod:`mawdo.planning.execute`).
+This module holds the settings, the result types, the oracle-following baseline and the
+serialisation."""
 
 from __future__ import annotations
 
