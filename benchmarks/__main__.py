@@ -10,7 +10,14 @@ import sys
 for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMBA_NUM_THREADS"):
     os.environ.setdefault(var, "1")
 
-SUITES = ["bench_optimizers", "bench_experiments", "bench_planning", "bench_scenes", "bench_bbob"]
+SUITES = [
+    "bench_optimizers",
+    "bench_experiments",
+    "bench_planning",
+    "bench_planner",
+    "bench_scenes",
+    "bench_bbob",
+]
 
 
 def main(argv: list[str]) -> None:

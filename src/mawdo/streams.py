@@ -144,3 +144,12 @@ def seed_word(entropy) -> int:
     depends on nothing but ``entropy``; distinct entropies give independent seeds.
     """
     return int(np.random.SeedSequence(entropy).generate_state(1, dtype=np.uint32)[0])
+
+
+def replan_seed_sequences(seed, k: int) -> tuple[np.random.SeedSequence, np.random.SeedSequence]:
+    """Seed sequences of (re)plan ``k`` of a planning run: the optimizer's and the planner's own.
+
+    Child ``(k,)`` of the run's master seed drives the optimizer, ``(k, 1)`` the planner's draws
+    (seed paths, perturbed copies), so replan ``k`` is the same whatever happened before it.
+    """
+    return keyed_seed_sequence(seed, k), keyed_seed_sequence(seed, k, 1)

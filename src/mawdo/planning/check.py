@@ -161,7 +161,11 @@ def check_trajectory(
     outside = np.nonzero((p[:, 0] < 0) | (p[:, 0] > W) | (p[:, 1] < 0) | (p[:, 1] > H))[0]
     n_steps = len(p) - 1
     clearance = np.full((n_steps, len(scenario.obstacles)), np.inf)
+    static_lines = shapely.linestrings(np.stack([p[:-1], p[1:]], axis=1))
     for o in scenario.obstacles:
+        if o.is_static:  # no knots: the relative trajectory is the route itself
+            clearance[:, o.index] = _shape_distance(o.shape, static_lines) - r
+            continue
         coords, index = [], []
         for s in range(n_steps):
             ta, tb = times[s], times[s + 1]

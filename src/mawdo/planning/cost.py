@@ -1,12 +1,12 @@
-"""Path cost of the paper (Eqs. 17-21) for a population of waypoint candidates.
+"""Path cost of the paper (Eqs. 24-28) for a population of waypoint candidates.
 
-``C = alpha C1 + beta C2 + lam C3`` (Eq. 17) with ``alpha + beta + lam = 1`` (Eq. 18):
+``C = alpha C1 + beta C2 + lam C3`` (Eq. 24) with ``alpha + beta + lam = 1`` (Eq. 25):
 
-* ``C1``: polyline length of ``start, w1..wm, goal`` (pixels, Eq. 19);
-* ``C2 = k n^4`` (Eq. 20), ``n`` the number of (segment, obstacle) pairs whose segment hits the
+* ``C1``: polyline length of ``start, w1..wm, goal`` (pixels, Eq. 26);
+* ``C2 = k n^4`` (Eq. 27), ``n`` the number of (segment, obstacle) pairs whose segment hits the
   obstacle inflated by the robot radius, *including a segment lying wholly inside it* (the
   paper counts boundary crossings, which misses that case);
-* ``C3 = sum |theta_i - pi|`` over interior vertices (radians, Eq. 21): the total turning angle;
+* ``C3 = sum |theta_i - pi|`` over interior vertices (radians, Eq. 28): the total turning angle;
   zero-length segments are skipped, so duplicated waypoints neither add nor hide turning.
 
 Modes
@@ -52,7 +52,7 @@ MODES = ("snapshot", "spacetime")
 
 @dataclass(frozen=True)
 class CostWeights:
-    """Weights of Eq. 17 and the collision scale of Eq. 20.
+    """Weights of Eq. 24 and the collision scale of Eq. 27.
 
     Parameters
     ----------
@@ -65,7 +65,7 @@ class CostWeights:
     k : float
         Scale of ``C2 = k n^4``, >= 0.
 
-    ``alpha + beta + lam`` must be 1 (Eq. 18; within 1e-9).
+    ``alpha + beta + lam`` must be 1 (Eq. 25; within 1e-9).
     """
 
     alpha: float = 0.45
@@ -80,7 +80,7 @@ class CostWeights:
                 raise ValueError(f"CostWeights.{name} must be finite and >= 0, got {value!r}")
         total = self.alpha + self.beta + self.lam
         if abs(total - 1.0) > 1e-9:
-            raise ValueError(f"alpha + beta + lam must equal 1 (Eq. 18), got {total!r}")
+            raise ValueError(f"alpha + beta + lam must equal 1 (Eq. 25), got {total!r}")
 
     def dominates(self, width: float, height: float, n_waypoints: int = 20) -> bool:
         """True if one collision outweighs any collision-free path in a ``width x height`` map.
@@ -127,6 +127,9 @@ class PathCost:
         Defaults to ``CostWeights()`` (alpha 0.45, beta 0.10, lam 0.45, k 1e5).
     n_waypoints : int
         Waypoints per candidate ``m``; the dimension is ``2 m`` (default 20 -> 40-D).
+    clearance : float
+        Margin (px, >= 0) added to the robot radius for the hit test of Eq. 27: a segment
+        coming within ``r + clearance`` of an obstacle counts as a collision (default 0).
 
     Examples
     --------
@@ -140,6 +143,7 @@ class PathCost:
         mode: str = "snapshot",
         weights: CostWeights | None = None,
         n_waypoints: int = 20,
+        clearance: float = 0.0,
     ) -> None:
         if mode not in MODES:
             raise ValueError(f"mode must be one of {MODES}, got {mode!r}")
@@ -153,7 +157,13 @@ class PathCost:
         self.mode = mode
         self.weights = weights
         self.n_waypoints = int(n_waypoints)
-        self.flat = FlatObstacles.from_scenario(scenario)
+        if not np.isfinite(clearance) or clearance < 0:
+            raise ValueError(f"clearance must be finite and >= 0 px, got {clearance!r}")
+        self.clearance = float(clearance)
+        # the margin widens the hit distance: touching the inflated-plus-margin shape is a hit
+        self.flat = FlatObstacles.from_obstacles(
+            scenario.obstacles, scenario.robot_radius + self.clearance
+        )
         self._table: MotionTable | None = None
         # the kernel's per-t0 inputs, kept for the next call with the same t0 (an optimizer
         # calls many times per planning step): (t0, offsets) and (table, t0, kernel arrays)
@@ -175,7 +185,7 @@ class PathCost:
         return lb, ub
 
     def __call__(self, X, start=None, t0: float = 0.0) -> np.ndarray:
-        """Total cost C (Eq. 17) of each candidate.
+        """Total cost C (Eq. 24) of each candidate.
 
         Parameters
         ----------
@@ -193,24 +203,27 @@ class PathCost:
         cost, _, _, _ = self._evaluate(X, start, t0)
         return cost
 
-    def parts(self, X, start=None, t0: float = 0.0):
+    def parts(self, X, start=None, t0: float = 0.0, goal=None):
         """The three parts of the cost, unweighted.
+
+        ``goal`` (pixels) replaces the scenario's goal as the path's last point, e.g. to test
+        only the part of a plan the robot drives before its next replan.
 
         Returns
         -------
         length : numpy.ndarray, shape (n,)
-            C1, polyline length (pixels, Eq. 19).
+            C1, polyline length (pixels, Eq. 26).
         n_collisions : numpy.ndarray of int64, shape (n,)
-            ``n`` of Eq. 20 (``C2 = k n^4``).
+            ``n`` of Eq. 27 (``C2 = k n^4``).
         turning : numpy.ndarray, shape (n,)
-            C3, total turning (radians, Eq. 21).
+            C3, total turning (radians, Eq. 28).
         """
-        _, length, ncol, turn = self._evaluate(X, start, t0)
+        _, length, ncol, turn = self._evaluate(X, start, t0, goal)
         return length, ncol, turn
 
     # ----------------------------------------------------------------------------------------
 
-    def _motion_table(self, X: np.ndarray, start: np.ndarray, t0: float) -> MotionTable:
+    def _motion_table(self, X, start, t0: float, goal) -> MotionTable:
         # Every segment is shorter than the diagonal of a box holding all points, so the robot
         # reaches the goal before t0 + (m + 1) diag / v: a table to there covers every query.
         # One min/max over all coordinates gives a (square) box cheaply.
@@ -218,7 +231,7 @@ class PathCost:
         if not (np.isfinite(lo) and np.isfinite(hi)):  # NaN candidates just get a NaN cost
             finite = X[np.isfinite(X)]
             lo, hi = (finite.min(), finite.max()) if finite.size else (0.0, 0.0)
-        ends = np.concatenate([start, self.scenario.goal])
+        ends = np.concatenate([start, goal])
         lo, hi = min(lo, ends.min()), max(hi, ends.max())
         diag = np.sqrt(2.0) * float(hi - lo)
         t_need = t0 + (self.n_waypoints + 1) * diag / self.scenario.robot_speed
@@ -229,7 +242,7 @@ class PathCost:
             self._table = table
         return table
 
-    def _evaluate(self, X, start, t0):
+    def _evaluate(self, X, start, t0, goal=None):
         X = np.asarray(X, dtype=np.float64)
         single = X.ndim == 1
         X2 = np.ascontiguousarray(np.atleast_2d(X))
@@ -244,6 +257,9 @@ class PathCost:
         )
         if start.shape != (2,) or not np.all(np.isfinite(start)):
             raise ValueError(f"start must be a finite (x, y) pair, got {start!r}")
+        goal = self.scenario.goal if goal is None else np.ascontiguousarray(goal, dtype=np.float64)
+        if goal.shape != (2,) or not np.all(np.isfinite(goal)):
+            raise ValueError(f"goal must be a finite (x, y) pair, got {goal!r}")
         t0 = float(t0)
         if not np.isfinite(t0) or t0 < 0:
             raise ValueError(f"t0 must be finite and >= 0, got {t0!r}")
@@ -257,7 +273,7 @@ class PathCost:
         n_obs = len(self.flat.thresh)
         spacetime = self.mode == "spacetime"
         if spacetime:
-            table = self._motion_table(X2, start, t0)
+            table = self._motion_table(X2, start, t0, goal)
             if self._motion is None or self._motion[0] is not table or self._motion[1] != t0:
                 self._motion = (table, t0, table.kernel_arrays(t0))
             motion = self._motion[2]
@@ -275,7 +291,7 @@ class PathCost:
         population_cost(
             X2,
             start,
-            self.scenario.goal,
+            goal,
             t0,
             float(self.scenario.robot_speed),
             spacetime,

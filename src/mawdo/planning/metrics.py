@@ -31,6 +31,10 @@ METRICS = (
     "first_plan_s",
     "nfev",
     "steps",
+    "waits",
+    "evasions",
+    "elite_fallbacks",
+    "near_misses",
 )
 
 
@@ -97,4 +101,9 @@ def run_metrics(result: PlanResult, l_star: float | None = None, snapshots: int 
         "nfev": result.nfev,
         "steps": result.steps,
         "l_star_px": l_star,
+        # the guard's record (issue 10): 0 for runs stored before it existed
+        "waits": int(getattr(result, "waits", 0)),
+        "evasions": int(getattr(result, "evasions", 0)),
+        "elite_fallbacks": int(getattr(result, "fallbacks", 0)),
+        "near_misses": int(getattr(result, "near_misses", 0)),
     }

@@ -22,11 +22,10 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import dijkstra
 
 from mawdo.planning.geometry import CIRCLE_SEGMENTS, inflated_obstacles
 from mawdo.planning.scenario import Scenario
+from mawdo.planning.visgraph import MAX_NODES, build, trace
 
 __all__ = ["OracleResult", "scenario_optimum", "shortest_path"]
 
@@ -61,26 +60,9 @@ def _unreachable(reason: str) -> OracleResult:
     return OracleResult(np.inf, None, reason)
 
 
-def _corner_nodes(free) -> np.ndarray:
-    """Vertices of the free space's rings where the free space is reflex (obstacle corners)."""
-    nodes = []
-    for poly in getattr(free, "geoms", [free]):
-        if poly.is_empty:
-            continue
-        # orient: exterior counter-clockwise, holes clockwise -> free space on the left
-        poly = shapely.geometry.polygon.orient(poly, 1.0)
-        for ring in [poly.exterior, *poly.interiors]:
-            v = np.asarray(ring.coords)[:-1]
-            prev = np.roll(v, 1, axis=0)
-            nxt = np.roll(v, -1, axis=0)
-            a = v - prev
-            b = nxt - v
-            cross = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
-            nodes.append(v[cross < 0])  # right turn with free space on the left: reflex
-    return np.concatenate(nodes) if nodes else np.empty((0, 2))
-
-
-def shortest_path(start, goal, obstacles, bounds, tol: float = DEFAULT_TOL) -> OracleResult:
+def shortest_path(
+    start, goal, obstacles, bounds, tol: float = DEFAULT_TOL, max_nodes: int = MAX_NODES
+) -> OracleResult:
     """Shortest path for a point from ``start`` to ``goal`` avoiding the obstacles' interiors.
 
     Parameters
@@ -93,6 +75,9 @@ def shortest_path(start, goal, obstacles, bounds, tol: float = DEFAULT_TOL) -> O
         Map box ``(xmin, ymin, xmax, ymax)`` (pixels); the path stays inside it.
     tol : float
         Obstacles are shrunk by this much (pixels) for the visibility test.
+    max_nodes : int
+        Most obstacle corners accepted (:data:`mawdo.planning.visgraph.MAX_NODES`; the build is
+        quadratic in them); more raise a ``ValueError``.
 
     Returns
     -------
@@ -101,35 +86,18 @@ def shortest_path(start, goal, obstacles, bounds, tol: float = DEFAULT_TOL) -> O
     """
     start = np.asarray(start, dtype=float)
     goal = np.asarray(goal, dtype=float)
-    box = shapely.box(*bounds)
-    union = shapely.union_all(list(obstacles)) if len(obstacles) else shapely.Polygon()
-    blocked = union.buffer(-tol) if not union.is_empty else union
-    shapely.prepare(blocked)
+    box = shapely.box(*bounds).buffer(tol, join_style="mitre")
     for name, p in (("start", start), ("goal", goal)):
-        if not box.buffer(tol).covers(shapely.Point(p)):
+        if not box.covers(shapely.Point(p)):
             return _unreachable(f"{name} {tuple(p)} is outside the map {tuple(bounds)}")
-        if blocked.intersects(shapely.Point(p)):
+    graph = build(obstacles, bounds, points=[start, goal], tol=tol, max_nodes=max_nodes)
+    for name, p in (("start", start), ("goal", goal)):
+        if graph.inside(p):
             return _unreachable(f"{name} {tuple(p)} is inside an obstacle")
-
-    free = box.difference(union)
-    corners = _corner_nodes(free)
-    nodes = np.vstack([start, goal, corners])
-    n = len(nodes)
-    i, j = np.triu_indices(n, k=1)
-    lines = shapely.linestrings(np.stack([nodes[i], nodes[j]], axis=1))
-    visible = ~shapely.intersects(blocked, lines) if not blocked.is_empty else np.ones(len(i), bool)
-    i, j = i[visible], j[visible]
-    w = np.hypot(*(nodes[j] - nodes[i]).T)
-    # csgraph treats an explicit zero weight as "no edge": coincident nodes get a tiny weight
-    w = np.maximum(w, 1e-300)
-    graph = coo_matrix((np.r_[w, w], (np.r_[i, j], np.r_[j, i])), shape=(n, n)).tocsr()
-    dist, pred = dijkstra(graph, directed=True, indices=0, return_predecessors=True)
+    dist, pred = graph.dijkstra([0], [0.0])
     if not np.isfinite(dist[1]):
         return _unreachable("the goal is not reachable from the start")
-    order = [1]
-    while order[-1] != 0:
-        order.append(int(pred[order[-1]]))
-    path = nodes[order[::-1]]
+    path = graph.nodes[trace(pred, 1)]
     length = float(np.sum(np.hypot(*np.diff(path, axis=0).T)))
     return OracleResult(length, path)
 

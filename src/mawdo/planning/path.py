@@ -20,7 +20,7 @@ def polyline_length(points: np.ndarray) -> float:
 
 
 def turning_angles(points: np.ndarray, eps: float = 1e-9) -> np.ndarray:
-    """Turning angle at each interior vertex, ``|theta_i - pi|`` of Eq. 21 (radians, [0, pi]).
+    """Turning angle at each interior vertex, ``|theta_i - pi|`` of Eq. 28 (radians, [0, pi]).
 
     Zero-length segments (shorter than ``eps`` pixels) are dropped first: a robot standing still
     does not turn.
@@ -87,11 +87,30 @@ def densify(points: np.ndarray, m: int) -> np.ndarray:
 
     Returns an array ``(m, 2)`` (pixels).
     """
-    pts = [p for p in np.asarray(points, dtype=float)]
-    first, last, inner = pts[0], pts[-1], pts[1:-1][-m:] if m > 0 else []
-    pts = [first, *inner, last]
-    while len(pts) - 2 < m:
-        seg = np.hypot(*np.diff(np.array(pts), axis=0).T)
-        j = int(np.argmax(seg))
-        pts.insert(j + 1, 0.5 * (pts[j] + pts[j + 1]))
-    return np.array(pts[1:-1])
+    import heapq
+
+    pts = np.asarray(points, dtype=float)
+    inner = pts[1:-1][-m:] if m > 0 else pts[:0]
+    base = np.vstack([pts[:1], inner, pts[-1:]])
+    need = m - len(inner)
+    if need <= 0:
+        return base[1:-1].copy()
+    # split the longest piece at its midpoint, repeatedly (ties: the earliest piece on the
+    # route); a heap of pieces (segment j, parameters a..b) instead of re-measuring the list
+    seg = segment_lengths(base)
+    heap = [(-seg[j], j, 0.0, 1.0) for j in range(len(seg))]
+    heapq.heapify(heap)
+    cuts: list[tuple[int, float]] = []
+    for _ in range(need):
+        neg, j, a, b = heapq.heappop(heap)
+        c = 0.5 * (a + b)
+        cuts.append((j, c))
+        heapq.heappush(heap, (0.5 * neg, j, a, c))
+        heapq.heappush(heap, (0.5 * neg, j, c, b))
+    cuts.sort()
+    j = np.array([c[0] for c in cuts])
+    t = np.array([c[1] for c in cuts])[:, None]
+    new = base[j] + t * (base[j + 1] - base[j])
+    # interleave: original vertex k (k >= 1) comes after every cut on segments < k
+    order = np.argsort(np.r_[np.arange(1, len(base) - 1), j + t[:, 0]], kind="stable")
+    return np.vstack([base[1:-1], new])[order]

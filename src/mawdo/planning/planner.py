@@ -1,12 +1,14 @@
 """Single-shot and receding-horizon (dynamic) path planning with any registered optimizer.
 
 Receding horizon (SPEC 4.3): every ``replan_every`` steps the robot observes the obstacles, the
-optimizer is warm-started from the previous best path (reached waypoints dropped, the rest
-re-spread along the remaining route, plus perturbed copies and fresh random candidates) and runs
-for an iteration or wall-time budget on the cost of :class:`~mawdo.planning.cost.PathCost`
-(``spacetime`` mode by default: each segment is tested against the obstacles' predicted motion
-while the robot traverses it). The robot then moves ``v`` pixels along the best path.
-"""
+optimizer is seeded with the guide's routes (exact visibility graph, distinct homotopy classes,
+re-rooted at the robot), the previous best path (reached waypoints dropped, the rest re-spread)
+and perturbed copies, and runs for an iteration or wall-time budget on the cost of
+:class:`~mawdo.planning.cost.PathCost` (``spacetime`` mode by default). The guard verifies the
+stretch to be driven before the next replan and falls back to the elite, to waiting or to an
+evasive move; the independent checker judges the executed route (:mod:`mawdo.planning.execute`).
+This module holds the settings, the result types, the oracle-following baseline and the
+serialisation."""
 
 from __future__ import annotations
 
@@ -15,7 +17,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from mawdo.planning.cost import CostWeights, PathCost, assemble_paths
+from mawdo.planning.cost import CostWeights, PathCost
 from mawdo.planning.path import advance, densify, polyline_length
 from mawdo.planning.scenario import Scenario, get_scenario
 
@@ -42,7 +44,7 @@ class PlannerConfig:
     mode : {"spacetime", "snapshot"}
         Cost mode (see :class:`~mawdo.planning.cost.PathCost`).
     weights : CostWeights
-        Eq. 17-20 weights.
+        Eqs. 24-27 weights.
     n_waypoints : int
         Waypoints per candidate (20 -> 40-D).
     max_steps : int or None
@@ -56,6 +58,24 @@ class PlannerConfig:
         Standard deviation of those perturbations (pixels).
     options : dict
         Extra options for the optimizer (e.g. ``{"groups": 8}``).
+    clearance : float
+        Safety margin (px, >= 0) added to the robot radius in the cost, the guide and the guard;
+        the checker reports steps closer than this as near misses.
+    elite_size : int
+        Distinct candidates kept from each optimisation for the guard to fall back on, >= 1.
+    give_up_steps : int
+        Consecutive steps of waiting or evading after which the run stops with an honest
+        failure (time steps), >= 1.
+    guide_routes : int
+        Routes in distinct homotopy classes from the exact visibility graph used as seeds
+        (0: no guidance).
+    guide_copies : int
+        Perturbed copies (N(0, ``warm_sigma``)) of each guide route among the seeds.
+    auto_waypoints : bool
+        Raise ``n_waypoints`` when the first guide routes need more (1.5 waypoints per route
+        vertex, at most ``max_waypoints``); never lowers it.
+    max_waypoints : int
+        Upper limit of that raise.
     """
 
     pop_size: int = 240
@@ -72,6 +92,13 @@ class PlannerConfig:
     warm_copies: int = 23
     warm_sigma: float = 6.0
     options: dict = field(default_factory=dict)
+    clearance: float = 0.5
+    elite_size: int = 8
+    give_up_steps: int = 60
+    guide_routes: int = 6
+    guide_copies: int = 3
+    auto_waypoints: bool = True
+    max_waypoints: int = 48
 
     def __post_init__(self) -> None:
         for name in ("pop_size", "first_iters", "replan_iters", "replan_every", "n_waypoints"):
@@ -90,6 +117,14 @@ class PlannerConfig:
             raise ValueError("PlannerConfig.warm_copies + 1 must not exceed pop_size")
         if self.max_steps is not None and self.max_steps < 1:
             raise ValueError(f"PlannerConfig.max_steps={self.max_steps!r} must be >= 1")
+        if not (np.isfinite(self.clearance) and self.clearance >= 0):
+            raise ValueError(f"PlannerConfig.clearance={self.clearance!r} must be >= 0 px")
+        for name in ("elite_size", "give_up_steps", "max_waypoints"):
+            if getattr(self, name) < 1:
+                raise ValueError(f"PlannerConfig.{name}={getattr(self, name)!r} must be >= 1")
+        for name in ("guide_routes", "guide_copies"):
+            if getattr(self, name) < 0:
+                raise ValueError(f"PlannerConfig.{name}={getattr(self, name)!r} must be >= 0")
 
 
 # Named settings: the paper's study size, and a real-time setting that meets 20 Hz replanning.
@@ -99,6 +134,9 @@ PRESETS = {
     # the study: the paper's 1360 particles for the first plan, real-time replans
     "study": PlannerConfig(pop_size=240, first_pop_size=1360, first_iters=300, replan_iters=15),
     "quick": PlannerConfig(pop_size=80, first_iters=60, replan_iters=5),
+    # single-shot queries in tens of milliseconds: the guide's routes do the topology, a short
+    # refinement smooths them
+    "fast": PlannerConfig(pop_size=40, first_iters=25, replan_iters=5, warm_copies=15),
 }
 
 
@@ -111,7 +149,7 @@ class Replan:
     waypoints: np.ndarray  # (m, 2) best waypoints
     cost: float
     length: float  # plan length from position to goal (pixels)
-    collisions: int  # n of Eq. 20 for the plan, as the cost kernel sees it
+    collisions: int  # n of Eq. 27 for the plan, as the cost kernel sees it
     latency: float  # wall seconds
     nfev: int
     history: np.ndarray  # best cost per iteration
@@ -130,12 +168,24 @@ class PlanResult:
         time (time steps, fractional) at which it was at each point: the robot follows its plan
         exactly, so this, not the straight lines between step positions, is what it drove.
     success : bool
-        The robot reached the goal within the step limit (collisions are judged separately by
-        :func:`mawdo.planning.check.check_trajectory`, see :mod:`mawdo.planning.metrics`).
+        The robot reached the goal within the step limit *and* the independent checker
+        (:func:`mawdo.planning.check.check_trajectory`: space, time, robot radius, map border)
+        accepts the executed route.
     reason : str
-        ``"goal reached"`` or why not.
+        ``"goal reached"``, or why not: ``"no collision-free route found ..."``,
+        ``"step limit reached before the goal"``, ``"goal reached but the route collides ..."``.
     replans : list of Replan
         Every optimisation, the first plan included.
+    collision_free : bool
+        The checker's verdict on the executed route.
+    min_clearance : float
+        Smallest clearance of the executed route (px, true robot radius).
+    near_misses : int
+        Route segments whose clearance fell below the planner's margin without colliding.
+    waits, evasions : int
+        Steps the guard waited in place / made an evasive move (no safe candidate).
+    fallbacks : int
+        Times the guard drove an elite candidate other than the optimizer's best.
     """
 
     scenario: Scenario
@@ -148,6 +198,12 @@ class PlanResult:
     replans: list[Replan]
     route: np.ndarray | None = None
     route_times: np.ndarray | None = None
+    collision_free: bool = False
+    min_clearance: float = float("nan")
+    near_misses: int = 0
+    waits: int = 0
+    evasions: int = 0
+    fallbacks: int = 0
 
     @property
     def steps(self) -> int:
@@ -184,13 +240,26 @@ class _Drive:
         self.stamps.append(step + 1.0)
         self.traj.append(pos.copy())
 
-    def result(self, reason: str, **fields) -> PlanResult:
+    def result(self, reason: str, scenario, margin: float = 0.0, **fields) -> PlanResult:
+        """The run's outcome; the independent checker judges the route (success needs it)."""
+        from mawdo.planning.check import check_trajectory
+
+        route, stamps = np.array(self.route), np.array(self.stamps)
+        rep = check_trajectory(route, scenario, times=stamps)
+        reached = reason == "goal reached"
+        if reached and not rep.ok:
+            reason = f"goal reached but the route collides ({len(rep.collisions)} checker hits)"
+        per_step = rep.clearance.min(axis=1) if rep.clearance.size else np.zeros(0)
         return PlanResult(
             trajectory=np.array(self.traj),
-            success=reason == "goal reached",
+            success=reached and rep.ok,
             reason=reason,
-            route=np.array(self.route),
-            route_times=np.array(self.stamps),
+            route=route,
+            route_times=stamps,
+            scenario=scenario,
+            collision_free=bool(rep.ok),
+            min_clearance=float(rep.min_clearance),
+            near_misses=int(np.sum((per_step >= -1e-9) & (per_step < margin))),
             **fields,
         )
 
@@ -291,88 +360,20 @@ def plan(
     Returns
     -------
     PlanResult
-        Never raises for an unreachable goal: ``success=False`` with a reason.
+        Never raises for an unreachable goal: ``success=False`` with a reason. ``success`` is
+        true only if the goal is reached and the independent checker accepts the route.
+
+    Notes
+    -----
+    Pipeline per (re)plan: guide routes from the exact visibility graph (re-rooted at the
+    robot), seeds (guide routes, perturbed copies, the warm start), refinement by the optimizer
+    under the paper's cost, then the guard (:mod:`mawdo.planning.guard`) before every move.
     """
     sc = _resolve(scenario)
     cfg = _config(config, overrides)
-    v = sc.robot_speed
-    max_steps = cfg.max_steps or int(np.ceil(4 * sc.straight_line_length() / v)) + 10
-    cost = PathCost(
-        sc,
-        mode=cfg.mode if dynamic else "snapshot",
-        weights=cfg.weights,
-        n_waypoints=cfg.n_waypoints,
-    )
-    lb, ub = cost.bounds
-    master = seed if isinstance(seed, np.random.SeedSequence) else np.random.SeedSequence(seed)
-    goal = sc.goal
-    pos = sc.start.copy()
-    drive = _Drive(pos)
-    replans: list[Replan] = []
-    remainder = None
-    reason = "step limit reached before the goal"
-    for step in range(max_steps + 1):
-        if np.hypot(*(goal - pos)) <= 1e-9:
-            reason = "goal reached"
-            break
-        if step == max_steps:
-            break
-        if remainder is None or (dynamic and step % cfg.replan_every == 0):
-            k = len(replans)
-            key = tuple(master.spawn_key)
-            ss = np.random.SeedSequence(master.entropy, spawn_key=(*key, k))
-            rng = np.random.default_rng(
-                np.random.SeedSequence(master.entropy, spawn_key=(*key, k, 1))
-            )
-            if remainder is None:
-                n_via = max(0, int(cfg.seed_fraction * (cfg.first_pop_size or cfg.pop_size)) - 1)
-                x0 = np.vstack(
-                    [
-                        densify(np.array([pos, goal]), cfg.n_waypoints).reshape(1, -1),
-                        _via_paths(
-                            pos, goal, cfg.n_waypoints, n_via, rng, lb, ub, sc.width, sc.height
-                        ),
-                    ]
-                )
-            else:
-                x0 = _seeds(remainder, cfg.n_waypoints, cfg, rng, lb, ub)
-            first = remainder is None
-            iters = cfg.first_iters if first else cfg.replan_iters
-            t0 = time.perf_counter()
-            res = _optimise(
-                cost,
-                pos,
-                float(step),
-                algorithm,
-                cfg,
-                iters,
-                ss,
-                x0,
-                None if first else cfg.replan_time,
-                (cfg.first_pop_size or cfg.pop_size) if first else cfg.pop_size,
-            )
-            latency = time.perf_counter() - t0
-            best = res.x[0]
-            length, ncol, _ = cost.parts(best[None, :], start=pos, t0=float(step))
-            replans.append(
-                Replan(
-                    step=step,
-                    position=pos.copy(),
-                    waypoints=best.reshape(-1, 2).copy(),
-                    cost=float(res.fun[0]),
-                    length=float(length[0]),
-                    collisions=int(ncol[0]),
-                    latency=latency,
-                    nfev=int(res.nfev[0]),
-                    history=res.history[0].copy(),
-                )
-            )
-            remainder = assemble_paths(best[None, :], pos, goal)[0]
-        pos, remainder, passed, frac = advance(remainder, v)
-        drive.move(step, pos, passed, frac)
-    return drive.result(
-        reason, scenario=sc, algorithm=algorithm, seed=seed, config=cfg, replans=replans
-    )
+    from mawdo.planning.execute import Run
+
+    return Run(sc, algorithm, seed, cfg, dynamic).execute()
 
 
 def executed_length(result: PlanResult) -> float:
@@ -470,6 +471,9 @@ def result_to_bytes(result: PlanResult) -> bytes:
         history=hist,
         meta=np.array([result.algorithm, str(result.seed), result.reason]),
         success=np.array(result.success),
+        collision_free=np.array(result.collision_free),
+        min_clearance=np.array(result.min_clearance),
+        events=np.array([result.waits, result.evasions, result.fallbacks, result.near_misses]),
     )
     return buf.getvalue()
 
@@ -497,6 +501,17 @@ def result_from_bytes(data: bytes, scenario) -> PlanResult:
             )
         )
     algorithm, seed, reason = (str(x) for x in z["meta"])
+    extra = {}
+    if "events" in z.files:  # payloads written since the guard (issue 10)
+        w, e, f, nm = (int(x) for x in z["events"])
+        extra = dict(
+            collision_free=bool(z["collision_free"]),
+            min_clearance=float(z["min_clearance"]),
+            waits=w,
+            evasions=e,
+            fallbacks=f,
+            near_misses=nm,
+        )
     return PlanResult(
         scenario=_resolve(scenario),
         algorithm=algorithm,
@@ -508,4 +523,5 @@ def result_from_bytes(data: bytes, scenario) -> PlanResult:
         replans=reps,
         route=z["route"],
         route_times=z["route_times"],
+        **extra,
     )

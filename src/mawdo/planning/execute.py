@@ -1,0 +1,249 @@
+"""One planning run: guide -> seeds -> refine -> guard -> move, then the checker's judgement.
+
+:func:`mawdo.planning.planner.plan` builds a :class:`Run` and calls :meth:`Run.execute`. The
+steps of each (re)plan are those of the planner module's docstring; this module holds the loop
+and the safety contract (a move is driven only after the guard verified it; the route is judged
+by the independent checker at the end).
+"""
+
+from __future__ import annotations
+
+import time
+import weakref
+
+import numpy as np
+
+from mawdo.planning.cost import PathCost, assemble_paths
+from mawdo.planning.guard import Elite, Guard
+from mawdo.planning.guide import Guide
+from mawdo.planning.path import advance, densify
+from mawdo.planning.planner import (
+    PlannerConfig,
+    PlanResult,
+    Replan,
+    _Drive,
+    _optimise,
+    _seeds,
+    _via_paths,
+)
+from mawdo.planning.scenario import Scenario
+from mawdo.streams import replan_seed_sequences
+
+NO_ROUTE = "no collision-free route found"
+
+# one guide per (scenario, clearance, k): the graph and the goal's tree are built once
+_GUIDES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def guide_for(scenario: Scenario, clearance: float, k: int) -> Guide:
+    """The cached :class:`Guide` of a scenario (built on first use)."""
+    per = _GUIDES.setdefault(scenario, {})
+    key = (float(clearance), int(k))
+    if key not in per:
+        per[key] = Guide(scenario, clearance=clearance, k=k)
+    return per[key]
+
+
+def _waypoints_needed(routes, cfg: PlannerConfig) -> int:
+    if not (cfg.auto_waypoints and routes):
+        return cfg.n_waypoints
+    inner = max(len(r) - 2 for r in routes)
+    return max(cfg.n_waypoints, min(cfg.max_waypoints, int(np.ceil(1.5 * inner))))
+
+
+class _Watched:
+    """The cost as the optimizer sees it; the elite sees every batch it evaluates."""
+
+    def __init__(self, cost: PathCost, elite: Elite) -> None:
+        self.cost, self.elite, self.bounds = cost, elite, cost.bounds
+
+    def __call__(self, X, start=None, t0: float = 0.0):
+        return self.elite.add(X, self.cost(X, start=start, t0=t0))
+
+
+class Run:
+    """State of one run (see :func:`mawdo.planning.planner.plan` for the parameters)."""
+
+    def __init__(self, sc: Scenario, algorithm: str, seed, cfg: PlannerConfig, dynamic: bool):
+        self.sc, self.algorithm, self.seed, self.cfg, self.dynamic = (
+            sc,
+            algorithm,
+            seed,
+            cfg,
+            dynamic,
+        )
+        self.guide = guide_for(sc, cfg.clearance, cfg.guide_routes) if cfg.guide_routes else None
+        self.routes = self.guide.routes(sc.start) if self.guide else []
+        self.m = _waypoints_needed(self.routes, cfg)
+        self.cost = PathCost(
+            sc,
+            mode=cfg.mode if dynamic else "snapshot",
+            weights=cfg.weights,
+            n_waypoints=self.m,
+            clearance=cfg.clearance,
+        )
+        self.guard = Guard(sc, cfg.clearance)
+        self.replans: list[Replan] = []
+        self.counts = {"waits": 0, "evasions": 0, "fallbacks": 0}
+
+    # -- seeds ---------------------------------------------------------------------------------
+
+    def _guide_seeds(self, pos, rng, lb, ub) -> np.ndarray:
+        if self.guide is None:
+            return np.empty((0, 2 * self.m))
+        rows = []
+        for r in self.guide.routes(pos):
+            base = densify(r, self.m).reshape(-1)
+            noise = rng.normal(0.0, self.cfg.warm_sigma, (self.cfg.guide_copies, base.size))
+            rows.append(np.vstack([base, base + noise]))
+        return np.clip(np.vstack(rows), lb, ub) if rows else np.empty((0, 2 * self.m))
+
+    def _x0(self, pos, remainder, rng, pop) -> np.ndarray:
+        cfg, lb, ub = self.cfg, *self.cost.bounds
+        guide = self._guide_seeds(pos, rng, lb, ub)
+        if remainder is None:
+            n_via = max(0, int(cfg.seed_fraction * pop) - 1 - len(guide))
+            line = densify(np.array([pos, self.sc.goal]), self.m).reshape(1, -1)
+            via = _via_paths(pos, self.sc.goal, self.m, n_via, rng, lb, ub, *self.sc.bounds[2:])
+            x0 = np.vstack([guide, line, via])
+        else:
+            x0 = np.vstack([_seeds(remainder, self.m, cfg, rng, lb, ub), guide])
+        return x0[:pop]
+
+    # -- one optimisation ----------------------------------------------------------------------
+
+    def optimise(self, pos, step: int, remainder) -> tuple[np.ndarray, Elite]:
+        """Run the optimizer from ``pos`` at time ``step``; the best candidates, best first."""
+        cfg, k = self.cfg, len(self.replans)
+        ss, own = replan_seed_sequences(self.seed, k)
+        rng = np.random.default_rng(own)
+        first = remainder is None
+        pop = (cfg.first_pop_size or cfg.pop_size) if first else cfg.pop_size
+        t_start = time.perf_counter()
+        x0 = self._x0(pos, remainder, rng, pop)
+        elite = Elite(cfg.elite_size)
+        t = float(step)
+
+        res = _optimise(
+            _Watched(self.cost, elite),
+            pos,
+            t,
+            self.algorithm,
+            cfg,
+            cfg.first_iters if first else cfg.replan_iters,
+            ss,
+            x0,
+            None if first else cfg.replan_time,
+            pop,
+        )
+        best = res.x[0]
+        cands = [best] + [x for x in elite.X if np.max(np.abs(x - best)) > 1e-12]
+        latency = time.perf_counter() - t_start
+        length, ncol, _ = self.cost.parts(best[None, :], start=pos, t0=t)
+        self.replans.append(
+            Replan(
+                step=step,
+                position=np.array(pos, dtype=float),
+                waypoints=best.reshape(-1, 2).copy(),
+                cost=float(res.fun[0]),
+                length=float(length[0]),
+                collisions=int(ncol[0]),
+                latency=latency,
+                nfev=int(res.nfev[0]),
+                history=res.history[0].copy(),
+            )
+        )
+        return np.array(cands), latency
+
+    # -- the guard -----------------------------------------------------------------------------
+
+    def choose(self, cands, pos, step: int, horizon: float):
+        """First candidate whose next ``horizon`` px are safe (route), or ``None``."""
+        for i, x in enumerate(cands):
+            route = assemble_paths(x[None, :], pos, self.sc.goal)[0]
+            if self.dynamic:
+                safe = self.guard.stretch_hits(route, float(step), horizon) == 0
+            else:  # single-shot: the whole plan on the frozen map at t = 0
+                safe = int(self.cost.parts(x[None, :], start=pos, t0=0.0)[1][0]) == 0
+            if safe:
+                self.counts["fallbacks"] += i > 0
+                return route
+        return None
+
+    def execute(self) -> PlanResult:
+        sc, cfg = self.sc, self.cfg
+        v = sc.robot_speed
+        reach = self._reachable()
+        if isinstance(reach, str):
+            return self._finish(_Drive(sc.start.copy()), f"{NO_ROUTE}: static obstacles: {reach}")
+        # long detours (mazes) need more than 4 straight lines: allow twice the static optimum
+        budget = max(4 * sc.straight_line_length(), 2 * reach)
+        max_steps = cfg.max_steps or int(np.ceil(budget / v)) + 10
+        pos = sc.start.copy()
+        drive = _Drive(pos)
+        remainder, stuck, force = None, 0, False
+        reason = "step limit reached before the goal"
+        for step in range(max_steps + 1):
+            if np.hypot(*(sc.goal - pos)) <= 1e-9:
+                reason = "goal reached"
+                break
+            if step == max_steps:
+                break
+            if remainder is None or force or (self.dynamic and step % cfg.replan_every == 0):
+                cands, _ = self.optimise(pos, step, remainder)
+                left = cfg.replan_every - step % cfg.replan_every if self.dynamic else 0
+                chosen = self.choose(cands, pos, step, v * left)
+                if chosen is None and not self.dynamic:
+                    n = self.replans[-1].collisions
+                    reason = f"{NO_ROUTE}: the best plan hits obstacles {n} times"
+                    break
+                if chosen is None:
+                    pos = self._fallback(drive, pos, step, cands)
+                    stuck, force = stuck + 1, True
+                    if stuck >= cfg.give_up_steps:
+                        reason = f"{NO_ROUTE}: gave up after {stuck} steps of waiting or evading"
+                        break
+                    remainder = assemble_paths(cands[:1], pos, sc.goal)[0]
+                    continue
+                stuck, remainder, force = 0, chosen, False
+            pos, remainder, passed, frac = advance(remainder, v)
+            drive.move(step, pos, passed, frac)
+        return self._finish(drive, reason)
+
+    def _reachable(self):
+        """Length (px) of a route around the static obstacles, or why there is none.
+
+        The guide's shortest route answers when there is one; only when it finds none (the
+        margin may close a narrow passage) does the exact oracle at the true radius decide.
+        """
+        if self.routes:
+            return float(np.hypot(*np.diff(self.routes[0], axis=0).T).sum())
+        from mawdo.planning.oracle import scenario_optimum
+
+        opt = scenario_optimum(self.sc, static_only=True)
+        return opt.length if opt.reachable else opt.reason
+
+    def _fallback(self, drive, pos, step: int, cands):
+        """No candidate is safe: wait if that is safe, else the least-bad evasive move."""
+        target = assemble_paths(cands[:1], pos, self.sc.goal)[0]
+        target, _, _, _ = advance(target, self.sc.robot_speed)
+        if self.guard.step_clearance(pos, pos, float(step), 1.0) >= self.cfg.clearance:
+            self.counts["waits"] += 1
+            drive.move(step, pos.copy())
+            return pos
+        to, _, _ = self.guard.evasive_move(pos, target, float(step), 1.0)
+        self.counts["evasions"] += 1
+        drive.move(step, to.copy())
+        return to
+
+    def _finish(self, drive, reason: str) -> PlanResult:
+        return drive.result(
+            reason,
+            self.sc,
+            margin=self.cfg.clearance,
+            algorithm=self.algorithm,
+            seed=self.seed,
+            config=self.cfg,
+            replans=self.replans,
+            **self.counts,
+        )

@@ -1,0 +1,115 @@
+"""The guard: nothing is driven before it is verified against the predicted obstacles.
+
+Before each move the planner checks the part of a plan it will drive before the next replan,
+with the exact space-time kernel (the robot at speed ``v`` along the path, obstacles along their
+piecewise-linear motion, hit distance ``r + clearance``). The fallback order is:
+
+1. the optimizer's best candidate, then the other members of a small *elite* of distinct
+   candidates collected while the optimizer ran (:class:`Elite`), best first;
+2. waiting in place, if the robot's disc plus the margin stays clear over the interval (checked
+   by the independent checker, as the kernel measures time by distance travelled);
+3. the least-bad evasive move: of 16 headings at full and half speed (and waiting), one whose
+   step keeps the margin and gets closest to the plan's next point, else the one with the largest
+   clearance.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mawdo.planning.check import check_trajectory
+from mawdo.planning.cost import PathCost
+from mawdo.planning.path import advance, densify
+from mawdo.planning.scenario import Scenario
+
+__all__ = ["Elite", "Guard"]
+
+
+class Elite:
+    """The ``size`` best distinct candidates seen by a cost function (lowest cost first).
+
+    Two candidates are distinct when some coordinate differs by more than ``min_dist`` px.
+    """
+
+    def __init__(self, size: int = 8, min_dist: float = 2.0) -> None:
+        self.size, self.min_dist = int(size), float(min_dist)
+        self.X = np.empty((0, 0))
+        self.f = np.empty(0)
+
+    def add(self, X: np.ndarray, f: np.ndarray) -> np.ndarray:
+        """Offer a batch (candidates ``(n, D)``, costs ``(n,)``); returns ``f`` unchanged."""
+        X, fv = np.atleast_2d(X), np.atleast_1d(np.asarray(f, dtype=float))
+        ok = np.isfinite(fv)
+        if not ok.any():
+            return f
+        X, fv = X[ok], fv[ok]
+        if len(self.f) == self.size and fv.min() >= self.f[-1]:
+            return f  # nothing in this batch would enter (the usual case late in a run)
+        if len(fv) > self.size:  # the batch's best few, without sorting it all
+            part = np.argpartition(fv, self.size - 1)[: self.size]
+            take = part[np.argsort(fv[part], kind="stable")]
+        else:
+            take = np.argsort(fv, kind="stable")
+        allx = np.vstack([self.X, X[take]]) if self.X.size else X[take].copy()
+        allf = np.r_[self.f, fv[take]]
+        keep: list[int] = []
+        for i in np.argsort(allf, kind="stable"):
+            if not keep or np.min(np.max(np.abs(allx[keep] - allx[i]), axis=1)) > self.min_dist:
+                keep.append(int(i))
+                if len(keep) == self.size:
+                    break
+        self.X, self.f = allx[keep].copy(), allf[keep]
+        return f
+
+
+class Guard:
+    """Exact checks of the next driven stretch (see the module docstring).
+
+    Parameters
+    ----------
+    scenario : Scenario
+    clearance : float
+        Margin (px) added to the robot radius, >= 0.
+    n_check : int
+        Waypoints of the kernel's stretch encoding (a stretch with more vertices is cut).
+    """
+
+    def __init__(self, scenario: Scenario, clearance: float, n_check: int = 8) -> None:
+        self.scenario, self.clearance = scenario, float(clearance)
+        self.cost = PathCost(scenario, mode="spacetime", n_waypoints=n_check, clearance=clearance)
+        self.n_check = n_check
+
+    def stretch_hits(self, route: np.ndarray, t: float, distance: float) -> int:
+        """Kernel hits ``n`` of the first ``distance`` px of ``route``, driven from time ``t``."""
+        end, _, passed, _ = advance(route, distance)
+        pts = np.vstack([route[:1], passed, end[None]])
+        if len(pts) - 2 > self.n_check:  # more vertices than the encoding: check it in pieces
+            half = len(pts) // 2
+            d0 = float(np.hypot(*np.diff(pts[: half + 1], axis=0).T).sum())
+            first = self.stretch_hits(pts[: half + 1], t, d0)
+            v = self.scenario.robot_speed
+            return first + self.stretch_hits(pts[half:], t + d0 / v, distance - d0)
+        X = densify(pts, self.n_check).reshape(1, -1)
+        _, ncol, _ = self.cost.parts(X, start=pts[0], t0=t, goal=pts[-1])
+        return int(ncol[0])
+
+    def step_clearance(self, pos: np.ndarray, to: np.ndarray, t: float, dt: float) -> float:
+        """Smallest clearance (px, true radius) over a straight move ``pos -> to`` in ``dt``."""
+        rep = check_trajectory(np.vstack([pos, to]), self.scenario, times=np.array([t, t + dt]))
+        inside = np.all((to >= 0) & (to <= [self.scenario.width, self.scenario.height]))
+        return float(rep.min_clearance) if inside else -np.inf
+
+    def evasive_move(self, pos: np.ndarray, target: np.ndarray, t: float, dt: float):
+        """Best move over ``dt`` steps: ``(to, clearance, safe)`` (see the module docstring)."""
+        v = self.scenario.robot_speed * dt
+        ang = np.linspace(0.0, 2 * np.pi, 16, endpoint=False)
+        dirs = np.column_stack([np.cos(ang), np.sin(ang)])
+        moves = np.vstack([pos, pos + v * dirs, pos + 0.5 * v * dirs])
+        clear = np.array([self.step_clearance(pos, m, t, dt) for m in moves])
+        safe = clear >= self.clearance
+        if safe.any():
+            idx = np.nonzero(safe)[0]
+            best = idx[np.argmin(np.hypot(*(moves[idx] - target).T))]
+        else:
+            best = int(np.argmax(clear))
+        return moves[best], float(clear[best]), bool(safe[best])
