@@ -13,20 +13,13 @@ import weakref
 
 import numpy as np
 
+from mawdo.planning.config import PlannerConfig, PlanResult, Replan, _Drive
 from mawdo.planning.cost import PathCost, assemble_paths
 from mawdo.planning.guard import Elite, Guard
 from mawdo.planning.guide import Guide
 from mawdo.planning.path import advance, densify
-from mawdo.planning.planner import (
-    PlannerConfig,
-    PlanResult,
-    Replan,
-    _Drive,
-    _optimise,
-    _seeds,
-    _via_paths,
-)
 from mawdo.planning.scenario import Scenario
+from mawdo.planning.seeding import _optimise, _seeds, _via_paths
 from mawdo.streams import replan_seed_sequences
 
 NO_ROUTE = "no collision-free route found"

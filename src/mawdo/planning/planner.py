@@ -1,334 +1,35 @@
 """Single-shot and receding-horizon (dynamic) path planning with any registered optimizer.
 
-Receding horizon (SPEC 4.3): every ``replan_every`` steps the robot observes the obstacles, the
+Receding horizon (docs/deviations.md#d-replan-budget): every ``replan_every`` steps the robot observes the obstacles, the
 optimizer is seeded with the guide's routes (exact visibility graph, distinct homotopy classes,
 re-rooted at the robot), the previous best path (reached waypoints dropped, the rest re-spread)
 and perturbed copies, and runs for an iteration or wall-time budget on the cost of
 :class:`~mawdo.planning.cost.PathCost` (``spacetime`` mode by default). The guard verifies the
 stretch to be driven before the next replan and falls back to the elite, to waiting or to an
 evasive move; the independent checker judges the executed route (:mod:`mawdo.planning.execute`).
-This module holds the settings, the result types, the oracle-following baseline and the
-serialisation."""
+This module holds the public entry points (``plan``, the oracle-following baseline) and the
+serialisation; settings and result types live in :mod:`mawdo.planning.config` and are
+re-exported here."""
 
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from mawdo.planning.cost import CostWeights, PathCost
-from mawdo.planning.path import advance, densify, polyline_length
-from mawdo.planning.scenario import Scenario, get_scenario
-
-
-@dataclass(frozen=True)
-class PlannerConfig:
-    """Planner settings.
-
-    Parameters
-    ----------
-    pop_size : int
-        Candidates per optimizer iteration of a replan (the paper: 8 groups x 170 = 1360).
-    first_pop_size : int or None
-        Candidates per iteration of the first plan (default ``pop_size``).
-    first_iters : int
-        Iterations of the first plan, made before the robot moves (not part of replan latency).
-    replan_iters : int
-        Iterations per replan.
-    replan_time : float or None
-        Wall-clock budget per replan (seconds); when set, a replan stops at whichever of
-        ``replan_iters`` and ``replan_time`` comes first.
-    replan_every : int
-        Steps between replans, >= 1.
-    mode : {"spacetime", "snapshot"}
-        Cost mode (see :class:`~mawdo.planning.cost.PathCost`).
-    weights : CostWeights
-        Eqs. 24-27 weights.
-    n_waypoints : int
-        Waypoints per candidate (20 -> 40-D).
-    max_steps : int or None
-        Step limit; default ``4 x straight-line length / v``.
-    seed_fraction : float
-        Share of the first plan's population seeded with path-like candidates (the straight line
-        and routes through random via points), in [0, 1]; the rest is uniform in the map.
-    warm_copies : int
-        Perturbed copies of the re-spread previous best in each warm start (plus the path itself).
-    warm_sigma : float
-        Standard deviation of those perturbations (pixels).
-    options : dict
-        Extra options for the optimizer (e.g. ``{"groups": 8}``).
-    clearance : float
-        Safety margin (px, >= 0) added to the robot radius in the cost, the guide and the guard;
-        the checker reports steps closer than this as near misses.
-    elite_size : int
-        Distinct candidates kept from each optimisation for the guard to fall back on, >= 1.
-    give_up_steps : int
-        Consecutive steps of waiting or evading after which the run stops with an honest
-        failure (time steps), >= 1.
-    guide_routes : int
-        Routes in distinct homotopy classes from the exact visibility graph used as seeds
-        (0: no guidance).
-    guide_copies : int
-        Perturbed copies (N(0, ``warm_sigma``)) of each guide route among the seeds.
-    auto_waypoints : bool
-        Raise ``n_waypoints`` when the first guide routes need more (1.5 waypoints per route
-        vertex, at most ``max_waypoints``); never lowers it.
-    max_waypoints : int
-        Upper limit of that raise.
-    """
-
-    pop_size: int = 240
-    first_pop_size: int | None = None
-    first_iters: int = 300
-    replan_iters: int = 15
-    replan_time: float | None = None
-    replan_every: int = 1
-    mode: str = "spacetime"
-    weights: CostWeights = field(default_factory=CostWeights)
-    n_waypoints: int = 20
-    max_steps: int | None = None
-    seed_fraction: float = 0.5
-    warm_copies: int = 23
-    warm_sigma: float = 6.0
-    options: dict = field(default_factory=dict)
-    clearance: float = 0.5
-    elite_size: int = 8
-    give_up_steps: int = 60
-    guide_routes: int = 6
-    guide_copies: int = 3
-    auto_waypoints: bool = True
-    max_waypoints: int = 48
-
-    def __post_init__(self) -> None:
-        for name in ("pop_size", "first_iters", "replan_iters", "replan_every", "n_waypoints"):
-            v = getattr(self, name)
-            if not isinstance(v, int | np.integer) or v < 1:
-                raise ValueError(f"PlannerConfig.{name}={v!r} must be a positive integer")
-        if self.first_pop_size is not None and self.first_pop_size < 2:
-            raise ValueError(f"PlannerConfig.first_pop_size={self.first_pop_size!r} must be >= 2")
-        if self.replan_time is not None and not self.replan_time > 0:
-            raise ValueError(f"PlannerConfig.replan_time={self.replan_time!r} must be > 0 s")
-        if not 0.0 <= self.seed_fraction <= 1.0:
-            raise ValueError(
-                f"PlannerConfig.seed_fraction={self.seed_fraction!r} must be in [0, 1]"
-            )
-        if self.warm_copies + 1 > self.pop_size:
-            raise ValueError("PlannerConfig.warm_copies + 1 must not exceed pop_size")
-        if self.max_steps is not None and self.max_steps < 1:
-            raise ValueError(f"PlannerConfig.max_steps={self.max_steps!r} must be >= 1")
-        if not (np.isfinite(self.clearance) and self.clearance >= 0):
-            raise ValueError(f"PlannerConfig.clearance={self.clearance!r} must be >= 0 px")
-        for name in ("elite_size", "give_up_steps", "max_waypoints"):
-            if getattr(self, name) < 1:
-                raise ValueError(f"PlannerConfig.{name}={getattr(self, name)!r} must be >= 1")
-        for name in ("guide_routes", "guide_copies"):
-            if getattr(self, name) < 0:
-                raise ValueError(f"PlannerConfig.{name}={getattr(self, name)!r} must be >= 0")
-
-
-# Named settings: the paper's study size, and a real-time setting that meets 20 Hz replanning.
-PRESETS = {
-    "paper": PlannerConfig(pop_size=1360, first_iters=300, replan_iters=15),
-    "realtime": PlannerConfig(pop_size=240, first_iters=300, replan_iters=15),
-    # the study: the paper's 1360 particles for the first plan, real-time replans
-    "study": PlannerConfig(pop_size=240, first_pop_size=1360, first_iters=300, replan_iters=15),
-    "quick": PlannerConfig(pop_size=80, first_iters=60, replan_iters=5),
-    # single-shot queries in tens of milliseconds: the guide's routes do the topology, a short
-    # refinement smooths them
-    "fast": PlannerConfig(pop_size=40, first_iters=25, replan_iters=5, warm_copies=15),
-}
-
-
-@dataclass
-class Replan:
-    """One optimisation made during a run."""
-
-    step: int
-    position: np.ndarray  # (2,) robot position when planning (pixels)
-    waypoints: np.ndarray  # (m, 2) best waypoints
-    cost: float
-    length: float  # plan length from position to goal (pixels)
-    collisions: int  # n of Eq. 27 for the plan, as the cost kernel sees it
-    latency: float  # wall seconds
-    nfev: int
-    history: np.ndarray  # best cost per iteration
-
-
-@dataclass
-class PlanResult:
-    """Outcome of one planning run.
-
-    Attributes
-    ----------
-    trajectory : numpy.ndarray, shape (k, 2)
-        Executed robot positions at steps 0, 1, ..., k-1 (pixels).
-    route, route_times : numpy.ndarray, shapes (j, 2) and (j,)
-        The executed polyline with every waypoint the robot passed between two steps, and the
-        time (time steps, fractional) at which it was at each point: the robot follows its plan
-        exactly, so this, not the straight lines between step positions, is what it drove.
-    success : bool
-        The robot reached the goal within the step limit *and* the independent checker
-        (:func:`mawdo.planning.check.check_trajectory`: space, time, robot radius, map border)
-        accepts the executed route.
-    reason : str
-        ``"goal reached"``, or why not: ``"no collision-free route found ..."``,
-        ``"step limit reached before the goal"``, ``"goal reached but the route collides ..."``.
-    replans : list of Replan
-        Every optimisation, the first plan included.
-    collision_free : bool
-        The checker's verdict on the executed route.
-    min_clearance : float
-        Smallest clearance of the executed route (px, true robot radius).
-    near_misses : int
-        Route segments whose clearance fell below the planner's margin without colliding.
-    waits, evasions : int
-        Steps the guard waited in place / made an evasive move (no safe candidate).
-    fallbacks : int
-        Times the guard drove an elite candidate other than the optimizer's best.
-    """
-
-    scenario: Scenario
-    algorithm: str
-    seed: int
-    config: PlannerConfig
-    trajectory: np.ndarray
-    success: bool
-    reason: str
-    replans: list[Replan]
-    route: np.ndarray | None = None
-    route_times: np.ndarray | None = None
-    collision_free: bool = False
-    min_clearance: float = float("nan")
-    near_misses: int = 0
-    waits: int = 0
-    evasions: int = 0
-    fallbacks: int = 0
-
-    @property
-    def steps(self) -> int:
-        return len(self.trajectory) - 1
-
-    @property
-    def latencies(self) -> np.ndarray:
-        """Wall seconds of each replan after the first plan."""
-        return np.array([r.latency for r in self.replans[1:]])
-
-    @property
-    def nfev(self) -> int:
-        return int(sum(r.nfev for r in self.replans))
-
-
-# Per-algorithm options the planner uses unless the config overrides them. MAWDO runs with its
-# stabilisation (centroid gravity, per-group coefficients, vmax/4) on at D = 40: with the paper's
-# D <= 3 threshold, AWDO's gravity toward the box centre pulls every waypoint to the map centre
-# and MAWDO never refines its initial population (docs/deviations.md, "MAWDO in path planning").
-PLANNING_OPTIONS = {"mawdo": {"low_dim": 10_000}}
-
-
-class _Drive:
-    """The executed motion: positions at integer steps, and the route with every vertex passed
-    between two steps, time-stamped (what the checker and the metrics judge)."""
-
-    def __init__(self, start: np.ndarray) -> None:
-        self.traj, self.route, self.stamps = [start.copy()], [start.copy()], [0.0]
-
-    def move(self, step: int, pos: np.ndarray, passed=(), frac=()) -> None:
-        self.route.extend(passed)
-        self.stamps.extend(step + np.asarray(frac, dtype=float))
-        self.route.append(pos.copy())
-        self.stamps.append(step + 1.0)
-        self.traj.append(pos.copy())
-
-    def result(self, reason: str, scenario, margin: float = 0.0, **fields) -> PlanResult:
-        """The run's outcome; the independent checker judges the route (success needs it)."""
-        from mawdo.planning.check import check_trajectory
-
-        route, stamps = np.array(self.route), np.array(self.stamps)
-        rep = check_trajectory(route, scenario, times=stamps)
-        reached = reason == "goal reached"
-        if reached and not rep.ok:
-            reason = f"goal reached but the route collides ({len(rep.collisions)} checker hits)"
-        per_step = rep.clearance.min(axis=1) if rep.clearance.size else np.zeros(0)
-        return PlanResult(
-            trajectory=np.array(self.traj),
-            success=reached and rep.ok,
-            reason=reason,
-            route=route,
-            route_times=stamps,
-            scenario=scenario,
-            collision_free=bool(rep.ok),
-            min_clearance=float(rep.min_clearance),
-            near_misses=int(np.sum((per_step >= -1e-9) & (per_step < margin))),
-            **fields,
-        )
-
-
-def _resolve(scenario) -> Scenario:
-    return get_scenario(scenario) if isinstance(scenario, str) else scenario
-
-
-def _config(config, overrides) -> PlannerConfig:
-    if config is None:
-        config = PRESETS["realtime"]
-    elif isinstance(config, str):
-        if config not in PRESETS:
-            raise ValueError(f"unknown planner preset {config!r}; choose one of {list(PRESETS)}")
-        config = PRESETS[config]
-    return replace(config, **overrides) if overrides else config
-
-
-def _optimise(
-    cost: PathCost,
-    pos,
-    t,
-    algorithm,
-    config: PlannerConfig,
-    iters,
-    seed_seq,
-    x0,
-    max_time,
-    pop_size,
-):
-    from mawdo.minimize import minimize
-
-    lb, ub = cost.bounds
-    opts = {**PLANNING_OPTIONS.get(algorithm, {}), **config.options}
-    res = minimize(
-        lambda X: cost(X, start=pos, t0=t),
-        lb=lb,
-        ub=ub,
-        algorithm=algorithm,
-        runs=1,
-        seed=seed_seq,
-        max_iter=iters,
-        max_time=max_time,
-        x0=x0,
-        pop_size=pop_size,
-        **opts,
-    )
-    return res
-
-
-def _seeds(route, m, config, rng, lb, ub):
-    """A route's ``m`` waypoints (geometry kept) plus ``warm_copies`` perturbed copies."""
-    base = densify(route, m).reshape(-1)
-    noise = rng.normal(0.0, config.warm_sigma, (config.warm_copies, base.size))
-    return np.clip(np.vstack([base, base + noise]), lb, ub)
-
-
-def _via_paths(start, goal, m, n, rng, lb, ub, width, height):
-    """``n`` path-like candidates: start -> one or two random via points -> goal, densified.
-
-    Uniform random waypoints make zig-zags that cross every obstacle; routes through random via
-    points are short, diverse, and often collision-free, the usual way to seed a waypoint planner.
-    """
-    out = np.empty((n, 2 * m))
-    for i in range(n):
-        k = 1 + int(rng.random() < 0.5)
-        via = rng.random((k, 2)) * [width, height]
-        out[i] = densify(np.vstack([start, via, goal]), m).reshape(-1)
-    return np.clip(out, lb, ub)
+from mawdo.planning.config import (  # noqa: F401  (public names re-exported)
+    PLANNING_OPTIONS,
+    PRESETS,
+    PlannerConfig,
+    PlanResult,
+    Replan,
+    _config,
+    _Drive,
+    _resolve,
+)
+from mawdo.planning.execute import Run
+from mawdo.planning.path import advance, polyline_length
+from mawdo.planning.seeding import _optimise, _seeds, _via_paths  # noqa: F401
 
 
 def plan(
@@ -371,8 +72,6 @@ def plan(
     """
     sc = _resolve(scenario)
     cfg = _config(config, overrides)
-    from mawdo.planning.execute import Run
-
     return Run(sc, algorithm, seed, cfg, dynamic).execute()
 
 
