@@ -17,6 +17,7 @@ Low-dimensional stabilisation (D <= ``low_dim``): per-group coefficients (Eqs. 1
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -30,9 +31,9 @@ from mawdo.optimizers.base import (
     check_choice,
     check_range,
     initial_population,
-    ranks,
 )
 from mawdo.optimizers.boundary import BOUNDARY_POLICIES, apply_boundary
+from mawdo.optimizers.kernels import segment_ranks, wind_step
 from mawdo.streams import RunStreams
 
 
@@ -136,6 +137,15 @@ class WindParams(Params):
         return max(1, int(round(self.restart_frac * self.pop_size)))
 
 
+@functools.cache
+def group_starts(N: int, G: int) -> np.ndarray:
+    """Boundaries ``(G + 1,)`` of :func:`wind.partition`'s contiguous groups (cached)."""
+    starts = np.zeros(G + 1, np.intp)
+    starts[1:] = np.cumsum(np.bincount(wind.partition(N, G), minlength=G))
+    starts.flags.writeable = False
+    return starts
+
+
 @dataclass
 class WindState:
     """Arrays of ``R`` runs in normalised space (``p, u, pbest`` are ``(R, N, D)``)."""
@@ -154,6 +164,7 @@ class WindState:
     space: Space
     streams: RunStreams
     restarted: np.ndarray | None = None  # (R, m) parcels restarted in the last ask
+    perm: np.ndarray | None = None  # (R, N, D) permutation buffer, reshuffled every ask
 
 
 class Wind(Optimizer):
@@ -197,60 +208,71 @@ class Wind(Optimizer):
 
     # -- ask -------------------------------------------------------------------------------------
     def ask(self, state: WindState) -> np.ndarray:
-        if state.t == 0:
-            return state.space.from_unit(state.p)
-        P, s = self.params, state
+        """Move every parcel (one fused kernel pass) and return the positions to evaluate.
+
+        The returned array is new at each call (the evaluator and user objectives may keep it);
+        ``p``, ``u`` and the permutation buffer are updated in place.
+        """
+        s = state
+        if s.t == 0:
+            return s.space.from_unit(s.p)
+        P = self.params
         R, N, D = s.p.shape
-        G = P.groups
-        rows = np.arange(R)[:, None]
-
-        # 1. leaders
-        gbest_idx = wind.group_argmin(s.pbest_f, s.gid, G)  # (R, G)
-        gbest = s.pbest[rows, gbest_idx]  # (R, G, D)
-        tbest = s.pbest[np.arange(R), np.argmin(s.pbest_f, axis=1)]  # (R, D)
-
-        # 2. guidance B
-        if P.guidance == "global":
-            B = tbest[:, None, :]
-        elif P.guidance == "group":
-            B = gbest[:, s.gid]
+        s.p = np.ascontiguousarray(s.p, dtype=float)
+        s.u = np.ascontiguousarray(s.u, dtype=float)
+        coef = self._coefficient_array(s, R, N)  # draws first, as before the kernel existed
+        if s.perm is None or s.perm.shape != s.p.shape:
+            s.perm = np.empty(s.p.shape, np.int16 if D < 2**15 else np.int32)
+        s.streams.shuffle_rows(s.perm)
+        gstarts = group_starts(N, P.groups)
+        rank = np.empty((R, N))
+        segment_ranks(s.f, gstarts if P.rank_scope == "group" else group_starts(N, 1), rank)
+        if P.guidance == "hierarchical":
+            w = wind.schedule_weights(s.t, s.T) if P.schedule else P.weights
+            guidance = 2
         else:
-            w1, w2, w3 = wind.schedule_weights(s.t, s.T) if P.schedule else P.weights
-            if P.gate:
-                gate = wind.distance_gate(gbest, tbest, 2.0 * np.sqrt(D))  # (R, G)
-                w3_eff = w3 * gate[:, s.gid]  # Eq. 11, per parcel
-            else:
-                w3_eff = w3
-            B = wind.hierarchical_guidance(s.pbest, gbest[:, s.gid], tbest, w1, w2, w3_eff)
-
-        # 3. velocity and position
-        r = wind.group_ranks(s.f, s.gid, G) if P.rank_scope == "group" else ranks(s.f)
-        r = r[..., None].astype(float)
-        alpha, g, RT, c = self._coefficients(s)
-        centre = wind.group_centroid(s.p, s.gid, G)[:, s.gid] if s.low_dim else 0.0
-        perm = s.streams.permutations(N, D)
-        u_perm = np.take_along_axis(s.u, perm, axis=2)
-        step = wind.wdo_velocity if P.velocity == "wdo" else wind.awdo_velocity
-        u = np.clip(step(s.u, s.p, B, r, u_perm, alpha, g, RT, c, centre), -s.vmax, s.vmax)
-        p, u = apply_boundary(P.boundary, s.p + u, u, -1.0, 1.0, P.eta)
-
-        # 4. periodic guided restart (+ opposition)
+            w, guidance = (0.0, 0.0, 0.0), 0 if P.guidance == "global" else 1
+        restart = P.restart and s.t % P.restart_every == 0
+        m = P.n_restart if restart else 0
+        X = np.empty((R, N + (m if P.obl else 0), D))
+        width = s.space.ub - s.space.lb
+        wind_step(
+            s.p, s.u, s.pbest, s.pbest_f, rank, s.perm, coef, gstarts, guidance,
+            np.asarray(w, float), P.gate, 2.0 * np.sqrt(D), s.low_dim, P.velocity == "awdo",
+            float(s.vmax), P.boundary == "reflect", float(P.eta),
+            np.asarray(s.space.lb, float), np.asarray(width, float), X,
+        )  # fmt: skip
         s.restarted = None
-        extra = None
-        if P.restart and s.t % P.restart_every == 0:
-            m = P.n_restart
-            worst = np.argsort(s.f, axis=1, kind="stable")[:, N - m :]  # (R, m)
-            sigma = wind.restart_sigma(s.t, s.T, P.sigma0, P.sigma_end)
-            fresh = tbest[:, None, :] + sigma * s.streams.normal((m, D))  # Eq. 12
-            fresh, _ = apply_boundary(P.boundary, fresh, np.zeros_like(fresh), -1.0, 1.0, P.eta)
-            p[rows, worst] = fresh
-            u[rows, worst] = 0.0
-            s.restarted = worst
-            if P.obl:
-                extra = wind.opposite(fresh)
-        s.p, s.u = p, u
-        X = p if extra is None else np.concatenate([p, extra], axis=1)
-        return s.space.from_unit(X)
+        if restart:
+            self._restart(s, X, m)
+        return X
+
+    def _restart(self, s: WindState, X: np.ndarray, m: int) -> None:
+        """Periodic guided restart of the ``m`` worst parcels (Eqs. 12-13), plus OBL (Eq. 14)."""
+        P = self.params
+        R, N, D = s.p.shape
+        rows = np.arange(R)[:, None]
+        worst = np.argsort(s.f, axis=1, kind="stable")[:, N - m :]  # (R, m)
+        tbest = s.pbest[np.arange(R), np.argmin(s.pbest_f, axis=1)]  # (R, D)
+        sigma = wind.restart_sigma(s.t, s.T, P.sigma0, P.sigma_end)
+        fresh = tbest[:, None, :] + sigma * s.streams.normal((m, D))  # Eq. 12
+        fresh, _ = apply_boundary(P.boundary, fresh, np.zeros_like(fresh), -1.0, 1.0, P.eta)
+        s.p[rows, worst] = fresh
+        s.u[rows, worst] = 0.0
+        X[rows, worst] = s.space.from_unit(fresh)
+        s.restarted = worst
+        if P.obl:
+            X[:, N:] = s.space.from_unit(wind.opposite(fresh))
+
+    def _coefficient_array(self, s: WindState, R: int, N: int) -> np.ndarray:
+        """``_coefficients`` stacked into ``(R or 1, N, 4)`` for the kernel."""
+        parts = np.broadcast_arrays(*(np.asarray(c, float) for c in self._coefficients(s)))
+        arr = np.stack(parts, axis=-1)
+        if arr.ndim == 1:  # four scalars
+            arr = arr[None, None, :]
+        else:  # (R or 1, N or 1, 1, 4)
+            arr = arr.reshape(arr.shape[0], arr.shape[1], 4)
+        return np.ascontiguousarray(np.broadcast_to(arr, (arr.shape[0], N, 4)))
 
     def _coefficients(self, s: WindState):
         """(alpha, g, RT, c), each broadcastable to ``(R, N, 1)``."""
@@ -282,7 +304,7 @@ class Wind(Optimizer):
             Fn[idx_r, tgt] = f_opp[idx_r, idx_k]
         s.f = Fn
         improved = Fn < s.pbest_f
-        s.pbest_f = np.where(improved, Fn, s.pbest_f)
-        s.pbest[improved] = s.p[improved]
+        np.copyto(s.pbest_f, Fn, where=improved)
+        np.copyto(s.pbest, s.p, where=improved[..., None])
         s.t += 1
         return s

@@ -1,0 +1,213 @@
+"""Numba kernels for the optimizers' inner loops: one pass over the batch per iteration.
+
+The equations live as readable NumPy array functions in :mod:`mawdo.optimizers.wind`,
+:mod:`mawdo.optimizers.boundary` and :mod:`mawdo.optimizers.gwo`; these kernels compute the same
+numbers in one sweep with no ``(R, N, D)`` temporaries (issue 15: a third of the NumPy time went
+to fresh temporaries and their page faults). ``tests/optimizers/test_kernels.py`` checks each
+kernel against the NumPy functions. No kernel draws random numbers: every draw comes from the
+run's own generator (:class:`mawdo.streams.RunStreams`) before the kernel is called.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+_LOW32 = np.uint64(0xFFFFFFFF)
+_SHIFT32 = np.uint64(32)
+
+
+@njit(cache=True, nogil=True)
+def fisher_yates_rows(words, out):  # pragma: no cover - compiled
+    """Fill each row of ``out`` ``(n, d)`` with a permutation of ``range(d)``.
+
+    Swap ``k`` (``k = d-1 .. 1``) takes the next 32-bit half of ``words`` (uint64, ``n * (d//2)``
+    of them) and picks ``j = (w32 * (k + 1)) >> 32`` in ``[0, k]`` (Lemire's multiply-shift).
+    """
+    n, d = out.shape
+    half = d // 2
+    for i in range(n):
+        for k in range(d):
+            out[i, k] = k
+        base = i * half
+        for k in range(d - 1, 0, -1):
+            m = d - 1 - k
+            w = words[base + m // 2]
+            c = (w >> _SHIFT32) if m & 1 else (w & _LOW32)
+            j = np.intp((c * np.uint64(k + 1)) >> _SHIFT32)
+            tmp = out[i, k]
+            out[i, k] = out[i, j]
+            out[i, j] = tmp
+
+
+@njit(cache=True, nogil=True)
+def fisher_yates_batch(words, out):  # pragma: no cover - compiled
+    """:func:`fisher_yates_rows` for every run: ``words (R, n * (d//2))``, ``out (R, n, d)``."""
+    for r in range(out.shape[0]):
+        fisher_yates_rows(words[r], out[r])
+
+
+@njit(cache=True, nogil=True)
+def segment_ranks(F, starts, out):  # pragma: no cover - compiled
+    """1-based rank of each entry of ``F`` ``(R, N)`` within its segment ``starts[s]:starts[s+1]``,
+    ties broken by index (a stable sort), written to ``out`` ``(R, N)`` as float."""
+    R = F.shape[0]
+    S = starts.size - 1
+    idx = np.empty(F.shape[1], np.intp)
+    for r in range(R):
+        for s in range(S):
+            a, b = starts[s], starts[s + 1]
+            n = b - a
+            if n <= 64:  # insertion sort: stable, no allocation, fast for small groups
+                for k in range(n):
+                    j = k
+                    v = F[r, a + k]
+                    while j > 0 and F[r, a + idx[j - 1]] > v:
+                        idx[j] = idx[j - 1]
+                        j -= 1
+                    idx[j] = k
+                for k in range(n):
+                    out[r, a + idx[k]] = k + 1.0
+            else:
+                order = np.argsort(F[r, a:b], kind="mergesort")
+                for k in range(n):
+                    out[r, a + order[k]] = k + 1.0
+
+
+@njit(cache=True, nogil=True)
+def segment_argmin(F, starts, out):  # pragma: no cover - compiled
+    """Index into ``N`` of the first minimum of each segment of ``F`` ``(R, N)`` -> ``out (R, S)``."""
+    for r in range(F.shape[0]):
+        for s in range(starts.size - 1):
+            best = starts[s]
+            for k in range(starts[s] + 1, starts[s + 1]):
+                if F[r, k] < F[r, best]:
+                    best = k
+            out[r, s] = best
+
+
+@njit(cache=True, nogil=True)
+def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
+    p,
+    u,
+    pbest,
+    pbest_f,
+    rank,
+    perm,
+    coef,
+    gstarts,
+    guidance,
+    w,
+    gate,
+    d_max,
+    centre_on,
+    awdo,
+    vmax,
+    reflect,
+    eta,
+    lb,
+    width,
+    X,
+):  # pragma: no cover - compiled
+    """One WDO-family move of every parcel of every run, in place on ``p`` and ``u``.
+
+    Parameters (shapes with ``R`` runs, ``N`` parcels, ``G`` groups, ``D`` dimensions)
+    ----------
+    p, u : (R, N, D) positions and velocities, updated in place.
+    pbest : (R, N, D), pbest_f : (R, N)
+        Personal bests; the group bests and the global best are located here.
+    rank : (R, N) float
+        Rank ``r_i`` of each parcel (population or group scope), 1 = best.
+    perm : (R, N, D) int
+        Permutation of the dimensions per parcel (Coriolis term ``u[perm]``).
+    coef : (R or 1, N, 4)
+        ``alpha, g, RT, c`` per parcel.
+    gstarts : (G + 1,) int
+        Group boundaries (contiguous groups).
+    guidance : int
+        0 ``B = tbest``, 1 ``B = gbest_g``, 2 hierarchical (Eq. 5) with weights ``w = (w1, w2,
+        w3)`` and, when ``gate``, ``w3`` scaled by the distance gate of Eq. 10 (``d_max``).
+    centre_on : bool
+        Gravity toward the group centroid (Eqs. 23-25) instead of the origin.
+    awdo : bool
+        AWDO velocity (Eq. 4) instead of WDO's (Bayraktar 2013 Eq. 1).
+    vmax : float
+        Velocity clamp.
+    reflect : bool, eta : float
+        Reflect-damp boundary (Eqs. 15-16) or clip (Eq. 3).
+    lb, width : (D,)
+        Problem box: ``X = lb + (p + 1)/2 width`` is written to ``X[:, :N]``.
+    """
+    R, N, D = p.shape
+    G = gstarts.size - 1
+    gbest = np.empty(G, np.intp)
+    w3e = np.empty(G)
+    centre = np.zeros((G, D))
+    u_old = np.empty(D)
+    for r in range(R):
+        tb = 0
+        for g in range(G):  # leaders: first minimum, like numpy.argmin
+            best = gstarts[g]
+            for k in range(gstarts[g] + 1, gstarts[g + 1]):
+                if pbest_f[r, k] < pbest_f[r, best]:
+                    best = k
+            gbest[g] = best
+            if pbest_f[r, best] < pbest_f[r, tb] or g == 0:
+                tb = best
+        for g in range(G):
+            w3e[g] = w[2]
+            if guidance == 2 and gate:
+                acc = 0.0
+                for d in range(D):
+                    diff = pbest[r, gbest[g], d] - pbest[r, tb, d]
+                    acc += diff * diff
+                w3e[g] = w[2] * min(1.0, np.sqrt(acc) / d_max)
+            if centre_on:
+                a, b = gstarts[g], gstarts[g + 1]
+                for d in range(D):
+                    acc = 0.0
+                    for k in range(a, b):
+                        acc += p[r, k, d]
+                    centre[g, d] = acc / (b - a)
+        rc = r if coef.shape[0] > 1 else 0
+        for g in range(G):
+            lead = tb if guidance == 0 else gbest[g]
+            denom = w[0] + w[1] + w3e[g]
+            for i in range(gstarts[g], gstarts[g + 1]):
+                rk = rank[r, i]
+                a1 = 1.0 - coef[rc, i, 0]
+                grav = coef[rc, i, 1]
+                RT = coef[rc, i, 2]
+                wp = RT / rk if awdo else abs(1.0 - 1.0 / rk) * RT  # pressure weight
+                wc = coef[rc, i, 3] / rk  # Coriolis weight
+                for d in range(D):
+                    u_old[d] = u[r, i, d]
+                for d in range(D):
+                    q = p[r, i, d]
+                    if guidance == 2:
+                        B = (
+                            w[0] * pbest[r, i, d]
+                            + w[1] * pbest[r, gbest[g], d]
+                            + w3e[g] * pbest[r, tb, d]
+                        ) / denom
+                    else:
+                        B = pbest[r, lead, d]
+                    v = (
+                        a1 * u_old[d]
+                        - grav * (q - centre[g, d])
+                        + wp * (B - q)
+                        + wc * u_old[perm[r, i, d]]
+                    )
+                    v = min(max(v, -vmax), vmax)
+                    q = q + v
+                    if reflect:
+                        if q > 1.0:
+                            q = 2.0 - q
+                            v = -eta * v
+                        elif q < -1.0:
+                            q = -2.0 - q
+                            v = -eta * v
+                    q = min(max(q, -1.0), 1.0)
+                    p[r, i, d] = q
+                    u[r, i, d] = v
+                    X[r, i, d] = lb[d] + (q + 1.0) * 0.5 * width[d]
