@@ -95,9 +95,10 @@ class RunStreams:
         """Fill ``out`` ``(R, n, d)`` with ``n`` independent uniform permutations of ``range(d)``
         per run, in O(d) per row (Fisher-Yates), and return it.
 
-        Each run draws ``n * ceil((d - 1) / 2)`` raw 64-bit words from its own generator and
-        spends one 32-bit half per swap (Lemire's multiply-shift, ``j = (w32 (k + 1)) >> 32``).
-        Every permutation has probability ``1/d!`` up to a relative bias below ``d / 2**32``.
+        Each run draws ``n * W(d)`` raw 64-bit words from its own generator (``W(30) = 4``) and
+        spends each on several swaps (batched multiply-shift, see
+        :func:`mawdo.optimizers.kernels.shuffle_from_words`). Every permutation has probability
+        ``1/d!`` up to a relative bias below ``2**-32``.
         Replaces :meth:`permutations` (``argsort`` of ``n d`` uniform keys, O(d log d)) in the
         optimizers; the two give different streams.
 
@@ -106,13 +107,23 @@ class RunStreams:
         out : numpy.ndarray
             Integer array ``(R, n, d)`` (int16 is enough for ``d < 32768``), overwritten.
         """
-        from mawdo.optimizers.kernels import fisher_yates_batch
+        from mawdo.optimizers.kernels import fisher_yates_batch, words_per_permutation
 
         if out.ndim != 3 or out.shape[0] != self.runs:
             raise ValueError(f"out must have shape ({self.runs}, n, d); got {out.shape}")
         n, d = out.shape[1:]
-        words = np.empty((self.runs, n * (d // 2)), np.uint64)  # ceil((d - 1) / 2) per row
-        for g, w in zip(self.generators, words, strict=True):
-            w[:] = g.bit_generator.random_raw(w.size)
+        words = self.raw_words(np.empty((self.runs, n * words_per_permutation(d)), np.uint64))
         fisher_yates_batch(words, out)
+        return out
+
+    def raw_words(self, out: np.ndarray) -> np.ndarray:
+        """Fill each run's row of ``out`` ``(R, k)`` uint64 with raw 64-bit words of its generator.
+
+        The optimizers' kernels turn them into permutations (see :meth:`shuffle_rows`, which
+        consumes the same words in the same order and gives the same permutations).
+        """
+        if out.ndim != 2 or out.shape[0] != self.runs or out.dtype != np.uint64:
+            raise ValueError(f"out must be uint64 of shape ({self.runs}, k); got {out.shape}")
+        for g, w in zip(self.generators, out, strict=True):
+            w[:] = g.bit_generator.random_raw(w.size)
         return out

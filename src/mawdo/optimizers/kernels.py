@@ -17,34 +17,64 @@ _LOW32 = np.uint64(0xFFFFFFFF)
 _SHIFT32 = np.uint64(32)
 
 
-@njit(cache=True, nogil=True)
-def fisher_yates_rows(words, out):  # pragma: no cover - compiled
-    """Fill each row of ``out`` ``(n, d)`` with a permutation of ``range(d)``.
+_BATCH = 1 << 32  # product of the ranges drawn from one 64-bit word: bias <= 2**-32
 
-    Swap ``k`` (``k = d-1 .. 1``) takes the next 32-bit half of ``words`` (uint64, ``n * (d//2)``
-    of them) and picks ``j = (w32 * (k + 1)) >> 32`` in ``[0, k]`` (Lemire's multiply-shift).
+
+def words_per_permutation(d: int) -> int:
+    """Raw 64-bit words one permutation of ``range(d)`` consumes in :func:`shuffle_from_words`."""
+    words, prod = (1 if d > 1 else 0), 1
+    for k in range(d - 1, 0, -1):
+        if prod * (k + 1) > _BATCH:
+            words, prod = words + 1, 1
+        prod *= k + 1
+    return words
+
+
+@njit(cache=True, nogil=True, inline="always")
+def shuffle_from_words(words, base, out):  # pragma: no cover - compiled
+    """Fill ``out`` ``(d,)`` with a permutation of ``range(d)`` drawn from ``words[base:]``.
+
+    Fisher-Yates: swap ``k = d-1 .. 1`` exchanges ``out[k]`` and ``out[j]``, ``j`` uniform in
+    ``[0, k]``. Several ``j`` come from one 64-bit word ``x`` by batched multiply-shift
+    (Brackett-Rozinsky & Lemire 2024, without the rejection step): ``j = floor(x (k+1) / 2**64)``,
+    then ``x <- x (k+1) mod 2**64``, while the product of the ranges stays <= 2**32; each
+    permutation's probability is ``1/d!`` within a relative ``2**-32``.
     """
-    n, d = out.shape
-    half = d // 2
-    for i in range(n):
-        for k in range(d):
-            out[i, k] = k
-        base = i * half
-        for k in range(d - 1, 0, -1):
-            m = d - 1 - k
-            w = words[base + m // 2]
-            c = (w >> _SHIFT32) if m & 1 else (w & _LOW32)
-            j = np.intp((c * np.uint64(k + 1)) >> _SHIFT32)
-            tmp = out[i, k]
-            out[i, k] = out[i, j]
-            out[i, j] = tmp
+    d = out.shape[0]
+    for k in range(d):
+        out[k] = k
+    if d < 2:
+        return
+    w = base
+    x = words[w]
+    prod = 1
+    for k in range(d - 1, 0, -1):
+        n = k + 1
+        if prod * n > _BATCH:
+            w += 1
+            x = words[w]
+            prod = 1
+        prod *= n
+        un = np.uint64(n)
+        hi = ((x >> _SHIFT32) * un + (((x & _LOW32) * un) >> _SHIFT32)) >> _SHIFT32
+        x = x * un  # the low 64 bits: the rest of the word, for the next range
+        j = np.intp(hi)
+        tmp = out[k]
+        out[k] = out[j]
+        out[j] = tmp
 
 
 @njit(cache=True, nogil=True)
 def fisher_yates_batch(words, out):  # pragma: no cover - compiled
-    """:func:`fisher_yates_rows` for every run: ``words (R, n * (d//2))``, ``out (R, n, d)``."""
-    for r in range(out.shape[0]):
-        fisher_yates_rows(words[r], out[r])
+    """Permutations of ``range(d)`` for ``out`` ``(R, n, d)`` from ``words (R, n * W)``,
+    ``W = words_per_permutation(d)`` consecutive words per row."""
+    R, n, d = out.shape
+    W = words.shape[1] // n if n else 0
+    row = np.empty(d, out.dtype)
+    for r in range(R):
+        for i in range(n):
+            shuffle_from_words(words[r], i * W, row)
+            out[r, i, :] = row
 
 
 @njit(cache=True, nogil=True)
@@ -74,19 +104,7 @@ def segment_ranks(F, starts, out):  # pragma: no cover - compiled
                     out[r, a + order[k]] = k + 1.0
 
 
-@njit(cache=True, nogil=True)
-def segment_argmin(F, starts, out):  # pragma: no cover - compiled
-    """Index into ``N`` of the first minimum of each segment of ``F`` ``(R, N)`` -> ``out (R, S)``."""
-    for r in range(F.shape[0]):
-        for s in range(starts.size - 1):
-            best = starts[s]
-            for k in range(starts[s] + 1, starts[s + 1]):
-                if F[r, k] < F[r, best]:
-                    best = k
-            out[r, s] = best
-
-
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, error_model="numpy")
 def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
     p,
     u,
@@ -94,6 +112,8 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
     pbest_f,
     rank,
     perm,
+    words,
+    use_words,
     coef,
     gstarts,
     guidance,
@@ -119,7 +139,12 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
     rank : (R, N) float
         Rank ``r_i`` of each parcel (population or group scope), 1 = best.
     perm : (R, N, D) int
-        Permutation of the dimensions per parcel (Coriolis term ``u[perm]``).
+        Permutation of the dimensions per parcel (Coriolis term ``u[perm]``); read only when
+        ``use_words`` is false.
+    words : (R, N * W) uint64, use_words : bool
+        Raw random words, ``W = words_per_permutation(D)`` per parcel; when used, each parcel's
+        permutation is drawn from them here by :func:`shuffle_from_words` (no ``(R, N, D)``
+        permutation array is stored).
     coef : (R or 1, N, 4)
         ``alpha, g, RT, c`` per parcel.
     gstarts : (G + 1,) int
@@ -144,6 +169,8 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
     w3e = np.empty(G)
     centre = np.zeros((G, D))
     u_old = np.empty(D)
+    pr = np.empty(D, np.intp)
+    W = words.shape[1] // N
     for r in range(R):
         tb = 0
         for g in range(G):  # leaders: first minimum, like numpy.argmin
@@ -182,6 +209,11 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
                 wc = coef[rc, i, 3] / rk  # Coriolis weight
                 for d in range(D):
                     u_old[d] = u[r, i, d]
+                if use_words:
+                    shuffle_from_words(words[r], i * W, pr)
+                else:
+                    for d in range(D):
+                        pr[d] = perm[r, i, d]
                 for d in range(D):
                     q = p[r, i, d]
                     if guidance == 2:
@@ -192,13 +224,11 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
                         ) / denom
                     else:
                         B = pbest[r, lead, d]
-                    v = (
-                        a1 * u_old[d]
-                        - grav * (q - centre[g, d])
-                        + wp * (B - q)
-                        + wc * u_old[perm[r, i, d]]
-                    )
-                    v = min(max(v, -vmax), vmax)
+                    v = a1 * u_old[d] - grav * (q - centre[g, d]) + wp * (B - q) + wc * u_old[pr[d]]
+                    if v > vmax:
+                        v = vmax
+                    elif v < -vmax:
+                        v = -vmax
                     q = q + v
                     if reflect:
                         if q > 1.0:
@@ -207,7 +237,10 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
                         elif q < -1.0:
                             q = -2.0 - q
                             v = -eta * v
-                    q = min(max(q, -1.0), 1.0)
+                    if q > 1.0:
+                        q = 1.0
+                    elif q < -1.0:
+                        q = -1.0
                     p[r, i, d] = q
                     u[r, i, d] = v
                     X[r, i, d] = lb[d] + (q + 1.0) * 0.5 * width[d]

@@ -33,7 +33,7 @@ from mawdo.optimizers.base import (
     initial_population,
 )
 from mawdo.optimizers.boundary import BOUNDARY_POLICIES, apply_boundary
-from mawdo.optimizers.kernels import segment_ranks, wind_step
+from mawdo.optimizers.kernels import segment_ranks, wind_step, words_per_permutation
 from mawdo.streams import RunStreams
 
 
@@ -137,6 +137,10 @@ class WindParams(Params):
         return max(1, int(round(self.restart_frac * self.pop_size)))
 
 
+_NO_PERM = np.zeros((1, 1, 1), np.int16)
+_NO_WORDS = np.zeros((1, 0), np.uint64)
+
+
 @functools.cache
 def group_starts(N: int, G: int) -> np.ndarray:
     """Boundaries ``(G + 1,)`` of :func:`wind.partition`'s contiguous groups (cached)."""
@@ -164,7 +168,7 @@ class WindState:
     space: Space
     streams: RunStreams
     restarted: np.ndarray | None = None  # (R, m) parcels restarted in the last ask
-    perm: np.ndarray | None = None  # (R, N, D) permutation buffer, reshuffled every ask
+    words: np.ndarray | None = None  # (R, N * W) uint64 buffer of permutation draws
 
 
 class Wind(Optimizer):
@@ -221,9 +225,7 @@ class Wind(Optimizer):
         s.p = np.ascontiguousarray(s.p, dtype=float)
         s.u = np.ascontiguousarray(s.u, dtype=float)
         coef = self._coefficient_array(s, R, N)  # draws first, as before the kernel existed
-        if s.perm is None or s.perm.shape != s.p.shape:
-            s.perm = np.empty(s.p.shape, np.int16 if D < 2**15 else np.int32)
-        s.streams.shuffle_rows(s.perm)
+        perm, words = self._permutation_draw(s)
         gstarts = group_starts(N, P.groups)
         rank = np.empty((R, N))
         segment_ranks(s.f, gstarts if P.rank_scope == "group" else group_starts(N, 1), rank)
@@ -237,7 +239,8 @@ class Wind(Optimizer):
         X = np.empty((R, N + (m if P.obl else 0), D))
         width = s.space.ub - s.space.lb
         wind_step(
-            s.p, s.u, s.pbest, s.pbest_f, rank, s.perm, coef, gstarts, guidance,
+            s.p, s.u, s.pbest, s.pbest_f, rank, perm, words, words is not _NO_WORDS, coef,
+            gstarts, guidance,
             np.asarray(w, float), P.gate, 2.0 * np.sqrt(D), s.low_dim, P.velocity == "awdo",
             float(s.vmax), P.boundary == "reflect", float(P.eta),
             np.asarray(s.space.lb, float), np.asarray(width, float), X,
@@ -246,6 +249,18 @@ class Wind(Optimizer):
         if restart:
             self._restart(s, X, m)
         return X
+
+    def _permutation_draw(self, s: WindState):
+        """``(perm, words)`` for the kernel: raw words (permutations drawn in the kernel) from
+        real streams; an explicit permutation array from stand-ins without ``raw_words``."""
+        R, N, D = s.p.shape
+        if hasattr(s.streams, "raw_words"):
+            shape = (R, N * words_per_permutation(D))
+            if s.words is None or s.words.shape != shape:
+                s.words = np.empty(shape, np.uint64)
+            return _NO_PERM, s.streams.raw_words(s.words)
+        perm = s.streams.shuffle_rows(np.empty(s.p.shape, np.int16 if D < 2**15 else np.int32))
+        return perm, _NO_WORDS
 
     def _restart(self, s: WindState, X: np.ndarray, m: int) -> None:
         """Periodic guided restart of the ``m`` worst parcels (Eqs. 12-13), plus OBL (Eq. 14)."""
