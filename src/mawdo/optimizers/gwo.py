@@ -18,7 +18,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from mawdo.optimizers.base import Optimizer, Params, Space, initial_population
+from mawdo.optimizers.kernels import gwo_step
 from mawdo.streams import RunStreams
+
+_NO_WORDS = np.zeros((1, 0), np.uint64)
+_NO_R = np.zeros((1, 2, 3, 1, 1))
 
 
 @dataclass(frozen=True)
@@ -144,12 +148,29 @@ class GWO(Optimizer):
         )
 
     def ask(self, state: GWOState) -> np.ndarray:
+        """Move the pack (one kernel pass per chunk of runs); returns a new array each call."""
         if state.t > 0:
-            N, D = state.X.shape[1:]
+            R, N, D = state.X.shape
             a = 2.0 - 2.0 * (state.t - 1) / state.T
-            r = state.streams.random((2, 3, N, D))
-            X = gwo_move(state.X, state.lead_x, a, r[:, 0], r[:, 1])
-            state.X = np.clip(X, state.space.lb, state.space.ub)
+            lb = np.asarray(state.space.lb, float)
+            ub = np.asarray(state.space.ub, float)
+            X = np.empty_like(state.X)
+            streams = state.streams
+            if not hasattr(streams, "raw_words"):  # stand-in streams hand out the uniforms
+                r = streams.random((2, 3, N, D))
+                gwo_step(state.X, state.lead_x, a, _NO_WORDS, False, r, lb, ub, X)
+            else:
+                # three raw words per wolf and dimension; drawn per chunk of runs so the buffer
+                # stays at half an (R, N, D) array
+                step = max(1, R // 6)
+                words = np.empty((min(step, R), 3 * N * D), np.uint64)
+                for lo in range(0, R, step):
+                    hi = min(R, lo + step)
+                    w = words[: hi - lo]
+                    streams.subset(np.arange(lo, hi)).raw_words(w)
+                    sl = slice(lo, hi)
+                    gwo_step(state.X[sl], state.lead_x[sl], a, w, True, _NO_R, lb, ub, X[sl])
+            state.X = X
         return state.X
 
     def tell(self, state: GWOState, X: np.ndarray, F: np.ndarray) -> GWOState:

@@ -244,3 +244,44 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
                     p[r, i, d] = q
                     u[r, i, d] = v
                     X[r, i, d] = lb[d] + (q + 1.0) * 0.5 * width[d]
+
+
+_U32 = 1.0 / 4294967296.0
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def gwo_step(X, lead_x, a, words, use_words, r, lb, ub, out):  # pragma: no cover - compiled
+    """GWO's move (Eqs. 3.3-3.7) of every wolf, clipped to ``[lb, ub]``, written to ``out``.
+
+    ``X`` ``(R, N, D)``, ``lead_x`` ``(R, 3, D)`` (alpha, beta, delta), ``a`` scalar. The six
+    uniforms of wolf ``i``, dimension ``d`` (``r1, r2`` for alpha, beta, delta) are the 32-bit
+    halves of ``words[r, 3 (i D + d) : 3 (i D + d) + 3]`` scaled by ``2**-32`` when
+    ``use_words``, else ``r[:, 0, k, i, d]`` and ``r[:, 1, k, i, d]`` (shape ``(R, 2, 3, N, D)``).
+    """
+    R, N, D = X.shape
+    two_a = 2.0 * a
+    for q in range(R):
+        for i in range(N):
+            for d in range(D):
+                x = X[q, i, d]
+                acc = 0.0
+                e = 3 * (i * D + d)
+                for k in range(3):
+                    if use_words:
+                        wd = words[q, e + k]
+                        r1 = np.float64(wd & _LOW32) * _U32
+                        r2 = np.float64(wd >> _SHIFT32) * _U32
+                    else:
+                        r1 = r[q, 0, k, i, d]
+                        r2 = r[q, 1, k, i, d]
+                    L = lead_x[q, k, d]
+                    A = r1 * two_a - a
+                    dist = abs(r2 * (2.0 * L) - x) * A
+                    acc += L
+                    acc -= dist
+                v = acc / 3.0
+                if v > ub[d]:
+                    v = ub[d]
+                elif v < lb[d]:
+                    v = lb[d]
+                out[q, i, d] = v
