@@ -129,7 +129,8 @@ class MEWDO(Optimizer):
         R, N, D = s.p.shape
         r = ranks(s.f)[..., None].astype(float)
         tbest = s.pbest[np.arange(R), np.argmin(s.pbest_f, axis=1)][:, None, :]
-        u_perm = np.take_along_axis(s.u, s.streams.permutations(N, D), axis=2)
+        perm = s.streams.shuffle_rows(np.empty((R, N, D), np.int16 if D < 2**15 else np.int32))
+        u_perm = np.take_along_axis(s.u, perm, axis=2)  # O(D) Fisher-Yates per parcel
         draws = s.streams.random((N, 6))
         # strategy choice by inverse CDF of the shares
         cdf = np.cumsum(s.q, axis=1)[:, None, :]
@@ -165,7 +166,7 @@ class MEWDO(Optimizer):
             )
         s.f = F.copy()
         improved = F < s.pbest_f
-        s.pbest_f = np.where(improved, F, s.pbest_f)
-        s.pbest[improved] = s.p[improved]
+        np.copyto(s.pbest_f, F, where=improved)
+        np.copyto(s.pbest, s.p, where=improved[..., None])
         s.t += 1
         return s

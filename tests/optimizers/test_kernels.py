@@ -1,0 +1,165 @@
+"""The Numba kernels against independent references: the NumPy equation functions of wind.py,
+boundary.py and gwo.py, and a plain-Python (big integer) port of the permutation draw."""
+
+import itertools
+
+import numpy as np
+import pytest
+from scipy.stats import chisquare
+
+from mawdo.optimizers import wind
+from mawdo.optimizers.base import ranks
+from mawdo.optimizers.boundary import reflect_damped
+from mawdo.optimizers.gwo import gwo_move
+from mawdo.optimizers.kernels import (
+    gwo_step,
+    segment_ranks,
+    wind_step,
+    words_per_permutation,
+)
+from mawdo.optimizers.wdo import group_starts
+from mawdo.streams import RunStreams
+
+M64 = (1 << 64) - 1
+
+
+def python_shuffle(words, d):
+    """Fisher-Yates with batched multiply-shift, in Python integers (no 64-bit tricks)."""
+    out, w, x, prod = list(range(d)), -1, 0, 1 << 40
+    for k in range(d - 1, 0, -1):
+        n = k + 1
+        if prod * n > 1 << 32:
+            w, prod = w + 1, 1
+            x = int(words[w])
+        prod *= n
+        j, x = (x * n) >> 64, (x * n) & M64
+        out[k], out[j] = out[j], out[k]
+    return out, w + 1
+
+
+@pytest.mark.parametrize("d", [1, 2, 3, 7, 13, 30, 64])
+def test_permutations_equal_a_python_port_of_the_draw(d):
+    n = 40
+    streams = RunStreams([np.random.default_rng(5), np.random.default_rng(6)])
+    got = streams.shuffle_rows(np.empty((2, n, d), np.int16))
+    again = RunStreams([np.random.default_rng(5), np.random.default_rng(6)])
+    W = words_per_permutation(d)
+    for r, g in enumerate(again.generators):
+        words = g.bit_generator.random_raw(n * W)
+        for i in range(n):
+            perm, used = python_shuffle(words[i * W : (i + 1) * W], d)
+            assert used == W
+            assert got[r, i].tolist() == perm
+
+
+def test_permutations_are_uniform():
+    streams = RunStreams([np.random.default_rng(11)])
+    p = streams.shuffle_rows(np.empty((1, 48000, 4), np.int16))[0]
+    index = {perm: k for k, perm in enumerate(itertools.permutations(range(4)))}
+    counts = np.bincount([index[tuple(row)] for row in p.tolist()], minlength=24)
+    assert chisquare(counts).pvalue > 1e-3
+    q = streams.shuffle_rows(np.empty((1, 30000, 30), np.int16))[0]
+    assert np.all(np.sort(q, axis=1) == np.arange(30))
+    for v in (0, 29):  # where the first and the last element land: uniform over 30 places
+        assert chisquare(np.bincount(np.argmax(q == v, axis=1), minlength=30)).pvalue > 1e-3
+
+
+def test_segment_ranks_match_numpy_with_ties():
+    rng = np.random.default_rng(0)
+    F = rng.integers(0, 5, (6, 50)).astype(float)
+    F[0, :10] = np.inf
+    out = np.empty_like(F)
+    segment_ranks(F, group_starts(50, 1), out)
+    np.testing.assert_array_equal(out, ranks(F))
+    segment_ranks(F, group_starts(50, 8), out)
+    np.testing.assert_array_equal(out, wind.group_ranks(F, wind.partition(50, 8), 8))
+    big = rng.random((2, 300))  # segments longer than the insertion-sort cut-off
+    out = np.empty_like(big)
+    segment_ranks(big, group_starts(300, 2), out)
+    np.testing.assert_array_equal(out, wind.group_ranks(big, wind.partition(300, 2), 2))
+
+
+def numpy_step(p, u, pbest, pbest_f, f, perm, coef, G, guidance, w, gate, centre_on, awdo,
+               vmax, reflect, eta, rank_scope):  # fmt: skip
+    """One move with the NumPy equation functions (the pre-kernel formulation)."""
+    R, N, D = p.shape
+    gid = wind.partition(N, G)
+    rows = np.arange(R)[:, None]
+    gb = pbest[rows, wind.group_argmin(pbest_f, gid, G)]
+    tb = pbest[np.arange(R), np.argmin(pbest_f, axis=1)]
+    if guidance == 0:
+        B = tb[:, None, :]
+    elif guidance == 1:
+        B = gb[:, gid]
+    else:
+        w3 = w[2] * wind.distance_gate(gb, tb, 2 * np.sqrt(D))[:, gid] if gate else w[2]
+        B = wind.hierarchical_guidance(pbest, gb[:, gid], tb, w[0], w[1], w3)
+    r = wind.group_ranks(f, gid, G) if rank_scope == "group" else ranks(f)
+    r = r[..., None].astype(float)
+    centre = wind.group_centroid(p, gid, G)[:, gid] if centre_on else 0.0
+    a, g, RT, c = (coef[..., k : k + 1] for k in range(4))
+    step = wind.awdo_velocity if awdo else wind.wdo_velocity
+    u_new = step(u, p, B, r, np.take_along_axis(u, perm, 2), a, g, RT, c, centre)
+    u_new = np.clip(u_new, -vmax, vmax)
+    if reflect:
+        return reflect_damped(p + u_new, u_new, -1.0, 1.0, eta)
+    return np.clip(p + u_new, -1.0, 1.0), u_new
+
+
+@pytest.mark.parametrize(
+    "guidance,gate,centre_on,awdo,reflect,scope",
+    [
+        (0, False, False, False, False, "population"),  # WDO
+        (0, False, False, True, False, "population"),  # AWDO
+        (1, False, False, True, False, "group"),  # MAWDO-1
+        (2, True, False, True, False, "group"),  # MAWDO-2
+        (2, False, False, True, True, "group"),
+        (0, False, True, True, False, "population"),  # MAWDO-4 (low-D)
+        (2, True, True, True, True, "group"),  # MAWDO in low D
+    ],
+)
+def test_wind_step_equals_the_numpy_equations(guidance, gate, centre_on, awdo, reflect, scope):
+    rng = np.random.default_rng(guidance + 2 * gate + 4 * centre_on + 8 * reflect)
+    R, N, D, G = 3, 13, 5, 3
+    p = rng.uniform(-1, 1, (R, N, D))
+    u = rng.uniform(-0.6, 0.6, (R, N, D))  # large: clamps and reflections happen
+    pbest = rng.uniform(-1, 1, (R, N, D))
+    pbest_f = rng.integers(0, 6, (R, N)).astype(float)  # ties in the leaders
+    f = rng.integers(0, 6, (R, N)).astype(float)
+    perm = np.stack([[rng.permutation(D) for _ in range(N)] for _ in range(R)]).astype(np.int16)
+    coef = rng.uniform(0.1, 1.2, (R, N, 4))
+    w = np.array([0.45, 0.3, 0.25])
+    vmax, eta = 0.3, 0.5
+    lb, ub = np.linspace(-5, 0, D), np.linspace(1, 9, D)
+    ep, eu = numpy_step(p, u, pbest, pbest_f, f, perm, coef, G, guidance, w, gate, centre_on,
+                        awdo, vmax, reflect, eta, scope)  # fmt: skip
+    rank = np.empty((R, N))
+    segment_ranks(f, group_starts(N, G if scope == "group" else 1), rank)
+    X = np.empty((R, N, D))
+    P, U = p.copy(), u.copy()
+    wind_step(P, U, pbest, pbest_f, rank, perm, np.zeros((1, 0), np.uint64), False, coef,
+              group_starts(N, G), guidance, w, gate, 2 * np.sqrt(D), centre_on, awdo, vmax,
+              reflect, eta, lb, ub - lb, X)  # fmt: skip
+    np.testing.assert_allclose(P, ep, rtol=0, atol=1e-14)
+    np.testing.assert_allclose(U, eu, rtol=0, atol=1e-14)
+    np.testing.assert_allclose(X, lb + (ep + 1) / 2 * (ub - lb), rtol=1e-14, atol=1e-13)
+    assert np.all(np.abs(U) <= vmax + 1e-15) and np.all(np.abs(P) <= 1)
+
+
+def test_gwo_step_equals_gwo_move_on_the_same_uniforms():
+    rng = np.random.default_rng(3)
+    R, N, D = 2, 7, 4
+    X = rng.uniform(-3, 3, (R, N, D))
+    lead = rng.uniform(-3, 3, (R, 3, D))
+    lb, ub = np.full(D, -2.0), np.full(D, 2.5)
+    words = rng.integers(0, 2**63, (R, 3 * N * D), dtype=np.int64).astype(np.uint64)
+    words[0, 0] = np.uint64(2**64 - 1)  # extreme halves
+    w = words.reshape(R, N, D, 3)
+    r1 = (w & np.uint64(0xFFFFFFFF)).astype(float) / 2**32  # (R, N, D, 3)
+    r2 = (w >> np.uint64(32)).astype(float) / 2**32
+    expect = np.clip(gwo_move(X, lead, 0.7, r1.transpose(0, 3, 1, 2), r2.transpose(0, 3, 1, 2)),
+                     lb, ub)  # fmt: skip
+    out = np.empty_like(X)
+    gwo_step(X, lead, 0.7, words, True, np.zeros((1, 2, 3, 1, 1)), lb, ub, out)
+    np.testing.assert_allclose(out, expect, rtol=1e-13, atol=1e-13)
+    assert np.all(r1 < 1) and np.all(r2 >= 0)
