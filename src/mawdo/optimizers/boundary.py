@@ -11,7 +11,7 @@ BOUNDARY_POLICIES = ("clip", "reflect")
 
 
 def clip(p: np.ndarray, u: np.ndarray, lo, hi) -> tuple[np.ndarray, np.ndarray]:
-    """Clamp positions into ``[lo, hi]``; velocities unchanged (WDO paper Eq. 3, GWO.m, WOA.m)."""
+    """Clamp positions into ``[lo, hi]``; velocities unchanged (MAWDO paper Eq. 3, GWO.m, WOA.m)."""
     return np.clip(p, lo, hi), u
 
 

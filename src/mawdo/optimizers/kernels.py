@@ -153,7 +153,7 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
         0 ``B = tbest``, 1 ``B = gbest_g``, 2 hierarchical (Eq. 5) with weights ``w = (w1, w2,
         w3)`` and, when ``gate``, ``w3`` scaled by the distance gate of Eq. 10 (``d_max``).
     centre_on : bool
-        Gravity toward the group centroid (Eqs. 23-25) instead of the origin.
+        Gravity toward the group centroid (Eqs. 22-23) instead of the origin.
     awdo : bool
         AWDO velocity (Eq. 4) instead of WDO's (Bayraktar 2013 Eq. 1).
     vmax : float

@@ -11,8 +11,8 @@ One iteration (after the population of iteration ``t`` has been evaluated):
 5. every ``restart_every`` iterations the worst ``restart_frac`` parcels restart around ``tbest``
    (PGR, Eqs. 12-13), each also trying its opposite (OBL, Eq. 14).
 
-Low-dimensional stabilisation (D <= ``low_dim``): per-group coefficients (Eqs. 18-21), ``vmax/4``
-(Eq. 22) and gravity toward the group centroid (Eqs. 23-24).
+Low-dimensional stabilisation (D <= ``low_dim``): per-group coefficients (Eqs. 17-20), ``vmax/4``
+(Eq. 21) and gravity toward the group centroid (Eqs. 22-23).
 """
 
 from __future__ import annotations
@@ -182,7 +182,7 @@ class Wind(Optimizer):
         P = self.params
         N, D = P.pop_size, space.dim
         low = P.low_dim_stabilization and D <= P.low_dim
-        vmax = 0.25 * P.vmax if low else P.vmax  # Eq. 22
+        vmax = 0.25 * P.vmax if low else P.vmax  # Eq. 21
         p0 = None if x0 is None else space.to_unit(as_x0(x0, streams.runs, D, N))
         p = initial_population(streams, N, -np.ones(D), np.ones(D), p0)
         u = streams.uniform(-vmax, vmax, (N, D))
@@ -205,7 +205,7 @@ class Wind(Optimizer):
         )
 
     def _group_coefficients(self, streams: RunStreams) -> np.ndarray:
-        """Heterogeneous coefficients per group (Eqs. 18-21), shape ``(R, G, 4)``."""
+        """Heterogeneous coefficients per group (Eqs. 17-20), shape ``(R, G, 4)``."""
         lo = np.array([0.15, 0.15, 0.90, 0.10])
         hi = np.array([0.45, 0.45, 1.50, 0.50])
         return streams.uniform(lo, hi, (self.params.groups, 4))
