@@ -9,7 +9,7 @@ from scipy.stats import chisquare
 
 from mawdo.optimizers import wind
 from mawdo.optimizers.base import ranks
-from mawdo.optimizers.boundary import reflect_damped
+from mawdo.optimizers.boundary import apply_boundary, confine_positions, reflect_damped
 from mawdo.optimizers.gwo import gwo_move
 from mawdo.optimizers.kernels import (
     gwo_step,
@@ -163,3 +163,11 @@ def test_gwo_step_equals_gwo_move_on_the_same_uniforms():
     gwo_step(X, lead, 0.7, words, True, np.zeros((1, 2, 3, 1, 1)), lb, ub, out)
     np.testing.assert_allclose(out, expect, rtol=1e-13, atol=1e-13)
     assert np.all(r1 < 1) and np.all(r2 >= 0)
+
+
+@pytest.mark.parametrize("policy", ["clip", "reflect"])
+def test_confine_positions_equals_apply_boundary(policy):
+    p = np.random.default_rng(4).uniform(-3.5, 3.5, (3, 40, 5))
+    expect, _ = apply_boundary(policy, p, np.zeros_like(p), -1.0, 1.0, 0.5)
+    got = confine_positions(policy, p.copy(), -1.0, 1.0)
+    np.testing.assert_array_equal(got, expect)

@@ -32,7 +32,7 @@ from mawdo.optimizers.base import (
     check_range,
     initial_population,
 )
-from mawdo.optimizers.boundary import BOUNDARY_POLICIES, apply_boundary
+from mawdo.optimizers.boundary import BOUNDARY_POLICIES, confine_positions
 from mawdo.optimizers.kernels import segment_ranks, wind_step, words_per_permutation
 from mawdo.streams import RunStreams
 
@@ -270,14 +270,19 @@ class Wind(Optimizer):
         worst = np.argsort(s.f, axis=1, kind="stable")[:, N - m :]  # (R, m)
         tbest = s.pbest[np.arange(R), np.argmin(s.pbest_f, axis=1)]  # (R, D)
         sigma = wind.restart_sigma(s.t, s.T, P.sigma0, P.sigma_end)
-        fresh = tbest[:, None, :] + sigma * s.streams.normal((m, D))  # Eq. 12
-        fresh, _ = apply_boundary(P.boundary, fresh, np.zeros_like(fresh), -1.0, 1.0, P.eta)
+        fresh = s.streams.normal((m, D))  # (R, m, D), turned into the new positions in place
+        fresh *= sigma
+        fresh += tbest[:, None, :]  # Eq. 12: tbest + sigma z
+        confine_positions(P.boundary, fresh, -1.0, 1.0)
         s.p[rows, worst] = fresh
         s.u[rows, worst] = 0.0
-        X[rows, worst] = s.space.from_unit(fresh)
         s.restarted = worst
-        if P.obl:
-            X[:, N:] = s.space.from_unit(wind.opposite(fresh))
+        # one (R, m, D) scratch at a time: ufuncs on strided views of X would buffer copies
+        X[rows, worst] = s.space.from_unit(fresh, out=fresh)
+        del fresh
+        if P.obl:  # Eq. 14
+            opp = s.p[rows, worst]
+            X[:, N:] = s.space.from_unit(np.negative(opp, out=opp), out=opp)
 
     def _coefficient_array(self, s: WindState, R: int, N: int) -> np.ndarray:
         """``_coefficients`` stacked into ``(R or 1, N, 4)`` for the kernel."""
