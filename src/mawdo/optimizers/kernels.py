@@ -145,8 +145,8 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
         Raw random words, ``W = words_per_permutation(D)`` per parcel; when used, each parcel's
         permutation is drawn from them here by :func:`shuffle_from_words` (no ``(R, N, D)``
         permutation array is stored).
-    coef : (R or 1, N, 4)
-        ``alpha, g, RT, c`` per parcel.
+    coef : (R or 1, N or 1, 4)
+        ``alpha, g, RT, c`` per parcel (or shared by the run's parcels).
     gstarts : (G + 1,) int
         Group boundaries (contiguous groups).
     guidance : int
@@ -197,16 +197,18 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
                         acc += p[r, k, d]
                     centre[g, d] = acc / (b - a)
         rc = r if coef.shape[0] > 1 else 0
+        per_parcel = coef.shape[1] > 1
         for g in range(G):
             lead = tb if guidance == 0 else gbest[g]
             denom = w[0] + w[1] + w3e[g]
             for i in range(gstarts[g], gstarts[g + 1]):
                 rk = rank[r, i]
-                a1 = 1.0 - coef[rc, i, 0]
-                grav = coef[rc, i, 1]
-                RT = coef[rc, i, 2]
+                ci = i if per_parcel else 0
+                a1 = 1.0 - coef[rc, ci, 0]
+                grav = coef[rc, ci, 1]
+                RT = coef[rc, ci, 2]
                 wp = RT / rk if awdo else abs(1.0 - 1.0 / rk) * RT  # pressure weight
-                wc = coef[rc, i, 3] / rk  # Coriolis weight
+                wc = coef[rc, ci, 3] / rk  # Coriolis weight
                 for d in range(D):
                     u_old[d] = u[r, i, d]
                 if use_words:

@@ -285,14 +285,12 @@ class Wind(Optimizer):
             X[:, N:] = s.space.from_unit(np.negative(opp, out=opp), out=opp)
 
     def _coefficient_array(self, s: WindState, R: int, N: int) -> np.ndarray:
-        """``_coefficients`` stacked into ``(R or 1, N, 4)`` for the kernel."""
+        """``_coefficients`` stacked into ``(R or 1, N or 1, 4)`` for the kernel."""
         parts = np.broadcast_arrays(*(np.asarray(c, float) for c in self._coefficients(s)))
         arr = np.stack(parts, axis=-1)
         if arr.ndim == 1:  # four scalars
-            arr = arr[None, None, :]
-        else:  # (R or 1, N or 1, 1, 4)
-            arr = arr.reshape(arr.shape[0], arr.shape[1], 4)
-        return np.ascontiguousarray(np.broadcast_to(arr, (arr.shape[0], N, 4)))
+            return arr[None, None, :]
+        return np.ascontiguousarray(arr.reshape(arr.shape[0], arr.shape[1], 4))  # (., ., 1, 4)
 
     def _coefficients(self, s: WindState):
         """(alpha, g, RT, c), each broadcastable to ``(R, N, 1)``."""
