@@ -170,6 +170,8 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
     centre = np.zeros((G, D))
     u_old = np.empty(D)
     pr = np.empty(D, np.intp)
+    up = np.empty(D)  # u_old[pr]
+    Bv = np.empty(D)  # guidance B of the parcel
     W = words.shape[1] // N
     for r in range(R):
         tb = 0
@@ -201,6 +203,7 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
         for g in range(G):
             lead = tb if guidance == 0 else gbest[g]
             denom = w[0] + w[1] + w3e[g]
+            b1, b2, b3 = w[0] / denom, w[1] / denom, w3e[g] / denom
             for i in range(gstarts[g], gstarts[g + 1]):
                 rk = rank[r, i]
                 ci = i if per_parcel else 0
@@ -216,33 +219,27 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
                 else:
                     for d in range(D):
                         pr[d] = perm[r, i, d]
+                for d in range(D):  # the gathers first: the arithmetic below vectorises
+                    up[d] = u_old[pr[d]]
+                if guidance == 2:  # Eq. 5 renormalised, the division folded into the weights
+                    for d in range(D):
+                        Bv[d] = (
+                            b1 * pbest[r, i, d] + b2 * pbest[r, gbest[g], d] + b3 * pbest[r, tb, d]
+                        )
+                else:
+                    for d in range(D):
+                        Bv[d] = pbest[r, lead, d]
                 for d in range(D):
                     q = p[r, i, d]
-                    if guidance == 2:
-                        B = (
-                            w[0] * pbest[r, i, d]
-                            + w[1] * pbest[r, gbest[g], d]
-                            + w3e[g] * pbest[r, tb, d]
-                        ) / denom
-                    else:
-                        B = pbest[r, lead, d]
-                    v = a1 * u_old[d] - grav * (q - centre[g, d]) + wp * (B - q) + wc * u_old[pr[d]]
-                    if v > vmax:
-                        v = vmax
-                    elif v < -vmax:
-                        v = -vmax
+                    v = a1 * u_old[d] - grav * (q - centre[g, d]) + wp * (Bv[d] - q) + wc * up[d]
+                    v = min(max(v, -vmax), vmax)
                     q = q + v
                     if reflect:
-                        if q > 1.0:
-                            q = 2.0 - q
-                            v = -eta * v
-                        elif q < -1.0:
-                            q = -2.0 - q
-                            v = -eta * v
-                    if q > 1.0:
-                        q = 1.0
-                    elif q < -1.0:
-                        q = -1.0
+                        over = q > 1.0
+                        under = q < -1.0
+                        q = 2.0 - q if over else (-2.0 - q if under else q)
+                        v = -eta * v if (over or under) else v
+                    q = min(max(q, -1.0), 1.0)
                     p[r, i, d] = q
                     u[r, i, d] = v
                     X[r, i, d] = lb[d] + (q + 1.0) * 0.5 * width[d]
