@@ -14,6 +14,7 @@ from mawdo.optimizers.gwo import gwo_move
 from mawdo.optimizers.kernels import (
     gwo_step,
     segment_ranks,
+    update_personal_best,
     wind_step,
     words_per_permutation,
 )
@@ -171,3 +172,17 @@ def test_confine_positions_equals_apply_boundary(policy):
     expect, _ = apply_boundary(policy, p, np.zeros_like(p), -1.0, 1.0, 0.5)
     got = confine_positions(policy, p.copy(), -1.0, 1.0)
     np.testing.assert_array_equal(got, expect)
+
+
+def test_update_personal_best_is_strict_and_in_place():
+    rng = np.random.default_rng(8)
+    p = rng.random((2, 6, 3))
+    f = np.array([[1.0, 2.0, np.inf, 0.5, 3.0, 3.0], [0.0, 0.0, 0.0, 9.0, 9.0, 9.0]])
+    pbest_f = np.array([[2.0, 2.0, np.inf, 0.4, np.inf, 3.5], [1.0, -1.0, 0.0, 8.0, 10.0, 9.0]])
+    pbest = rng.random((2, 6, 3))
+    better = f < pbest_f
+    expect_x = np.where(better[..., None], p, pbest)
+    expect_f = np.where(better, f, pbest_f)
+    update_personal_best(p, f, pbest, pbest_f)
+    np.testing.assert_array_equal(pbest, expect_x)
+    np.testing.assert_array_equal(pbest_f, expect_f)

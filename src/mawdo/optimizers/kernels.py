@@ -284,3 +284,15 @@ def gwo_step(X, lead_x, a, words, use_words, r, lb, ub, out):  # pragma: no cove
                 elif v < lb[d]:
                     v = lb[d]
                 out[q, i, d] = v
+
+
+@njit(cache=True, nogil=True)
+def update_personal_best(p, f, pbest, pbest_f):  # pragma: no cover - compiled
+    """``pbest``/``pbest_f`` take ``p``/``f`` where ``f < pbest_f`` (strict), in place."""
+    R, N, D = p.shape
+    for r in range(R):
+        for i in range(N):
+            if f[r, i] < pbest_f[r, i]:
+                pbest_f[r, i] = f[r, i]
+                for d in range(D):
+                    pbest[r, i, d] = p[r, i, d]

@@ -34,6 +34,7 @@ from mawdo.optimizers.base import (
     initial_population,
     ranks,
 )
+from mawdo.optimizers.kernels import update_personal_best
 from mawdo.streams import RunStreams
 
 N_STRATEGIES = 3
@@ -165,8 +166,6 @@ class MEWDO(Optimizer):
                 n_used.sum(axis=1, keepdims=True) > 0, update_shares(rate, s.q, P.lr, P.q_min), s.q
             )
         s.f = F.copy()
-        improved = F < s.pbest_f
-        np.copyto(s.pbest_f, F, where=improved)
-        np.copyto(s.pbest, s.p, where=improved[..., None])
+        update_personal_best(s.p, F, s.pbest, s.pbest_f)
         s.t += 1
         return s

@@ -33,7 +33,12 @@ from mawdo.optimizers.base import (
     initial_population,
 )
 from mawdo.optimizers.boundary import BOUNDARY_POLICIES, confine_positions
-from mawdo.optimizers.kernels import segment_ranks, wind_step, words_per_permutation
+from mawdo.optimizers.kernels import (
+    segment_ranks,
+    update_personal_best,
+    wind_step,
+    words_per_permutation,
+)
 from mawdo.streams import RunStreams
 
 
@@ -321,8 +326,6 @@ class Wind(Optimizer):
             s.p[idx_r, tgt] = -s.p[idx_r, tgt]
             Fn[idx_r, tgt] = f_opp[idx_r, idx_k]
         s.f = Fn
-        improved = Fn < s.pbest_f
-        np.copyto(s.pbest_f, Fn, where=improved)
-        np.copyto(s.pbest, s.p, where=improved[..., None])
+        update_personal_best(s.p, Fn, s.pbest, s.pbest_f)
         s.t += 1
         return s
