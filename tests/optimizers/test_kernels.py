@@ -147,23 +147,54 @@ def test_wind_step_equals_the_numpy_equations(guidance, gate, centre_on, awdo, r
     assert np.all(np.abs(U) <= vmax + 1e-15) and np.all(np.abs(P) <= 1)
 
 
+def python_xoshiro(state, n):
+    """xoshiro256** (Blackman & Vigna), literally, in Python integers: n outputs, final state."""
+    s = [int(v) for v in state]
+    rotl = lambda x, k: ((x << k) | (x >> (64 - k))) & M64  # noqa: E731
+    out = []
+    for _ in range(n):
+        out.append(rotl((s[1] * 5) & M64, 7) * 9 & M64)
+        t = (s[1] << 17) & M64
+        s[2] ^= s[0]
+        s[3] ^= s[1]
+        s[1] ^= s[2]
+        s[0] ^= s[3]
+        s[2] ^= t
+        s[3] = rotl(s[3], 45)
+    return out, s
+
+
+def test_python_xoshiro_matches_the_published_first_output():
+    assert python_xoshiro([1, 2, 3, 4], 1)[0] == [11520]  # rotl(2 * 5, 7) * 9, by hand
+
+
 def test_gwo_step_equals_gwo_move_on_the_same_uniforms():
     rng = np.random.default_rng(3)
     R, N, D = 2, 7, 4
     X = rng.uniform(-3, 3, (R, N, D))
     lead = rng.uniform(-3, 3, (R, 3, D))
     lb, ub = np.full(D, -2.0), np.full(D, 2.5)
-    words = rng.integers(0, 2**63, (R, 3 * N * D), dtype=np.int64).astype(np.uint64)
-    words[0, 0] = np.uint64(2**64 - 1)  # extreme halves
-    w = words.reshape(R, N, D, 3)
-    r1 = (w & np.uint64(0xFFFFFFFF)).astype(float) / 2**32  # (R, N, D, 3)
+    state = rng.integers(1, 2**63, (R, 4), dtype=np.int64).astype(np.uint64)
+    state[1] = [1, 2, 3, 4]
+    words, final = [], []
+    for r in range(R):
+        w, s = python_xoshiro(state[r], 3 * N * D)
+        words.append(w)
+        final.append(s)
+    w = np.array(words, dtype=np.uint64).reshape(R, N, D, 3)  # drawn wolf, dimension, leader
+    r1 = (w & np.uint64(0xFFFFFFFF)).astype(float) / 2**32
     r2 = (w >> np.uint64(32)).astype(float) / 2**32
-    expect = np.clip(gwo_move(X, lead, 0.7, r1.transpose(0, 3, 1, 2), r2.transpose(0, 3, 1, 2)),
-                     lb, ub)  # fmt: skip
+    expect = np.clip(
+        gwo_move(X, lead, 0.7, r1.transpose(0, 3, 1, 2), r2.transpose(0, 3, 1, 2)), lb, ub
+    )
     out = np.empty_like(X)
-    gwo_step(X, lead, 0.7, words, True, np.zeros((1, 2, 3, 1, 1)), lb, ub, out)
+    st = state.copy()
+    gwo_step(X, lead, 0.7, st, True, np.zeros((1, 2, 3, 1, 1)), lb, ub, out)
     np.testing.assert_allclose(out, expect, rtol=1e-13, atol=1e-13)
-    assert np.all(r1 < 1) and np.all(r2 >= 0)
+    assert st.tolist() == final  # each run's generator advanced by exactly 3 N D outputs
+    one = np.empty((1, N, D))
+    gwo_step(X[1:], lead[1:], 0.7, state[1:].copy(), True, np.zeros((1, 2, 3, 1, 1)), lb, ub, one)
+    np.testing.assert_array_equal(one[0], out[1])  # a run alone draws what it draws in a batch
 
 
 @pytest.mark.parametrize("policy", ["clip", "reflect"])

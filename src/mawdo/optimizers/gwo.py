@@ -18,10 +18,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from mawdo.optimizers.base import Optimizer, Params, Space, initial_population
-from mawdo.optimizers.kernels import gwo_step
+from mawdo.optimizers.kernels import gwo_step, seed_xoshiro
 from mawdo.streams import RunStreams
 
-_NO_WORDS = np.zeros((1, 0), np.uint64)
+_NO_RNG = np.ones((1, 4), np.uint64)
 _NO_R = np.zeros((1, 2, 3, 1, 1))
 
 
@@ -126,6 +126,7 @@ class GWOState:
     T: int
     space: Space
     streams: RunStreams
+    rng: np.ndarray | None = None  # (R, 4) xoshiro256** state per run, seeded from streams
 
 
 class GWO(Optimizer):
@@ -148,7 +149,7 @@ class GWO(Optimizer):
         )
 
     def ask(self, state: GWOState) -> np.ndarray:
-        """Move the pack (one kernel pass per chunk of runs); returns a new array each call."""
+        """Move the pack (one kernel pass); returns a new array each call."""
         if state.t > 0:
             R, N, D = state.X.shape
             a = 2.0 - 2.0 * (state.t - 1) / state.T
@@ -158,18 +159,11 @@ class GWO(Optimizer):
             streams = state.streams
             if not hasattr(streams, "raw_words"):  # stand-in streams hand out the uniforms
                 r = streams.random((2, 3, N, D))
-                gwo_step(state.X, state.lead_x, a, _NO_WORDS, False, r, lb, ub, X)
+                gwo_step(state.X, state.lead_x, a, _NO_RNG, False, r, lb, ub, X)
             else:
-                # three raw words per wolf and dimension; drawn per chunk of runs so the buffer
-                # stays at half an (R, N, D) array
-                step = max(1, R // 6)
-                words = np.empty((min(step, R), 3 * N * D), np.uint64)
-                for lo in range(0, R, step):
-                    hi = min(R, lo + step)
-                    w = words[: hi - lo]
-                    streams.subset(np.arange(lo, hi)).raw_words(w)
-                    sl = slice(lo, hi)
-                    gwo_step(state.X[sl], state.lead_x[sl], a, w, True, _NO_R, lb, ub, X[sl])
+                if state.rng is None:  # seeded once from each run's own generator
+                    state.rng = seed_xoshiro(streams)
+                gwo_step(state.X, state.lead_x, a, state.rng, True, _NO_R, lb, ub, X)
             state.X = X
         return state.X
 

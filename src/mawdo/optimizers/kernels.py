@@ -248,14 +248,38 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
 _U32 = 1.0 / 4294967296.0
 
 
+@njit(cache=True, nogil=True, inline="always")
+def _rotl(x, k):  # pragma: no cover - compiled
+    return (x << np.uint64(k)) | (x >> np.uint64(64 - k))
+
+
+@njit(cache=True, nogil=True, inline="always")
+def xoshiro_next(state, r):  # pragma: no cover - compiled
+    """Next 64-bit output of run ``r``'s xoshiro256** generator (Blackman & Vigna 2018);
+    ``state`` ``(R, 4)`` uint64 is advanced in place."""
+    s0, s1, s2, s3 = state[r, 0], state[r, 1], state[r, 2], state[r, 3]
+    result = _rotl(s1 * np.uint64(5), 7) * np.uint64(9)
+    t = s1 << np.uint64(17)
+    s2 ^= s0
+    s3 ^= s1
+    s1 ^= s2
+    s0 ^= s3
+    s2 ^= t
+    s3 = _rotl(s3, 45)
+    state[r, 0], state[r, 1], state[r, 2], state[r, 3] = s0, s1, s2, s3
+    return result
+
+
 @njit(cache=True, nogil=True, error_model="numpy")
-def gwo_step(X, lead_x, a, words, use_words, r, lb, ub, out):  # pragma: no cover - compiled
+def gwo_step(X, lead_x, a, rng, use_rng, r, lb, ub, out):  # pragma: no cover - compiled
     """GWO's move (Eqs. 3.3-3.7) of every wolf, clipped to ``[lb, ub]``, written to ``out``.
 
-    ``X`` ``(R, N, D)``, ``lead_x`` ``(R, 3, D)`` (alpha, beta, delta), ``a`` scalar. The six
-    uniforms of wolf ``i``, dimension ``d`` (``r1, r2`` for alpha, beta, delta) are the 32-bit
-    halves of ``words[r, 3 (i D + d) : 3 (i D + d) + 3]`` scaled by ``2**-32`` when
-    ``use_words``, else ``r[:, 0, k, i, d]`` and ``r[:, 1, k, i, d]`` (shape ``(R, 2, 3, N, D)``).
+    ``X`` ``(R, N, D)``, ``lead_x`` ``(R, 3, D)`` (alpha, beta, delta), ``a`` scalar. When
+    ``use_rng``, the six uniforms of wolf ``i``, dimension ``d`` (``r1, r2`` for alpha, beta,
+    delta) are the 32-bit halves of three outputs of the run's xoshiro256** (``rng (R, 4)``,
+    seeded from the run's own generator), scaled by ``2**-32``, drawn in the order wolf,
+    dimension, leader; else they are ``r[:, 0, k, i, d]`` and ``r[:, 1, k, i, d]``
+    (``r`` of shape ``(R, 2, 3, N, D)``).
     """
     R, N, D = X.shape
     two_a = 2.0 * a
@@ -264,10 +288,9 @@ def gwo_step(X, lead_x, a, words, use_words, r, lb, ub, out):  # pragma: no cove
             for d in range(D):
                 x = X[q, i, d]
                 acc = 0.0
-                e = 3 * (i * D + d)
                 for k in range(3):
-                    if use_words:
-                        wd = words[q, e + k]
+                    if use_rng:
+                        wd = xoshiro_next(rng, q)
                         r1 = np.float64(wd & _LOW32) * _U32
                         r2 = np.float64(wd >> _SHIFT32) * _U32
                     else:
@@ -296,3 +319,15 @@ def update_personal_best(p, f, pbest, pbest_f):  # pragma: no cover - compiled
                 pbest_f[r, i] = f[r, i]
                 for d in range(D):
                     pbest[r, i, d] = p[r, i, d]
+
+
+def seed_xoshiro(streams) -> np.ndarray:
+    """xoshiro256** states ``(R, 4)`` uint64, four raw words of each run's own generator.
+
+    GWO draws six uniforms per wolf and dimension; the Numba generator supplies them inside the
+    kernel (no per-run Python call, no buffer), and run ``r``'s numbers still depend only on run
+    ``r``'s seed. An all-zero state (probability ``2**-256``) is the one xoshiro cannot leave.
+    """
+    state = streams.raw_words(np.empty((streams.runs, 4), np.uint64))
+    state[~state.any(axis=1), 0] = 1
+    return state
