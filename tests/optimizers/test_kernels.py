@@ -138,7 +138,7 @@ def test_wind_step_equals_the_numpy_equations(guidance, gate, centre_on, awdo, r
     segment_ranks(f, group_starts(N, G if scope == "group" else 1), rank)
     X = np.empty((R, N, D))
     P, U = p.copy(), u.copy()
-    wind_step(P, U, pbest, pbest_f, rank, perm, np.zeros((1, 0), np.uint64), False, coef,
+    wind_step(P, U, pbest, pbest_f, rank, perm, np.ones((1, 4), np.uint64), False, 0, coef,
               group_starts(N, G), guidance, w, gate, 2 * np.sqrt(D), centre_on, awdo, vmax,
               reflect, eta, lb, ub - lb, X)  # fmt: skip
     np.testing.assert_allclose(P, ep, rtol=0, atol=1e-14)
@@ -217,3 +217,31 @@ def test_update_personal_best_is_strict_and_in_place():
     update_personal_best(p, f, pbest, pbest_f)
     np.testing.assert_array_equal(pbest, expect_x)
     np.testing.assert_array_equal(pbest_f, expect_f)
+
+
+def test_wind_step_draws_each_parcels_permutation_from_its_runs_xoshiro():
+    rng = np.random.default_rng(9)
+    R, N, D = 2, 5, 7
+    p, u = rng.uniform(-1, 1, (R, N, D)), rng.uniform(-0.3, 0.3, (R, N, D))
+    pbest, pbest_f = rng.uniform(-1, 1, (R, N, D)), rng.random((R, N))
+    rank = np.tile(np.arange(1.0, N + 1), (R, 1))
+    coef = np.array([[[0.4, 0.2, 3.0, 0.4]]])
+    state = rng.integers(1, 2**63, (R, 4), dtype=np.int64).astype(np.uint64)
+    W = words_per_permutation(D)
+    perm = np.empty((R, N, D), np.int16)
+    final = []
+    for r in range(R):
+        words, s = python_xoshiro(state[r], N * W)
+        final.append(s)
+        for i in range(N):
+            perm[r, i] = python_shuffle(words[i * W : (i + 1) * W], D)[0]
+    args = (coef, group_starts(N, 1), 0, np.zeros(3), False, 1.0, False, False, 0.3, False, 0.5,
+            np.zeros(D), np.ones(D))  # fmt: skip
+    out = []
+    for mode in ("perm", "rng"):
+        P, U, X, st = p.copy(), u.copy(), np.empty((R, N, D)), state.copy()
+        wind_step(P, U, pbest, pbest_f, rank, perm, st, mode == "rng", W, *args, X)
+        out.append((P, U))
+    np.testing.assert_array_equal(out[0][0], out[1][0])
+    np.testing.assert_array_equal(out[0][1], out[1][1])
+    assert st.tolist() == final

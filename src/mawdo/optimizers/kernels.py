@@ -112,8 +112,9 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
     pbest_f,
     rank,
     perm,
-    words,
-    use_words,
+    rng,
+    use_rng,
+    W,
     coef,
     gstarts,
     guidance,
@@ -140,11 +141,11 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
         Rank ``r_i`` of each parcel (population or group scope), 1 = best.
     perm : (R, N, D) int
         Permutation of the dimensions per parcel (Coriolis term ``u[perm]``); read only when
-        ``use_words`` is false.
-    words : (R, N * W) uint64, use_words : bool
-        Raw random words, ``W = words_per_permutation(D)`` per parcel; when used, each parcel's
-        permutation is drawn from them here by :func:`shuffle_from_words` (no ``(R, N, D)``
-        permutation array is stored).
+        ``use_rng`` is false.
+    rng : (R, 4) uint64, use_rng : bool, W : int
+        Per-run xoshiro256** states (:func:`seed_xoshiro`); when used, each parcel's permutation
+        is drawn here from ``W = words_per_permutation(D)`` of its run's outputs by
+        :func:`shuffle_from_words` (no ``(R, N, D)`` permutation array is stored).
     coef : (R or 1, N or 1, 4)
         ``alpha, g, RT, c`` per parcel (or shared by the run's parcels).
     gstarts : (G + 1,) int
@@ -172,7 +173,7 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
     pr = np.empty(D, np.intp)
     up = np.empty(D)  # u_old[pr]
     Bv = np.empty(D)  # guidance B of the parcel
-    W = words.shape[1] // N
+    wbuf = np.empty(max(W, 1), np.uint64)
     for r in range(R):
         tb = 0
         for g in range(G):  # leaders: first minimum, like numpy.argmin
@@ -214,8 +215,10 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
                 wc = coef[rc, ci, 3] / rk  # Coriolis weight
                 for d in range(D):
                     u_old[d] = u[r, i, d]
-                if use_words:
-                    shuffle_from_words(words[r], i * W, pr)
+                if use_rng:
+                    for k in range(W):
+                        wbuf[k] = xoshiro_next(rng, r)
+                    shuffle_from_words(wbuf, 0, pr)
                 else:
                     for d in range(D):
                         pr[d] = perm[r, i, d]

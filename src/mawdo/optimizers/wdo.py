@@ -34,6 +34,7 @@ from mawdo.optimizers.base import (
 )
 from mawdo.optimizers.boundary import BOUNDARY_POLICIES, confine_positions
 from mawdo.optimizers.kernels import (
+    seed_xoshiro,
     segment_ranks,
     update_personal_best,
     wind_step,
@@ -143,7 +144,7 @@ class WindParams(Params):
 
 
 _NO_PERM = np.zeros((1, 1, 1), np.int16)
-_NO_WORDS = np.zeros((1, 0), np.uint64)
+_NO_RNG = np.ones((1, 4), np.uint64)
 
 
 @functools.cache
@@ -173,7 +174,7 @@ class WindState:
     space: Space
     streams: RunStreams
     restarted: np.ndarray | None = None  # (R, m) parcels restarted in the last ask
-    words: np.ndarray | None = None  # (R, N * W) uint64 buffer of permutation draws
+    rng: np.ndarray | None = None  # (R, 4) xoshiro256** state per run, for the permutations
 
 
 class Wind(Optimizer):
@@ -230,7 +231,7 @@ class Wind(Optimizer):
         s.p = np.ascontiguousarray(s.p, dtype=float)
         s.u = np.ascontiguousarray(s.u, dtype=float)
         coef = self._coefficient_array(s, R, N)  # draws first, as before the kernel existed
-        perm, words = self._permutation_draw(s)
+        perm, rng = self._permutation_draw(s)
         gstarts = group_starts(N, P.groups)
         rank = np.empty((R, N))
         segment_ranks(s.f, gstarts if P.rank_scope == "group" else group_starts(N, 1), rank)
@@ -244,7 +245,8 @@ class Wind(Optimizer):
         X = np.empty((R, N + (m if P.obl else 0), D))
         width = s.space.ub - s.space.lb
         wind_step(
-            s.p, s.u, s.pbest, s.pbest_f, rank, perm, words, words is not _NO_WORDS, coef,
+            s.p, s.u, s.pbest, s.pbest_f, rank, perm, rng, rng is not _NO_RNG,
+            words_per_permutation(D), coef,
             gstarts, guidance,
             np.asarray(w, float), P.gate, 2.0 * np.sqrt(D), s.low_dim, P.velocity == "awdo",
             float(s.vmax), P.boundary == "reflect", float(P.eta),
@@ -256,16 +258,16 @@ class Wind(Optimizer):
         return X
 
     def _permutation_draw(self, s: WindState):
-        """``(perm, words)`` for the kernel: raw words (permutations drawn in the kernel) from
-        real streams; an explicit permutation array from stand-ins without ``raw_words``."""
-        R, N, D = s.p.shape
+        """``(perm, rng)`` for the kernel: with real streams, the per-run xoshiro256** states
+        the kernel draws the permutations from (seeded once from each run's generator); from
+        stand-in streams without ``raw_words``, an explicit permutation array."""
         if hasattr(s.streams, "raw_words"):
-            shape = (R, N * words_per_permutation(D))
-            if s.words is None or s.words.shape != shape:
-                s.words = np.empty(shape, np.uint64)
-            return _NO_PERM, s.streams.raw_words(s.words)
+            if s.rng is None:
+                s.rng = seed_xoshiro(s.streams)
+            return _NO_PERM, s.rng
+        D = s.p.shape[2]
         perm = s.streams.shuffle_rows(np.empty(s.p.shape, np.int16 if D < 2**15 else np.int32))
-        return perm, _NO_WORDS
+        return perm, _NO_RNG
 
     def _restart(self, s: WindState, X: np.ndarray, m: int) -> None:
         """Periodic guided restart of the ``m`` worst parcels (Eqs. 12-13), plus OBL (Eq. 14)."""
