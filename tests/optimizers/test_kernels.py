@@ -138,7 +138,7 @@ def test_wind_step_equals_the_numpy_equations(guidance, gate, centre_on, awdo, r
     segment_ranks(f, group_starts(N, G if scope == "group" else 1), rank)
     X = np.empty((R, N, D))
     P, U = p.copy(), u.copy()
-    wind_step(P, U, pbest, pbest_f, rank, perm, np.ones((1, 4), np.uint64), False, 0, coef,
+    wind_step(P, U, pbest, pbest_f, rank, perm, np.ones((1, 4), np.uint64), False, 0, 0, coef,
               group_starts(N, G), guidance, w, gate, 2 * np.sqrt(D), centre_on, awdo, vmax,
               reflect, eta, lb, ub - lb, X)  # fmt: skip
     np.testing.assert_allclose(P, ep, rtol=0, atol=1e-14)
@@ -240,8 +240,40 @@ def test_wind_step_draws_each_parcels_permutation_from_its_runs_xoshiro():
     out = []
     for mode in ("perm", "rng"):
         P, U, X, st = p.copy(), u.copy(), np.empty((R, N, D)), state.copy()
-        wind_step(P, U, pbest, pbest_f, rank, perm, st, mode == "rng", W, *args, X)
+        wind_step(P, U, pbest, pbest_f, rank, perm, st, mode == "rng", W, 0, *args, X)
         out.append((P, U))
     np.testing.assert_array_equal(out[0][0], out[1][0])
     np.testing.assert_array_equal(out[0][1], out[1][1])
     assert st.tolist() == final
+
+
+@pytest.mark.parametrize("coef_draw", [1, 2])
+def test_wind_step_draws_awdo_coefficients_before_the_permutations(coef_draw):
+    rng = np.random.default_rng(10 + coef_draw)
+    R, N, D = 2, 4, 6
+    p, u = rng.uniform(-1, 1, (R, N, D)), rng.uniform(-0.3, 0.3, (R, N, D))
+    pbest, pbest_f = rng.uniform(-1, 1, (R, N, D)), rng.random((R, N))
+    rank = np.tile(np.arange(1.0, N + 1), (R, 1))
+    state = rng.integers(1, 2**63, (R, 4), dtype=np.int64).astype(np.uint64)
+    W = words_per_permutation(D)
+    perm = np.empty((R, N, D), np.int16)
+    coef = np.empty((R, N, 4))
+    for r in range(R):
+        n_words = 4 + N * W if coef_draw == 1 else N * (4 + W)
+        words = python_xoshiro(state[r], n_words)[0]
+        unif = [(w >> 11) / 2**53 for w in words]
+        for i in range(N):
+            if coef_draw == 1:
+                coef[r, i], start = unif[:4], 4 + i * W
+            else:
+                coef[r, i], start = unif[i * (4 + W) : i * (4 + W) + 4], i * (4 + W) + 4
+            perm[r, i] = python_shuffle(words[start : start + W], D)[0]
+    args = (group_starts(N, 1), 0, np.zeros(3), False, 1.0, False, True, 0.3, False, 0.5,
+            np.zeros(D), np.ones(D))  # fmt: skip
+    P1, U1, X = p.copy(), u.copy(), np.empty((R, N, D))
+    wind_step(P1, U1, pbest, pbest_f, rank, perm, state.copy(), True, W, coef_draw,
+              np.zeros((1, 1, 4)), *args, X)  # fmt: skip
+    P0, U0 = p.copy(), u.copy()
+    wind_step(P0, U0, pbest, pbest_f, rank, perm, state.copy(), False, W, 0, coef, *args, X)
+    np.testing.assert_array_equal(U1, U0)
+    np.testing.assert_array_equal(P1, P0)

@@ -15,6 +15,8 @@ from numba import njit
 
 _LOW32 = np.uint64(0xFFFFFFFF)
 _SHIFT32 = np.uint64(32)
+_SHIFT11 = np.uint64(11)
+_U53 = 1.0 / 9007199254740992.0
 
 
 _BATCH = 1 << 32  # product of the ranges drawn from one 64-bit word: bias <= 2**-32
@@ -115,6 +117,7 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
     rng,
     use_rng,
     W,
+    coef_draw,
     coef,
     gstarts,
     guidance,
@@ -146,8 +149,12 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
         Per-run xoshiro256** states (:func:`seed_xoshiro`); when used, each parcel's permutation
         is drawn here from ``W = words_per_permutation(D)`` of its run's outputs by
         :func:`shuffle_from_words` (no ``(R, N, D)`` permutation array is stored).
+    coef_draw : int
+        0: coefficients from ``coef``. 1: AWDO's ``a_t, g_t, RT_t, c_t ~ U[0, 1)`` drawn here,
+        four outputs of the run's generator per iteration (53-bit uniforms), before any
+        permutation; 2: four per parcel, before the parcel's permutation.
     coef : (R or 1, N or 1, 4)
-        ``alpha, g, RT, c`` per parcel (or shared by the run's parcels).
+        ``alpha, g, RT, c`` per parcel (or shared by the run's parcels) when ``coef_draw == 0``.
     gstarts : (G + 1,) int
         Group boundaries (contiguous groups).
     guidance : int
@@ -174,6 +181,7 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
     up = np.empty(D)  # u_old[pr]
     Bv = np.empty(D)  # guidance B of the parcel
     wbuf = np.empty(max(W, 1), np.uint64)
+    cw = np.empty(4)  # alpha, g, RT, c of the parcel
     for r in range(R):
         tb = 0
         for g in range(G):  # leaders: first minimum, like numpy.argmin
@@ -201,18 +209,27 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
                     centre[g, d] = acc / (b - a)
         rc = r if coef.shape[0] > 1 else 0
         per_parcel = coef.shape[1] > 1
+        if coef_draw == 1:
+            for k in range(4):
+                cw[k] = np.float64(xoshiro_next(rng, r) >> _SHIFT11) * _U53
         for g in range(G):
             lead = tb if guidance == 0 else gbest[g]
             denom = w[0] + w[1] + w3e[g]
             b1, b2, b3 = w[0] / denom, w[1] / denom, w3e[g] / denom
             for i in range(gstarts[g], gstarts[g + 1]):
                 rk = rank[r, i]
-                ci = i if per_parcel else 0
-                a1 = 1.0 - coef[rc, ci, 0]
-                grav = coef[rc, ci, 1]
-                RT = coef[rc, ci, 2]
+                if coef_draw == 2:
+                    for k in range(4):
+                        cw[k] = np.float64(xoshiro_next(rng, r) >> _SHIFT11) * _U53
+                if coef_draw == 0:
+                    ci = i if per_parcel else 0
+                    for k in range(4):
+                        cw[k] = coef[rc, ci, k]
+                a1 = 1.0 - cw[0]
+                grav = cw[1]
+                RT = cw[2]
                 wp = RT / rk if awdo else abs(1.0 - 1.0 / rk) * RT  # pressure weight
-                wc = coef[rc, ci, 3] / rk  # Coriolis weight
+                wc = cw[3] / rk  # Coriolis weight
                 for d in range(D):
                     u_old[d] = u[r, i, d]
                 if use_rng:

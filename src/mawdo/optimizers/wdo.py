@@ -145,6 +145,7 @@ class WindParams(Params):
 
 _NO_PERM = np.zeros((1, 1, 1), np.int16)
 _NO_RNG = np.ones((1, 4), np.uint64)
+_NO_COEF = np.zeros((1, 1, 4))
 
 
 @functools.cache
@@ -230,8 +231,8 @@ class Wind(Optimizer):
         R, N, D = s.p.shape
         s.p = np.ascontiguousarray(s.p, dtype=float)
         s.u = np.ascontiguousarray(s.u, dtype=float)
-        coef = self._coefficient_array(s, R, N)  # draws first, as before the kernel existed
         perm, rng = self._permutation_draw(s)
+        coef_draw, coef = self._coefficient_array(s, R, N, rng is not _NO_RNG)
         gstarts = group_starts(N, P.groups)
         rank = np.empty((R, N))
         segment_ranks(s.f, gstarts if P.rank_scope == "group" else group_starts(N, 1), rank)
@@ -246,7 +247,7 @@ class Wind(Optimizer):
         width = s.space.ub - s.space.lb
         wind_step(
             s.p, s.u, s.pbest, s.pbest_f, rank, perm, rng, rng is not _NO_RNG,
-            words_per_permutation(D), coef,
+            words_per_permutation(D), coef_draw, coef,
             gstarts, guidance,
             np.asarray(w, float), P.gate, 2.0 * np.sqrt(D), s.low_dim, P.velocity == "awdo",
             float(s.vmax), P.boundary == "reflect", float(P.eta),
@@ -291,13 +292,24 @@ class Wind(Optimizer):
             opp = s.p[rows, worst]
             X[:, N:] = s.space.from_unit(np.negative(opp, out=opp), out=opp)
 
-    def _coefficient_array(self, s: WindState, R: int, N: int) -> np.ndarray:
-        """``_coefficients`` stacked into ``(R or 1, N or 1, 4)`` for the kernel."""
+    def _coefficient_array(self, s: WindState, R: int, N: int, kernel_rng: bool):
+        """``(coef_draw, coef)`` for the kernel: AWDO's U[0,1) coefficients are drawn inside it
+        from the run's generator when it has one (``coef_draw`` 1 per iteration, 2 per parcel);
+        otherwise ``_coefficients`` (which subclasses may override) stacked into
+        ``(R or 1, N or 1, 4)``."""
+        P = self.params
+        if (
+            kernel_rng
+            and P.velocity == "awdo"
+            and not s.low_dim
+            and type(self)._coefficients is Wind._coefficients
+        ):
+            return (1 if P.coef_draw == "iteration" else 2), _NO_COEF
         parts = np.broadcast_arrays(*(np.asarray(c, float) for c in self._coefficients(s)))
         arr = np.stack(parts, axis=-1)
         if arr.ndim == 1:  # four scalars
-            return arr[None, None, :]
-        return np.ascontiguousarray(arr.reshape(arr.shape[0], arr.shape[1], 4))  # (., ., 1, 4)
+            return 0, arr[None, None, :]
+        return 0, np.ascontiguousarray(arr.reshape(arr.shape[0], arr.shape[1], 4))  # (., ., 1, 4)
 
     def _coefficients(self, s: WindState):
         """(alpha, g, RT, c), each broadcastable to ``(R, N, 1)``."""
