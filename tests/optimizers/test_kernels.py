@@ -13,6 +13,7 @@ from mawdo.optimizers.boundary import apply_boundary, confine_positions, reflect
 from mawdo.optimizers.gwo import gwo_move
 from mawdo.optimizers.kernels import (
     gwo_step,
+    mewdo_step,
     segment_ranks,
     update_personal_best,
     wind_step,
@@ -277,3 +278,37 @@ def test_wind_step_draws_awdo_coefficients_before_the_permutations(coef_draw):
     wind_step(P0, U0, pbest, pbest_f, rank, perm, state.copy(), False, W, 0, coef, *args, X)
     np.testing.assert_array_equal(U1, U0)
     np.testing.assert_array_equal(P1, P0)
+
+
+def test_mewdo_step_equals_the_numpy_strategies():
+    rng = np.random.default_rng(12)
+    R, N, D = 3, 9, 5
+    p, u = rng.uniform(-1, 1, (R, N, D)), rng.uniform(-0.5, 0.5, (R, N, D))
+    pbest = rng.uniform(-1, 1, (R, N, D))
+    f = rng.random((R, N))
+    r = ranks(f).astype(float)
+    tb = rng.integers(0, N, R)
+    guide = rng.integers(0, N, (R, N))
+    centre = p.mean(axis=1)
+    strat = rng.integers(0, 3, (R, N))
+    draws = rng.random((R, N, 6))
+    perm = np.stack([[rng.permutation(D) for _ in range(N)] for _ in range(R)]).astype(np.int16)
+    alpha, g, RT, c, vmax = 0.4, 0.2, 3.0, 0.4, 0.3
+    up = np.take_along_axis(u, perm, 2)
+    B = pbest[np.arange(R), tb][:, None, :]
+    rr = r[..., None]
+    v0 = wind.wdo_velocity(u, p, B, rr, up, alpha, g, RT, c)
+    a1, g1, RT1, c1 = (draws[..., k : k + 1] for k in range(1, 5))
+    v1 = wind.awdo_velocity(u, p, B, rr, up, a1, g1, RT1, c1)
+    G = pbest[np.arange(R)[:, None], guide]
+    v2 = wind.awdo_velocity(u, p, G, 1.0, up, alpha, g, 1.0, c, centre[:, None, :])
+    sel = strat[..., None]
+    eu = np.clip(np.where(sel == 0, v0, np.where(sel == 1, v1, v2)), -vmax, vmax)
+    ep = np.clip(p + eu, -1, 1)
+    P, U, X = p.copy(), u.copy(), np.empty((R, N, D))
+    lb, width = np.full(D, -3.0), np.full(D, 4.0)
+    mewdo_step(P, U, pbest, r, tb, guide, centre, strat, draws, perm,
+               np.array([alpha, g, RT, c]), vmax, lb, width, X)  # fmt: skip
+    np.testing.assert_array_equal(U, eu)
+    np.testing.assert_array_equal(P, ep)
+    np.testing.assert_allclose(X, lb + (ep + 1) / 2 * width, rtol=1e-15)

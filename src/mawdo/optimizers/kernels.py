@@ -351,3 +351,57 @@ def seed_xoshiro(streams) -> np.ndarray:
     state = streams.raw_words(np.empty((streams.runs, 4), np.uint64))
     state[~state.any(axis=1), 0] = 1
     return state
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def mewdo_step(
+    p, u, pbest, rank, tb, guide, centre, strat, draws, perm, coef, vmax, lb, width, X
+):  # pragma: no cover - compiled
+    """MEWDO (reconstructed)'s move: each parcel applies only the strategy it drew.
+
+    ``strat (R, N)``: 0 classic WDO toward ``pbest[tb]``; 1 AWDO with the parcel's coefficients
+    ``draws[r, i, 1:5]``; 2 toward ``pbest[guide]`` with unit pressure and rank, gravity toward
+    ``centre (R, D)``. ``coef = (alpha, g, RT, c)`` of strategies 0 and 2; ``perm (R, N, D)``
+    the Coriolis permutations. Velocity clamped to ``vmax``, position clipped to ``[-1, 1]``,
+    ``X = lb + (p + 1)/2 width``. Same equations as ``wind.wdo_velocity``/``awdo_velocity``.
+    """
+    R, N, D = p.shape
+    u_old = np.empty(D)
+    alpha, g, RT, c = coef[0], coef[1], coef[2], coef[3]
+    for r in range(R):
+        for i in range(N):
+            for d in range(D):
+                u_old[d] = u[r, i, d]
+            s = strat[r, i]
+            rk = rank[r, i]
+            for d in range(D):
+                q = p[r, i, d]
+                up = u_old[perm[r, i, d]]
+                if s == 0:
+                    v = (
+                        (1.0 - alpha) * u_old[d]
+                        - g * q
+                        + abs(1.0 - 1.0 / rk) * RT * (pbest[r, tb[r], d] - q)
+                        + c * up / rk
+                    )
+                elif s == 1:
+                    a1, g1 = draws[r, i, 1], draws[r, i, 2]
+                    RT1, c1 = draws[r, i, 3], draws[r, i, 4]
+                    v = (
+                        (1.0 - a1) * u_old[d]
+                        - g1 * q
+                        + RT1 * (pbest[r, tb[r], d] - q) / rk
+                        + c1 * up / rk
+                    )
+                else:
+                    v = (
+                        (1.0 - alpha) * u_old[d]
+                        - g * (q - centre[r, d])
+                        + (pbest[r, guide[r, i], d] - q)
+                        + c * up
+                    )
+                v = min(max(v, -vmax), vmax)
+                q = min(max(q + v, -1.0), 1.0)
+                u[r, i, d] = v
+                p[r, i, d] = q
+                X[r, i, d] = lb[d] + (q + 1.0) * 0.5 * width[d]
