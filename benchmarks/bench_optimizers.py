@@ -20,6 +20,7 @@ Usage: ``python -m benchmarks optimizers`` or ``python -m benchmarks.bench_optim
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 import tracemalloc
 
@@ -132,4 +133,4 @@ def main(argv: list[str] | None = None) -> dict:
 
 
 if __name__ == "__main__":
-    main()
+    main(sys.argv[1:])
