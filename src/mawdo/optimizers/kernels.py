@@ -274,10 +274,9 @@ def _rotl(x, k):  # pragma: no cover - compiled
 
 
 @njit(cache=True, nogil=True, inline="always")
-def xoshiro_next(state, r):  # pragma: no cover - compiled
-    """Next 64-bit output of run ``r``'s xoshiro256** generator (Blackman & Vigna 2018);
-    ``state`` ``(R, 4)`` uint64 is advanced in place."""
-    s0, s1, s2, s3 = state[r, 0], state[r, 1], state[r, 2], state[r, 3]
+def xoshiro_step(s0, s1, s2, s3):  # pragma: no cover - compiled
+    """One xoshiro256** step (Blackman & Vigna 2018) on a state held in locals:
+    returns ``(output, s0, s1, s2, s3)``."""
     result = _rotl(s1 * np.uint64(5), 7) * np.uint64(9)
     t = s1 << np.uint64(17)
     s2 ^= s0
@@ -286,8 +285,16 @@ def xoshiro_next(state, r):  # pragma: no cover - compiled
     s0 ^= s3
     s2 ^= t
     s3 = _rotl(s3, 45)
+    return result, s0, s1, s2, s3
+
+
+@njit(cache=True, nogil=True, inline="always")
+def xoshiro_next(state, r):  # pragma: no cover - compiled
+    """Next 64-bit output of run ``r``'s xoshiro256** generator; ``state`` ``(R, 4)`` uint64
+    is advanced in place."""
+    out, s0, s1, s2, s3 = xoshiro_step(state[r, 0], state[r, 1], state[r, 2], state[r, 3])
     state[r, 0], state[r, 1], state[r, 2], state[r, 3] = s0, s1, s2, s3
-    return result
+    return out
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
@@ -304,13 +311,16 @@ def gwo_step(X, lead_x, a, rng, use_rng, r, lb, ub, out):  # pragma: no cover - 
     R, N, D = X.shape
     two_a = 2.0 * a
     for q in range(R):
+        # the run's generator state lives in locals (registers) for the whole run
+        qq = q if use_rng else 0  # rng is a (1, 4) placeholder without use_rng
+        s0, s1, s2, s3 = rng[qq, 0], rng[qq, 1], rng[qq, 2], rng[qq, 3]
         for i in range(N):
             for d in range(D):
                 x = X[q, i, d]
                 acc = 0.0
                 for k in range(3):
                     if use_rng:
-                        wd = xoshiro_next(rng, q)
+                        wd, s0, s1, s2, s3 = xoshiro_step(s0, s1, s2, s3)
                         r1 = np.float64(wd & _LOW32) * _U32
                         r2 = np.float64(wd >> _SHIFT32) * _U32
                     else:
@@ -327,6 +337,8 @@ def gwo_step(X, lead_x, a, rng, use_rng, r, lb, ub, out):  # pragma: no cover - 
                 elif v < lb[d]:
                     v = lb[d]
                 out[q, i, d] = v
+        if use_rng:
+            rng[q, 0], rng[q, 1], rng[q, 2], rng[q, 3] = s0, s1, s2, s3
 
 
 @njit(cache=True, nogil=True)
