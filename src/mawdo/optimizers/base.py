@@ -39,7 +39,7 @@ class Space:
 
         Computed in one array (``out`` when given), with no temporaries of ``p``'s size.
         """
-        out = np.add(p, 1.0, out=out)
+        out = np.add(p, 1.0, out=out, dtype=float)
         out *= 0.5
         out *= self.ub - self.lb
         out += self.lb
