@@ -98,6 +98,43 @@ class RunStreams:
         # argsort of uniform keys: one vectorised sort for the whole batch
         return self.random((n, d)).argsort(axis=2)
 
+    def shuffle_rows(self, out: np.ndarray) -> np.ndarray:
+        """Fill ``out`` ``(R, n, d)`` with ``n`` independent uniform permutations of ``range(d)``
+        per run, in O(d) per row (Fisher-Yates), and return it.
+
+        Each run draws ``n * W(d)`` raw 64-bit words from its own generator (``W(30) = 4``) and
+        spends each on several swaps (batched multiply-shift, see
+        :func:`mawdo.optimizers.kernels.shuffle_from_words`). Every permutation has probability
+        ``1/d!`` up to a relative bias below ``2**-32``.
+        Replaces :meth:`permutations` (``argsort`` of ``n d`` uniform keys, O(d log d)) in the
+        optimizers; the two give different streams.
+
+        Parameters
+        ----------
+        out : numpy.ndarray
+            Integer array ``(R, n, d)`` (int16 is enough for ``d < 32768``), overwritten.
+        """
+        from mawdo.optimizers.kernels import fisher_yates_batch, words_per_permutation
+
+        if out.ndim != 3 or out.shape[0] != self.runs:
+            raise ValueError(f"out must have shape ({self.runs}, n, d); got {out.shape}")
+        n, d = out.shape[1:]
+        words = self.raw_words(np.empty((self.runs, n * words_per_permutation(d)), np.uint64))
+        fisher_yates_batch(words, out)
+        return out
+
+    def raw_words(self, out: np.ndarray) -> np.ndarray:
+        """Fill each run's row of ``out`` ``(R, k)`` uint64 with raw 64-bit words of its generator.
+
+        The optimizers' kernels turn them into permutations (see :meth:`shuffle_rows`, which
+        consumes the same words in the same order and gives the same permutations).
+        """
+        if out.ndim != 2 or out.shape[0] != self.runs or out.dtype != np.uint64:
+            raise ValueError(f"out must be uint64 of shape ({self.runs}, k); got {out.shape}")
+        for g, w in zip(self.generators, out, strict=True):
+            w[:] = g.bit_generator.random_raw(w.size)
+        return out
+
 
 def keyed_seed_sequence(seed, *key: int) -> np.random.SeedSequence:
     """The seed sequence at spawn key ``key`` below the master ``seed``.

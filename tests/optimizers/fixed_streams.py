@@ -33,5 +33,10 @@ class FixedStreams:
     def permutations(self, n, d):
         return self._next("permutations", (n, d))
 
+    def shuffle_rows(self, out):
+        """The in-place permutation draw of the optimizers: the queued ``permutations`` array."""
+        out[...] = self._next("permutations", out.shape[1:])
+        return out
+
     def exhausted(self):
         return all(not q for q in self.queues.values())

@@ -34,9 +34,16 @@ class Space:
         """Map problem coordinates to the normalised box ``[-1, 1]^D`` (WDO's space)."""
         return 2.0 * (x - self.lb) / (self.ub - self.lb) - 1.0
 
-    def from_unit(self, p: np.ndarray) -> np.ndarray:
-        """Map ``[-1, 1]^D`` to problem coordinates: ``x = lb + (p + 1)/2 (ub - lb)`` (SPEC 1.1)."""
-        return self.lb + (p + 1.0) * 0.5 * (self.ub - self.lb)
+    def from_unit(self, p: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
+        """Map ``[-1, 1]^D`` to problem coordinates: ``x = lb + (p + 1)/2 (ub - lb)`` (SPEC 1.1).
+
+        Computed in one array (``out`` when given), with no temporaries of ``p``'s size.
+        """
+        out = np.add(p, 1.0, out=out, dtype=float)
+        out *= 0.5
+        out *= self.ub - self.lb
+        out += self.lb
+        return out
 
 
 def check_range(name: str, value, low=None, high=None, *, low_open=False, high_open=False):

@@ -1,6 +1,8 @@
 """Boundary policies: what happens to a coordinate that leaves the box.
 
-Both are pure array functions of ``(position, velocity, lo, hi)`` returning new arrays.
+Both are pure array functions of ``(position, velocity, lo, hi)`` returning new arrays
+(the optimizers' kernels apply them in place; ``confine_positions`` is the in-place form for
+positions alone).
 """
 
 from __future__ import annotations
@@ -11,7 +13,7 @@ BOUNDARY_POLICIES = ("clip", "reflect")
 
 
 def clip(p: np.ndarray, u: np.ndarray, lo, hi) -> tuple[np.ndarray, np.ndarray]:
-    """Clamp positions into ``[lo, hi]``; velocities unchanged (WDO paper Eq. 3, GWO.m, WOA.m)."""
+    """Clamp positions into ``[lo, hi]``; velocities unchanged (MAWDO paper Eq. 3, GWO.m, WOA.m)."""
     return np.clip(p, lo, hi), u
 
 
@@ -38,6 +40,18 @@ def reflect_damped(
     p = np.where(over, 2.0 * hi - p, np.where(under, 2.0 * lo - p, p))
     u = np.where(out, -eta * u, u)
     return np.clip(p, lo, hi), u
+
+
+def confine_positions(policy: str, p: np.ndarray, lo, hi) -> np.ndarray:
+    """Positions only, in place: what :func:`apply_boundary` does to ``p`` (for restarted
+    parcels, whose velocity is reset anyway), with masks as the only temporaries."""
+    if policy == "reflect":
+        over, under = p > hi, p < lo  # both taken before either reflection, as reflect_damped
+        np.subtract(2.0 * hi, p, out=p, where=over)
+        np.subtract(2.0 * lo, p, out=p, where=under)
+    elif policy != "clip":
+        raise ValueError(f"unknown boundary policy {policy!r}; use one of {BOUNDARY_POLICIES}")
+    return np.clip(p, lo, hi, out=p)
 
 
 def apply_boundary(policy: str, p, u, lo, hi, eta: float = 0.5):

@@ -18,7 +18,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from mawdo.optimizers.base import Optimizer, Params, Space, initial_population
+from mawdo.optimizers.kernels import gwo_step, seed_xoshiro
 from mawdo.streams import RunStreams
+
+_NO_RNG = np.ones((1, 4), np.uint64)
+_NO_R = np.zeros((1, 2, 3, 1, 1))
 
 
 @dataclass(frozen=True)
@@ -122,6 +126,7 @@ class GWOState:
     T: int
     space: Space
     streams: RunStreams
+    rng: np.ndarray | None = None  # (R, 4) xoshiro256** state per run, seeded from streams
 
 
 class GWO(Optimizer):
@@ -144,12 +149,22 @@ class GWO(Optimizer):
         )
 
     def ask(self, state: GWOState) -> np.ndarray:
+        """Move the pack (one kernel pass); returns a new array each call."""
         if state.t > 0:
-            N, D = state.X.shape[1:]
+            R, N, D = state.X.shape
             a = 2.0 - 2.0 * (state.t - 1) / state.T
-            r = state.streams.random((2, 3, N, D))
-            X = gwo_move(state.X, state.lead_x, a, r[:, 0], r[:, 1])
-            state.X = np.clip(X, state.space.lb, state.space.ub)
+            lb = np.asarray(state.space.lb, float)
+            ub = np.asarray(state.space.ub, float)
+            X = np.empty_like(state.X)
+            streams = state.streams
+            if not hasattr(streams, "raw_words"):  # stand-in streams hand out the uniforms
+                r = streams.random((2, 3, N, D))
+                gwo_step(state.X, state.lead_x, a, _NO_RNG, False, r, lb, ub, X)
+            else:
+                if state.rng is None:  # seeded once from each run's own generator
+                    state.rng = seed_xoshiro(streams)
+                gwo_step(state.X, state.lead_x, a, state.rng, True, _NO_R, lb, ub, X)
+            state.X = X
         return state.X
 
     def tell(self, state: GWOState, X: np.ndarray, F: np.ndarray) -> GWOState:

@@ -24,7 +24,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mawdo.optimizers import wind
 from mawdo.optimizers.base import (
     Optimizer,
     Params,
@@ -34,6 +33,7 @@ from mawdo.optimizers.base import (
     initial_population,
     ranks,
 )
+from mawdo.optimizers.kernels import mewdo_step, update_personal_best
 from mawdo.streams import RunStreams
 
 N_STRATEGIES = 3
@@ -127,30 +127,25 @@ class MEWDO(Optimizer):
         if s.t == 0:
             return s.space.from_unit(s.p)
         R, N, D = s.p.shape
-        r = ranks(s.f)[..., None].astype(float)
-        tbest = s.pbest[np.arange(R), np.argmin(s.pbest_f, axis=1)][:, None, :]
-        u_perm = np.take_along_axis(s.u, s.streams.permutations(N, D), axis=2)
+        r = ranks(s.f).astype(float)  # (R, N)
+        tb = np.argmin(s.pbest_f, axis=1)
+        perm = s.streams.shuffle_rows(np.empty((R, N, D), np.int16 if D < 2**15 else np.int32))
         draws = s.streams.random((N, 6))
         # strategy choice by inverse CDF of the shares
         cdf = np.cumsum(s.q, axis=1)[:, None, :]
         strat = np.minimum((draws[..., 0:1] > cdf).sum(axis=2), N_STRATEGIES - 1)
-        # 0: classic WDO
-        v0 = wind.wdo_velocity(s.u, s.p, tbest, r, u_perm, P.alpha, P.g, P.RT, P.c)
-        # 1: AWDO with per-parcel random coefficients
-        a, g, RT, c = (draws[..., k : k + 1] for k in range(1, 5))
-        v1 = wind.awdo_velocity(s.u, s.p, tbest, r, u_perm, a, g, RT, c)
-        # 2: pull toward the pbest of a random parcel ranked better (or itself if best)
-        better = np.floor(draws[..., 5] * (r[..., 0] - 1)).astype(np.int64)  # rank index < own
+        # strategy 2 pulls toward the pbest of a random parcel ranked better (or itself if best)
+        better = np.floor(draws[..., 5] * (r - 1)).astype(np.int64)  # rank index < own
         order = np.argsort(s.f, axis=1, kind="stable")
-        guide = s.pbest[np.arange(R)[:, None], np.take_along_axis(order, better, axis=1)]
-        centre = s.p.mean(axis=1, keepdims=True)
-        v2 = wind.awdo_velocity(s.u, s.p, guide, 1.0, u_perm, P.alpha, P.g, 1.0, P.c, centre)
-        sel = strat[..., None]
-        u = np.where(sel == 0, v0, np.where(sel == 1, v1, v2))
-        s.u = np.clip(u, -P.vmax, P.vmax)
-        s.p = np.clip(s.p + s.u, -1.0, 1.0)
+        guide = np.take_along_axis(order, better, axis=1)
+        centre = s.p.mean(axis=1)
+        X = np.empty_like(s.p)
+        coef = np.array([P.alpha, P.g, P.RT, P.c])
+        width = np.asarray(s.space.ub - s.space.lb, float)
+        mewdo_step(s.p, s.u, s.pbest, r, tb, guide, centre, strat, draws, perm, coef,
+                   float(P.vmax), np.asarray(s.space.lb, float), width, X)  # fmt: skip
         s.strategy = strat
-        return s.space.from_unit(s.p)
+        return X
 
     def tell(self, state: MEWDOState, X: np.ndarray, F: np.ndarray) -> MEWDOState:
         s, P = state, self.params
@@ -164,8 +159,6 @@ class MEWDO(Optimizer):
                 n_used.sum(axis=1, keepdims=True) > 0, update_shares(rate, s.q, P.lr, P.q_min), s.q
             )
         s.f = F.copy()
-        improved = F < s.pbest_f
-        s.pbest_f = np.where(improved, F, s.pbest_f)
-        s.pbest[improved] = s.p[improved]
+        update_personal_best(s.p, F, s.pbest, s.pbest_f)
         s.t += 1
         return s

@@ -11,12 +11,13 @@ One iteration (after the population of iteration ``t`` has been evaluated):
 5. every ``restart_every`` iterations the worst ``restart_frac`` parcels restart around ``tbest``
    (PGR, Eqs. 12-13), each also trying its opposite (OBL, Eq. 14).
 
-Low-dimensional stabilisation (D <= ``low_dim``): per-group coefficients (Eqs. 18-21), ``vmax/4``
-(Eq. 22) and gravity toward the group centroid (Eqs. 23-24).
+Low-dimensional stabilisation (D <= ``low_dim``): per-group coefficients (Eqs. 17-20), ``vmax/4``
+(Eq. 21) and gravity toward the group centroid (Eqs. 22-23).
 """
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -30,9 +31,15 @@ from mawdo.optimizers.base import (
     check_choice,
     check_range,
     initial_population,
-    ranks,
 )
-from mawdo.optimizers.boundary import BOUNDARY_POLICIES, apply_boundary
+from mawdo.optimizers.boundary import BOUNDARY_POLICIES, confine_positions
+from mawdo.optimizers.kernels import (
+    seed_xoshiro,
+    segment_ranks,
+    update_personal_best,
+    wind_step,
+    words_per_permutation,
+)
 from mawdo.streams import RunStreams
 
 
@@ -136,6 +143,20 @@ class WindParams(Params):
         return max(1, int(round(self.restart_frac * self.pop_size)))
 
 
+_NO_PERM = np.zeros((1, 1, 1), np.int16)
+_NO_RNG = np.ones((1, 4), np.uint64)
+_NO_COEF = np.zeros((1, 1, 4))
+
+
+@functools.cache
+def group_starts(N: int, G: int) -> np.ndarray:
+    """Boundaries ``(G + 1,)`` of :func:`wind.partition`'s contiguous groups (cached)."""
+    starts = np.zeros(G + 1, np.intp)
+    starts[1:] = np.cumsum(np.bincount(wind.partition(N, G), minlength=G))
+    starts.flags.writeable = False
+    return starts
+
+
 @dataclass
 class WindState:
     """Arrays of ``R`` runs in normalised space (``p, u, pbest`` are ``(R, N, D)``)."""
@@ -154,6 +175,7 @@ class WindState:
     space: Space
     streams: RunStreams
     restarted: np.ndarray | None = None  # (R, m) parcels restarted in the last ask
+    rng: np.ndarray | None = None  # (R, 4) xoshiro256** state per run, for the permutations
 
 
 class Wind(Optimizer):
@@ -167,7 +189,7 @@ class Wind(Optimizer):
         P = self.params
         N, D = P.pop_size, space.dim
         low = P.low_dim_stabilization and D <= P.low_dim
-        vmax = 0.25 * P.vmax if low else P.vmax  # Eq. 22
+        vmax = 0.25 * P.vmax if low else P.vmax  # Eq. 21
         p0 = None if x0 is None else space.to_unit(as_x0(x0, streams.runs, D, N))
         p = initial_population(streams, N, -np.ones(D), np.ones(D), p0)
         u = streams.uniform(-vmax, vmax, (N, D))
@@ -190,67 +212,104 @@ class Wind(Optimizer):
         )
 
     def _group_coefficients(self, streams: RunStreams) -> np.ndarray:
-        """Heterogeneous coefficients per group (Eqs. 18-21), shape ``(R, G, 4)``."""
+        """Heterogeneous coefficients per group (Eqs. 17-20), shape ``(R, G, 4)``."""
         lo = np.array([0.15, 0.15, 0.90, 0.10])
         hi = np.array([0.45, 0.45, 1.50, 0.50])
         return streams.uniform(lo, hi, (self.params.groups, 4))
 
     # -- ask -------------------------------------------------------------------------------------
     def ask(self, state: WindState) -> np.ndarray:
-        if state.t == 0:
-            return state.space.from_unit(state.p)
-        P, s = self.params, state
+        """Move every parcel (one fused kernel pass) and return the positions to evaluate.
+
+        The returned array is new at each call (the evaluator and user objectives may keep it);
+        ``p``, ``u`` and the permutation buffer are updated in place.
+        """
+        s = state
+        if s.t == 0:
+            return s.space.from_unit(s.p)
+        P = self.params
         R, N, D = s.p.shape
-        G = P.groups
-        rows = np.arange(R)[:, None]
-
-        # 1. leaders
-        gbest_idx = wind.group_argmin(s.pbest_f, s.gid, G)  # (R, G)
-        gbest = s.pbest[rows, gbest_idx]  # (R, G, D)
-        tbest = s.pbest[np.arange(R), np.argmin(s.pbest_f, axis=1)]  # (R, D)
-
-        # 2. guidance B
-        if P.guidance == "global":
-            B = tbest[:, None, :]
-        elif P.guidance == "group":
-            B = gbest[:, s.gid]
+        s.p = np.ascontiguousarray(s.p, dtype=float)
+        s.u = np.ascontiguousarray(s.u, dtype=float)
+        perm, rng = self._permutation_draw(s)
+        coef_draw, coef = self._coefficient_array(s, R, N, rng is not _NO_RNG)
+        gstarts = group_starts(N, P.groups)
+        rank = np.empty((R, N))
+        segment_ranks(s.f, gstarts if P.rank_scope == "group" else group_starts(N, 1), rank)
+        if P.guidance == "hierarchical":
+            w = wind.schedule_weights(s.t, s.T) if P.schedule else P.weights
+            guidance = 2
         else:
-            w1, w2, w3 = wind.schedule_weights(s.t, s.T) if P.schedule else P.weights
-            if P.gate:
-                gate = wind.distance_gate(gbest, tbest, 2.0 * np.sqrt(D))  # (R, G)
-                w3_eff = w3 * gate[:, s.gid]  # Eq. 11, per parcel
-            else:
-                w3_eff = w3
-            B = wind.hierarchical_guidance(s.pbest, gbest[:, s.gid], tbest, w1, w2, w3_eff)
-
-        # 3. velocity and position
-        r = wind.group_ranks(s.f, s.gid, G) if P.rank_scope == "group" else ranks(s.f)
-        r = r[..., None].astype(float)
-        alpha, g, RT, c = self._coefficients(s)
-        centre = wind.group_centroid(s.p, s.gid, G)[:, s.gid] if s.low_dim else 0.0
-        perm = s.streams.permutations(N, D)
-        u_perm = np.take_along_axis(s.u, perm, axis=2)
-        step = wind.wdo_velocity if P.velocity == "wdo" else wind.awdo_velocity
-        u = np.clip(step(s.u, s.p, B, r, u_perm, alpha, g, RT, c, centre), -s.vmax, s.vmax)
-        p, u = apply_boundary(P.boundary, s.p + u, u, -1.0, 1.0, P.eta)
-
-        # 4. periodic guided restart (+ opposition)
+            w, guidance = (0.0, 0.0, 0.0), 0 if P.guidance == "global" else 1
+        restart = P.restart and s.t % P.restart_every == 0
+        m = P.n_restart if restart else 0
+        X = np.empty((R, N + (m if P.obl else 0), D))
+        width = s.space.ub - s.space.lb
+        wind_step(
+            s.p, s.u, s.pbest, s.pbest_f, rank, perm, rng, rng is not _NO_RNG,
+            words_per_permutation(D), coef_draw, coef,
+            gstarts, guidance,
+            np.asarray(w, float), P.gate, 2.0 * np.sqrt(D), s.low_dim, P.velocity == "awdo",
+            float(s.vmax), P.boundary == "reflect", float(P.eta),
+            np.asarray(s.space.lb, float), np.asarray(width, float), X,
+        )  # fmt: skip
         s.restarted = None
-        extra = None
-        if P.restart and s.t % P.restart_every == 0:
-            m = P.n_restart
-            worst = np.argsort(s.f, axis=1, kind="stable")[:, N - m :]  # (R, m)
-            sigma = wind.restart_sigma(s.t, s.T, P.sigma0, P.sigma_end)
-            fresh = tbest[:, None, :] + sigma * s.streams.normal((m, D))  # Eq. 12
-            fresh, _ = apply_boundary(P.boundary, fresh, np.zeros_like(fresh), -1.0, 1.0, P.eta)
-            p[rows, worst] = fresh
-            u[rows, worst] = 0.0
-            s.restarted = worst
-            if P.obl:
-                extra = wind.opposite(fresh)
-        s.p, s.u = p, u
-        X = p if extra is None else np.concatenate([p, extra], axis=1)
-        return s.space.from_unit(X)
+        if restart:
+            self._restart(s, X, m)
+        return X
+
+    def _permutation_draw(self, s: WindState):
+        """``(perm, rng)`` for the kernel: with real streams, the per-run xoshiro256** states
+        the kernel draws the permutations from (seeded once from each run's generator); from
+        stand-in streams without ``raw_words``, an explicit permutation array."""
+        if hasattr(s.streams, "raw_words"):
+            if s.rng is None:
+                s.rng = seed_xoshiro(s.streams)
+            return _NO_PERM, s.rng
+        D = s.p.shape[2]
+        perm = s.streams.shuffle_rows(np.empty(s.p.shape, np.int16 if D < 2**15 else np.int32))
+        return perm, _NO_RNG
+
+    def _restart(self, s: WindState, X: np.ndarray, m: int) -> None:
+        """Periodic guided restart of the ``m`` worst parcels (Eqs. 12-13), plus OBL (Eq. 14)."""
+        P = self.params
+        R, N, D = s.p.shape
+        rows = np.arange(R)[:, None]
+        worst = np.argsort(s.f, axis=1, kind="stable")[:, N - m :]  # (R, m)
+        tbest = s.pbest[np.arange(R), np.argmin(s.pbest_f, axis=1)]  # (R, D)
+        sigma = wind.restart_sigma(s.t, s.T, P.sigma0, P.sigma_end)
+        fresh = s.streams.normal((m, D))  # (R, m, D), turned into the new positions in place
+        fresh *= sigma
+        fresh += tbest[:, None, :]  # Eq. 12: tbest + sigma z
+        confine_positions(P.boundary, fresh, -1.0, 1.0)
+        s.p[rows, worst] = fresh
+        s.u[rows, worst] = 0.0
+        s.restarted = worst
+        # one (R, m, D) scratch at a time: ufuncs on strided views of X would buffer copies
+        X[rows, worst] = s.space.from_unit(fresh, out=fresh)
+        del fresh
+        if P.obl:  # Eq. 14
+            opp = s.p[rows, worst]
+            X[:, N:] = s.space.from_unit(np.negative(opp, out=opp), out=opp)
+
+    def _coefficient_array(self, s: WindState, R: int, N: int, kernel_rng: bool):
+        """``(coef_draw, coef)`` for the kernel: AWDO's U[0,1) coefficients are drawn inside it
+        from the run's generator when it has one (``coef_draw`` 1 per iteration, 2 per parcel);
+        otherwise ``_coefficients`` (which subclasses may override) stacked into
+        ``(R or 1, N or 1, 4)``."""
+        P = self.params
+        if (
+            kernel_rng
+            and P.velocity == "awdo"
+            and not s.low_dim
+            and type(self)._coefficients is Wind._coefficients
+        ):
+            return (1 if P.coef_draw == "iteration" else 2), _NO_COEF
+        parts = np.broadcast_arrays(*(np.asarray(c, float) for c in self._coefficients(s)))
+        arr = np.stack(parts, axis=-1)
+        if arr.ndim == 1:  # four scalars
+            return 0, arr[None, None, :]
+        return 0, np.ascontiguousarray(arr.reshape(arr.shape[0], arr.shape[1], 4))  # (., ., 1, 4)
 
     def _coefficients(self, s: WindState):
         """(alpha, g, RT, c), each broadcastable to ``(R, N, 1)``."""
@@ -281,8 +340,6 @@ class Wind(Optimizer):
             s.p[idx_r, tgt] = -s.p[idx_r, tgt]
             Fn[idx_r, tgt] = f_opp[idx_r, idx_k]
         s.f = Fn
-        improved = Fn < s.pbest_f
-        s.pbest_f = np.where(improved, Fn, s.pbest_f)
-        s.pbest[improved] = s.p[improved]
+        update_personal_best(s.p, Fn, s.pbest, s.pbest_f)
         s.t += 1
         return s

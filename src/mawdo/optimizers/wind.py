@@ -32,7 +32,7 @@ def awdo_velocity(u, p, B, rank, u_perm, alpha, g, RT, c, centre=0.0):
         u' = (1 - a_t) u - g_t (p - centre) + RT_t (B - p) / r_i + c_t u[perm] / r_i
 
     ``centre`` is the origin, or the group centroid under low-dimensional stabilisation
-    (Eqs. 24-25: ``grav = -g (X - mean(X_group))``).
+    (Eqs. 22-23: ``grav = -g (X - mean(X_group))``).
     """
     return (1.0 - alpha) * u - g * (p - centre) + RT * (B - p) / rank + c * u_perm / rank
 
@@ -123,7 +123,7 @@ def group_argmin(F, gid, G):
 
 
 def group_centroid(p, gid, G):
-    """Mean position of each group ``(R, G, D)`` (Eq. 25, per group)."""
+    """Mean position of each group ``(R, G, D)`` (Eq. 23, per group)."""
     M = np.zeros((G, gid.size))
     M[gid, np.arange(gid.size)] = 1.0
     M /= M.sum(axis=1, keepdims=True)

@@ -1,0 +1,419 @@
+"""Numba kernels for the optimizers' inner loops: one pass over the batch per iteration.
+
+The equations live as readable NumPy array functions in :mod:`mawdo.optimizers.wind`,
+:mod:`mawdo.optimizers.boundary` and :mod:`mawdo.optimizers.gwo`; these kernels compute the same
+numbers in one sweep with no ``(R, N, D)`` temporaries (issue 15: a third of the NumPy time went
+to fresh temporaries and their page faults). ``tests/optimizers/test_kernels.py`` checks each
+kernel against the NumPy functions. No kernel draws random numbers: every draw comes from the
+run's own generator (:class:`mawdo.streams.RunStreams`) before the kernel is called.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+_LOW32 = np.uint64(0xFFFFFFFF)
+_SHIFT32 = np.uint64(32)
+_SHIFT11 = np.uint64(11)
+_U53 = 1.0 / 9007199254740992.0
+
+
+_BATCH = 1 << 32  # product of the ranges drawn from one 64-bit word: bias <= 2**-32
+
+
+def words_per_permutation(d: int) -> int:
+    """Raw 64-bit words one permutation of ``range(d)`` consumes in :func:`shuffle_from_words`."""
+    words, prod = (1 if d > 1 else 0), 1
+    for k in range(d - 1, 0, -1):
+        if prod * (k + 1) > _BATCH:
+            words, prod = words + 1, 1
+        prod *= k + 1
+    return words
+
+
+@njit(cache=True, nogil=True, inline="always")
+def shuffle_from_words(words, base, out):  # pragma: no cover - compiled
+    """Fill ``out`` ``(d,)`` with a permutation of ``range(d)`` drawn from ``words[base:]``.
+
+    Fisher-Yates: swap ``k = d-1 .. 1`` exchanges ``out[k]`` and ``out[j]``, ``j`` uniform in
+    ``[0, k]``. Several ``j`` come from one 64-bit word ``x`` by batched multiply-shift
+    (Brackett-Rozinsky & Lemire 2024, without the rejection step): ``j = floor(x (k+1) / 2**64)``,
+    then ``x <- x (k+1) mod 2**64``, while the product of the ranges stays <= 2**32; each
+    permutation's probability is ``1/d!`` within a relative ``2**-32``.
+    """
+    d = out.shape[0]
+    for k in range(d):
+        out[k] = k
+    if d < 2:
+        return
+    w = base
+    x = words[w]
+    prod = 1
+    for k in range(d - 1, 0, -1):
+        n = k + 1
+        if prod * n > _BATCH:
+            w += 1
+            x = words[w]
+            prod = 1
+        prod *= n
+        un = np.uint64(n)
+        hi = ((x >> _SHIFT32) * un + (((x & _LOW32) * un) >> _SHIFT32)) >> _SHIFT32
+        x = x * un  # the low 64 bits: the rest of the word, for the next range
+        j = np.intp(hi)
+        tmp = out[k]
+        out[k] = out[j]
+        out[j] = tmp
+
+
+@njit(cache=True, nogil=True)
+def fisher_yates_batch(words, out):  # pragma: no cover - compiled
+    """Permutations of ``range(d)`` for ``out`` ``(R, n, d)`` from ``words (R, n * W)``,
+    ``W = words_per_permutation(d)`` consecutive words per row."""
+    R, n, d = out.shape
+    W = words.shape[1] // n if n else 0
+    row = np.empty(d, out.dtype)
+    for r in range(R):
+        for i in range(n):
+            shuffle_from_words(words[r], i * W, row)
+            out[r, i, :] = row
+
+
+@njit(cache=True, nogil=True)
+def segment_ranks(F, starts, out):  # pragma: no cover - compiled
+    """1-based rank of each entry of ``F`` ``(R, N)`` within its segment ``starts[s]:starts[s+1]``,
+    ties broken by index (a stable sort), written to ``out`` ``(R, N)`` as float."""
+    R = F.shape[0]
+    S = starts.size - 1
+    idx = np.empty(F.shape[1], np.intp)
+    for r in range(R):
+        for s in range(S):
+            a, b = starts[s], starts[s + 1]
+            n = b - a
+            if n <= 64:  # insertion sort: stable, no allocation, fast for small groups
+                for k in range(n):
+                    j = k
+                    v = F[r, a + k]
+                    while j > 0 and F[r, a + idx[j - 1]] > v:
+                        idx[j] = idx[j - 1]
+                        j -= 1
+                    idx[j] = k
+                for k in range(n):
+                    out[r, a + idx[k]] = k + 1.0
+            else:
+                order = np.argsort(F[r, a:b], kind="mergesort")
+                for k in range(n):
+                    out[r, a + order[k]] = k + 1.0
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
+    p,
+    u,
+    pbest,
+    pbest_f,
+    rank,
+    perm,
+    rng,
+    use_rng,
+    W,
+    coef_draw,
+    coef,
+    gstarts,
+    guidance,
+    w,
+    gate,
+    d_max,
+    centre_on,
+    awdo,
+    vmax,
+    reflect,
+    eta,
+    lb,
+    width,
+    X,
+):  # pragma: no cover - compiled
+    """One WDO-family move of every parcel of every run, in place on ``p`` and ``u``.
+
+    Parameters (shapes with ``R`` runs, ``N`` parcels, ``G`` groups, ``D`` dimensions)
+    ----------
+    p, u : (R, N, D) positions and velocities, updated in place.
+    pbest : (R, N, D), pbest_f : (R, N)
+        Personal bests; the group bests and the global best are located here.
+    rank : (R, N) float
+        Rank ``r_i`` of each parcel (population or group scope), 1 = best.
+    perm : (R, N, D) int
+        Permutation of the dimensions per parcel (Coriolis term ``u[perm]``); read only when
+        ``use_rng`` is false.
+    rng : (R, 4) uint64, use_rng : bool, W : int
+        Per-run xoshiro256** states (:func:`seed_xoshiro`); when used, each parcel's permutation
+        is drawn here from ``W = words_per_permutation(D)`` of its run's outputs by
+        :func:`shuffle_from_words` (no ``(R, N, D)`` permutation array is stored).
+    coef_draw : int
+        0: coefficients from ``coef``. 1: AWDO's ``a_t, g_t, RT_t, c_t ~ U[0, 1)`` drawn here,
+        four outputs of the run's generator per iteration (53-bit uniforms), before any
+        permutation; 2: four per parcel, before the parcel's permutation.
+    coef : (R or 1, N or 1, 4)
+        ``alpha, g, RT, c`` per parcel (or shared by the run's parcels) when ``coef_draw == 0``.
+    gstarts : (G + 1,) int
+        Group boundaries (contiguous groups).
+    guidance : int
+        0 ``B = tbest``, 1 ``B = gbest_g``, 2 hierarchical (Eq. 5) with weights ``w = (w1, w2,
+        w3)`` and, when ``gate``, ``w3`` scaled by the distance gate of Eq. 10 (``d_max``).
+    centre_on : bool
+        Gravity toward the group centroid (Eqs. 22-23) instead of the origin.
+    awdo : bool
+        AWDO velocity (Eq. 4) instead of WDO's (Bayraktar 2013 Eq. 1).
+    vmax : float
+        Velocity clamp.
+    reflect : bool, eta : float
+        Reflect-damp boundary (Eqs. 15-16) or clip (Eq. 3).
+    lb, width : (D,)
+        Problem box: ``X = lb + (p + 1)/2 width`` is written to ``X[:, :N]``.
+    """
+    R, N, D = p.shape
+    G = gstarts.size - 1
+    gbest = np.empty(G, np.intp)
+    w3e = np.empty(G)
+    centre = np.zeros((G, D))
+    u_old = np.empty(D)
+    pr = np.empty(D, np.intp)
+    up = np.empty(D)  # u_old[pr]
+    Bv = np.empty(D)  # guidance B of the parcel
+    wbuf = np.empty(max(W, 1), np.uint64)
+    cw = np.empty(4)  # alpha, g, RT, c of the parcel
+    for r in range(R):
+        tb = 0
+        for g in range(G):  # leaders: first minimum, like numpy.argmin
+            best = gstarts[g]
+            for k in range(gstarts[g] + 1, gstarts[g + 1]):
+                if pbest_f[r, k] < pbest_f[r, best]:
+                    best = k
+            gbest[g] = best
+            if pbest_f[r, best] < pbest_f[r, tb] or g == 0:
+                tb = best
+        for g in range(G):
+            w3e[g] = w[2]
+            if guidance == 2 and gate:
+                acc = 0.0
+                for d in range(D):
+                    diff = pbest[r, gbest[g], d] - pbest[r, tb, d]
+                    acc += diff * diff
+                w3e[g] = w[2] * min(1.0, np.sqrt(acc) / d_max)
+            if centre_on:
+                a, b = gstarts[g], gstarts[g + 1]
+                for d in range(D):
+                    acc = 0.0
+                    for k in range(a, b):
+                        acc += p[r, k, d]
+                    centre[g, d] = acc / (b - a)
+        rc = r if coef.shape[0] > 1 else 0
+        per_parcel = coef.shape[1] > 1
+        if coef_draw == 1:
+            for k in range(4):
+                cw[k] = np.float64(xoshiro_next(rng, r) >> _SHIFT11) * _U53
+        for g in range(G):
+            lead = tb if guidance == 0 else gbest[g]
+            denom = w[0] + w[1] + w3e[g]
+            b1, b2, b3 = w[0] / denom, w[1] / denom, w3e[g] / denom
+            for i in range(gstarts[g], gstarts[g + 1]):
+                rk = rank[r, i]
+                if coef_draw == 2:
+                    for k in range(4):
+                        cw[k] = np.float64(xoshiro_next(rng, r) >> _SHIFT11) * _U53
+                if coef_draw == 0:
+                    ci = i if per_parcel else 0
+                    for k in range(4):
+                        cw[k] = coef[rc, ci, k]
+                a1 = 1.0 - cw[0]
+                grav = cw[1]
+                RT = cw[2]
+                wp = RT / rk if awdo else abs(1.0 - 1.0 / rk) * RT  # pressure weight
+                wc = cw[3] / rk  # Coriolis weight
+                for d in range(D):
+                    u_old[d] = u[r, i, d]
+                if use_rng:
+                    for k in range(W):
+                        wbuf[k] = xoshiro_next(rng, r)
+                    shuffle_from_words(wbuf, 0, pr)
+                else:
+                    for d in range(D):
+                        pr[d] = perm[r, i, d]
+                for d in range(D):  # the gathers first: the arithmetic below vectorises
+                    up[d] = u_old[pr[d]]
+                if guidance == 2:  # Eq. 5 renormalised, the division folded into the weights
+                    for d in range(D):
+                        Bv[d] = (
+                            b1 * pbest[r, i, d] + b2 * pbest[r, gbest[g], d] + b3 * pbest[r, tb, d]
+                        )
+                else:
+                    for d in range(D):
+                        Bv[d] = pbest[r, lead, d]
+                for d in range(D):
+                    q = p[r, i, d]
+                    v = a1 * u_old[d] - grav * (q - centre[g, d]) + wp * (Bv[d] - q) + wc * up[d]
+                    v = min(max(v, -vmax), vmax)
+                    q = q + v
+                    if reflect:
+                        over = q > 1.0
+                        under = q < -1.0
+                        q = 2.0 - q if over else (-2.0 - q if under else q)
+                        v = -eta * v if (over or under) else v
+                    q = min(max(q, -1.0), 1.0)
+                    p[r, i, d] = q
+                    u[r, i, d] = v
+                    X[r, i, d] = lb[d] + (q + 1.0) * 0.5 * width[d]
+
+
+_U32 = 1.0 / 4294967296.0
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _rotl(x, k):  # pragma: no cover - compiled
+    return (x << np.uint64(k)) | (x >> np.uint64(64 - k))
+
+
+@njit(cache=True, nogil=True, inline="always")
+def xoshiro_step(s0, s1, s2, s3):  # pragma: no cover - compiled
+    """One xoshiro256** step (Blackman & Vigna 2018) on a state held in locals:
+    returns ``(output, s0, s1, s2, s3)``."""
+    result = _rotl(s1 * np.uint64(5), 7) * np.uint64(9)
+    t = s1 << np.uint64(17)
+    s2 ^= s0
+    s3 ^= s1
+    s1 ^= s2
+    s0 ^= s3
+    s2 ^= t
+    s3 = _rotl(s3, 45)
+    return result, s0, s1, s2, s3
+
+
+@njit(cache=True, nogil=True, inline="always")
+def xoshiro_next(state, r):  # pragma: no cover - compiled
+    """Next 64-bit output of run ``r``'s xoshiro256** generator; ``state`` ``(R, 4)`` uint64
+    is advanced in place."""
+    out, s0, s1, s2, s3 = xoshiro_step(state[r, 0], state[r, 1], state[r, 2], state[r, 3])
+    state[r, 0], state[r, 1], state[r, 2], state[r, 3] = s0, s1, s2, s3
+    return out
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def gwo_step(X, lead_x, a, rng, use_rng, r, lb, ub, out):  # pragma: no cover - compiled
+    """GWO's move (Eqs. 3.3-3.7) of every wolf, clipped to ``[lb, ub]``, written to ``out``.
+
+    ``X`` ``(R, N, D)``, ``lead_x`` ``(R, 3, D)`` (alpha, beta, delta), ``a`` scalar. When
+    ``use_rng``, the six uniforms of wolf ``i``, dimension ``d`` (``r1, r2`` for alpha, beta,
+    delta) are the 32-bit halves of three outputs of the run's xoshiro256** (``rng (R, 4)``,
+    seeded from the run's own generator), scaled by ``2**-32``, drawn in the order wolf,
+    dimension, leader; else they are ``r[:, 0, k, i, d]`` and ``r[:, 1, k, i, d]``
+    (``r`` of shape ``(R, 2, 3, N, D)``).
+    """
+    R, N, D = X.shape
+    two_a = 2.0 * a
+    for q in range(R):
+        # the run's generator state lives in locals (registers) for the whole run
+        qq = q if use_rng else 0  # rng is a (1, 4) placeholder without use_rng
+        s0, s1, s2, s3 = rng[qq, 0], rng[qq, 1], rng[qq, 2], rng[qq, 3]
+        for i in range(N):
+            for d in range(D):
+                x = X[q, i, d]
+                acc = 0.0
+                for k in range(3):
+                    if use_rng:
+                        wd, s0, s1, s2, s3 = xoshiro_step(s0, s1, s2, s3)
+                        r1 = np.float64(wd & _LOW32) * _U32
+                        r2 = np.float64(wd >> _SHIFT32) * _U32
+                    else:
+                        r1 = r[q, 0, k, i, d]
+                        r2 = r[q, 1, k, i, d]
+                    L = lead_x[q, k, d]
+                    A = r1 * two_a - a
+                    dist = abs(r2 * (2.0 * L) - x) * A
+                    acc += L
+                    acc -= dist
+                v = acc / 3.0
+                if v > ub[d]:
+                    v = ub[d]
+                elif v < lb[d]:
+                    v = lb[d]
+                out[q, i, d] = v
+        if use_rng:
+            rng[q, 0], rng[q, 1], rng[q, 2], rng[q, 3] = s0, s1, s2, s3
+
+
+@njit(cache=True, nogil=True)
+def update_personal_best(p, f, pbest, pbest_f):  # pragma: no cover - compiled
+    """``pbest``/``pbest_f`` take ``p``/``f`` where ``f < pbest_f`` (strict), in place."""
+    R, N, D = p.shape
+    for r in range(R):
+        for i in range(N):
+            if f[r, i] < pbest_f[r, i]:
+                pbest_f[r, i] = f[r, i]
+                for d in range(D):
+                    pbest[r, i, d] = p[r, i, d]
+
+
+def seed_xoshiro(streams) -> np.ndarray:
+    """xoshiro256** states ``(R, 4)`` uint64, four raw words of each run's own generator.
+
+    GWO draws six uniforms per wolf and dimension; the Numba generator supplies them inside the
+    kernel (no per-run Python call, no buffer), and run ``r``'s numbers still depend only on run
+    ``r``'s seed. An all-zero state (probability ``2**-256``) is the one xoshiro cannot leave.
+    """
+    state = streams.raw_words(np.empty((streams.runs, 4), np.uint64))
+    state[~state.any(axis=1), 0] = 1
+    return state
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def mewdo_step(
+    p, u, pbest, rank, tb, guide, centre, strat, draws, perm, coef, vmax, lb, width, X
+):  # pragma: no cover - compiled
+    """MEWDO (reconstructed)'s move: each parcel applies only the strategy it drew.
+
+    ``strat (R, N)``: 0 classic WDO toward ``pbest[tb]``; 1 AWDO with the parcel's coefficients
+    ``draws[r, i, 1:5]``; 2 toward ``pbest[guide]`` with unit pressure and rank, gravity toward
+    ``centre (R, D)``. ``coef = (alpha, g, RT, c)`` of strategies 0 and 2; ``perm (R, N, D)``
+    the Coriolis permutations. Velocity clamped to ``vmax``, position clipped to ``[-1, 1]``,
+    ``X = lb + (p + 1)/2 width``. Same equations as ``wind.wdo_velocity``/``awdo_velocity``.
+    """
+    R, N, D = p.shape
+    u_old = np.empty(D)
+    alpha, g, RT, c = coef[0], coef[1], coef[2], coef[3]
+    for r in range(R):
+        for i in range(N):
+            for d in range(D):
+                u_old[d] = u[r, i, d]
+            s = strat[r, i]
+            rk = rank[r, i]
+            for d in range(D):
+                q = p[r, i, d]
+                up = u_old[perm[r, i, d]]
+                if s == 0:
+                    v = (
+                        (1.0 - alpha) * u_old[d]
+                        - g * q
+                        + abs(1.0 - 1.0 / rk) * RT * (pbest[r, tb[r], d] - q)
+                        + c * up / rk
+                    )
+                elif s == 1:
+                    a1, g1 = draws[r, i, 1], draws[r, i, 2]
+                    RT1, c1 = draws[r, i, 3], draws[r, i, 4]
+                    v = (
+                        (1.0 - a1) * u_old[d]
+                        - g1 * q
+                        + RT1 * (pbest[r, tb[r], d] - q) / rk
+                        + c1 * up / rk
+                    )
+                else:
+                    v = (
+                        (1.0 - alpha) * u_old[d]
+                        - g * (q - centre[r, d])
+                        + (pbest[r, guide[r, i], d] - q)
+                        + c * up
+                    )
+                v = min(max(v, -vmax), vmax)
+                q = min(max(q + v, -1.0), 1.0)
+                u[r, i, d] = v
+                p[r, i, d] = q
+                X[r, i, d] = lb[d] + (q + 1.0) * 0.5 * width[d]
