@@ -114,7 +114,7 @@ class RunStreams:
         out : numpy.ndarray
             Integer array ``(R, n, d)`` (int16 is enough for ``d < 32768``), overwritten.
         """
-        from mawdo.optimizers.kernels import fisher_yates_batch, words_per_permutation
+        from mawdo.shuffle import fisher_yates_batch, words_per_permutation
 
         if out.ndim != 3 or out.shape[0] != self.runs:
             raise ValueError(f"out must have shape ({self.runs}, n, d); got {out.shape}")

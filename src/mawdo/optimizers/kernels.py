@@ -13,70 +13,17 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from mawdo.shuffle import (  # noqa: F401  (re-exported)
+    _BATCH,
+    fisher_yates_batch,
+    shuffle_from_words,
+    words_per_permutation,
+)
+
 _LOW32 = np.uint64(0xFFFFFFFF)
 _SHIFT32 = np.uint64(32)
 _SHIFT11 = np.uint64(11)
 _U53 = 1.0 / 9007199254740992.0
-
-
-_BATCH = 1 << 32  # product of the ranges drawn from one 64-bit word: bias <= 2**-32
-
-
-def words_per_permutation(d: int) -> int:
-    """Raw 64-bit words one permutation of ``range(d)`` consumes in :func:`shuffle_from_words`."""
-    words, prod = (1 if d > 1 else 0), 1
-    for k in range(d - 1, 0, -1):
-        if prod * (k + 1) > _BATCH:
-            words, prod = words + 1, 1
-        prod *= k + 1
-    return words
-
-
-@njit(cache=True, nogil=True, inline="always")
-def shuffle_from_words(words, base, out):  # pragma: no cover - compiled
-    """Fill ``out`` ``(d,)`` with a permutation of ``range(d)`` drawn from ``words[base:]``.
-
-    Fisher-Yates: swap ``k = d-1 .. 1`` exchanges ``out[k]`` and ``out[j]``, ``j`` uniform in
-    ``[0, k]``. Several ``j`` come from one 64-bit word ``x`` by batched multiply-shift
-    (Brackett-Rozinsky & Lemire 2024, without the rejection step): ``j = floor(x (k+1) / 2**64)``,
-    then ``x <- x (k+1) mod 2**64``, while the product of the ranges stays <= 2**32; each
-    permutation's probability is ``1/d!`` within a relative ``2**-32``.
-    """
-    d = out.shape[0]
-    for k in range(d):
-        out[k] = k
-    if d < 2:
-        return
-    w = base
-    x = words[w]
-    prod = 1
-    for k in range(d - 1, 0, -1):
-        n = k + 1
-        if prod * n > _BATCH:
-            w += 1
-            x = words[w]
-            prod = 1
-        prod *= n
-        un = np.uint64(n)
-        hi = ((x >> _SHIFT32) * un + (((x & _LOW32) * un) >> _SHIFT32)) >> _SHIFT32
-        x = x * un  # the low 64 bits: the rest of the word, for the next range
-        j = np.intp(hi)
-        tmp = out[k]
-        out[k] = out[j]
-        out[j] = tmp
-
-
-@njit(cache=True, nogil=True)
-def fisher_yates_batch(words, out):  # pragma: no cover - compiled
-    """Permutations of ``range(d)`` for ``out`` ``(R, n, d)`` from ``words (R, n * W)``,
-    ``W = words_per_permutation(d)`` consecutive words per row."""
-    R, n, d = out.shape
-    W = words.shape[1] // n if n else 0
-    row = np.empty(d, out.dtype)
-    for r in range(R):
-        for i in range(n):
-            shuffle_from_words(words[r], i * W, row)
-            out[r, i, :] = row
 
 
 @njit(cache=True, nogil=True)
