@@ -1,6 +1,7 @@
 """Single-shot and receding-horizon (dynamic) path planning with any registered optimizer.
 
-Receding horizon (docs/deviations.md#d-replan-budget): every ``replan_every`` steps the robot observes the obstacles, the
+Receding horizon (docs/deviations.md#d-replan-budget): every ``replan_every`` steps the robot
+observes the obstacles, the
 optimizer is seeded with the guide's routes (exact visibility graph, distinct homotopy classes,
 re-rooted at the robot), the previous best path (reached waypoints dropped, the rest re-spread)
 and perturbed copies, and runs for an iteration or wall-time budget on the cost of
