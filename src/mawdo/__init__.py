@@ -11,7 +11,7 @@ from mawdo.optimizers import OPTIMIZERS, make_optimizer
 from mawdo.problem import ObjectiveError, Problem
 from mawdo.result import OptimizeResult
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
 
 
 def __getattr__(name):

@@ -10,7 +10,7 @@ Schema (``SCHEMA_VERSION`` 3)
           ``library_version, task_id``.
 ``tasks`` one row per executed task (the log of what was computed, and where).
 
-Version 3 (mawdo 0.1.0 after the study-kind redesign) replaced the one wide ``runs`` table,
+Version 3 (mawdo 0.2.0, the study-kind redesign) replaced the one wide ``runs`` table,
 whose planning rows reused the benchmark's ``function``/``fun``/``nit`` columns, by one typed
 table per kind; older stores are refused with a message that says how to re-run them.
 """
