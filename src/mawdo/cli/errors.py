@@ -9,6 +9,7 @@ traceback; anything else is a bug and keeps its traceback. Output paths are chec
 from __future__ import annotations
 
 import os
+import tempfile
 from pathlib import Path
 
 import typer
@@ -72,6 +73,14 @@ def check_output_dir(path: Path, what: str = "output folder") -> Path:
         raise OSError(f"cannot create {what} ({path}): {exc.strerror or exc}") from None
     if not os.access(path, os.W_OK | os.X_OK):
         raise OSError(f"{what} ({path}) is not writable; choose another one")
+    try:
+        # os.access says yes to root everywhere, and knows nothing of read-only mounts
+        with tempfile.TemporaryFile(dir=path):
+            pass
+    except OSError as exc:
+        raise OSError(
+            f"{what} ({path}) is not writable ({exc.strerror or exc}); choose another one"
+        ) from None
     return path
 
 

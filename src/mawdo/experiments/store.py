@@ -16,8 +16,8 @@ import sqlite3
 from pathlib import Path
 from typing import Any
 
-from mawdo.experiments.plans import PlanError
 from mawdo.experiments.lock import StoreLockedError, WriterLock
+from mawdo.experiments.plans import PlanError
 from mawdo.experiments.protocol import StudyKind, kind_of, plan_from_json
 from mawdo.experiments.rows import RowError, RunRow, check_row, from_sql, schema, to_sql
 from mawdo.experiments.sqlitefile import (
@@ -29,8 +29,8 @@ from mawdo.experiments.sqlitefile import (
     connect,
     create_tables,
     drop_tables,
-    library_version,
     leave_clean,
+    library_version,
     now,
     old_schema_message,
     quick_check,

@@ -268,6 +268,7 @@ def plan(
     seed: int = 0,
     config=None,
     dynamic: bool = True,
+    progress=None,
     **overrides,
 ) -> PlanResult:
     """Plan (and, if ``dynamic``, execute with replanning) a path through a scenario.
@@ -285,6 +286,9 @@ def plan(
     dynamic : bool
         True: receding horizon, the robot moves and replans. False: one plan on the map frozen
         at t = 0 (single-shot static mode), executed without replanning.
+    progress : callable, optional
+        Called as ``progress(step, max_steps, replans)`` before each step (a progress bar for
+        long runs); it must not raise. No effect on the result.
     **overrides
         Fields of :class:`PlannerConfig` to change.
 
@@ -312,6 +316,8 @@ def plan(
     remainder = None
     reason = "step limit reached before the goal"
     for step in range(max_steps + 1):
+        if progress is not None:
+            progress(step, max_steps, len(replans))
         if np.hypot(*(goal - pos)) <= 1e-9:
             reason = "goal reached"
             break

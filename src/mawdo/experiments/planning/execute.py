@@ -109,6 +109,27 @@ def _row(run, t1, seed, settings, res, l_star, l_star_error, snapshots) -> Plann
     )
 
 
+def run_metrics_kept(res, snapshots: int = 8) -> tuple[dict | None, str | None]:
+    """Metrics of a computed run that never throw the run away.
+
+    Returns
+    -------
+    metrics : dict or None
+        :func:`mawdo.planning.metrics.run_metrics`; when the oracle-based ones fail, those
+        that need no oracle, with the reason in ``metrics["metrics_error"]``; None when even
+        those fail.
+    error : str or None
+        Why ``metrics`` is None.
+    """
+    from mawdo.planning.metrics import static_optimum
+
+    try:
+        l_star, l_star_error = static_optimum(res.scenario), None
+    except Exception as exc:  # noqa: BLE001 - metrics without L* are still worth having
+        l_star, l_star_error = float("nan"), f"static optimum: {_one_line(exc)}"
+    return _metrics(res, l_star, l_star_error, snapshots)
+
+
 def _metrics(res, l_star: float, l_star_error: str | None, snapshots: int):
     """``(metrics, error)``: every metric, else those without oracle calls (with the reason
     in ``metrics_error``), else ``(None, reason)``."""
