@@ -188,12 +188,14 @@ def connect(path: Path, readonly: bool) -> sqlite3.Connection:
 def _connect_readonly(path: Path) -> sqlite3.Connection:
     # mode=ro: a report never writes, and works on a store someone made read-only.
     uri = path.resolve().as_uri()
-    conn = sqlite3.connect(f"{uri}?mode=ro", uri=True, timeout=30)
+    conn = None
     try:
+        conn = sqlite3.connect(f"{uri}?mode=ro", uri=True, timeout=30)
         conn.execute("SELECT COUNT(*) FROM sqlite_master").fetchone()
         return conn
     except sqlite3.OperationalError:
-        conn.close()
+        if conn is not None:
+            conn.close()
     except sqlite3.DatabaseError:
         return conn  # not a database at all: check_foreign says so
     # A store left in WAL mode (a writer killed with -9) on read-only media: SQLite cannot

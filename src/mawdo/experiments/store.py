@@ -109,7 +109,6 @@ class Store:
             check_foreign(conn, path)
             quick_check(conn, path)
             meta = _open_meta(conn, path, plan, kind, force)
-            _check_row_hashes(conn, path, meta["plan_hash"], force_hint=True)
             with translate(path, "initialise"):
                 # WAL only once the store is accepted: a refused run leaves the file as it was.
                 conn.execute("PRAGMA journal_mode=WAL")
@@ -328,8 +327,11 @@ def _open_meta(conn, path: Path, plan: Any, kind: StudyKind, force: bool) -> dic
             create_tables(conn, kind.row)
         return write_meta(conn, path, plan)
     problem = _mismatch(meta, plan)
-    if problem:
-        if not force:
+    mixed = None if problem else _foreign_rows(conn, path, meta["plan_hash"], force_hint=True)
+    if mixed and not force:
+        raise StoreError(mixed)
+    if problem or mixed:
+        if problem and not force:
             raise StoreError(_refusal(conn, path, meta, problem))
         with translate(path, "reset"):
             drop_tables(conn)
@@ -340,6 +342,13 @@ def _open_meta(conn, path: Path, plan: Any, kind: StudyKind, force: bool) -> dic
 
 def _check_row_hashes(conn, path: Path, plan_hash: str, force_hint: bool) -> None:
     """Refuse a store holding runs computed for another plan than its meta row's."""
+    msg = _foreign_rows(conn, path, plan_hash, force_hint)
+    if msg:
+        raise StoreError(msg)
+
+
+def _foreign_rows(conn, path: Path, plan_hash: str, force_hint: bool) -> str | None:
+    """Why a store holds runs of another plan than its meta row's, or None."""
     with translate(path, "read"):
         bad = conn.execute(
             "SELECT plan_hash, COUNT(*) FROM runs WHERE plan_hash != ? GROUP BY plan_hash",
@@ -352,10 +361,11 @@ def _check_row_hashes(conn, path: Path, plan_hash: str, force_hint: bool) -> Non
             if force_hint
             else "re-run the study into a new file"
         )
-        raise StoreError(
+        return (
             f"results store {path} mixes plans: it belongs to plan {plan_hash[:12]} but holds "
             f"runs {others}. Its results cannot be reported; {fix}."
         )
+    return None
 
 
 def _check_writable_path(path: Path) -> None:
