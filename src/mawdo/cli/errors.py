@@ -28,6 +28,15 @@ class CommandError(_ClickException):
         typer.echo(f"error: {self.format_message()}", err=True)
 
 
+def bad_input(exc_or_msg: BaseException | str) -> CommandError:
+    """A :class:`CommandError` for a bad argument value: exit code 2, as click gives for
+    any other bad argument (1 stays for a failure while running: a store, a file ...)."""
+    text = exc_or_msg if isinstance(exc_or_msg, str) else message(exc_or_msg)
+    err = CommandError(text)
+    err.exit_code = 2
+    return err
+
+
 def _expected() -> tuple[type[BaseException], ...]:
     # imported here: `mawdo list` should not pay for the experiments package
     from mawdo.experiments.sqlitefile import StoreError

@@ -18,8 +18,8 @@ from rich.table import Table
 
 from mawdo.cli.errors import (
     IMAGE_SUFFIXES,
-    CommandError,
     GuardedGroup,
+    bad_input,
     check_output_dir,
     check_output_file,
 )
@@ -36,7 +36,7 @@ console = Console(width=None if sys.stdout.isatty() else 140)
 
 def _fail(msg: str) -> None:
     # stderr, through the one error edge (never stdout, where results go)
-    raise CommandError(msg)
+    raise bad_input(msg)
 
 
 def _parse_options(pairs: list[str]) -> dict:

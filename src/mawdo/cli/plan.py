@@ -91,11 +91,14 @@ def run_cmd(
     progress: bool = typer.Option(True, help="show a progress bar (stderr)"),
 ):
     """Plan and execute one run; print and save its metrics."""
-    from mawdo.cli.errors import check_output_dir
+    from mawdo.cli.errors import bad_input, check_output_dir
     from mawdo.experiments.planning import run_metrics_kept
     from mawdo.planning.planner import plan
 
-    sc = _scenario(scenario)  # a bad scenario fails before anything is created
+    try:
+        sc = _scenario(scenario)  # a bad scenario fails before anything is created
+    except (KeyError, ValueError, FileNotFoundError) as exc:
+        raise bad_input(exc) from None
     check_output_dir(out, "--out folder")
     bar = _StepBar(progress, f"{algorithm} on {sc.name}")
     try:
@@ -140,18 +143,21 @@ def study_cmd(
     progress: bool = typer.Option(True, help="show a progress bar"),
 ):
     """Run the planning study (paper Table 6) into a resumable store."""
-    from mawdo.cli.errors import check_output_dir
-    from mawdo.experiments import run_plan
+    from mawdo.cli.errors import bad_input, check_output_dir
+    from mawdo.experiments import PlanError, run_plan
     from mawdo.experiments.planning import study_preset
 
     if report is not None:
         check_output_dir(report, "--report folder")
-    # errors (PlanError, StoreError ...) end at the command edge: a message on stderr
-    plan = study_preset(preset).with_overrides(
-        runs=runs,
-        scenario=scenario,
-        algorithms=None if algorithms is None else [a.strip() for a in algorithms.split(",")],
-    )
+    # errors end at the command edge: a message on stderr (2: bad plan, 1: store ...)
+    try:
+        plan = study_preset(preset).with_overrides(
+            runs=runs,
+            scenario=scenario,
+            algorithms=None if algorithms is None else [a.strip() for a in algorithms.split(",")],
+        )
+    except PlanError as exc:
+        raise bad_input(exc) from None
     console.print(plan.describe())
     summary = run_plan(plan, out, workers=workers, dask=dask, progress=progress, force=force)
     console.print(str(summary))
