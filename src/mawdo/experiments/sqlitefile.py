@@ -222,8 +222,8 @@ CORRUPT_ADVICE = (
 def quick_check(conn: sqlite3.Connection, path: Path) -> None:
     """Refuse a damaged file: ``PRAGMA quick_check`` (pages, records, index order).
 
-    Linear in the file size (about 1 s per GB); run when a store is opened for writing or
-    reporting, so a damaged store is never resumed as "complete" nor reported from.
+    Linear in the file size (0.2 s for a 200 MB file, warm cache); run when a store is opened for
+    writing or reporting, so a damaged store is never resumed as "complete" nor reported from.
     """
     try:
         found = [r[0] for r in conn.execute("PRAGMA quick_check(5)").fetchall()]
