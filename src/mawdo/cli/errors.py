@@ -9,6 +9,7 @@ traceback; anything else is a bug and keeps its traceback. Output paths are chec
 from __future__ import annotations
 
 import os
+import tempfile
 from pathlib import Path
 
 import typer
@@ -25,6 +26,15 @@ class CommandError(_ClickException):
 
     def show(self, file=None) -> None:
         typer.echo(f"error: {self.format_message()}", err=True)
+
+
+def bad_input(exc_or_msg: BaseException | str) -> CommandError:
+    """A :class:`CommandError` for a bad argument value: exit code 2, as click gives for
+    any other bad argument (1 stays for a failure while running: a store, a file ...)."""
+    text = exc_or_msg if isinstance(exc_or_msg, str) else message(exc_or_msg)
+    err = CommandError(text)
+    err.exit_code = 2
+    return err
 
 
 def _expected() -> tuple[type[BaseException], ...]:
@@ -72,6 +82,14 @@ def check_output_dir(path: Path, what: str = "output folder") -> Path:
         raise OSError(f"cannot create {what} ({path}): {exc.strerror or exc}") from None
     if not os.access(path, os.W_OK | os.X_OK):
         raise OSError(f"{what} ({path}) is not writable; choose another one")
+    try:
+        # os.access says yes to root everywhere, and knows nothing of read-only mounts
+        with tempfile.TemporaryFile(dir=path):
+            pass
+    except OSError as exc:
+        raise OSError(
+            f"{what} ({path}) is not writable ({exc.strerror or exc}); choose another one"
+        ) from None
     return path
 
 

@@ -16,7 +16,13 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from mawdo.cli.errors import IMAGE_SUFFIXES, GuardedGroup, check_output_dir, check_output_file
+from mawdo.cli.errors import (
+    IMAGE_SUFFIXES,
+    GuardedGroup,
+    bad_input,
+    check_output_dir,
+    check_output_file,
+)
 
 app = typer.Typer(
     cls=GuardedGroup,
@@ -29,8 +35,8 @@ console = Console(width=None if sys.stdout.isatty() else 140)
 
 
 def _fail(msg: str) -> None:
-    console.print(f"[bold red]error:[/] {msg}")
-    raise typer.Exit(2)
+    # stderr, through the one error edge (never stdout, where results go)
+    raise bad_input(msg)
 
 
 def _parse_options(pairs: list[str]) -> dict:

@@ -35,14 +35,48 @@ plan_app = typer.Typer(
 
 
 def _scenario(name_or_path: str):
-    from mawdo.planning import SCENARIOS, get_scenario, load_scenario
+    from mawdo.planning import get_scenario, load_scenario
 
     p = Path(name_or_path)
     if p.suffix.lower() in (".toml", ".json") or p.exists():
         return load_scenario(p)
-    if name_or_path.lower() in SCENARIOS:
-        return get_scenario(name_or_path)
     return get_scenario(name_or_path)  # raises with close-name suggestions
+
+
+class _StepBar:
+    """A rich progress bar over the planner's steps (stderr), with the replan count."""
+
+    def __init__(self, enabled: bool, label: str) -> None:
+        self.progress = self.task = None
+        if not enabled:
+            return
+        from rich.progress import (
+            BarColumn,
+            MofNCompleteColumn,
+            Progress,
+            TextColumn,
+            TimeElapsedColumn,
+        )
+
+        self.progress = Progress(
+            TextColumn("[bold]{task.description}"),
+            BarColumn(),
+            MofNCompleteColumn(),
+            TextColumn("steps, {task.fields[replans]} replans"),
+            TimeElapsedColumn(),
+            console=Console(stderr=True),
+            transient=True,
+        )
+        self.task = self.progress.add_task(label, total=None, replans=0)
+        self.progress.start()
+
+    def __call__(self, step: int, max_steps: int, replans: int) -> None:
+        if self.progress is not None:
+            self.progress.update(self.task, completed=step, total=max_steps, replans=replans)
+
+    def close(self) -> None:
+        if self.progress is not None:
+            self.progress.stop()
 
 
 @plan_app.command("run")
@@ -54,27 +88,33 @@ def run_cmd(
     static: bool = typer.Option(False, "--static", help="plan once on the map frozen at t=0"),
     out: Path = typer.Option(Path("out/plan"), help="output folder (metrics.json, figures)"),
     figures: bool = typer.Option(True, help="write the snapshot grid and the GIF"),
+    progress: bool = typer.Option(True, help="show a progress bar (stderr)"),
 ):
     """Plan and execute one run; print and save its metrics."""
-    from mawdo.cli.errors import check_output_dir
-    from mawdo.planning.metrics import run_metrics
+    from mawdo.cli.errors import bad_input, check_output_dir
+    from mawdo.experiments.planning import run_metrics_kept
     from mawdo.planning.planner import plan
 
-    check_output_dir(out, "--out folder")
     try:
-        sc = _scenario(scenario)
-        res = plan(sc, algorithm=algorithm, seed=seed, config=preset, dynamic=not static)
-    except (KeyError, ValueError) as exc:
-        console.print(f"[bold red]error:[/] {exc.args[0] if isinstance(exc, KeyError) else exc}")
-        raise typer.Exit(2) from None
-    m = run_metrics(res)
+        sc = _scenario(scenario)  # a bad scenario fails before anything is created
+    except (KeyError, ValueError, FileNotFoundError) as exc:
+        raise bad_input(exc) from None
+    check_output_dir(out, "--out folder")
+    bar = _StepBar(progress, f"{algorithm} on {sc.name}")
+    try:
+        res = plan(
+            sc, algorithm=algorithm, seed=seed, config=preset, dynamic=not static, progress=bar
+        )
+    finally:
+        bar.close()
+    m, error = run_metrics_kept(res)
     payload = {
         "scenario": sc.name,
         "algorithm": algorithm,
         "seed": seed,
         "preset": preset,
         "dynamic": not static,
-        **m,
+        **(m or {"metrics_error": error}),
     }
     (out / "metrics.json").write_text(json.dumps(payload, indent=1))
     for k, v in payload.items():
@@ -103,12 +143,13 @@ def study_cmd(
     progress: bool = typer.Option(True, help="show a progress bar"),
 ):
     """Run the planning study (paper Table 6) into a resumable store."""
-    from mawdo.cli.errors import check_output_dir
-    from mawdo.experiments import PlanError, StoreError, run_plan
+    from mawdo.cli.errors import bad_input, check_output_dir
+    from mawdo.experiments import PlanError, run_plan
     from mawdo.experiments.planning import study_preset
 
     if report is not None:
         check_output_dir(report, "--report folder")
+    # errors end at the command edge: a message on stderr (2: bad plan, 1: store ...)
     try:
         plan = study_preset(preset).with_overrides(
             runs=runs,
@@ -116,14 +157,9 @@ def study_cmd(
             algorithms=None if algorithms is None else [a.strip() for a in algorithms.split(",")],
         )
     except PlanError as exc:
-        console.print(f"[bold red]error:[/] {exc}")
-        raise typer.Exit(2) from None
+        raise bad_input(exc) from None
     console.print(plan.describe())
-    try:
-        summary = run_plan(plan, out, workers=workers, dask=dask, progress=progress, force=force)
-    except (StoreError, ValueError) as exc:
-        console.print(f"[bold red]error:[/] {exc}")
-        raise typer.Exit(1) from None
+    summary = run_plan(plan, out, workers=workers, dask=dask, progress=progress, force=force)
     console.print(str(summary))
     if summary.interrupted:
         raise typer.Exit(130)
@@ -139,13 +175,8 @@ def report_cmd(
 ):
     """Tables and figures of a planning study, read from its store (nothing is recomputed)."""
     from mawdo.cli.errors import check_output_dir
-    from mawdo.experiments import StoreError
     from mawdo.experiments.planning import write_study_report
 
     check_output_dir(out, "--out folder")
-    try:
-        path = write_study_report(store, out, gif=gif)
-    except (StoreError, ValueError) as exc:
-        console.print(f"[bold red]error:[/] {exc}")
-        raise typer.Exit(1) from None
+    path = write_study_report(store, out, gif=gif)
     console.print(f"report: {path}")

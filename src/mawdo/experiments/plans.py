@@ -38,12 +38,17 @@ class StudyPlanBase(BaseModel):
 
     # ----------------------------------------------------------------------- construction
     @classmethod
-    def from_dict(cls, data: Mapping[str, Any]):
-        """Validate ``data`` (e.g. parsed TOML); raise :class:`PlanError` naming each field."""
+    def from_dict(cls, data: Mapping[str, Any], *, stored: bool = False):
+        """Validate ``data`` (e.g. parsed TOML); raise :class:`PlanError` naming each field.
+
+        ``stored=True`` marks a plan read back from a results store: validators then get the
+        context ``{"stored": True}`` and must not resolve anything outside the plan (files,
+        registries of data), so a crafted store cannot make a report open other files.
+        """
         if not isinstance(data, Mapping):
             raise PlanError(f"a plan must be a table of fields, got {type(data).__name__}")
         try:
-            return cls.model_validate(dict(data))
+            return cls.model_validate(dict(data), context={"stored": stored})
         except ValidationError as exc:
             raise PlanError(format_errors(exc, cls)) from None
 

@@ -167,8 +167,11 @@ def kind_of(plan: Any) -> StudyKind:
     return STUDY_KINDS[name]
 
 
-def plan_from_json(text: str) -> Any:
+def plan_from_json(text: str, stored: bool = False) -> Any:
     """The plan stored in a results store, whichever registered kind it is.
+
+    ``stored=True``: the text comes from a store's meta row; the plan is validated with the
+    context ``{"stored": True}`` (see :meth:`StudyPlanBase.from_dict`).
 
     A plan without a ``kind`` field is a benchmark plan (stores written before kinds existed).
     """
@@ -185,4 +188,6 @@ def plan_from_json(text: str) -> Any:
         raise PlanError(
             f"{exc}; import the module that registers it before reading this store"
         ) from None
+    if stored:
+        return kind.plan.from_dict(data, stored=True)
     return kind.plan.from_dict(data)

@@ -14,6 +14,7 @@ import os
 import signal
 import socket
 import sys
+import threading
 import time
 from collections.abc import Callable, Iterator
 from concurrent.futures import ProcessPoolExecutor, as_completed
@@ -103,13 +104,16 @@ def execute_task(spec: dict[str, Any], execute: Callable | None = None) -> dict[
         execute = STUDY_KINDS[spec["kind"]].execute
     t0 = time.perf_counter()
     rows = execute(spec)
-    return {
+    out = {
         "task": {k: spec[k] for k in TASK_KEYS},
         "rows": rows,
         "wall": time.perf_counter() - t0,
         "worker": f"{socket.gethostname()}:{os.getpid()}",
         "library_version": library_version(),
     }
+    if "plan_hash" in spec:  # the runner's specs name their plan; the store checks it
+        out["plan_hash"] = spec["plan_hash"]
+    return out
 
 
 def _lost(spec: dict[str, Any], exc: BaseException) -> dict[str, Any]:
@@ -125,12 +129,51 @@ def _in_process(specs: list[dict], execute: Callable) -> Iterator[dict]:
         yield execute_task(spec, execute)
 
 
-def _ignore_sigint() -> None:
-    # (a later guard, "workers exit when the parent dies", belongs in this initializer)
+def _worker_init(parent: int) -> None:
+    """Initializer of each pool worker: ignore Ctrl-C, and die with the sweep's process."""
     # Only the parent handles Ctrl-C: it stops the pool and keeps what finished. A terminal's
     # Ctrl-C reaches the whole process group, and a worker dying of it mid-task would break
     # the pool before the parent can shut it down in order.
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    _die_with(parent)
+
+
+def _die_with(parent: int, poll: float = 0.5) -> None:
+    """Make this worker exit when ``parent`` (the sweep's process) dies, even by ``kill -9``.
+
+    A killed parent cannot stop its pool, and a worker busy in a task would otherwise compute
+    on for minutes (issue 12, defect 7). Two lines of defence: on Linux
+    ``prctl(PR_SET_PDEATHSIG, SIGKILL)`` (the worker's parent is the forkserver, which exits
+    when the sweep's process dies), and everywhere a daemon thread that polls whether
+    ``parent`` is still this worker's ancestor and alive.
+    """
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(1, signal.SIGKILL, 0, 0, 0)  # 1 = PR_SET_PDEATHSIG
+        except (OSError, AttributeError):
+            pass
+    direct = os.getppid()
+
+    def watch() -> None:
+        while True:
+            time.sleep(poll)
+            if os.getppid() != direct or not _alive(parent):
+                os._exit(70)  # no cleanup: the parent that would read our results is gone
+
+    threading.Thread(target=watch, name="mawdo-parent-watch", daemon=True).start()
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
 
 
 def _pool(specs: list[dict], workers: int, execute: Callable) -> Iterator[dict]:
@@ -138,7 +181,10 @@ def _pool(specs: list[dict], workers: int, execute: Callable) -> Iterator[dict]:
     # Dask, BLAS pools), and forking a threaded process can deadlock.
     method = "forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn"
     pool = ProcessPoolExecutor(
-        max_workers=workers, mp_context=mp.get_context(method), initializer=_ignore_sigint
+        max_workers=workers,
+        mp_context=mp.get_context(method),
+        initializer=_worker_init,
+        initargs=(os.getpid(),),
     )
     futures = {pool.submit(execute_task, s, execute): s for s in specs}
     finished = False
@@ -296,7 +342,8 @@ def run_plan(
         done_keys = store.done_keys()
         tasks = plan.tasks(done_keys)
         summary.skipped = plan.total_runs - sum(t.n_runs for t in tasks)
-        specs = [plan.task_spec(t) for t in tasks]
+        # each spec names the plan it is computed for; the store checks it on write
+        specs = [{**plan.task_spec(t), "plan_hash": plan.plan_hash} for t in tasks]
         if dask is not None:
             outcomes = _dask(specs, dask, execute)
         elif workers > 1 and len(specs) > 1:
@@ -342,7 +389,6 @@ def _store_outcomes(outcomes, store: Store, summary: RunSummary, bar: _Bar) -> N
                 summary.lost += n
                 _say(f"task lost ({_task_name(out['task'])}): {out['lost']}")
             else:
-                # later guard: check each row's plan hash here before writing
                 store.write_task(out)
                 summary.tasks += 1
                 summary.done += n

@@ -16,10 +16,12 @@ import sqlite3
 from pathlib import Path
 from typing import Any
 
+from mawdo.experiments.lock import StoreLockedError, WriterLock
 from mawdo.experiments.plans import PlanError
 from mawdo.experiments.protocol import StudyKind, kind_of, plan_from_json
 from mawdo.experiments.rows import RowError, RunRow, check_row, from_sql, schema, to_sql
 from mawdo.experiments.sqlitefile import (
+    CORRUPT_ADVICE,
     SCHEMA_VERSION,
     TASK_COLUMNS,
     StoreError,
@@ -27,9 +29,11 @@ from mawdo.experiments.sqlitefile import (
     connect,
     create_tables,
     drop_tables,
+    leave_clean,
     library_version,
     now,
     old_schema_message,
+    quick_check,
     read_meta,
     runs_columns,
     translate,
@@ -93,35 +97,33 @@ class Store:
         path = Path(path)
         kind = kind_of(plan)
         _check_writable_path(path)
-        conn = connect(path, readonly=False)
         try:
+            lock = WriterLock(path)
+        except StoreLockedError as exc:
+            raise StoreError(str(exc)) from None
+        except OSError as exc:
+            raise StoreError(f"cannot lock results store {path}: {exc}") from None
+        conn = None
+        try:
+            conn = connect(path, readonly=False)
             check_foreign(conn, path)
+            quick_check(conn, path)
+            meta = _open_meta(conn, path, plan, kind, force)
             with translate(path, "initialise"):
+                # WAL only once the store is accepted: a refused run leaves the file as it was.
                 conn.execute("PRAGMA journal_mode=WAL")
                 # NORMAL is durable against process crashes in WAL mode, which is what a sweep
                 # needs; FULL would also survive power loss at the price of an fsync per task.
                 conn.execute("PRAGMA synchronous=NORMAL")
-                # Later guards (exclusive writer lock, PRAGMA quick_check) belong here, before
-                # the meta row is trusted.
-            meta = read_meta(conn, path)
-            if meta is None:
-                with translate(path, "initialise"):
-                    drop_tables(conn)  # half-made files (tables without a meta row)
-                    create_tables(conn, kind.row)
-                meta = write_meta(conn, path, plan)
-            else:
-                problem = _mismatch(meta, plan)
-                if problem:
-                    if not force:
-                        raise StoreError(_refusal(conn, path, meta, problem))
-                    with translate(path, "reset"):
-                        drop_tables(conn)
-                        create_tables(conn, kind.row)
-                    meta = write_meta(conn, path, plan)
         except BaseException:
-            conn.close()
+            if conn is not None:
+                leave_clean(conn)
+                conn.close()
+            lock.release()
             raise
-        return cls(path, conn, plan, meta, writable=True)
+        store = cls(path, conn, plan, meta, writable=True)
+        store._lock = lock
+        return store
 
     @classmethod
     def read(cls, path: str | Path) -> Store:
@@ -139,25 +141,33 @@ class Store:
                 )
             if meta.get("schema_version") != SCHEMA_VERSION:
                 raise StoreError(old_schema_message(path, meta))
+            quick_check(conn, path)
+            _check_row_hashes(conn, path, meta["plan_hash"], force_hint=False)
             try:
-                plan = plan_from_json(meta["plan_json"])
+                plan = plan_from_json(meta["plan_json"], stored=True)
             except PlanError as exc:
                 raise StoreError(f"{path}: its stored plan is no longer valid: {exc}") from None
+            if plan.plan_hash != meta["plan_hash"]:
+                raise StoreError(
+                    f"results store {path} is inconsistent: its meta row says plan "
+                    f"{meta['plan_hash'][:12]} but its stored plan hashes to "
+                    f"{plan.plan_hash[:12]} (edited by hand?). {CORRUPT_ADVICE}"
+                )
         except BaseException:
             conn.close()
             raise
         return cls(path, conn, plan, meta, writable=False)
 
     def close(self) -> None:
-        """Close the connection. A writer folds the WAL back into the file first, so a closed
-        store is one self-contained file (copy it anywhere)."""
+        """Close the connection. A writer folds the WAL back into the file first (so a closed
+        store is one self-contained file: copy it anywhere, read it on read-only media), then
+        releases its writer lock."""
         if self.writable:
-            try:
-                self.conn.execute("PRAGMA wal_checkpoint(TRUNCATE)")
-                self.conn.execute("PRAGMA journal_mode=DELETE")
-            except sqlite3.Error:
-                pass  # another reader holds the file; WAL stays, which is still consistent
+            leave_clean(self.conn)
         self.conn.close()
+        lock = getattr(self, "_lock", None)
+        if lock is not None:
+            lock.release()
 
     def __enter__(self) -> Store:
         return self
@@ -189,8 +199,23 @@ class Store:
                 check_row(r, self.row_type)
             except RowError as exc:
                 raise StoreError(f"cannot write to results store {self.path}: {exc}") from None
+        computed_for = outcome.get("plan_hash", self.plan.plan_hash)
+        if computed_for != self.plan.plan_hash:
+            raise StoreError(
+                f"cannot write to results store {self.path}: task {t['algorithm']} on "
+                f"{t['problem']} was computed for plan {str(computed_for)[:12]}, the store "
+                f"holds plan {self.plan.plan_hash[:12]}"
+            )
         version = library_version()
         with translate(self.path, "write to"), self.conn:
+            stored = self.conn.execute("SELECT plan_hash FROM meta").fetchone()
+            if stored is None or stored[0] != self.plan.plan_hash:
+                # Only reachable if something bypassed the writer lock (another library, a
+                # hand edit): never add rows to a store that now belongs to another plan.
+                raise StoreError(
+                    f"results store {self.path} was reset to another plan while this sweep "
+                    f"was writing to it; nothing more is written. Re-run the sweep."
+                )
             cur = self.conn.execute(
                 "INSERT INTO tasks (algorithm, problem, first_run, n_runs, wall_time, worker, "
                 "finished) VALUES (?, ?, ?, ?, ?, ?, ?)",
@@ -271,6 +296,7 @@ class Store:
         where = f" WHERE {' AND '.join(cond)}" if cond else ""
         cols = ", ".join(["algorithm", "problem", *(n for n, _ in read)])
         out = []
+        _check_row_hashes(self.conn, self.path, self.meta["plan_hash"], force_hint=False)
         with translate(self.path, "read"):
             fetched = self.conn.execute(
                 f"SELECT {cols} FROM runs{where} ORDER BY algorithm, problem, run", args
@@ -292,6 +318,56 @@ class Store:
 
 
 # ---------------------------------------------------------------------- helpers
+def _open_meta(conn, path: Path, plan: Any, kind: StudyKind, force: bool) -> dict[str, Any]:
+    """The meta row of a store opened for ``plan``: created, accepted, or reset with force."""
+    meta = read_meta(conn, path)
+    if meta is None:
+        with translate(path, "initialise"):
+            drop_tables(conn)  # half-made files (tables without a meta row)
+            create_tables(conn, kind.row)
+        return write_meta(conn, path, plan)
+    problem = _mismatch(meta, plan)
+    mixed = None if problem else _foreign_rows(conn, path, meta["plan_hash"], force_hint=True)
+    if mixed and not force:
+        raise StoreError(mixed)
+    if problem or mixed:
+        if problem and not force:
+            raise StoreError(_refusal(conn, path, meta, problem))
+        with translate(path, "reset"):
+            drop_tables(conn)
+            create_tables(conn, kind.row)
+        meta = write_meta(conn, path, plan)
+    return meta
+
+
+def _check_row_hashes(conn, path: Path, plan_hash: str, force_hint: bool) -> None:
+    """Refuse a store holding runs computed for another plan than its meta row's."""
+    msg = _foreign_rows(conn, path, plan_hash, force_hint)
+    if msg:
+        raise StoreError(msg)
+
+
+def _foreign_rows(conn, path: Path, plan_hash: str, force_hint: bool) -> str | None:
+    """Why a store holds runs of another plan than its meta row's, or None."""
+    with translate(path, "read"):
+        bad = conn.execute(
+            "SELECT plan_hash, COUNT(*) FROM runs WHERE plan_hash != ? GROUP BY plan_hash",
+            (plan_hash,),
+        ).fetchall()
+    if bad:
+        others = ", ".join(f"{n} of plan {h[:12]}" for h, n in bad)
+        fix = (
+            "add --force (force=True) to discard its runs and start over"
+            if force_hint
+            else "re-run the study into a new file"
+        )
+        return (
+            f"results store {path} mixes plans: it belongs to plan {plan_hash[:12]} but holds "
+            f"runs {others}. Its results cannot be reported; {fix}."
+        )
+    return None
+
+
 def _check_writable_path(path: Path) -> None:
     if path.is_dir():
         raise StoreError(
@@ -339,7 +415,7 @@ def _mismatch(meta: dict[str, Any], plan: Any) -> str | None:
         )
     if meta["plan_hash"] != plan.plan_hash:
         try:
-            old = plan_from_json(meta["plan_json"]).numbers_spec()
+            old = plan_from_json(meta["plan_json"], stored=True).numbers_spec()
             new = plan.numbers_spec()
             diff = [
                 f"{k} ({_short(old.get(k))} -> {_short(new.get(k))})"

@@ -163,7 +163,8 @@ class Run:
                 return route
         return None
 
-    def execute(self) -> PlanResult:
+    def execute(self, progress=None) -> PlanResult:
+        """Drive the run; ``progress(step, max_steps, replans)`` is called before each step."""
         sc, cfg = self.sc, self.cfg
         v = sc.robot_speed
         reach = self._reachable()
@@ -177,6 +178,8 @@ class Run:
         remainder, stuck, force = None, 0, False
         reason = "step limit reached before the goal"
         for step in range(max_steps + 1):
+            if progress is not None:
+                progress(step, max_steps, len(self.replans))
             if np.hypot(*(sc.goal - pos)) <= 1e-9:
                 reason = "goal reached"
                 break

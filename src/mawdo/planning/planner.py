@@ -39,6 +39,7 @@ def plan(
     seed: int = 0,
     config=None,
     dynamic: bool = True,
+    progress=None,
     **overrides,
 ) -> PlanResult:
     """Plan (and, if ``dynamic``, execute with replanning) a path through a scenario.
@@ -56,6 +57,9 @@ def plan(
     dynamic : bool
         True: receding horizon, the robot moves and replans. False: one plan on the map frozen
         at t = 0 (single-shot static mode), executed without replanning.
+    progress : callable, optional
+        Called as ``progress(step, max_steps, replans)`` before each step (a progress bar for
+        long runs); it must not raise. No effect on the result.
     **overrides
         Fields of :class:`PlannerConfig` to change.
 
@@ -73,7 +77,7 @@ def plan(
     """
     sc = _resolve(scenario)
     cfg = _config(config, overrides)
-    return Run(sc, algorithm, seed, cfg, dynamic).execute()
+    return Run(sc, algorithm, seed, cfg, dynamic).execute(progress)
 
 
 def executed_length(result: PlanResult) -> float:

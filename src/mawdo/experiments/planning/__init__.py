@@ -6,7 +6,11 @@ registers the ``planning`` study kind. (The planner itself is :mod:`mawdo.planni
 below.)
 """
 
-from mawdo.experiments.planning.execute import PlanningRow, execute_planning_task
+from mawdo.experiments.planning.execute import (
+    PlanningRow,
+    execute_planning_task,
+    run_metrics_kept,
+)
 from mawdo.experiments.planning.plan import (
     BASELINE,
     STUDY_PRESETS,
@@ -31,6 +35,7 @@ if KIND not in STUDY_KINDS:  # a reload must not register twice
     )
 
 __all__ = [
+    "run_metrics_kept",
     "BASELINE",
     "KIND",
     "STUDY_PRESETS",

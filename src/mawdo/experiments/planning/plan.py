@@ -11,9 +11,12 @@ the same seeds (common random seeds) and a run does not depend on its batch.
 
 from __future__ import annotations
 
+import hashlib
+import json
+from pathlib import Path
 from typing import Annotated, Any, ClassVar, Literal
 
-from pydantic import Field, PositiveInt, field_validator
+from pydantic import Field, PositiveInt, ValidationInfo, field_validator, model_validator
 
 from mawdo.experiments.plans import PlanError, StudyPlanBase
 from mawdo.experiments.protocol import Task
@@ -23,7 +26,8 @@ from mawdo.streams import name_word, seed_word
 PAPER_SEED = 20251125
 """Master seed of the paper presets (the paper's arXiv submission date; as the benchmark's)."""
 
-STUDY_SCHEMA = 1
+STUDY_SCHEMA = 2
+"""2: the scenario's contents are part of the plan (and its hash), not its name."""
 BASELINE = "oracle_follower"
 
 
@@ -36,13 +40,49 @@ def _check_algorithm(name: str) -> str:
         raise ValueError(str(exc.args[0])) from None
 
 
-def _check_scenario(name: str) -> str:
-    from mawdo.planning import get_scenario
+def _scenario_sha256(contents: dict[str, Any]) -> str:
+    blob = json.dumps(contents, sort_keys=True, separators=(",", ":"))
+    return hashlib.sha256(blob.encode("utf-8")).hexdigest()
 
+
+def _resolve_scenario(data: dict[str, Any], stored: bool) -> dict[str, Any]:
+    """Fill ``scenario_spec`` (validated contents) and ``scenario`` (their name) in ``data``.
+
+    A plan keeps the scenario itself, never a name or a path to look up later: an edited copy
+    of a built-in map runs as edited whatever its ``name``, and a store can never make a
+    report open a file (issue 12, defects 2 and 10). Plans read from a store (``stored``)
+    must carry their contents; nothing outside the plan is consulted.
+    """
+    from mawdo.planning import ScenarioError, get_scenario, load_scenario, scenario_from_dict
+
+    contents = data.get("scenario_spec")
     try:
-        return get_scenario(name).name
-    except (KeyError, ValueError, FileNotFoundError) as exc:
+        if contents is not None:
+            sc = scenario_from_dict(contents, source="the plan's scenario_spec")
+        elif stored:
+            raise ValueError(
+                "the stored plan has no scenario contents (scenario_spec); stores keep their "
+                "scenario inline and never refer to files or names"
+            )
+        else:
+            ref = data.get("scenario", "paper")
+            if not isinstance(ref, str | Path):
+                raise ValueError(f"expected a scenario name or file, got {type(ref).__name__}")
+            ref = str(ref)
+            p = Path(ref)
+            sc = load_scenario(p) if p.suffix.lower() in (".toml", ".json") else get_scenario(ref)
+    except ScenarioError as exc:
+        raise ValueError(str(exc)) from None
+    except (KeyError, FileNotFoundError) as exc:
         raise ValueError(str(exc.args[0]) if exc.args else str(exc)) from None
+    spec = sc.to_dict()
+    sha = _scenario_sha256(spec)
+    if data.get("scenario_sha256") not in (None, sha):
+        raise ValueError(
+            f"scenario_sha256 {str(data['scenario_sha256'])[:12]} does not match the stored "
+            f"scenario contents ({sha[:12]}): the plan was edited"
+        )
+    return {**data, "scenario": sc.name, "scenario_spec": spec, "scenario_sha256": sha}
 
 
 class StudyPlan(StudyPlanBase):
@@ -56,7 +96,13 @@ class StudyPlan(StudyPlanBase):
         Registered optimizers, and optionally ``"oracle_follower"`` (the deterministic baseline:
         one run, whatever ``runs`` says).
     scenario : str
-        A built-in scenario name or a scenario file path.
+        On input, a built-in scenario name or a scenario file path (``.toml``/``.json``); the
+        plan then holds that scenario's name.
+    scenario_spec : dict
+        The scenario's validated contents (filled from ``scenario`` when not given). Tasks,
+        reports and the plan hash use these contents, never a lookup by name.
+    scenario_sha256 : str
+        SHA-256 of the canonical JSON of ``scenario_spec`` (checked when given).
     runs : int
         Runs per algorithm (the paper: 50).
     planner : {"study", "realtime", "paper", "quick"}
@@ -76,6 +122,8 @@ class StudyPlan(StudyPlanBase):
     name: str = "study"
     algorithms: Annotated[tuple[str, ...], Field(min_length=1)]
     scenario: str = "paper"
+    scenario_spec: dict[str, Any] = Field(default_factory=dict)
+    scenario_sha256: str = ""
     runs: PositiveInt = 50
     planner: Literal["study", "realtime", "paper", "quick"] = "study"
     overrides: dict[str, Any] = Field(default_factory=dict)
@@ -97,10 +145,26 @@ class StudyPlan(StudyPlanBase):
             out.append(a)
         return tuple(out)
 
-    @field_validator("scenario")
+    @model_validator(mode="before")
     @classmethod
-    def _scen(cls, name):
-        return _check_scenario(name)
+    def _scen(cls, data: Any, info: ValidationInfo) -> Any:
+        if not isinstance(data, dict):
+            return data
+        stored = bool((info.context or {}).get("stored"))
+        return _resolve_scenario(data, stored)
+
+    def _adjust_overrides(self, data: dict[str, Any], changes: dict[str, Any]) -> dict[str, Any]:
+        # a new scenario (name or file) replaces the contents, which are then read afresh
+        if "scenario" in changes:
+            data.pop("scenario_spec", None)
+            data.pop("scenario_sha256", None)
+        return data
+
+    def scenario_object(self):
+        """The plan's scenario, built from its stored contents (no file, no registry)."""
+        from mawdo.planning import scenario_from_dict
+
+        return scenario_from_dict(self.scenario_spec, source=f"plan {self.name!r}")
 
     @field_validator("overrides")
     @classmethod
@@ -154,6 +218,7 @@ class StudyPlan(StudyPlanBase):
             "planner": self.planner,
             "overrides": dict(self.overrides),
             "snapshots": self.snapshots,
+            "scenario": self.scenario_spec,
         }
 
     def describe(self) -> str:

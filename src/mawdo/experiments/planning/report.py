@@ -207,11 +207,11 @@ def _pick(runs, how: str):
 
 def study_figures(store: Store, out: Path, gif: bool = True) -> list[Path]:
     """Every figure of the study, from stored runs only."""
-    from mawdo.planning import get_scenario, render
+    from mawdo.planning import render
     from mawdo.planning.planner import result_from_bytes
 
     plan = store.plan
-    sc = get_scenario(plan.scenario)
+    sc = plan.scenario_object()
     figs = []
     best, curves, boxes = {}, {}, {k: {} for k, _ in COMPARED}
     for a in plan.algorithms:
