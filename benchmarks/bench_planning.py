@@ -51,11 +51,12 @@ def kernel() -> None:
 
 
 def planner(seeds=(0, 1, 2)) -> None:
+    from mawdo.planning import get_scenario
     from mawdo.planning.metrics import run_metrics, static_optimum
     from mawdo.planning.planner import PRESETS, plan
 
     cfg = PRESETS["realtime"]
-    l_star = static_optimum(plan.__globals__["get_scenario"]("paper"))
+    l_star = static_optimum(get_scenario("paper"))
     print(
         f"dynamic planner, MAWDO, realtime preset (pop {cfg.pop_size}, "
         f"{cfg.replan_iters} iterations per replan, replan every step)"
