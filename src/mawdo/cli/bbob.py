@@ -73,7 +73,8 @@ def suite_plan(preset, suite, algorithms, functions, instances, dims, budget, **
         return preset_plan(preset).with_overrides(**fields)
     if algorithms is None or functions is None:
         raise ValueError("with --suite give --algorithms a,b and --functions (e.g. 1-24)")
-    return SuitePlan.from_dict({"name": "cli", **{k: v for k, v in fields.items() if v is not None}})
+    given = {k: v for k, v in fields.items() if v is not None}
+    return SuitePlan.from_dict({"name": "cli", **given})
 
 
 def run_suite(plan, out: Path, **run_options) -> None:

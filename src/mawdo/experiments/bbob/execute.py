@@ -104,8 +104,7 @@ def execute_suite_task(spec: dict[str, Any]) -> list[SuiteRow]:
         wall = time.perf_counter() - t0
         text = "".join(traceback.format_exception_only(exc)).strip()
         return [
-            SuiteRow(run=first + i, wall_time=wall / n, error_text=text, **common)
-            for i in range(n)
+            SuiteRow(run=first + i, wall_time=wall / n, error_text=text, **common) for i in range(n)
         ]
     wall = time.perf_counter() - t0
     rows = []

@@ -34,7 +34,11 @@ PLAN_SCHEMA = 1
 BBOB_SEED = 20251125
 """Master seed of the presets (the paper presets' seed)."""
 
-LIBRARY = {"bbob": "ioh", "cec2017": "opfunu.cec_based.cec2017", "cec2022": "opfunu.cec_based.cec2022"}
+LIBRARY = {
+    "bbob": "ioh",
+    "cec2017": "opfunu.cec_based.cec2017",
+    "cec2022": "opfunu.cec_based.cec2022",
+}
 
 
 def _check_algorithm(name: str) -> str:
@@ -195,9 +199,9 @@ class SuitePlan(StudyPlanBase):
         spec = SUITES[self.suite]
         for i, iid in enumerate(self.instances):
             if iid < 1 or (spec.max_instance is not None and iid > spec.max_instance):
-                top = "instances >= 1" if spec.max_instance is None else f"instances 1-{spec.max_instance}"
-                if spec.max_instance == 1:
-                    top = "only instance 1"
+                top = {None: "instances >= 1", 1: "only instance 1"}.get(
+                    spec.max_instance, f"instances 1-{spec.max_instance}"
+                )
                 raise ValueError(f"instances[{i}]: {self.suite} defines {top}; got {iid}")
         for fid in self.functions:
             allowed = spec.dims(fid)

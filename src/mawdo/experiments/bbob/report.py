@@ -139,4 +139,3 @@ def write_suite_report(store_path, out_dir, plots: bool = True, svg: bool = Fals
     report = out / "report.md"
     report.write_text("\n".join(lines), encoding="utf-8")
     return report
-
