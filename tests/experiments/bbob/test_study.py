@@ -14,7 +14,7 @@ from mawdo.experiments import runner as runner_mod
 from mawdo.experiments.bbob.plan import parse_key
 from mawdo.suites import evaluation_budget, get_problem, run_problem
 
-from .conftest import tiny_plan, stored_values
+from .conftest import stored_values, tiny_plan
 
 
 def test_store_round_trip_equals_each_run_computed_alone(tiny_store):
@@ -56,7 +56,7 @@ def test_seeds_depend_on_problem_and_run_not_algorithm(tiny_store):
     with Store.read(tiny_store) as store:
         rows = store.rows()
     by_key: dict = {}
-    for algo, problem, row in rows:
+    for _algo, problem, row in rows:
         by_key.setdefault(problem, set()).add(tuple(row.seed_entropy))
     assert all(len(v) == 1 for v in by_key.values())
     assert len({next(iter(v)) for v in by_key.values()}) == len(by_key)
