@@ -7,6 +7,7 @@ budgets (:func:`precision_at`) with :mod:`mawdo.experiments.bbob_metrics`.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -66,8 +67,18 @@ class StudyRuns:
     runs: list[StoredRun]
     failed: int
 
+    @functools.cached_property
+    def _index(self) -> dict[tuple[str, int, int], list[StoredRun]]:
+        # reports select (algorithm, function, D) cells thousands of times: one pass, not many
+        out: dict[tuple[str, int, int], list[StoredRun]] = {}
+        for r in self.runs:
+            out.setdefault((r.algorithm, r.function_id, r.dim), []).append(r)
+        return out
+
     def select(self, algorithm=None, function_id=None, dim=None) -> list[StoredRun]:
         """Runs matching every given filter, in store order."""
+        if None not in (algorithm, function_id, dim):
+            return list(self._index.get((algorithm, function_id, dim), []))
         return [
             r
             for r in self.runs
