@@ -50,6 +50,14 @@ def _save(fig: Figure, path: Path, svg: bool) -> list[Path]:
     return out
 
 
+def _ids(fids) -> str:
+    """``(1, 2, 3, 4, 5)`` -> ``"f1-f5"``; otherwise ``"f1, f8, f15"``."""
+    fids = tuple(fids)
+    if len(fids) > 2 and fids == tuple(range(fids[0], fids[-1] + 1)):
+        return f"f{fids[0]}-f{fids[-1]}"
+    return ", ".join(f"f{f}" for f in fids)
+
+
 def plot_ecdfs(study: StudyRuns, dim: int, out_dir: Path, svg: bool = False) -> list[Path]:
     """One panel per function group (the first: all functions): fraction of (function, run,
     target) triples solved against evaluations / D, log x, 51 targets ``1e2 .. 1e-8``."""
@@ -64,7 +72,7 @@ def plot_ecdfs(study: StudyRuns, dim: int, out_dir: Path, svg: bool = False) -> 
         ax.set_ylim(-0.02, 1.02)
         ax.set_xlim(1, study.budget)
         ax.grid(True, alpha=0.3)
-        ax.set_title(f"{name} (f{fids[0]}-f{fids[-1]}, {len(fids)})", fontsize=9)
+        ax.set_title(f"{name} ({_ids(fids)})", fontsize=9)
         ax.set_xlabel("evaluations / D")
         ax.set_ylabel("fraction of (function, run, target)")
     axes[0].legend(fontsize=8, loc="upper left")
@@ -77,9 +85,19 @@ def plot_convergence(study: StudyRuns, dim: int, out_dir: Path, svg: bool = Fals
     band) against evaluations / D, log-log; below 1e-9 drawn at 1e-9."""
     top = math.ceil(study.budget * dim - 1e-9)
     budgets = np.unique(np.round(np.logspace(0, math.log10(top), 120)))
-    # a fixed layout: constrained layout measures every tick label of 24 log panels (slow)
+    # a fixed layout (constrained layout measures every tick label of 24 log panels: slow),
+    # with margins in inches so that one row of panels gets the same room as four
     fig, axes = _figure(len(study.functions), 6, 3.0, 2.4, layout=None)
-    fig.subplots_adjust(left=0.05, right=0.99, bottom=0.06, top=0.93, wspace=0.3, hspace=0.4)
+    w, h = fig.get_size_inches()
+    fig.set_size_inches(w + 0.6, h + 0.9)
+    fig.subplots_adjust(
+        left=0.9 / (w + 0.6),
+        right=1 - 0.1 / (w + 0.6),
+        bottom=0.55 / (h + 0.9),
+        top=1 - 0.6 / (h + 0.9),
+        wspace=0.3,
+        hspace=0.45,
+    )
     colors = _colors(study.algorithms)
     for ax, fid in zip(axes, study.functions, strict=True):
         name = ""
@@ -100,6 +118,6 @@ def plot_convergence(study: StudyRuns, dim: int, out_dir: Path, svg: bool = Fals
         ax.grid(True, alpha=0.3)
     axes[0].legend(fontsize=6)
     fig.supxlabel("evaluations / D")
-    fig.supylabel("median f - f_opt (IQR band)")
+    fig.supylabel("median f - f_opt (IQR band)", x=0.15 / fig.get_size_inches()[0])
     fig.suptitle(f"{study.suite} D={dim}: best-so-far against evaluations")
     return _save(fig, out_dir / f"convergence_d{dim}", svg)
