@@ -50,6 +50,49 @@ def pipeline(fid: int, algo: str, repeats: int = 3, runs: int = RUNS) -> tuple[f
     return best, nfev
 
 
+def study_projection(workers: int = 2) -> list[dict]:
+    """Projected wall time of the ``bbob-quick`` and ``bbob-full`` presets on ``workers``.
+
+    Each algorithm's evaluations per second are measured on f15 (multimodal, so no run stops
+    early) at D = 5 and D = 20, 2 runs of 1e3 x D evaluations through the study's own task
+    (:func:`execute_suite_task`); a preset's time is the sum over (algorithm, D) of its
+    evaluations over that rate, divided by ``workers``. An upper bound: runs that reach 1e-8
+    stop early.
+    """
+    from mawdo.experiments.bbob import execute_suite_task, preset_plan
+    from mawdo.experiments.bbob.plan import problem_key
+    from mawdo.experiments.protocol import Task
+    from mawdo.suites import evaluation_budget
+
+    full, quick = preset_plan("bbob-full"), preset_plan("bbob-quick")
+    probe = quick.with_overrides(budget=1e3, runs=2, functions=[15], instances=[1])
+    rate = {}
+    for algo in full.algorithms:
+        for dim in full.dims:
+            spec = probe.task_spec(Task(algo, problem_key(15, 1, dim), 0, 2))
+            t = time.perf_counter()
+            rows = execute_suite_task(spec)
+            rate[algo, dim] = sum(r.nfev for r in rows) / (time.perf_counter() - t)
+    out = []
+    for plan, target in ((quick, 10.0), (full, 30.0)):
+        per = len(plan.functions) * len(plan.instances) * plan.runs
+        sec = sum(
+            per * evaluation_budget(plan.budget, d) / rate[a, d]
+            for a in plan.algorithms
+            for d in plan.dims
+        )
+        minutes = sec / workers / 60
+        flag = "ok" if minutes <= target else "MISSED"
+        print(
+            f"  {plan.name:10s} projected {minutes:7.1f} min on {workers} workers "
+            f"(target <= {target:.0f} min) {flag}"
+        )
+        out.append({"preset": plan.name, "minutes": minutes})
+    slow = ", ".join(f"{a} D={d}: {r:.2e}" for (a, d), r in sorted(rate.items()))
+    print(f"  evaluations/s per (algorithm, D): {slow}")
+    return out
+
+
 def main() -> list[dict]:
     pipeline(1, "random", repeats=1)  # imports, ioh problem construction
     print(
@@ -72,6 +115,8 @@ def main() -> list[dict]:
         wall, nfev = pipeline(15, algo, repeats=1, runs=2)
         print(f"  {algo:8s} {nfev / wall:12.3e} evals/s ({wall:.2f} s)")
         rows.append({"function": 15, "algorithm": algo, "pipeline": nfev / wall})
+    print("suite-study presets (mawdo bench run --preset ...), projected from measured rates:")
+    rows += study_projection()
     return rows
 
 

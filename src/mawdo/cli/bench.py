@@ -10,6 +10,8 @@ from pathlib import Path
 
 import typer
 
+from mawdo.cli.bbob import export_cmd
+
 bench_app = typer.Typer(
     name="bench",
     help="Benchmark sweeps (paper Tables 3 and 5): run a plan into a SQLite store, then report.",
@@ -47,7 +49,14 @@ def run_cmd(
     algorithms: str = typer.Option(None, "--algorithms", help="Override: a,b,c"),
     functions: str = typer.Option(None, "--functions", help="Override: f,g (names or F1..F16)"),
     batch_size: int = typer.Option(None, "--batch-size", help="Override: runs per task."),
-    budget: str = typer.Option(None, "--budget", help="Override: iterations | evals."),
+    budget: str = typer.Option(
+        None,
+        "--budget",
+        help="Override: iterations | evals; with --suite: evaluations per dimension (1e4).",
+    ),
+    suite: str = typer.Option(None, "--suite", help="Standard suite: bbob, cec2017, cec2022."),
+    instances: str = typer.Option(None, "--instances", help="With --suite: instances (1-5)."),
+    dims: str = typer.Option(None, "--dims", help="With --suite: dimensions (5,20)."),
     progress: bool = typer.Option(True, "--progress/--no-progress", help="Progress bar."),
 ) -> None:
     """Run (or resume) a sweep. Stored runs are skipped; Ctrl-C keeps what finished.
@@ -55,8 +64,23 @@ def run_cmd(
     The plan comes from --preset, --plan, or from --algorithms and --functions alone (paper
     defaults: 30 runs, pop 50, 500 iterations); the other flags override its fields.
     """
+    from mawdo.cli import bbob
     from mawdo.experiments import ExperimentPlan, PlanError, StoreError, preset_plan, run_plan
 
+    if suite is not None or bbob.is_suite_preset(preset):  # the standard-suite study
+        if plan_file is not None or iters is not None:
+            _fail("--plan and --iters do not apply to --suite studies (budget: --budget 1e4)")
+        try:
+            splan = bbob.suite_plan(
+                preset, suite, _names(algorithms), functions, instances, dims, budget,
+                runs=runs, seed=seed, pop_size=pop_size, batch_size=batch_size,
+            )  # fmt: skip
+        except PlanError as exc:
+            _fail(f"invalid plan:\n{exc}")
+        run_opts = {"workers": workers, "dask": dask, "progress": progress}
+        return bbob.run_suite(splan, out, **run_opts, force=force, retry_failed=retry_failed)
+    if instances is not None or dims is not None:
+        _fail("--instances and --dims need --suite bbob|cec2017|cec2022")
     if preset is not None and plan_file is not None:
         _fail("give one of --preset NAME or --plan FILE.toml, not both")
     if preset is None and plan_file is None and (algorithms is None or functions is None):
@@ -120,6 +144,10 @@ def report_cmd(
     from mawdo.experiments import StoreError, write_report
 
     check_output_dir(out, "--out folder")
+    from mawdo.cli.bbob import is_suite_store, report_suite
+
+    if is_suite_store(store):
+        return report_suite(store, out, plots, svg)
     try:
         files = write_report(store, out, plots=plots, svg=svg, reference=reference)
     except (StoreError, ValueError) as exc:
@@ -135,3 +163,9 @@ def presets_cmd() -> None:
     for name, text in PRESET_HELP.items():
         p = preset_plan(name)
         typer.echo(f"{name:22s} {text}\n{'':22s} {p.total_runs} runs, plan {p.plan_hash[:12]}")
+    from mawdo.cli.bbob import list_presets
+
+    list_presets()
+
+
+bench_app.command("export")(export_cmd)

@@ -11,11 +11,11 @@ transaction; reports and plots read the store only.
 
 Layout: the harness (:mod:`.protocol` with the study-kind registry, :mod:`.plans`, :mod:`.rows`,
 :mod:`.runner`, :mod:`.store`, :mod:`.stats`, :mod:`.tables`) knows no concrete kind; each kind
-is a package that registers itself (:mod:`.benchmark`, :mod:`.planning`). Importing this package
-registers the built-in kinds.
+is a package that registers itself (:mod:`.benchmark`, :mod:`.planning`, :mod:`.bbob`).
+Importing this package registers the built-in kinds.
 """
 
-from mawdo.experiments import benchmark, planning  # noqa: F401 - registers the built-in kinds
+from mawdo.experiments import bbob, benchmark, planning  # noqa: F401 - registers the built-in kinds
 from mawdo.experiments.benchmark import ExperimentPlan, preset_plan, write_report
 from mawdo.experiments.benchmark.plan import PRESETS
 from mawdo.experiments.plans import PlanError, StudyPlanBase

@@ -1,0 +1,134 @@
+"""``mawdo bench`` for standard suites: ``run --suite bbob|cec2017|cec2022``, ``export``, and the
+report of a suite-study store.
+
+Mounted by :mod:`mawdo.cli.bench`: ``run`` hands over here when ``--suite`` or a ``bbob-*``
+preset is given, ``report`` when the store holds a suite study. Every decision lives in
+:mod:`mawdo.experiments.bbob`.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+
+def is_suite_preset(name: str | None) -> bool:
+    """Whether ``name`` is a preset of the suite study (``bbob-quick``, ``bbob-full``)."""
+    from mawdo.experiments.bbob import PRESETS
+
+    return name is not None and (name in PRESETS or name.startswith("bbob"))
+
+
+def is_suite_store(path: Path) -> bool:
+    """Whether the store at ``path`` holds a suite study (False if it is not a store at all:
+    the caller's own reading then reports what is wrong)."""
+    from mawdo.experiments import Store, StoreError
+
+    try:
+        with Store.read(path) as store:
+            return store.plan.kind == "bbob"
+    except StoreError:
+        return False
+
+
+def _ids(text: str | None, what: str) -> list | None:
+    from mawdo.experiments.bbob import parse_ids
+
+    return None if text is None else parse_ids(text, what)
+
+
+def _budget(text: str | None) -> float | None:
+    if text is None:
+        return None
+    try:
+        return float(text)
+    except ValueError:
+        raise ValueError(
+            f"--budget {text!r}: with --suite it is evaluations per dimension, a number > 0 "
+            f"(e.g. 1e4 for 10^4 x D evaluations per run)"
+        ) from None
+
+
+def suite_plan(preset, suite, algorithms, functions, instances, dims, budget, **overrides):
+    """The plan of ``mawdo bench run`` for a suite study, from a preset or from flags.
+
+    Raises
+    ------
+    PlanError
+        An invalid field (unknown suite, function id, dimension, budget <= 0 ...).
+    """
+    from mawdo.experiments.bbob import SuitePlan, preset_plan
+
+    fields = {
+        "suite": suite,
+        "algorithms": algorithms,
+        "functions": _ids(functions, "--functions"),
+        "instances": _ids(instances, "--instances"),
+        "dims": _ids(dims, "--dims"),
+        "budget": _budget(budget),
+        **overrides,
+    }
+    if preset is not None:
+        return preset_plan(preset).with_overrides(**fields)
+    if algorithms is None or functions is None:
+        raise ValueError("with --suite give --algorithms a,b and --functions (e.g. 1-24)")
+    given = {k: v for k, v in fields.items() if v is not None}
+    return SuitePlan.from_dict({"name": "cli", **given})
+
+
+def run_suite(plan, out: Path, **run_options) -> None:
+    """Check the suite's library, then run (or resume) ``plan`` into ``out``."""
+    from mawdo.experiments import run_plan
+    from mawdo.suites import MissingExtraError
+
+    try:
+        plan.check_libraries()
+    except MissingExtraError as exc:
+        typer.echo(f"error: {exc}", err=True)
+        raise typer.Exit(1) from None
+    per_run = f"{plan.total_evaluations / plan.total_runs:.3g}"
+    typer.echo(
+        f"{plan.describe()}; {plan.total_runs} runs, up to {per_run} evaluations each; "
+        f"plan {plan.plan_hash[:12]} -> {out}",
+        err=True,
+    )
+    summary = run_plan(plan, out, **run_options)
+    typer.echo(str(summary))
+    if summary.interrupted:
+        raise typer.Exit(130)
+    if summary.lost:
+        raise typer.Exit(1)
+
+
+def report_suite(store: Path, out: Path, plots: bool, svg: bool) -> None:
+    """Write the suite study's report from ``store`` into ``out``."""
+    from mawdo.experiments.bbob import write_suite_report
+
+    report = write_suite_report(store, out, plots=plots, svg=svg)
+    typer.echo(f"wrote the suite report to {out}/ (start with {report})")
+
+
+def export_cmd(
+    store: Path = typer.Argument(..., help="Results store of a suite study (`run --suite`)."),
+    folder: Path = typer.Argument(..., help="Output folder (one sub-folder per algorithm)."),
+    fmt: str = typer.Option("ioh", "--format", help="Log format: ioh (IOHanalyzer)."),
+) -> None:
+    """Export a suite study's runs as IOHanalyzer logs (zip a folder and upload it)."""
+    from mawdo.cli.errors import check_output_dir
+    from mawdo.experiments.bbob import export_ioh
+
+    if fmt.lower() != "ioh":
+        raise ValueError(f"--format {fmt!r}: the only export format is 'ioh' (IOHanalyzer)")
+    check_output_dir(folder, "export folder")
+    files = export_ioh(store, folder)
+    typer.echo(f"wrote IOHanalyzer logs of {len(files)} (algorithm, function) pairs to {folder}/")
+
+
+def list_presets() -> None:
+    """Print the suite-study presets (for ``mawdo bench presets``)."""
+    from mawdo.experiments.bbob import PRESET_HELP, preset_plan
+
+    for name, text in PRESET_HELP.items():
+        p = preset_plan(name)
+        typer.echo(f"{name:22s} {text}\n{'':22s} {p.total_runs} runs, plan {p.plan_hash[:12]}")

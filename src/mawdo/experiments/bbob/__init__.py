@@ -1,0 +1,48 @@
+"""The standard black-box study (issue 13): BBOB through ``ioh``, CEC 2017/2022 through
+``opfunu``, COCO's protocol and measures, IOHanalyzer export.
+
+Plan (:class:`SuitePlan`, presets ``bbob-quick`` and ``bbob-full``), one task on a worker
+(:func:`execute_suite_task`, rows :class:`SuiteRow` holding each run's best-so-far against
+evaluations), reading back (:mod:`.data`), measures (:mod:`.measures`), tables and report
+(:mod:`.report`), figures (:mod:`.plots`), IOHanalyzer export (:mod:`.export`). Importing this
+package registers the ``bbob`` study kind.
+"""
+
+from mawdo.experiments.bbob.execute import SuiteRow, execute_suite_task
+from mawdo.experiments.bbob.export import export_ioh
+from mawdo.experiments.bbob.plan import (
+    PRESET_HELP,
+    PRESETS,
+    SuitePlan,
+    parse_ids,
+    preset_plan,
+)
+from mawdo.experiments.bbob.report import write_suite_report
+from mawdo.experiments.protocol import STUDY_KINDS, StudyKind, register_kind
+
+KIND = "bbob"
+
+if KIND not in STUDY_KINDS:  # a reload must not register twice
+    register_kind(
+        StudyKind(
+            name=KIND,
+            plan=SuitePlan,
+            execute=execute_suite_task,
+            row=SuiteRow,
+            report=write_suite_report,
+            description="standard suites (BBOB via ioh, CEC via opfunu) under COCO's protocol",
+        )
+    )
+
+__all__ = [
+    "KIND",
+    "PRESETS",
+    "PRESET_HELP",
+    "SuitePlan",
+    "SuiteRow",
+    "execute_suite_task",
+    "export_ioh",
+    "parse_ids",
+    "preset_plan",
+    "write_suite_report",
+]

@@ -1,0 +1,161 @@
+"""Suite-study runs read back from a results store, and COCO's measures computed on them.
+
+Everything a report or an export shows comes from here: the store's best-so-far records, read
+through :func:`load_runs`, turned into runtimes to targets (:func:`runtime_table`) and values at
+budgets (:func:`precision_at`) with :mod:`mawdo.experiments.bbob_metrics`.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+
+import numpy as np
+
+from mawdo.experiments.bbob_metrics import fixed_budget, runtimes
+from mawdo.experiments.store import Store
+
+
+@dataclass(frozen=True)
+class StoredRun:
+    """One successful run of the store (failed runs are counted, not loaded).
+
+    Attributes
+    ----------
+    algorithm : str
+    function_id, instance, dim, run : int
+    function_name : str
+    f_star : float
+        Optimum value.
+    evals : numpy.ndarray of int64
+        Improvement evaluations (1-based).
+    best_y : numpy.ndarray
+        Best raw value from each improvement on.
+    nfev, max_evals : int
+        Evaluations spent and the budget.
+    best_x : numpy.ndarray
+    """
+
+    algorithm: str
+    function_id: int
+    instance: int
+    dim: int
+    run: int
+    function_name: str
+    f_star: float
+    evals: np.ndarray
+    best_y: np.ndarray
+    nfev: int
+    max_evals: int
+    best_x: np.ndarray
+
+    @property
+    def precision(self) -> np.ndarray:
+        """``best_y - f_star`` at each improvement."""
+        return self.best_y - self.f_star
+
+
+@dataclass(frozen=True)
+class StudyRuns:
+    """The runs of a store and its plan's axes."""
+
+    suite: str
+    algorithms: tuple[str, ...]
+    functions: tuple[int, ...]
+    dims: tuple[int, ...]
+    budget: float
+    runs: list[StoredRun]
+    failed: int
+
+    @functools.cached_property
+    def _index(self) -> dict[tuple[str, int, int], list[StoredRun]]:
+        # reports select (algorithm, function, D) cells thousands of times: one pass, not many
+        out: dict[tuple[str, int, int], list[StoredRun]] = {}
+        for r in self.runs:
+            out.setdefault((r.algorithm, r.function_id, r.dim), []).append(r)
+        return out
+
+    def select(self, algorithm=None, function_id=None, dim=None) -> list[StoredRun]:
+        """Runs matching every given filter, in store order."""
+        if None not in (algorithm, function_id, dim):
+            return list(self._index.get((algorithm, function_id, dim), []))
+        return [
+            r
+            for r in self.runs
+            if (algorithm is None or r.algorithm == algorithm)
+            and (function_id is None or r.function_id == function_id)
+            and (dim is None or r.dim == dim)
+        ]
+
+
+def load_runs(store_path) -> StudyRuns:
+    """Every stored run of a suite-study store (read-only).
+
+    Raises
+    ------
+    StoreError
+        Not a results store, or a store of another study kind.
+    """
+    from mawdo.experiments.store import StoreError
+
+    with Store.read(store_path) as store:
+        plan = store.plan
+        if getattr(plan, "kind", None) != "bbob":
+            raise StoreError(
+                f"{store_path} holds a {getattr(plan, 'kind', '?')!r} study, not a suite study "
+                f"(mawdo bench run --suite ...)"
+            )
+        out, failed = [], 0
+        for algo, _problem, r in store.rows(skip=("params", "seed_entropy")):
+            if r.failed:
+                failed += 1
+                continue
+            out.append(
+                StoredRun(
+                    algo,
+                    r.function_id,
+                    r.instance,
+                    r.dim,
+                    r.run,
+                    r.function_name,
+                    r.f_star,
+                    r.evals,
+                    r.best_so_far,
+                    r.nfev,
+                    r.max_evals,
+                    r.best_x,
+                )
+            )
+    return StudyRuns(
+        plan.suite,
+        tuple(plan.algorithms),
+        tuple(plan.functions),
+        tuple(sorted(plan.dims)),
+        plan.budget,
+        out,
+        failed,
+    )
+
+
+def runtime_table(runs: list[StoredRun], targets) -> tuple[np.ndarray, np.ndarray]:
+    """Runtimes of ``runs`` to each precision target, and their evaluations spent.
+
+    Returns
+    -------
+    rt : numpy.ndarray
+        ``(len(runs), T)`` evaluations to reach each target (``inf``: not reached).
+    spent : numpy.ndarray
+        ``(len(runs),)`` evaluations each run spent.
+    """
+    t = np.asarray(targets, dtype=float)
+    rt = np.array([runtimes(r.evals, r.best_y, r.f_star, t) for r in runs]).reshape(-1, t.size)
+    return rt, np.array([r.nfev for r in runs], dtype=float)
+
+
+def precision_at(runs: list[StoredRun], budgets) -> np.ndarray:
+    """``(len(runs), B)`` precision ``f - f_star`` of the best-so-far after each budget
+    (evaluations; ``inf`` before the first evaluation). A run that stopped at the final target
+    keeps its last value."""
+    b = np.asarray(budgets, dtype=float)
+    out = [fixed_budget(r.evals, r.best_y, b) - r.f_star for r in runs]
+    return np.array(out).reshape(-1, b.size)

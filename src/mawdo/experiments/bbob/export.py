@@ -1,0 +1,55 @@
+"""IOHanalyzer logs of a suite study, written from its store (one folder per algorithm)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from mawdo.experiments.bbob.data import load_runs
+from mawdo.experiments.ioh_export import IOHRun, write_analyzer_logs
+
+SUITE_LABEL = {"bbob": "BBOB", "cec2017": "CEC2017", "cec2022": "CEC2022"}
+
+
+def export_ioh(store_path, folder) -> list[Path]:
+    """Write every stored run as IOHanalyzer data: ``folder/<algorithm>/IOHprofiler_f*.json``
+    and ``data_f*/IOHprofiler_f*_DIM*.dat`` (ioh's ``Analyzer`` format, see
+    :mod:`mawdo.experiments.ioh_export`). Zip ``folder`` (or one algorithm's folder) and upload
+    it to IOHanalyzer.
+
+    Parameters
+    ----------
+    store_path : str or Path
+        A store of a suite study.
+    folder : str or Path
+        Output folder (created); existing files of the same functions are overwritten.
+
+    Returns
+    -------
+    list of Path
+        The meta-data files written.
+    """
+    study = load_runs(store_path)
+    if not study.runs:
+        raise ValueError(f"{store_path} holds no finished run yet; nothing to export")
+    folder = Path(folder)
+    written = []
+    for algo in study.algorithms:
+        runs = [
+            IOHRun(
+                r.function_id,
+                r.function_name,
+                r.dim,
+                r.instance,
+                r.evals,
+                r.best_y,
+                r.nfev,
+                None if r.best_x.size != r.dim else r.best_x,
+                r.f_star,
+            )
+            for r in study.select(algo)
+        ]
+        if runs:
+            info = f"mawdo {algo}, budget {study.budget:g} x D evaluations"
+            label = SUITE_LABEL.get(study.suite, study.suite)
+            written += write_analyzer_logs(folder / algo, runs, algo, info, suite=label)
+    return written

@@ -1,0 +1,141 @@
+"""The report of a suite study: aRT tables, fixed-budget tables, Friedman ranks (Markdown,
+LaTeX, CSV) and figures (runtime ECDFs, convergence), from the store only.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from mawdo.experiments.bbob.data import StudyRuns, load_runs
+from mawdo.experiments.bbob.measures import (
+    ART_TARGETS,
+    RANK_FLOOR,
+    art,
+    budget_grid,
+    friedman_final,
+    median_precision,
+    success_counts,
+)
+from mawdo.experiments.tables import Table, to_csv, to_latex, to_markdown
+
+
+def art_table(study: StudyRuns, dim: int) -> Table:
+    """aRT (evaluations) per function and target, one column per algorithm."""
+    values, succ = art(study, dim), success_counts(study, dim)
+    rows = []
+    for fid in study.functions:
+        for j, t in enumerate(ART_TARGETS):
+            rows.append([f"f{fid}", f"{t:.0e}", *values[fid][:, j].tolist()])
+        rows.append([f"f{fid}", "solved", *(f"{s}/{n}" for s, n in succ[fid])])
+    return Table(
+        name=f"art_d{dim}",
+        title=f"{study.suite} D={dim}: aRT in evaluations to reach f - f_opt <= target",
+        columns=["function", "target", *study.algorithms],
+        rows=rows,
+        block=len(ART_TARGETS) + 1,
+        notes=[
+            "aRT = (evaluations of all runs until success or budget) / successes, instances "
+            "pooled (COCO); inf: no run reached the target. 'solved': runs reaching 1e-8.",
+        ],
+        formats=dict.fromkeys(study.algorithms, ".4g"),
+    )
+
+
+def fixed_budget_table(study: StudyRuns, dim: int) -> Table:
+    """Median precision over instances and runs after each budget ``D * 10^k`` and the last."""
+    budgets = budget_grid(study, dim)
+    med = median_precision(study, dim, budgets)
+    rows = [
+        [f"f{fid}", int(b), *med[fid][:, j].tolist()]
+        for fid in study.functions
+        for j, b in enumerate(budgets)
+    ]
+    return Table(
+        name=f"fixed_budget_d{dim}",
+        title=f"{study.suite} D={dim}: median f - f_opt after a budget (evaluations)",
+        columns=["function", "evaluations", *study.algorithms],
+        rows=rows,
+        block=len(budgets),
+        notes=["Runs stop at f - f_opt <= 1e-8 (COCO's final target) and keep that value."],
+        formats=dict.fromkeys(study.algorithms, ".3g"),
+    )
+
+
+def friedman_table(study: StudyRuns) -> Table:
+    """Friedman mean ranks per dimension and over all dimensions."""
+    rows = []
+    for label, dims in [*((f"D={d}", (d,)) for d in study.dims), ("all", study.dims)]:
+        fr = friedman_final(study, dims)
+        rows.append([label, fr.n_functions, *fr.mean_ranks.tolist(), fr.statistic, fr.pvalue])
+    return Table(
+        name="friedman",
+        title=f"{study.suite}: Friedman mean ranks of the median final f - f_opt (1 = best)",
+        columns=["dimensions", "blocks", *study.algorithms, "chi2", "p"],
+        rows=rows,
+        notes=[
+            "Blocks: (function, instance, dimension); value: median over runs of the final "
+            f"precision, floored at {RANK_FLOOR:g} so solved problems tie.",
+        ],
+        formats={**dict.fromkeys(study.algorithms, ".2f"), "chi2": ".1f", "p": ".2g"},
+    )
+
+
+def _write(table: Table, out: Path) -> list[Path]:
+    files = []
+    for ext, text in (
+        ("md", to_markdown(table)),
+        ("tex", to_latex(table, label=f"tab:{table.name}", source="mawdo suite study")),
+        ("csv", to_csv(table)),
+    ):
+        p = out / f"{table.name}.{ext}"
+        p.write_text(text, encoding="utf-8")
+        files.append(p)
+    return files
+
+
+def write_suite_report(store_path, out_dir, plots: bool = True, svg: bool = False, **_) -> Path:
+    """Write ``report.md``, the tables (``.md/.tex/.csv``) and the figures into ``out_dir``.
+
+    Parameters
+    ----------
+    store_path : str or Path
+        A store of a suite study (``mawdo bench run --suite ...``).
+    out_dir : str or Path
+        Output folder (created).
+    plots, svg : bool
+        Draw the figures (PNG), also as SVG.
+
+    Returns
+    -------
+    Path
+        ``out_dir / "report.md"``.
+    """
+    study = load_runs(store_path)
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    if not study.runs:
+        raise ValueError(f"{store_path} holds no finished run yet; run the study first")
+    tables = [friedman_table(study)]
+    for dim in study.dims:
+        tables += [art_table(study, dim), fixed_budget_table(study, dim)]
+    lines = [
+        f"# {study.suite} study: {', '.join(study.algorithms)}",
+        "",
+        f"Functions {', '.join(f'f{f}' for f in study.functions)}; D {study.dims}; budget "
+        f"{study.budget:g} x D evaluations; {len(study.runs)} runs stored"
+        f"{f', {study.failed} failed' if study.failed else ''}. Precision is f - f_opt.",
+        "",
+    ]
+    for t in tables:
+        _write(t, out)
+        lines += [to_markdown(t), ""]
+    if plots:
+        from mawdo.experiments.bbob.plots import plot_convergence, plot_ecdfs
+
+        for dim in study.dims:
+            for p in plot_ecdfs(study, dim, out, svg) + plot_convergence(study, dim, out, svg):
+                if p.suffix == ".png":
+                    lines += [f"![{p.stem}]({p.name})", ""]
+    report = out / "report.md"
+    report.write_text("\n".join(lines), encoding="utf-8")
+    return report
