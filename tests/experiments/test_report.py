@@ -248,3 +248,12 @@ def test_paper_values_transcription_spot_checks():
     assert paper_entry("mawdo2", "F9")[0] == "Table 5"
     assert paper_entry("gwo", None) is None
     assert math.isclose(paper_entry("mawdo", "F9")[1].best, 2.38e-07)
+
+
+def test_wilcoxon_totals_quote_the_papers_own_counts_on_the_same_functions(report_dir):
+    out, _ = report_dir
+    md = (out / "wilcoxon_totals.md").read_text()
+    # paper .tex, tab:results, P rows of F6, F7, F12 (this plan's quartic, rastrigin, camel):
+    # GWO + = +, MEWDO = + +
+    assert "against GWO: 2 +, 1 =, 0 - on the 3 of these 3 functions it reports." in md
+    assert "against MEWDO (reconstructed): 2 +, 1 =, 0 - on the 3 of these 3" in md

@@ -215,7 +215,29 @@ def wilcoxon_tables(data: SweepData) -> tuple[Table, Table]:
                 *(sum(c.sign_holm == s for c in mine) for s in "+=-"),
             ]
         )
+    totals.notes += paper_totals_notes(data)
     return detail, totals
+
+
+def paper_totals_notes(data: SweepData) -> list[str]:
+    """The paper's own ``+/=/-`` counts of MAWDO on the same functions, beside ours.
+
+    Only for unshifted sweeps against MAWDO (the paper has no shifted suite); counted on the
+    paper ids of this sweep, F12-F16 included (the signs are the paper's own test on its rows).
+    """
+    if data.plan.shifted or data.reference != REFERENCE:
+        return []
+    ids = [function_label(f) for f in data.functions]
+    out = []
+    for rival in (a for a in data.algorithms if a != data.reference):
+        signs = [e[1].sign for e in (paper_entry(rival, p) for p in ids) if e and e[1].sign]
+        if signs:
+            counts = ", ".join(f"{signs.count(s)} {s}" for s in "+=-")
+            out.append(
+                f"The paper's Table 3 marks MAWDO against {label(rival)}: {counts} "
+                f"on the {len(signs)} of these {len(ids)} functions it reports."
+            )
+    return out
 
 
 def friedman_table(data: SweepData) -> Table:
