@@ -10,6 +10,7 @@ from mawdo.experiments.planning.execute import PlanningRow, execute_planning_tas
 from mawdo.experiments.planning.plan import (
     BASELINE,
     STUDY_PRESETS,
+    VARIANTS,
     StudyPlan,
     study_preset,
 )
@@ -36,6 +37,7 @@ __all__ = [
     "STUDY_PRESETS",
     "PlanningRow",
     "StudyPlan",
+    "VARIANTS",
     "execute_planning_task",
     "study_preset",
     "write_study_report",
