@@ -197,27 +197,36 @@ def _run(length, smooth=1.0, first=1.0, success=True):
 
 
 def test_generated_sentences_state_what_the_runs_say():
-    from mawdo.experiments.planning.report import _generated_findings
+    from mawdo.experiments.planning.findings import generated_findings
 
     by = {
         "mawdo": [_run(470.0), _run(474.0)],  # mean 472, std 2.83
         "woa": [_run(469.0), _run(470.0), _run(900.0, success=False)],  # 469.5, std 0.71
         "gwo": [_run(480.0, 2.0, 2.0), _run(486.0, 3.0, 2.5)],  # 483, std 4.24
     }
-    rank, spread, agree = _generated_findings(by)
+    rank, spread, agree = generated_findings(by)
     # ours: WOA < MAWDO < GWO; the paper's (Table 6): MAWDO 469.28 < GWO 471.86 < WOA 472.72
     assert rank.startswith("Mean length, shortest first: ours WOA 469.50 < MAWDO (stabilised)")
-    assert "GWO 483.00; the paper's MAWDO (stabilised) 469.28 < GWO 471.86 < WOA 472.72" in rank
+    # the paper's row is its own MAWDO, neither of our readings
+    assert "GWO 483.00; the paper's MAWDO 469.28 < GWO 471.86 < WOA 472.72" in rank
     assert rank.endswith("(same place for 0 of 3).")
     assert spread == "Length std, smallest first: WOA 0.71, MAWDO (stabilised) 2.83, GWO 4.24 px."
     assert agree.startswith(
         "Executed-route and first-plan smoothness agree within 1e-6 rad in 5 of 6"
     )
     assert "largest difference 0.5 rad" in agree
+    # same seeds, same lengths: said; one differing run: not said
+    by["awdo"] = [_run(490.0), _run(496.0)]
+    by["mawdo_literal"] = [_run(490.0), _run(496.0)]
+    by["wdo"] = [_run(490.0), _run(496.5)]
+    same = [s for s in generated_findings(by) if "identical" in s]
+    assert same == [
+        "AWDO and MAWDO literal drove routes of identical length in all 2 runs (same seeds)."
+    ]
 
 
 def test_table6_title_and_notes_name_the_planner_departures():
-    from mawdo.experiments.planning.report import planner_differences
+    from mawdo.experiments.planning.findings import planner_differences
 
     text = planner_differences(study_preset("paper-table6"))
     # docs/deviations.md#d-replan-budget: first plan 1360 x 300, replans 240 x 15
