@@ -255,5 +255,5 @@ def test_wilcoxon_totals_quote_the_papers_own_counts_on_the_same_functions(repor
     md = (out / "wilcoxon_totals.md").read_text()
     # paper .tex, tab:results, P rows of F6, F7, F12 (this plan's quartic, rastrigin, camel):
     # GWO + = +, MEWDO = + +
-    assert "against GWO: 2 +, 1 =, 0 - on the 3 of these 3 functions it reports." in md
-    assert "against MEWDO (reconstructed): 2 +, 1 =, 0 - on the 3 of these 3" in md
+    assert "against GWO: 2 +, 1 =, 0 - over 3 of these 3 functions." in md
+    assert "against MEWDO: 2 +, 1 =, 0 - over 3 of these 3 functions." in md

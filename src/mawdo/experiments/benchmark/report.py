@@ -233,9 +233,10 @@ def paper_totals_notes(data: SweepData) -> list[str]:
         signs = [e[1].sign for e in (paper_entry(rival, p) for p in ids) if e and e[1].sign]
         if signs:
             counts = ", ".join(f"{signs.count(s)} {s}" for s in "+=-")
+            # the paper's own algorithm names (its MEWDO is not our reconstruction)
             out.append(
-                f"The paper's Table 3 marks MAWDO against {label(rival)}: {counts} "
-                f"on the {len(signs)} of these {len(ids)} functions it reports."
+                f"The paper's Table 3 marks MAWDO against {rival.upper()}: {counts} over "
+                f"{len(signs)} of these {len(ids)} functions."
             )
     return out
 

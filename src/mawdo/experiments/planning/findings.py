@@ -62,7 +62,7 @@ def planner_differences(plan: StudyPlan) -> str:
         else "the paper's snapshot cost (map at planning time)"
     )
     guided = (
-        f"guided by {cfg.guide_routes} exact visibility-graph routes"
+        f"guided by up to {cfg.guide_routes} exact visibility-graph routes"
         if cfg.guide_routes
         else "unguided"
     )
