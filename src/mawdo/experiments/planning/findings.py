@@ -128,10 +128,9 @@ def generated_findings(by: dict[str, list[dict]]) -> list[str]:
             "Mean length, shortest first: ours "
             + " < ".join(f"{short(a)} {ours[a]:.2f}" for a in mine)
             + "; the paper's "
-            # the paper's row is its own MAWDO, neither of our two readings in particular
-            + " < ".join(
-                f"{'MAWDO' if a == 'mawdo' else label(a)} {PAPER_TABLE6[a][0]:.2f}" for a in paper
-            )
+            # the paper's own algorithms: its MAWDO is neither of our readings in
+            # particular, its MEWDO is not our reconstruction
+            + " < ".join(f"{a.upper()} {PAPER_TABLE6[a][0]:.2f}" for a in paper)
             + f" (same place for {same} of {len(mine)})."
         )
     spread = {}
