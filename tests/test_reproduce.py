@@ -38,6 +38,12 @@ def test_reproduce_gathers_every_part_and_resumes(tmp_path):
     for link in re.findall(r"!\[[^\]]*\]\(([^)]+)\)", text):
         assert (tmp_path / link).is_file(), link
     assert (tmp_path / "paper-table6" / "table6.csv").is_file()
+    # the preamble says what was run, from the plans: a tiny budget is not the paper's protocol
+    assert "tiny: 2 runs x 8 iterations, pop 8; not the paper's protocol:" in text
+    assert "runs 2 (paper 30)" in text and "shifted suite, ours" in text
+    assert "study-smoke: 2 planning runs per algorithm" in text
+    assert "the planner is not the paper's: first plan 80 particles x 60 iterations" in text
+    assert "the paper's protocol (30 runs" not in text and "SPEC" not in text
     # a second call computes nothing
     said.clear()
     reproduce(

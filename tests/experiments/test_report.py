@@ -134,6 +134,20 @@ def test_paper_comparison_marks_f12_to_f16_not_comparable(report_dir):
     assert f12 and all(r["MAWDO paper"] == "n.c." for r in f12)
     md = (out / "paper_comparison.md").read_text()
     assert "differs from the paper's protocol" in md and "runs=4 (paper 30)" in md
+    assert "docs/functions.md#f-f12-f16" in md and "SPEC" not in md
+
+
+def test_comparability_notes_sort_paper_ids_by_what_we_run():
+    from mawdo.experiments.benchmark.report import comparability_notes
+
+    same, other, nc = comparability_notes(["F1", "F9", "F12", "F7", "F11", "sphere_x"])
+    # F1-F7 run the printed formula; F8-F11 a standard one (docs/functions.md); F12-F16 n.c.
+    assert same.startswith("F1, F7: we run the formula the paper prints")
+    assert other.startswith("F9, F11: we run a standard function in place of the printed")
+    assert "F9 docs/functions.md#f-penalized, F11 docs/functions.md#f-f11" in other
+    assert "not verified to be comparable" in other
+    assert nc.startswith("F12: not comparable (n.c. in the tables)")
+    assert comparability_notes(["F2"]) == [comparability_notes(["F2", "F8"])[0]]
 
 
 def png_size(path) -> tuple[int, int]:
@@ -234,3 +248,12 @@ def test_paper_values_transcription_spot_checks():
     assert paper_entry("mawdo2", "F9")[0] == "Table 5"
     assert paper_entry("gwo", None) is None
     assert math.isclose(paper_entry("mawdo", "F9")[1].best, 2.38e-07)
+
+
+def test_wilcoxon_totals_quote_the_papers_own_counts_on_the_same_functions(report_dir):
+    out, _ = report_dir
+    md = (out / "wilcoxon_totals.md").read_text()
+    # paper .tex, tab:results, P rows of F6, F7, F12 (this plan's quartic, rastrigin, camel):
+    # GWO + = +, MEWDO = + +
+    assert "against GWO: 2 +, 1 =, 0 - over 3 of these 3 functions." in md
+    assert "against MEWDO: 2 +, 1 =, 0 - over 3 of these 3 functions." in md

@@ -1,4 +1,6 @@
-"""The function benchmark (paper Tables 3 and 5, SPEC 3): algorithms x functions x runs.
+"""The function benchmark (paper Tables 3 and 5): algorithms x functions x runs.
+
+Protocol and its readings: ``docs/deviations.md#d-protocol``.
 
 Plan (:class:`ExperimentPlan`, presets), one task on a worker (:func:`execute_benchmark_task`,
 rows :class:`BenchmarkRow`), reading values back (:mod:`.data`), tables and report

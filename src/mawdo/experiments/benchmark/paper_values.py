@@ -5,10 +5,20 @@ Transcribed from ``paper/mawdo-paper.tex`` (the ``tab:results`` longtable and th
 against the source by eye. The paper's ``$\\approx$`` (F11, AWDO) is read as ``=`` (no
 significant difference). Values are the paper's raw final objective values.
 
-Comparability (SPEC 2): for F1-F11 the optimum is 0, so the raw value is also the error and our
-numbers are comparable. The paper's F12-F16 rows do not fit its own function table (F12 Best
--1.00 is not the camel's -1.0316, F14 Best 3.00 is Goldstein-Price's optimum, F13/F15/F16 look
-like errors ``f - f*``), so reports print them as "not comparable".
+Comparability (``docs/functions.md#f-decisions``), per paper id:
+
+* F1-F7: we run the formula the paper prints (F6 with our reading of its noise,
+  ``docs/functions.md#f-noise``), optimum 0, so raw value = error and the paper's numbers stand
+  for the same function. Whether they agree with ours is what the comparison table shows; it is
+  not assumed.
+* F8-F11 (:data:`OTHER_FORMULA`): the printed formula is ill-posed (F8), misses its stated
+  minimum 0 (F11) or is printed twice (F9, F10), so we run a standard function in its place
+  (``docs/functions.md#f-f8``, ``#f-penalized``, ``#f-f11``). The paper's numbers may come from
+  either function: printed beside ours, never verified as comparable.
+* F12-F16 (:data:`NOT_COMPARABLE`): the paper's rows do not fit its own function table (F12
+  Best -1.00 is not the camel's -1.0316, F14 Best 3.00 is Goldstein-Price's optimum, F13/F15/F16
+  look like errors ``f - f*``; ``docs/functions.md#f-f12-f16``), so reports print them as "not
+  comparable".
 """
 
 from __future__ import annotations
@@ -35,7 +45,16 @@ class PaperEntry(NamedTuple):
 
 
 NOT_COMPARABLE = frozenset({"F12", "F13", "F14", "F15", "F16"})
-"""Paper ids whose published rows cannot be compared with our numbers (SPEC 2)."""
+"""Paper ids whose published rows cannot be compared with our numbers
+(``docs/functions.md#f-f12-f16``)."""
+
+OTHER_FORMULA = {
+    "F8": "docs/functions.md#f-f8",
+    "F9": "docs/functions.md#f-penalized",
+    "F10": "docs/functions.md#f-penalized",
+    "F11": "docs/functions.md#f-f11",
+}
+"""Paper ids where we run a standard function instead of the printed formula -> the decision."""
 
 TABLE3_ALGORITHMS = ("gwo", "woa", "wdo", "awdo", "mewdo", "mawdo")
 TABLE5_ALGORITHMS = ("mawdo1", "mawdo2", "mawdo3", "mawdo4", "mawdo")

@@ -1,4 +1,6 @@
-"""Experiment plans: which algorithms, functions, runs and budgets a sweep covers (SPEC 3).
+"""Experiment plans: which algorithms, functions, runs and budgets a sweep covers.
+
+The paper's protocol and our readings of it: ``docs/deviations.md#d-protocol``.
 
 A plan is data. It is validated once, with messages that name the offending field
 (``runs: must be >= 1``, ``algorithms[2]: unknown algorithm 'mawod'. Did you mean 'mawdo'?``),
@@ -80,13 +82,13 @@ class ExperimentPlan(StudyPlanBase):
     seed : int
         Master seed, >= 0.
     shifted : bool
-        Run the shifted suite (optimum moved to a seeded point, SPEC 2).
+        Run the shifted suite (optimum moved to a seeded point, docs/functions.md#f-shift).
     budget : {"iterations", "evals"}
         ``iterations`` (the paper): every algorithm runs ``max_iter`` iterations, so algorithms
         that spend extra evaluations (MAWDO's OBL) get more. ``evals``: every run gets exactly
         ``pop_size * max_iter`` evaluations, so the extra evaluations are paid for.
     bounds_preset : {"paper", "standard"}
-        Bounds preset of the benchmark functions (SPEC 2).
+        Bounds preset of the benchmark functions (docs/functions.md#f-preset).
     options : dict of str to dict
         Per-algorithm options passed to the optimizer (``{"mawdo": {"groups": 4}}``).
     batch_size : int
@@ -310,7 +312,8 @@ PRESETS: dict[str, dict[str, Any]] = {
         "batch_size": 2,
     },
 }
-"""Named plans. ``paper-*`` follow SPEC 3 (pop 50, 500 iterations, 30 runs, F1-F16)."""
+"""Named plans. ``paper-*`` follow the paper's protocol (pop 50, 500 iterations, 30 runs,
+F1-F16; ``docs/deviations.md#d-protocol``)."""
 
 PRESET_HELP = {
     "paper-table3": "paper Table 3: GWO, WOA, WDO, AWDO, MEWDO, MAWDO on F1-F16, 30 runs",

@@ -1,4 +1,4 @@
-"""Figures of a sweep, drawn from the results store only (SPEC 3).
+"""Figures of a sweep, drawn from the results store only (docs/deviations.md#d-protocol).
 
 * Convergence: per function one panel, per algorithm the median best-so-far error
   ``f - f*`` over runs with the interquartile band, log y. The x axis is the iteration, or the

@@ -24,6 +24,7 @@ Files written to the output directory:
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -33,7 +34,7 @@ import numpy as np
 from mawdo.experiments import stats
 from mawdo.experiments.benchmark.data import finals as read_finals
 from mawdo.experiments.benchmark.labels import function_label, label
-from mawdo.experiments.benchmark.paper_values import NOT_COMPARABLE, paper_entry
+from mawdo.experiments.benchmark.paper_values import NOT_COMPARABLE, OTHER_FORMULA, paper_entry
 from mawdo.experiments.benchmark.plan import ExperimentPlan
 from mawdo.experiments.store import Store
 from mawdo.experiments.tables import Table, to_csv, to_latex, to_markdown
@@ -214,7 +215,30 @@ def wilcoxon_tables(data: SweepData) -> tuple[Table, Table]:
                 *(sum(c.sign_holm == s for c in mine) for s in "+=-"),
             ]
         )
+    totals.notes += paper_totals_notes(data)
     return detail, totals
+
+
+def paper_totals_notes(data: SweepData) -> list[str]:
+    """The paper's own ``+/=/-`` counts of MAWDO on the same functions, beside ours.
+
+    Only for unshifted sweeps against MAWDO (the paper has no shifted suite); counted on the
+    paper ids of this sweep, F12-F16 included (the signs are the paper's own test on its rows).
+    """
+    if data.plan.shifted or data.reference != REFERENCE:
+        return []
+    ids = [function_label(f) for f in data.functions]
+    out = []
+    for rival in (a for a in data.algorithms if a != data.reference):
+        signs = [e[1].sign for e in (paper_entry(rival, p) for p in ids) if e and e[1].sign]
+        if signs:
+            counts = ", ".join(f"{signs.count(s)} {s}" for s in "+=-")
+            # the paper's own algorithm names (its MEWDO is not our reconstruction)
+            out.append(
+                f"The paper's Table 3 marks MAWDO against {rival.upper()}: {counts} over "
+                f"{len(signs)} of these {len(ids)} functions."
+            )
+    return out
 
 
 def friedman_table(data: SweepData) -> Table:
@@ -294,11 +318,9 @@ def paper_table(data: SweepData) -> Table | None:
             t.rows.append(row)
     t.notes.append(
         "Paper values from Tables 3 and 5 of arXiv 2511.20394 "
-        "(src/mawdo/experiments/paper_values.py)."
+        "(src/mawdo/experiments/benchmark/paper_values.py)."
     )
-    t.notes.append(
-        "n.c.: not comparable; the paper's F12-F16 rows do not fit its own function table (SPEC 2)."
-    )
+    t.notes += comparability_notes([function_label(f) for f in data.functions])
     diffs = [
         f"{k}={getattr(data.plan, k)} (paper {v})"
         for k, v in PAPER_PROTOCOL.items()
@@ -309,6 +331,34 @@ def paper_table(data: SweepData) -> Table | None:
     if data.reference != REFERENCE:
         t.notes.append(f"Our P row is against {label(data.reference)}, the paper's against MAWDO.")
     return t
+
+
+def comparability_notes(paper_ids: Sequence[str]) -> list[str]:
+    """What the paper's numbers beside ours are worth, for the paper ids in the table."""
+    other = [p for p in paper_ids if p in OTHER_FORMULA]
+    nc = [p for p in paper_ids if p in NOT_COMPARABLE]
+    same = [
+        p for p in paper_ids if re.fullmatch(r"F\d+", p) and p not in OTHER_FORMULA and p not in nc
+    ]
+    out = []
+    if same:
+        out.append(
+            f"{', '.join(same)}: we run the formula the paper prints (F6 with our reading of its "
+            "noise, docs/functions.md#f-noise), so the paper's numbers are for the same function."
+        )
+    if other:
+        anchors = ", ".join(f"{p} {OTHER_FORMULA[p]}" for p in other)
+        out.append(
+            f"{', '.join(other)}: we run a standard function in place of the printed formula "
+            f"({anchors}); the paper's numbers may come from either, so they are not verified "
+            "to be comparable."
+        )
+    if nc:
+        out.append(
+            f"{', '.join(nc)}: not comparable (n.c. in the tables): the paper's rows for them do "
+            "not fit its own function table (docs/functions.md#f-f12-f16)."
+        )
+    return out
 
 
 def summary_table(data: SweepData) -> Table:

@@ -14,6 +14,7 @@ from mawdo.experiments.planning.execute import (
 from mawdo.experiments.planning.plan import (
     BASELINE,
     STUDY_PRESETS,
+    VARIANTS,
     StudyPlan,
     study_preset,
 )
@@ -41,6 +42,7 @@ __all__ = [
     "STUDY_PRESETS",
     "PlanningRow",
     "StudyPlan",
+    "VARIANTS",
     "execute_planning_task",
     "study_preset",
     "write_study_report",

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import time
 import traceback
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -34,6 +34,12 @@ class PlanningRow(RunRow):
         The serialised :class:`~mawdo.planning.planner.PlanResult` (``result_to_bytes``).
     first_plan_curve : numpy.ndarray
         Best-so-far cost after each iteration of the first replan (empty for the baseline).
+    first_plan_smoothness_rad : float or None
+        Eq. 28's total turning (rad, >= 0) of the first planned path, ``start, w1..wm, goal``
+        as planned before the robot moved (the paper may report this rather than the executed
+        route's, ``docs/deviations.md#d-smoothness``); None for a run without a plan.
+    plan_dim : int or None
+        Dimension D of the optimizer's first problem (2 x waypoints); None for the baseline.
     """
 
     seed: int | None = column("int")
@@ -41,6 +47,17 @@ class PlanningRow(RunRow):
     metrics: dict | None = column("json")
     route: bytes | None = column("blob")
     first_plan_curve: np.ndarray | None = column("f64")
+    first_plan_smoothness_rad: float | None = column("real")
+    plan_dim: int | None = column("int")
+
+
+def first_plan_path(result, scenario) -> np.ndarray | None:
+    """The first planned path ``(m + 2, 2)`` (pixels): the robot's position at the first
+    replan, that replan's waypoints and the goal; None when the run made no plan."""
+    if not result.replans:
+        return None
+    first = result.replans[0]
+    return np.vstack([first.position, first.waypoints, scenario.goal])
 
 
 def execute_planning_task(spec: dict[str, Any]) -> list[PlanningRow]:
@@ -76,7 +93,8 @@ def execute_planning_task(spec: dict[str, Any]) -> list[PlanningRow]:
                 )
             )
             continue
-        rows.append(_row(run, t1, seed, settings, res, l_star, l_star_error, spec["snapshots"]))
+        row = _row(run, t1, seed, settings, res, l_star, l_star_error, spec["snapshots"])
+        rows.append(_with_first_plan(row, res, sc, spec["algorithm"] == BASELINE))
     return rows
 
 
@@ -86,7 +104,11 @@ def _plan_one(sc, spec: dict[str, Any], seed: int):
     if spec["algorithm"] == BASELINE:
         return follow_oracle(sc)
     return plan(
-        sc, algorithm=spec["algorithm"], seed=seed, config=spec["planner"], **spec["overrides"]
+        sc,
+        algorithm=spec.get("optimizer", spec["algorithm"]),
+        seed=seed,
+        config=spec["planner"],
+        **spec["overrides"],
     )
 
 
@@ -107,6 +129,16 @@ def _row(run, t1, seed, settings, res, l_star, l_star_error, snapshots) -> Plann
         route=route,
         first_plan_curve=np.asarray(curve, dtype=float),
     )
+
+
+def _with_first_plan(row: PlanningRow, res, sc, baseline: bool) -> PlanningRow:
+    """Add the first plan's smoothness (Eq. 28, rad) and its dimension to a stored row."""
+    from mawdo.planning.path import turning_angles
+
+    first = first_plan_path(res, sc)
+    smooth = None if first is None else float(turning_angles(first).sum())
+    dim = 2 * len(res.replans[0].waypoints) if res.replans else None
+    return replace(row, first_plan_smoothness_rad=smooth, plan_dim=None if baseline else dim)
 
 
 def run_metrics_kept(res, snapshots: int = 8) -> tuple[dict | None, str | None]:

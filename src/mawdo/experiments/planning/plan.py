@@ -30,10 +30,18 @@ STUDY_SCHEMA = 2
 """2: the scenario's contents are part of the plan (and its hash), not its name."""
 BASELINE = "oracle_follower"
 
+VARIANTS: dict[str, tuple[str, dict[str, Any]]] = {
+    "mawdo_literal": ("mawdo", {"low_dim": 3}),
+}
+"""Study labels that run a registered optimizer with fixed options: ``label -> (optimizer,
+options)``. ``mawdo_literal`` is MAWDO with the paper's low-dimensional threshold (D <= 3, so
+the stabilisation is off at the planner's D = 40), beside the planner's default MAWDO, which has
+it on (``docs/deviations.md#d-planning-low-dim``)."""
+
 
 def _check_algorithm(name: str) -> str:
-    if name.lower() == BASELINE:
-        return BASELINE
+    if name.lower() in (BASELINE, *VARIANTS):
+        return name.lower()
     try:
         return OPTIMIZERS[name].name
     except KeyError as exc:
@@ -93,8 +101,9 @@ class StudyPlan(StudyPlanBase):
     name : str
         Label for reports.
     algorithms : sequence of str
-        Registered optimizers, and optionally ``"oracle_follower"`` (the deterministic baseline:
-        one run, whatever ``runs`` says).
+        Registered optimizers, study variants (:data:`VARIANTS`, e.g. ``"mawdo_literal"``) and
+        optionally ``"oracle_follower"`` (the deterministic baseline: one run, whatever ``runs``
+        says).
     scenario : str
         On input, a built-in scenario name or a scenario file path (``.toml``/``.json``); the
         plan then holds that scenario's name.
@@ -211,12 +220,17 @@ class StudyPlan(StudyPlanBase):
         return out
 
     def task_spec(self, task: Task) -> dict[str, Any]:
+        optimizer, options = VARIANTS.get(task.algorithm, (task.algorithm, {}))
+        overrides = dict(self.overrides)
+        if options:  # a variant's options win over the plan's for the options it names
+            overrides["options"] = {**overrides.get("options", {}), **options}
         return {
             "kind": self.kind,
             **task.key(),
+            "optimizer": optimizer,
             "seeds": [self.run_seed(k) for k in task.runs],
             "planner": self.planner,
-            "overrides": dict(self.overrides),
+            "overrides": overrides,
             "snapshots": self.snapshots,
             "scenario": self.scenario_spec,
         }
@@ -231,14 +245,14 @@ class StudyPlan(StudyPlanBase):
 STUDY_PRESETS: dict[str, dict[str, Any]] = {
     "paper-table6": {
         "name": "paper-table6",
-        "algorithms": [*PAPER_ALGORITHMS, BASELINE],
+        "algorithms": [*PAPER_ALGORITHMS, "mawdo_literal", BASELINE],
         "scenario": "paper",
         "runs": 50,
         "planner": "study",
     },
     "study-quick": {
         "name": "study-quick",
-        "algorithms": [*PAPER_ALGORITHMS, BASELINE],
+        "algorithms": [*PAPER_ALGORITHMS, "mawdo_literal", BASELINE],
         "scenario": "paper",
         "runs": 5,
         "planner": "realtime",
@@ -246,7 +260,7 @@ STUDY_PRESETS: dict[str, dict[str, Any]] = {
     },
     "study-smoke": {
         "name": "study-smoke",
-        "algorithms": ["gwo", "mawdo", BASELINE],
+        "algorithms": ["gwo", "mawdo", "mawdo_literal", BASELINE],
         "scenario": "paper",
         "runs": 2,
         "planner": "quick",

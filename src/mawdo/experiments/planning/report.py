@@ -1,8 +1,9 @@
 """Report of a planning study (paper Table 6, Figs. 2-3), read from the store only.
 
-Tables: our Table 6 (length, gap, smoothness) beside the paper's, plus success, collisions
-(independent checker), minimum clearance, latency and evaluations; Wilcoxon rank-sum of MAWDO
-against each rival on length, gap and smoothness (none for the deterministic baseline).
+Tables: our Table 6 (length, gap, smoothness of the executed route and of the first plan) beside
+the paper's, plus success, collisions (independent checker), minimum clearance, latency and
+evaluations; Wilcoxon rank-sum of MAWDO against each rival on length, gap and smoothness (none
+for the deterministic baseline). Every sentence that states a result is generated from the store.
 Figures: per algorithm the 2x4 snapshot grid of its best run, the first plan's cost convergence
 (median and IQR), box plots, and an animated GIF of MAWDO's median run.
 """
@@ -14,28 +15,18 @@ from pathlib import Path
 import numpy as np
 
 from mawdo.experiments import stats
+from mawdo.experiments.planning.findings import (
+    PAPER_TABLE6,
+    label,
+    plan_dims,
+    short,
+    table6_notes,
+)
 from mawdo.experiments.planning.plan import BASELINE, StudyPlan
 from mawdo.experiments.store import Store
 from mawdo.experiments.tables import Table, to_csv, to_latex, to_markdown
 
-# Paper Table 6 ("Performance index"); the paper calls MAWDO "DPAWDO" in that table.
-PAPER_TABLE6 = {
-    "mawdo": (469.28, 1.01, 0.71),
-    "mewdo": (486.37, 1.05, 0.47),
-    "awdo": (531.06, 1.15, 13.50),
-    "wdo": (551.65, 1.19, 15.67),
-    "woa": (472.72, 1.02, 0.81),
-    "gwo": (471.86, 1.02, 0.74),
-}
 COMPARED = (("length_px", "length"), ("gap", "gap"), ("smoothness_rad", "smoothness"))
-
-
-def label(algorithm: str) -> str:
-    if algorithm == BASELINE:
-        return "Oracle follower (frozen obstacles)"
-    from mawdo.optimizers import OPTIMIZERS
-
-    return OPTIMIZERS[algorithm].display if algorithm in OPTIMIZERS else algorithm
 
 
 def study_runs(store: Store, algorithm: str | None = None, route: bool = False) -> list[dict]:
@@ -51,6 +42,8 @@ def study_runs(store: Store, algorithm: str | None = None, route: bool = False) 
             "route": r.route,
             "error_text": r.error_text,
             "curve": r.first_plan_curve,
+            "first_smoothness": r.first_plan_smoothness_rad,
+            "dim": r.plan_dim,
         }
         for a, _, r in store.rows(algorithm, skip=skip)
     ]
@@ -72,105 +65,90 @@ def study_tables(store: Store) -> list[Table]:
     return [_table6(plan, by), _wilcoxon_table(plan, by)]
 
 
-def _table6(plan: StudyPlan, by: dict[str, list[dict]]) -> Table:
-    """Our Table 6 beside the paper's, with the extra columns.
+COLUMNS = {  # name -> format; the table's 19 columns in order
+    "algorithm": None,
+    "runs": None,
+    "length (px)": ".2f",
+    "std": ".2f",
+    "gap L/L*": ".3f",
+    "smoothness executed (rad)": ".2f",
+    "smoothness first plan (rad)": ".2f",
+    "paper length": ".2f",
+    "paper gap": ".2f",
+    "paper smooth": ".2f",
+    "success": ".0%",
+    "collision-free": ".0%",
+    "collisions": ".2f",
+    "min clearance (px)": ".2f",
+    "snapshot gap": ".3f",
+    "latency p50 (ms)": ".1f",
+    "latency p95 (ms)": ".1f",
+    "first plan (s)": ".2f",
+    "nfev": ".3g",
+}
+NAN = float("nan")
 
-    Long because it spells out the table's 18 columns and their formats, one line each.
-    """
+
+def _table6(plan: StudyPlan, by: dict[str, list[dict]]) -> Table:
+    """Our Table 6 beside the paper's, with the extra columns and generated notes."""
     main = Table(
         name="table6",
-        title=f"Path planning on '{plan.scenario}' ({plan.describe()}); ours "
-        "beside the paper's Table 6 (the map is a reconstruction: compare ratios and ranks)",
-        columns=[
-            "algorithm",
-            "runs",
-            "length (px)",
-            "std",
-            "gap L/L*",
-            "smoothness (rad)",
-            "paper length",
-            "paper gap",
-            "paper smooth",
-            "success",
-            "collision-free",
-            "collisions",
-            "min clearance (px)",
-            "snapshot gap",
-            "latency p50 (ms)",
-            "latency p95 (ms)",
-            "first plan (s)",
-            "nfev",
-        ],
-        formats={
-            "length (px)": ".2f",
-            "std": ".2f",
-            "gap L/L*": ".3f",
-            "smoothness (rad)": ".2f",
-            "paper length": ".2f",
-            "paper gap": ".2f",
-            "paper smooth": ".2f",
-            "success": ".0%",
-            "collision-free": ".0%",
-            "collisions": ".2f",
-            "min clearance (px)": ".2f",
-            "snapshot gap": ".3f",
-            "latency p50 (ms)": ".1f",
-            "latency p95 (ms)": ".1f",
-            "first plan (s)": ".2f",
-            "nfev": ".3g",
-        },
+        title=f"Path planning ({plan.describe()}): ours beside the paper's Table 6, from a "
+        "planner that differs from the paper's (budget, cost mode, guidance, guard: first note)",
+        columns=list(COLUMNS),
+        formats={k: f for k, f in COLUMNS.items() if f},
     )
     for a in plan.algorithms:
         runs = [r for r in by[a] if r["metrics"] is not None]
-        failed = len(by[a]) - len(runs)
-        ok = _metric(runs, "success").astype(bool)
-        length = _metric(runs, "length_px")
-        paper = PAPER_TABLE6.get(a, (None, None, None))
-        lat50, lat95 = _metric(runs, "latency_p50_ms"), _metric(runs, "latency_p95_ms")
-        main.rows.append(
-            [
-                label(a),
-                len(runs),
-                float(np.mean(length[ok])) if ok.any() else float("nan"),
-                float(np.std(length[ok], ddof=1)) if ok.sum() > 1 else float("nan"),
-                float(np.nanmean(_metric(runs, "gap"))) if ok.any() else float("nan"),
-                float(np.mean(_metric(runs, "smoothness_rad")[ok])) if ok.any() else float("nan"),
-                *paper,
-                float(ok.mean()) if runs else float("nan"),
-                float(_metric(runs, "collision_free").mean()) if runs else float("nan"),
-                float(_metric(runs, "collisions").mean()) if runs else float("nan"),
-                float(_metric(runs, "min_clearance_px").min()) if runs else float("nan"),
-                float(np.nanmedian(_metric(runs, "snapshot_gap_median"))) if runs else float("nan"),
-                float(np.nanmedian(lat50)) if runs else float("nan"),
-                float(np.nanmedian(lat95)) if runs else float("nan"),
-                float(np.mean(_metric(runs, "first_plan_s"))) if runs else float("nan"),
-                float(np.mean(_metric(runs, "nfev"))) if runs else float("nan"),
-            ]
-        )
-        if failed:
-            main.notes.append(f"{label(a)}: {failed} runs failed (error text in the store)")
-    main.notes.append(
-        "Length, gap and smoothness are means over runs that reached the goal; "
-        "gap = executed length / exact optimum around the static obstacles; "
-        "smoothness = total turning of the executed route (rad); collisions by "
-        "the independent shapely checker in space and time; latency = per-replan "
-        "wall time after the first plan, median over runs of each run's p50/p95."
-    )
-    main.notes.append(
-        "The paper's map coordinates are unpublished: our 'paper' scenario is a "
-        "reconstruction, so pixel values are not comparable, ratios and ranks are."
-    )
-
+        main.rows.append(_table6_row(a, runs, plan_dims(by[a])))
+        if len(by[a]) > len(runs):
+            main.notes.append(
+                f"{label(a)}: {len(by[a]) - len(runs)} runs failed (error text in the store)"
+            )
+    main.notes += table6_notes(plan, by)
     return main
+
+
+def _table6_row(a: str, runs: list[dict], dims: tuple[int, ...]) -> list:
+    ok = _metric(runs, "success").astype(bool)
+    length = _metric(runs, "length_px")
+    first = np.array([r["first_smoothness"] for r in runs], dtype=float)
+
+    def mean_ok(x):  # over runs that reached the goal (a truncated run is short for no merit)
+        return float(np.mean(x[ok])) if ok.any() else NAN
+
+    def over_runs(f, key):
+        return float(f(_metric(runs, key))) if runs else NAN
+
+    return [
+        label(a, dims),
+        len(runs),
+        mean_ok(length),
+        float(np.std(length[ok], ddof=1)) if ok.sum() > 1 else NAN,
+        float(np.nanmean(_metric(runs, "gap"))) if ok.any() else NAN,
+        mean_ok(_metric(runs, "smoothness_rad")),
+        mean_ok(first) if np.isfinite(first[ok]).all() else NAN,
+        *PAPER_TABLE6.get(a, (None, None, None)),
+        float(ok.mean()) if runs else NAN,
+        over_runs(np.mean, "collision_free"),
+        over_runs(np.mean, "collisions"),
+        over_runs(np.min, "min_clearance_px"),
+        over_runs(np.nanmedian, "snapshot_gap_median"),
+        over_runs(np.nanmedian, "latency_p50_ms"),
+        over_runs(np.nanmedian, "latency_p95_ms"),
+        over_runs(np.mean, "first_plan_s"),
+        over_runs(np.mean, "nfev"),
+    ]
 
 
 def _wilcoxon_table(plan: StudyPlan, by: dict[str, list[dict]]) -> Table:
     """Wilcoxon rank-sum of MAWDO against each rival on length, gap and smoothness."""
     wil = Table(
         name="table6_wilcoxon",
-        title="Wilcoxon rank-sum of MAWDO against each rival (two-sided, 5%): + MAWDO "
-        "significantly better, - worse, = no significant difference",
-        columns=["rival", *[f"{n} p" for _, n in COMPARED], *[n for _, n in COMPARED]],
+        title="Wilcoxon rank-sum of MAWDO (stabilised) against each rival on the runs that "
+        "reached the goal (two-sided, 5%): + MAWDO significantly better, - worse, = no "
+        "significant difference",
+        columns=["rival", "runs", *[f"{n} p" for _, n in COMPARED], *[n for _, n in COMPARED]],
         formats={f"{n} p": ".3g" for _, n in COMPARED},
     )
     if "mawdo" in by:
@@ -180,12 +158,18 @@ def _wilcoxon_table(plan: StudyPlan, by: dict[str, list[dict]]) -> Table:
             if a in ("mawdo", BASELINE):
                 continue
             rival = [r for r in by[a] if r["metrics"] and r["metrics"]["success"]]
+            runs = f"{len(ref)} / {len(rival)}"
+            if not (ref and rival):  # no test without runs on both sides: say so, not "="
+                wil.rows.append([short(a), runs, *[NAN] * len(COMPARED), *["n/a"] * len(COMPARED)])
+                continue
             res = [
                 stats.ranksum(_finite(_metric(ref, k)), _finite(_metric(rival, k)))
                 for k, _ in COMPARED
             ]
-            wil.rows.append([label(a), *[r.pvalue for r in res], *[r.sign for r in res]])
-        wil.notes.append("The oracle follower is deterministic (one run): no test.")
+            wil.rows.append([short(a), runs, *[r.pvalue for r in res], *[r.sign for r in res]])
+        wil.notes.append("runs: runs that reached the goal, MAWDO (stabilised) / rival.")
+        if BASELINE in by:
+            wil.notes.append("The oracle follower is deterministic (one run): no test.")
     return wil
 
 
@@ -216,20 +200,19 @@ def study_figures(store: Store, out: Path, gif: bool = True) -> list[Path]:
     best, curves, boxes = {}, {}, {k: {} for k, _ in COMPARED}
     for a in plan.algorithms:
         runs = study_runs(store, a, route=True)
+        lab = label(a, plan_dims(runs))
         pick = _pick(runs, "best")
         if pick is not None:
-            best[label(a)] = (result_from_bytes(pick["route"], sc), pick["metrics"])
+            best[a] = (lab, result_from_bytes(pick["route"], sc), pick["metrics"])
         c = [r["curve"] for r in runs if r["metrics"] and r["curve"].size]
         if c and a != BASELINE:
             T = max(len(x) for x in c)
-            curves[label(a)] = np.stack([np.pad(x, (0, T - len(x)), mode="edge") for x in c])
+            curves[lab] = np.stack([np.pad(x, (0, T - len(x)), mode="edge") for x in c])
         for k, _ in COMPARED:
-            boxes[k][label(a)] = _metric([r for r in runs if r["metrics"]], k)
-    for lab, (res, m) in best.items():
-        safe = "".join(ch if ch.isalnum() else "_" for ch in lab.lower()).strip("_")
-        figs.append(
-            render.snapshot_grid({lab: res}, out / f"snapshots_{safe}.png", metrics={lab: m})
-        )
+            boxes[k][short(a)] = _metric([r for r in runs if r["metrics"]], k)
+    for a, (lab, res, m) in best.items():
+        # files are named by the study key: labels carry spaces and D
+        figs.append(render.snapshot_grid({lab: res}, out / f"snapshots_{a}.png", metrics={lab: m}))
     if curves:
         figs.append(render.plot_cost_convergence(curves, out / "cost_convergence.png"))
     names = {
