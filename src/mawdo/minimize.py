@@ -127,6 +127,8 @@ def minimize(
 ) -> OptimizeResult:
     """Minimise ``fun`` over a box with ``runs`` independent runs of one algorithm.
 
+    Long by design: the numpydoc parameter list is most of it; the body reads top-down.
+
     Parameters
     ----------
     fun : str, BenchmarkFunction or callable

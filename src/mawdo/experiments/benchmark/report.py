@@ -3,6 +3,7 @@
 Reads only the store (its plan and its runs) and never recomputes a run, so a report can be
 regenerated at any time, also from a partial sweep. Every table is a deterministic function of
 the stored numbers; wall-clock times go to ``timing.csv`` alone.
+Long by design (about 520 lines): one writer per table of the paper, each short.
 
 Files written to the output directory:
 

@@ -121,6 +121,8 @@ def plan_ompl(
 ) -> BaselineResult:
     """Plan once with an OMPL planner on the static obstacles and judge the route.
 
+    Long by design: OMPL set-up, solve and the checker's verdict in one place, each a short block.
+
     Parameters
     ----------
     scenario : Scenario

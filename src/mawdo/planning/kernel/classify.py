@@ -16,6 +16,8 @@ def _classify(i, n, seg, out, scratch, obs, extra, margin):
     """:func:`_polygon_hit` for ``n`` segments at once, convex polygon i, loops over segments
     innermost (they vectorise).
 
+    Long by design: one fused Numba pass; splitting it adds calls in the hot loop.
+
     Long because it is one vectorised pass per axis over all segments (Numba hot loop).
 
     ``seg = (ax, ay, bx, by)`` arrays (obstacle i's frame); writes ``out[e]``: 1 hit, 0 miss, -1

@@ -51,6 +51,8 @@ def _moving_pass(i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, g
 def _centres(i, blk, path, work, obs, motion, grid):
     """Step 1: obstacle i's centre at each path time into ``work`` (cxp, cyp, cep, kpt).
 
+    Long by design: one fused Numba step; splitting it adds calls in the hot loop.
+
     Long because its three ways (count knots, interpolate in the grid, walk) share one set of
     outputs and are each a tight loop; splitting them would only pass the same arrays around.
     """
@@ -197,6 +199,8 @@ def _near_segments(i, blk, room, path, work, obs, pre):
 @njit(cache=True, fastmath=False, error_model="numpy", inline="always")
 def _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, pre, ncol):
     """Step 3: exact tests of the ``nf`` flagged segments on obstacle i, piece by piece.
+
+    Long by design: one fused Numba step; splitting it adds calls in the hot loop.
 
     Long because it is one loop that fills a bounded list of relative segments, tests the list
     in one pass and resumes where it stopped; its phases share the loop's state.

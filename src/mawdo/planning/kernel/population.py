@@ -48,6 +48,8 @@ def population_cost(
 ):
     """Cost of every candidate path; writes the arrays of ``out`` in place.
 
+    Long by design: one fused Numba pass; splitting it adds calls and array round trips.
+
     Long because it lays out one scratch buffer for every pass (a single allocation the caller
     keeps) and then runs the block loop over it; the passes themselves are separate functions.
 

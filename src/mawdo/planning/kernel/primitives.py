@@ -149,6 +149,8 @@ def _segment_hits_polygon(ax, ay, bx, by, verts, i, nv, r):
 def _polygon_hit(ax, ay, bx, by, i, thresh, verts, nverts, hull, nhull, extra, margin):
     """Segment ab (in obstacle i's frame) is within ``thresh[i]`` of polygon i.
 
+    Long by design: one exact test, inlined by Numba; its cases share local state.
+
     Long because it inlines the staged filters of one hit test (Numba hot path).
 
     ``extra`` comes from :func:`_prepare`; ``margin`` is the room (pixels) a fast decision needs

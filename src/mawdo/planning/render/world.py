@@ -34,6 +34,8 @@ def _draw_world(
 ) -> None:
     """Draw the world at time ``t`` on ``ax``, and a run's state at ``t`` if ``result`` is given.
 
+    Long by design: one panel's layers in drawing order, each a short block.
+
     Long because each layer of the panel is a few plotting calls in drawing order.
 
     Parameters
