@@ -295,8 +295,6 @@ def run_plan(
 ) -> RunSummary:
     """Compute every run of ``plan`` that ``store_path`` does not hold yet, and store it.
 
-    Long by design: resume, backends and interrupt handling share one bookkeeping.
-
     Long only by its numpydoc docstring; the loop over outcomes is :func:`_store_outcomes`.
 
     Parameters
