@@ -71,7 +71,7 @@ def planner_differences(plan: StudyPlan) -> str:
         f"{cfg.replan_every} step(s) at {cfg.pop_size} particles x {cfg.replan_iters} iterations "
         f"(the paper states 8 groups x 170 particles and no iteration count, "
         f"{DEVIATIONS}#d-replan-budget); {mode}; seeds {guided} and every driven stretch "
-        f"checked by a guard ({DEVIATIONS}#guided-guarded-planner-issue-10)."
+        f"checked by a guard ({DEVIATIONS}#d-guided-planner)."
     )
 
 
