@@ -36,6 +36,7 @@ FLOORS = (
     ("mawdo.experiments", 4),  # the harness: protocol, plans, rows, store, runner, stats, tables
     ("mawdo.experiments.benchmark", 5),  # study kinds: each imports the harness only
     ("mawdo.experiments.planning", 5),
+    ("mawdo.experiments.arena", 5),
     ("mawdo.experiments.__init__", 6),  # registers the built-in kinds
     ("mawdo.reproduce", 7),  # runs every kind's study: above the kinds, below the commands
     ("mawdo.cli", 8),
@@ -51,7 +52,11 @@ NAMES = {
     7: "reproduce",
     8: "commands",
 }
-KIND_PACKAGES = ("mawdo.experiments.benchmark", "mawdo.experiments.planning")
+KIND_PACKAGES = (
+    "mawdo.experiments.benchmark",
+    "mawdo.experiments.planning",
+    "mawdo.experiments.arena",
+)
 
 
 def module_name(path: Path) -> str:
