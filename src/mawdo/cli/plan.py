@@ -149,3 +149,9 @@ def report_cmd(
         console.print(f"[bold red]error:[/] {exc}")
         raise typer.Exit(1) from None
     console.print(f"report: {path}")
+
+
+# ``mawdo plan bench``: the planning arena, in its own module
+from mawdo.cli.plan_bench import bench_app  # noqa: E402
+
+plan_app.add_typer(bench_app, name="bench")

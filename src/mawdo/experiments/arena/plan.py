@@ -16,7 +16,7 @@ from __future__ import annotations
 import difflib
 from typing import Annotated, Any, ClassVar, Literal
 
-from pydantic import Field, PositiveInt, field_validator, model_validator
+from pydantic import Field, field_validator, model_validator
 
 from mawdo.experiments.plans import PlanError, StudyPlanBase
 from mawdo.experiments.protocol import Task
@@ -116,7 +116,7 @@ class ArenaPlan(StudyPlanBase):
     kind: Literal["arena"] = "arena"
     name: str = "arena"
     families: Annotated[tuple[str, ...], Field(min_length=1)]
-    n: PositiveInt = 50
+    n: Annotated[int, Field(ge=1)] = 50
     algorithms: tuple[str, ...] = ("mawdo",)
     baselines: tuple[str, ...] = (ORACLE, "straight")
     params: dict[str, dict[str, Any]] = Field(default_factory=dict)
@@ -125,7 +125,7 @@ class ArenaPlan(StudyPlanBase):
     overrides: dict[str, Any] = Field(default_factory=dict)
     ompl_time: Annotated[float, Field(gt=0, le=60)] = 0.5
     ompl_resolution: Annotated[float, Field(gt=0, le=10)] = 0.5
-    batch_size: PositiveInt = 5
+    batch_size: Annotated[int, Field(ge=1)] = 5
 
     @field_validator("families")
     @classmethod
