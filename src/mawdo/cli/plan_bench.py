@@ -54,7 +54,21 @@ def _params(pairs: list[str]) -> dict[str, dict]:
     return out
 
 
-def _plan(suite, n, algorithms, baselines, seed, planner, params, batch_size):
+def _options(pairs: list[str]) -> dict:
+    """``key=value`` planner overrides (values parsed as JSON when possible)."""
+    out = {}
+    for pair in pairs:
+        key, sep, value = pair.partition("=")
+        if not sep or not key.strip():
+            raise ValueError(f"--option {pair!r} must look like key=value, e.g. max_steps=200")
+        try:
+            out[key.strip()] = json.loads(value)
+        except json.JSONDecodeError:
+            out[key.strip()] = value
+    return out
+
+
+def _plan(suite, n, algorithms, baselines, seed, planner, params, batch_size, options=()):
     from mawdo.experiments.arena import ARENA_PRESETS, arena_preset
 
     names = _names(suite) or ["arena-default"]
@@ -72,6 +86,7 @@ def _plan(suite, n, algorithms, baselines, seed, planner, params, batch_size):
         planner=planner,
         params=_params(params) or None,
         batch_size=batch_size,
+        overrides=_options(options) or None,
     )
 
 
@@ -89,6 +104,7 @@ def run_cmd(
     seed: int = typer.Option(None, help="master seed of scenes and planners"),
     planner: str = typer.Option(None, help="planner preset: realtime, study, paper, quick"),
     param: list[str] = typer.Option([], help="family parameter, e.g. --param forest.n=12"),
+    option: list[str] = typer.Option([], help="planner setting, e.g. --option max_steps=200"),
     batch_size: int = typer.Option(None, help="scenes per task"),
     workers: int = typer.Option(1, help="local worker processes"),
     dask: str = typer.Option(None, help="Dask scheduler address, e.g. tcp://host:8786"),
@@ -104,7 +120,7 @@ def run_cmd(
     if report is not None:
         check_output_dir(report, "--report folder")
     try:
-        plan = _plan(suite, n, algorithms, baselines, seed, planner, param, batch_size)
+        plan = _plan(suite, n, algorithms, baselines, seed, planner, param, batch_size, option)
     except (PlanError, ValueError) as exc:
         console.print(f"[bold red]error:[/] {exc}")
         raise typer.Exit(2) from None

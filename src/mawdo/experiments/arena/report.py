@@ -133,8 +133,9 @@ def arena_tables(store: Store) -> list[Table]:
 
 def _ecdf(ax, x: np.ndarray, label: str) -> None:
     x = np.sort(x[np.isfinite(x)])
-    if x.size:
-        ax.step(x, np.arange(1, x.size + 1) / x.size, where="post", label=label)
+    if x.size:  # starts at 0 on the left of the smallest value, so one run is a visible step
+        y = np.arange(0, x.size + 1) / x.size
+        ax.step(np.concatenate([x[:1], x]), y, where="post", label=label)
 
 
 def arena_figures(store: Store, out: Path) -> list[Path]:
@@ -165,7 +166,10 @@ def arena_figures(store: Store, out: Path) -> list[Path]:
         for p in plan.planners:
             g = np.array([r.gap for r in rows[p, f] if r.status == "ok" and r.success], float)
             _ecdf(ax, g, _label(p))
+        if not ax.lines:
+            ax.text(0.5, 0.5, "no successful run", ha="center", transform=ax.transAxes)
         ax.set(title=f, xlabel="gap L / L* (successful runs)", ylabel="fraction")
+        ax.ticklabel_format(axis="x", useOffset=False)
         ax.grid(alpha=0.3)
     for ax in axes[nf:]:
         ax.set_visible(False)
