@@ -93,8 +93,8 @@ def _plan(suite, n, algorithms, baselines, seed, planner, params, batch_size, op
 @bench_app.command("run")
 def run_cmd(
     suite: str = typer.Option(
-        "arena-default", help="comma-separated scene families, or a preset (arena-default, "
-        "arena-quick)"
+        "arena-default",
+        help="comma-separated scene families, or a preset (arena-default, arena-quick)",
     ),
     n: int = typer.Option(None, "--n", help="scenes per family (override)"),
     algorithms: str = typer.Option(None, help="comma-separated optimizers, e.g. mawdo,woa,gwo"),

@@ -126,9 +126,9 @@ def test_a_rejected_scene_is_stored_apart_never_as_a_planner_failure(monkeypatch
 
 # ------------------------------------------------------------------ stored scenes and metrics
 def test_each_row_stores_its_scene_which_reruns_alone_to_the_same_numbers(reference):
+    from mawdo.planning.planner import plan
     from mawdo.planning.scenario import scenario_from_dict
     from mawdo.planning.scenes import generate_scene
-    from mawdo.planning.planner import plan
 
     with Store.read(reference) as store:
         rows = [(a, f, r) for a, f, r in store.rows()]
@@ -184,8 +184,11 @@ def test_report_numbers_equal_the_store(reference, tmp_path):
             gaps = sorted(g for s, _, g, *_ in q if s)
             if gaps:
                 assert got["gap median"] == pytest.approx(statistics.median(gaps), rel=1e-12)
-                p90 = statistics.quantiles(gaps, n=10, method="inclusive")[8] if len(gaps) > 1 \
+                p90 = (
+                    statistics.quantiles(gaps, n=10, method="inclusive")[8]
+                    if len(gaps) > 1
                     else gaps[0]
+                )
                 assert got["gap p90"] == pytest.approx(p90, rel=1e-12)
                 assert got["gap max"] == max(gaps)
             else:

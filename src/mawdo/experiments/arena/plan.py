@@ -162,7 +162,8 @@ class ArenaPlan(StudyPlanBase):
         for fam, p in self.params.items():
             if fam not in self.families:
                 raise ValueError(
-                    f"params: {fam!r} is not one of the plan's families ({', '.join(self.families)})"
+                    f"params: {fam!r} is not one of the plan's families "
+                    f"({', '.join(self.families)})"
                 )
             FAMILIES[fam].resolve(p)  # ValueError naming the parameter and its range
         if not self.algorithms and not self.baselines:
@@ -254,6 +255,7 @@ def arena_preset(name: str) -> ArenaPlan:
     if name not in ARENA_PRESETS:
         close = difflib.get_close_matches(name, list(ARENA_PRESETS), n=2)
         hint = f" Did you mean {', '.join(map(repr, close))}?" if close else ""
-        raise PlanError(f"preset: unknown arena preset {name!r}.{hint} Presets: "
-                        f"{', '.join(ARENA_PRESETS)}")
+        raise PlanError(
+            f"preset: unknown arena preset {name!r}.{hint} Presets: {', '.join(ARENA_PRESETS)}"
+        )
     return ArenaPlan.from_dict(ARENA_PRESETS[name])

@@ -143,16 +143,30 @@ def arena_figures(store: Store, out: Path) -> list[Path]:
     from mawdo.planning.render import _new_figure
 
     plan = _plan_of(store)
-    rows = {(a, f): [r for _, _, r in store.rows(a, f, skip=NO_TRACE)] for a in plan.planners
-            for f in plan.families}
+    rows = {
+        (a, f): [r for _, _, r in store.rows(a, f, skip=NO_TRACE)]
+        for a in plan.planners
+        for f in plan.families
+    }
     fig = _new_figure((7, 4.5), 120)
     ax = fig.add_subplot()
     for p in plan.planners:
-        w = np.array([r.wall_time for f in plan.families for r in rows[p, f]
-                      if r.status == "ok" and r.wall_time], dtype=float)
+        w = np.array(
+            [
+                r.wall_time
+                for f in plan.families
+                for r in rows[p, f]
+                if r.status == "ok" and r.wall_time
+            ],
+            dtype=float,
+        )
         _ecdf(ax, w, _label(p))
-    ax.set(xscale="log", xlabel="wall time per run (s)", ylabel="fraction of runs",
-           title="Runtime ECDF, all families")
+    ax.set(
+        xscale="log",
+        xlabel="wall time per run (s)",
+        ylabel="fraction of runs",
+        title="Runtime ECDF, all families",
+    )
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     paths = [out / "ecdf_runtime.png"]
@@ -210,14 +224,20 @@ def failure_gallery(store: Store, out: Path, limit: int | None = None) -> list[t
                 res = result_from_bytes(r.trace, sc)
                 img = Path("gallery") / f"{r.scene_name}__{p}.png"
                 why = "collides" if r.collision_free == 0 else f"failed: {r.reason}"
-                render.snapshot_grid({f"{_label(p)} on {r.scene_name} ({why})": res},
-                                     out / img, rows=1, cols=4, dpi=80)
+                render.snapshot_grid(
+                    {f"{_label(p)} on {r.scene_name} ({why})": res},
+                    out / img,
+                    rows=1,
+                    cols=4,
+                    dpi=80,
+                )
                 items.append((str(img), str(scene_file)))
     return items
 
 
-def write_arena_report(store_path, out_dir, *, figures: bool = True,
-                       gallery_limit: int | None = 200) -> Path:
+def write_arena_report(
+    store_path, out_dir, *, figures: bool = True, gallery_limit: int | None = 200
+) -> Path:
     """Tables (Markdown, LaTeX, CSV), ECDFs and the failure gallery into ``out_dir``; returns
     the Markdown report's path."""
     out = Path(out_dir)
@@ -227,10 +247,15 @@ def write_arena_report(store_path, out_dir, *, figures: bool = True,
         tables = arena_tables(store)
         figs = arena_figures(store, out) if figures else []
         gallery = failure_gallery(store, out, gallery_limit) if figures else []
-        rejected = [(f, r.run, r.reason) for f in plan.families for _, _, r in
-                    store.rows(None, f, skip=NO_TRACE) if r.status == "rejected"]
-        errors = [(a, f, r.run, r.error_text) for a, f, r in store.rows(skip=NO_TRACE)
-                  if r.error_text]
+        rejected = [
+            (f, r.run, r.reason)
+            for f in plan.families
+            for _, _, r in store.rows(None, f, skip=NO_TRACE)
+            if r.status == "rejected"
+        ]
+        errors = [
+            (a, f, r.run, r.error_text) for a, f, r in store.rows(skip=NO_TRACE) if r.error_text
+        ]
     for t in tables:
         (out / f"{t.name}.md").write_text(to_markdown(t))
         (out / f"{t.name}.tex").write_text(to_latex(t, label=f"tab:{t.name}"))
