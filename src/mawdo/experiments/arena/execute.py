@@ -161,7 +161,12 @@ def _plan_one(spec: dict[str, Any], scene, seed: int) -> tuple[dict[str, Any], b
 
     name, sc = spec["algorithm"], scene.scenario
     if name == ORACLE:
-        res = follow_oracle(sc)
+        # the step limit our planner gets (planning.execute): follow_oracle's own default
+        # (4 straight lines) cuts long detours such as mazes short
+        v = sc.robot_speed
+        budget = max(4 * sc.straight_line_length(), 2 * scene.l_star)
+        steps = spec["overrides"].get("max_steps") or int(np.ceil(budget / v)) + 10
+        res = follow_oracle(sc, max_steps=steps)
         m = _from_plan_result(res, scene.l_star)
     elif spec["is_baseline"]:
         from mawdo.planning.baselines import run_baseline

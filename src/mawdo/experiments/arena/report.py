@@ -131,15 +131,18 @@ def arena_tables(store: Store) -> list[Table]:
     return [t]
 
 
-def _ecdf(ax, x: np.ndarray, label: str) -> None:
+def _ecdf(ax, x: np.ndarray, label: str, color: str) -> None:
     x = np.sort(x[np.isfinite(x)])
     if x.size:  # starts at 0 on the left of the smallest value, so one run is a visible step
         y = np.arange(0, x.size + 1) / x.size
-        ax.step(np.concatenate([x[:1], x]), y, where="post", label=label)
+        ax.step(np.concatenate([x[:1], x]), y, where="post", label=label, color=color)
 
 
 def arena_figures(store: Store, out: Path) -> list[Path]:
     """Runtime ECDF (all families) and gap ECDF (one panel per family), from stored rows."""
+    from matplotlib.lines import Line2D
+    from matplotlib.ticker import MaxNLocator
+
     from mawdo.planning.render import _new_figure
 
     plan = _plan_of(store)
@@ -148,6 +151,8 @@ def arena_figures(store: Store, out: Path) -> list[Path]:
         for a in plan.planners
         for f in plan.families
     }
+    # one colour per planner in every panel, whether or not it has data there
+    colors = {p: f"C{i % 10}" for i, p in enumerate(plan.planners)}
     fig = _new_figure((7, 4.5), 120)
     ax = fig.add_subplot()
     for p in plan.planners:
@@ -160,7 +165,7 @@ def arena_figures(store: Store, out: Path) -> list[Path]:
             ],
             dtype=float,
         )
-        _ecdf(ax, w, _label(p))
+        _ecdf(ax, w, _label(p), colors[p])
     ax.set(
         xscale="log",
         xlabel="wall time per run (s)",
@@ -179,15 +184,17 @@ def arena_figures(store: Store, out: Path) -> list[Path]:
     for ax, f in zip(axes, plan.families, strict=False):
         for p in plan.planners:
             g = np.array([r.gap for r in rows[p, f] if r.status == "ok" and r.success], float)
-            _ecdf(ax, g, _label(p))
+            _ecdf(ax, g, _label(p), colors[p])
         if not ax.lines:
             ax.text(0.5, 0.5, "no successful run", ha="center", transform=ax.transAxes)
         ax.set(title=f, xlabel="gap L / L* (successful runs)", ylabel="fraction")
         ax.ticklabel_format(axis="x", useOffset=False)
+        ax.xaxis.set_major_locator(MaxNLocator(4))
         ax.grid(alpha=0.3)
     for ax in axes[nf:]:
         ax.set_visible(False)
-    axes[0].legend(fontsize=7)
+    handles = [Line2D([], [], color=colors[p], label=_label(p)) for p in plan.planners]
+    fig.legend(handles=handles, loc="outside lower center", ncols=min(6, len(handles)))
     paths.append(out / "ecdf_gap.png")
     fig.savefig(paths[1])
     return paths
@@ -210,8 +217,9 @@ def failure_gallery(store: Store, out: Path, limit: int | None = None) -> list[t
 
     plan = _plan_of(store)
     items = []
-    for f in plan.families:
-        for p in plan.planners:
+    # planner-major: our planners' failures come first when ``limit`` cuts the gallery
+    for p in plan.planners:
+        for f in plan.families:
             for _, _, r in store.rows(p, f):
                 if r.status != "ok" or r.trace is None:
                     continue
@@ -256,6 +264,10 @@ def write_arena_report(
         errors = [
             (a, f, r.run, r.error_text) for a, f, r in store.rows(skip=NO_TRACE) if r.error_text
         ]
+        n_bad = sum(
+            r.status == "ok" and not (r.success and r.collision_free)
+            for _, _, r in store.rows(skip=NO_TRACE)
+        )
     for t in tables:
         (out / f"{t.name}.md").write_text(to_markdown(t))
         (out / f"{t.name}.tex").write_text(to_latex(t, label=f"tab:{t.name}"))
@@ -270,7 +282,8 @@ def write_arena_report(
         md.append("\n## Runs that raised\n")
         md += [f"- {a} on {f} scene {k}: {e}" for a, f, k, e in errors]
     if gallery:
-        md.append(f"\n## Failure gallery ({len(gallery)} runs)\n")
+        md.append(f"\n## Failure gallery ({len(gallery)} of {n_bad} failed or colliding runs)\n")
+        md.append("Re-run a scene alone: `mawdo plan scenes/<name>.toml -a <algorithm>`.\n")
         md += [f"- `{s}`\n\n  ![{Path(i).stem}]({i})\n" for i, s in gallery]
     path = out / "arena.md"
     path.write_text("\n".join(md))
