@@ -261,3 +261,24 @@ def test_kill_9_then_resume_computes_nothing_twice(reference, tmp_path):
     assert len(resumed) == len(set(resumed)) == plan.total_runs - len(before)
     assert not set(resumed) & before
     assert values(db) == values(reference)
+
+
+@pytest.mark.slow  # renders a snapshot per failed run
+def test_gallery_has_one_image_and_scene_file_per_failed_or_colliding_run(reference, tmp_path):
+    out = tmp_path / "rep"
+    path = write_arena_report(reference, out)
+    conn = sqlite3.connect(reference)
+    try:
+        bad = conn.execute(
+            "SELECT algorithm, scene_name, scene_toml FROM runs WHERE status = 'ok' "
+            "AND (success = 0 OR collision_free = 0)"
+        ).fetchall()
+    finally:
+        conn.close()
+    assert bad  # the straight line hits trees: the gallery is not empty
+    images = sorted(p.name for p in (out / "gallery").glob("*.png"))
+    assert images == sorted(f"{name}__{alg}.png" for alg, name, _ in bad)
+    for _, name, toml in bad:
+        assert (out / "scenes" / f"{name}.toml").read_text() == toml
+        assert f"scenes/{name}.toml" in path.read_text()
+    assert (out / "ecdf_runtime.png").stat().st_size > 10_000
