@@ -226,7 +226,8 @@ class ArenaPlan(StudyPlanBase):
         )
 
 
-DEFAULT_FAMILIES = ("open", "forest", "rooms", "maze", "u_trap", "narrow", "crossing", "dense")
+# six families: clutter, walls with doors, a long detour, a trap, and two of moving traffic
+DEFAULT_FAMILIES = ("forest", "rooms", "maze", "u_trap", "crossing", "dense")
 
 ARENA_PRESETS: dict[str, dict[str, Any]] = {
     "arena-default": {
