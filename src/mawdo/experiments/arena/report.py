@@ -207,6 +207,28 @@ def scenario_from_toml(text: str, name: str):
     return scenario_from_dict(tomllib.loads(text), source=name)
 
 
+def first_collision_time(result) -> float | None:
+    """Time (time steps, to 0.5) of the first checker-rejected contact of a run's route."""
+    from mawdo.planning.check import check_trajectory
+
+    times = result.route_times
+    if result.route is None or times is None or len(times) < 2:
+        return None
+    ts = np.append(np.arange(0.0, times[-1], 0.5), times[-1])
+    pts = np.column_stack([np.interp(ts, times, result.route[:, i]) for i in (0, 1)])
+    hits = check_trajectory(pts, result.scenario, times=ts).collisions
+    return float(ts[min(k for k, _ in hits)]) if hits else None
+
+
+def _gallery_times(result) -> np.ndarray | None:
+    """Start, shortly before and at the first collision, and the end (None: even spacing)."""
+    t_c = first_collision_time(result)
+    if t_c is None:
+        return None
+    end = float(result.route_times[-1])
+    return np.unique(np.round([0.0, max(0.0, t_c - 8.0), t_c, end], 1))
+
+
 def failure_gallery(store: Store, out: Path, limit: int | None = None) -> list[tuple[str, str]]:
     """One snapshot image per failed or colliding run, and the TOML of its scene.
 
@@ -235,6 +257,7 @@ def failure_gallery(store: Store, out: Path, limit: int | None = None) -> list[t
                 render.snapshot_grid(
                     {f"{_label(p)} on {r.scene_name} ({why})": res},
                     out / img,
+                    times=_gallery_times(res) if r.collision_free == 0 else None,
                     rows=1,
                     cols=4,
                     dpi=80,
