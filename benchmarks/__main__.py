@@ -16,6 +16,7 @@ SUITES = [
     "bench_planning",
     "bench_planner",
     "bench_scenes",
+    "bench_arena",
     "bench_bbob",
 ]
 

@@ -37,6 +37,7 @@ FLOORS = (
     ("mawdo.experiments.benchmark", 5),  # study kinds: each imports the harness only
     ("mawdo.experiments.planning", 5),
     ("mawdo.experiments.bbob", 5),
+    ("mawdo.experiments.arena", 5),
     ("mawdo.experiments.__init__", 6),  # registers the built-in kinds
     ("mawdo.reproduce", 7),  # runs every kind's study: above the kinds, below the commands
     ("mawdo.cli", 8),
@@ -56,6 +57,7 @@ KIND_PACKAGES = (
     "mawdo.experiments.benchmark",
     "mawdo.experiments.planning",
     "mawdo.experiments.bbob",
+    "mawdo.experiments.arena",
 )
 
 

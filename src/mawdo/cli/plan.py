@@ -180,3 +180,9 @@ def report_cmd(
     check_output_dir(out, "--out folder")
     path = write_study_report(store, out, gif=gif)
     console.print(f"report: {path}")
+
+
+# ``mawdo plan bench``: the planning arena, in its own module
+from mawdo.cli.plan_bench import bench_app  # noqa: E402
+
+plan_app.add_typer(bench_app, name="bench")

@@ -15,7 +15,12 @@ is a package that registers itself (:mod:`.benchmark`, :mod:`.planning`, :mod:`.
 Importing this package registers the built-in kinds.
 """
 
-from mawdo.experiments import bbob, benchmark, planning  # noqa: F401 - registers the built-in kinds
+from mawdo.experiments import (  # noqa: F401 - registers the built-in kinds
+    arena,
+    bbob,
+    benchmark,
+    planning,
+)
 from mawdo.experiments.benchmark import ExperimentPlan, preset_plan, write_report
 from mawdo.experiments.benchmark.plan import PRESETS
 from mawdo.experiments.plans import PlanError, StudyPlanBase

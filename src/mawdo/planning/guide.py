@@ -86,7 +86,9 @@ class Guide:
             for i in scenario.static_indices
         ]
         self.graph: VisGraph = build(obstacles, scenario.bounds, points=[scenario.goal])
-        refs = [p.representative_point() for p in shapely.get_parts(self.graph.union)]
+        # a map without static obstacles has an empty union, whose one part has no point
+        parts = [p for p in shapely.get_parts(self.graph.union) if not p.is_empty]
+        refs = [p.representative_point() for p in parts]
         self.refs = np.array([[p.x, p.y] for p in refs]).reshape(-1, 2)
         self.dist_g, self.pred_g = self.graph.dijkstra([0], [0.0])
         order = np.argsort(self.dist_g, kind="stable")

@@ -1,0 +1,45 @@
+"""The planning arena (issue 14): seeded scene families x planners, as a study kind.
+
+Plan (:class:`ArenaPlan`, presets ``arena-default`` and ``arena-quick``), one task on a worker
+(:func:`execute_arena_task`, rows :class:`ArenaRow`: the scene's TOML and hash beside each run's
+metrics) and the report (:func:`write_arena_report`: per family and planner tables, runtime and
+gap ECDFs, a failure gallery). Importing this package registers the ``arena`` study kind.
+"""
+
+from mawdo.experiments.arena.execute import ArenaRow, execute_arena_task
+from mawdo.experiments.arena.plan import (
+    ARENA_PRESETS,
+    BASELINE_SEES_TIME,
+    ORACLE,
+    ArenaPlan,
+    arena_preset,
+)
+from mawdo.experiments.arena.report import arena_tables, write_arena_report
+from mawdo.experiments.protocol import STUDY_KINDS, StudyKind, register_kind
+
+KIND = "arena"
+
+if KIND not in STUDY_KINDS:  # a reload must not register twice
+    register_kind(
+        StudyKind(
+            name=KIND,
+            plan=ArenaPlan,
+            execute=execute_arena_task,
+            row=ArenaRow,
+            report=write_arena_report,
+            description="planning arena: generated scene families x planners (issue 14)",
+        )
+    )
+
+__all__ = [
+    "ARENA_PRESETS",
+    "BASELINE_SEES_TIME",
+    "KIND",
+    "ORACLE",
+    "ArenaPlan",
+    "ArenaRow",
+    "arena_preset",
+    "arena_tables",
+    "execute_arena_task",
+    "write_arena_report",
+]

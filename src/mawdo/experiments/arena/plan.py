@@ -1,0 +1,262 @@
+"""Plan of the planning arena (issue 14): scene families x planners x scenes.
+
+An :class:`ArenaPlan` is a :class:`~mawdo.experiments.protocol.Study` of kind ``arena``. Its
+problems are scene families and its run ``k`` of a family is scene ``k`` of that family,
+generated on the worker by :func:`mawdo.planning.scenes.generate_scene` from
+``(family, params, seed, k)``; so the harness's ``(algorithm, problem, run)`` key is
+``(planner, family, scene index)`` and resume, pools and Dask work unchanged.
+
+Seeding: scene ``k`` of a family is a pure function of ``(family, params, seed, k)``; every
+stochastic planner plans scene ``k`` with the seed ``seed_word([seed, name_word(family), k])``
+(common random seeds across planners), so no run depends on its batch or on the workers.
+"""
+
+from __future__ import annotations
+
+import difflib
+from typing import Annotated, Any, ClassVar, Literal
+
+from pydantic import Field, field_validator, model_validator
+
+from mawdo.experiments.plans import PlanError, StudyPlanBase
+from mawdo.experiments.protocol import Task
+from mawdo.streams import name_word, seed_word
+
+ARENA_SCHEMA = 1
+ORACLE = "oracle_follower"
+#: Baselines and whether they see time (the oracle follower sees the obstacles where they are at
+#: each step, frozen, never their motion; the others see only the static obstacles).
+BASELINE_SEES_TIME = {
+    ORACLE: "positions each step",
+    "straight": "no",
+    "rrtstar": "no",
+    "bitstar": "no",
+    "prmstar": "no",
+}
+BASELINE_ALIASES = {"oracle": ORACLE, ORACLE: ORACLE}
+
+
+def _unknown(what: str, name: str, known) -> ValueError:
+    close = difflib.get_close_matches(name, list(known), n=3, cutoff=0.5)
+    hint = f" Did you mean {', '.join(map(repr, close))}?" if close else ""
+    return ValueError(f"unknown {what} {name!r}.{hint} Known: {', '.join(known)}.")
+
+
+def check_family(name: str) -> str:
+    """A registered scene family's name; ``ValueError`` with close names otherwise."""
+    from mawdo.planning.scenes import FAMILIES
+
+    key = str(name).strip().lower()
+    if key not in FAMILIES:
+        raise _unknown("scene family", str(name), FAMILIES)
+    return key
+
+
+def check_baseline(name: str) -> str:
+    """A baseline's canonical name (``oracle`` is the oracle follower)."""
+    key = str(name).strip().lower()
+    key = BASELINE_ALIASES.get(key, key)
+    if key not in BASELINE_SEES_TIME:
+        raise _unknown("baseline", str(name), ["oracle", *list(BASELINE_SEES_TIME)[1:]])
+    return key
+
+
+def _unique(names, check, field: str) -> tuple[str, ...]:
+    out: list[str] = []
+    for i, n in enumerate(names):
+        try:
+            c = check(n)
+        except (ValueError, KeyError) as exc:
+            msg = exc.args[0] if exc.args else str(exc)
+            raise ValueError(f"{field}[{i}]: {msg}") from None
+        if c in out:
+            raise ValueError(f"{field}[{i}]: {c!r} is listed twice")
+        out.append(c)
+    return tuple(out)
+
+
+def _check_algorithm(name: str) -> str:
+    from mawdo.optimizers import OPTIMIZERS
+
+    return OPTIMIZERS[str(name).strip()].name
+
+
+class ArenaPlan(StudyPlanBase):
+    """A planning arena: ``n`` generated scenes per family, each planned by every planner.
+
+    Parameters
+    ----------
+    name : str
+        Label for reports.
+    families : sequence of str
+        Registered scene families (:data:`mawdo.planning.scenes.FAMILIES`).
+    n : int
+        Scenes per family, >= 1.
+    algorithms : sequence of str
+        Registered optimizers driving our planner (may be empty if baselines are given).
+    baselines : sequence of str
+        ``oracle`` (the oracle follower), ``straight``, ``rrtstar``, ``bitstar``, ``prmstar``.
+    params : dict family -> dict
+        Family parameters overriding the defaults (checked against their ranges).
+    seed : int
+        Master seed (scenes and planner seeds), >= 0.
+    planner : {"realtime", "study", "paper", "quick"}
+        Planner preset (:data:`mawdo.planning.config.PRESETS`).
+    overrides : dict
+        Fields of :class:`~mawdo.planning.config.PlannerConfig` to change.
+    ompl_time : float
+        Time budget of each OMPL solve (seconds, (0, 60]).
+    ompl_resolution : float
+        OMPL motion-checking resolution (pixels, (0, 10]).
+    batch_size : int
+        Scenes per task.
+    """
+
+    study_kind: ClassVar[str] = "arena"
+    kind: Literal["arena"] = "arena"
+    name: str = "arena"
+    families: Annotated[tuple[str, ...], Field(min_length=1)]
+    n: Annotated[int, Field(ge=1)] = 50
+    algorithms: tuple[str, ...] = ("mawdo",)
+    baselines: tuple[str, ...] = (ORACLE, "straight")
+    params: dict[str, dict[str, Any]] = Field(default_factory=dict)
+    seed: Annotated[int, Field(strict=True, ge=0)] = 0
+    planner: Literal["realtime", "study", "paper", "quick"] = "realtime"
+    overrides: dict[str, Any] = Field(default_factory=dict)
+    ompl_time: Annotated[float, Field(gt=0, le=60)] = 0.5
+    ompl_resolution: Annotated[float, Field(gt=0, le=10)] = 0.5
+    batch_size: Annotated[int, Field(ge=1)] = 5
+
+    @field_validator("families")
+    @classmethod
+    def _fams(cls, names):
+        return _unique(names, check_family, "families")
+
+    @field_validator("algorithms")
+    @classmethod
+    def _algos(cls, names):
+        return _unique(names, _check_algorithm, "algorithms")
+
+    @field_validator("baselines")
+    @classmethod
+    def _bases(cls, names):
+        return _unique(names, check_baseline, "baselines")
+
+    @field_validator("overrides")
+    @classmethod
+    def _over(cls, overrides):
+        from dataclasses import replace
+
+        from mawdo.planning.config import PRESETS
+
+        try:
+            replace(PRESETS["realtime"], **overrides)
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"overrides: {exc}") from None
+        return dict(overrides)
+
+    @model_validator(mode="after")
+    def _params_and_planners(self):
+        from mawdo.planning.scenes import FAMILIES
+
+        for fam, p in self.params.items():
+            if fam not in self.families:
+                raise ValueError(
+                    f"params: {fam!r} is not one of the plan's families "
+                    f"({', '.join(self.families)})"
+                )
+            FAMILIES[fam].resolve(p)  # ValueError naming the parameter and its range
+        if not self.algorithms and not self.baselines:
+            raise ValueError("algorithms, baselines: give at least one planner")
+        return self
+
+    # ---------------------------------------------------------------- identity
+    def numbers_spec(self) -> dict[str, Any]:
+        """Every field but ``name`` and ``batch_size``, plus the arena schema."""
+        return {**super().numbers_spec(), "schema": ARENA_SCHEMA}
+
+    @property
+    def planners(self) -> tuple[str, ...]:
+        """Algorithms then baselines: the ``algorithm`` column of the store."""
+        return (*self.algorithms, *self.baselines)
+
+    def planner_seed(self, family: str, index: int) -> int:
+        """Seed every stochastic planner uses on scene ``index`` of ``family``."""
+        return seed_word([self.seed, name_word(family), index])
+
+    # ---------------------------------------------------------------- work
+    @property
+    def total_runs(self) -> int:
+        return len(self.planners) * len(self.families) * self.n
+
+    def tasks(self, done=()) -> list[Task]:
+        done = set(done)
+        out = []
+        for fam in self.families:
+            for p in self.planners:
+                missing = [k for k in range(self.n) if (p, fam, k) not in done]
+                runs: list[list[int]] = []
+                for k in missing:  # contiguous stretches of at most batch_size scenes
+                    if runs and runs[-1][-1] == k - 1 and len(runs[-1]) < self.batch_size:
+                        runs[-1].append(k)
+                    else:
+                        runs.append([k])
+                out.extend(Task(p, fam, r[0], len(r)) for r in runs)
+        return out
+
+    def task_spec(self, task: Task) -> dict[str, Any]:
+        fam = task.problem
+        return {
+            "kind": self.kind,
+            **task.key(),
+            "seed": self.seed,
+            "params": dict(self.params.get(fam, {})),
+            "planner_seeds": [self.planner_seed(fam, k) for k in task.runs],
+            "is_baseline": task.algorithm in self.baselines,
+            "preset": self.planner,
+            "overrides": dict(self.overrides),
+            "ompl": {"time_limit": self.ompl_time, "resolution": self.ompl_resolution},
+        }
+
+    def describe(self) -> str:
+        return (
+            f"{self.name}: {len(self.families)} families ({', '.join(self.families)}) x "
+            f"{self.n} scenes x {len(self.planners)} planners ({', '.join(self.planners)}), "
+            f"planner preset {self.planner!r}, seed {self.seed}"
+        )
+
+
+# six families: clutter, walls with doors, a long detour, a trap, and two of moving traffic
+DEFAULT_FAMILIES = ("forest", "rooms", "maze", "u_trap", "crossing", "dense")
+
+ARENA_PRESETS: dict[str, dict[str, Any]] = {
+    "arena-default": {
+        "name": "arena-default",
+        "families": list(DEFAULT_FAMILIES),
+        "n": 50,
+        "algorithms": ["mawdo", "woa", "gwo"],
+        "baselines": [ORACLE, "straight", "bitstar"],
+        "planner": "realtime",
+    },
+    "arena-quick": {
+        "name": "arena-quick",
+        "families": ["forest", "u_trap", "crossing"],
+        "n": 3,
+        "algorithms": ["mawdo"],
+        "baselines": [ORACLE, "straight"],
+        "planner": "quick",
+        "overrides": {"max_steps": 150},
+        "batch_size": 1,
+    },
+}
+
+
+def arena_preset(name: str) -> ArenaPlan:
+    """The named arena preset; an unknown name raises :class:`PlanError` listing the presets."""
+    if name not in ARENA_PRESETS:
+        close = difflib.get_close_matches(name, list(ARENA_PRESETS), n=2)
+        hint = f" Did you mean {', '.join(map(repr, close))}?" if close else ""
+        raise PlanError(
+            f"preset: unknown arena preset {name!r}.{hint} Presets: {', '.join(ARENA_PRESETS)}"
+        )
+    return ArenaPlan.from_dict(ARENA_PRESETS[name])
