@@ -237,3 +237,14 @@ def test_a_store_of_an_unregistered_kind_says_what_to_import(tmp_path, monkeypat
     monkeypatch.setattr(STUDY_KINDS, "_items", items)
     with pytest.raises(StoreError, match="unknown study kind 'dice'.*import the module"):
         Store.read(tmp_path / "u.db")
+
+
+def test_missing_run_tasks_cut_contiguous_stretches_into_batches():
+    from mawdo.experiments.protocol import Task, missing_run_tasks
+
+    done = {("a", "p", 0), ("a", "p", 1), ("a", "p", 3), ("b", "p", 4)}
+    got = missing_run_tasks("a", "p", 7, done, batch_size=2)
+    # missing 2 | 4 5 6 -> (2), (4, 5), (6)
+    assert got == [Task("a", "p", 2, 1), Task("a", "p", 4, 2), Task("a", "p", 6, 1)]
+    assert missing_run_tasks("a", "p", 3, set(), batch_size=5) == [Task("a", "p", 0, 3)]
+    assert missing_run_tasks("a", "p", 2, {("a", "p", 0), ("a", "p", 1)}, 4) == []

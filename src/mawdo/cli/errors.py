@@ -68,6 +68,16 @@ class GuardedGroup(TyperGroup):
             raise
 
 
+class DefaultRunGroup(TyperGroup):
+    """A group whose first argument, when it names no command, is read as ``run``'s:
+    ``mawdo plan paper`` means ``mawdo plan run paper``."""
+
+    def parse_args(self, ctx, args):
+        if args and args[0] not in self.commands and args[0] not in ("--help", "-h"):
+            args = ["run", *args]
+        return super().parse_args(ctx, args)
+
+
 IMAGE_SUFFIXES = (".png", ".svg", ".pdf")
 
 

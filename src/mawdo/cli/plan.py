@@ -12,22 +12,14 @@ from pathlib import Path
 
 import typer
 from rich.console import Console
-from typer.core import TyperGroup
+
+from mawdo.cli.errors import DefaultRunGroup
 
 console = Console(width=None if sys.stdout.isatty() else 140)
 
 
-class _DefaultRun(TyperGroup):
-    """``mawdo plan paper ...`` means ``mawdo plan run paper ...``."""
-
-    def parse_args(self, ctx, args):
-        if args and args[0] not in self.commands and args[0] not in ("--help", "-h"):
-            args = ["run", *args]
-        return super().parse_args(ctx, args)
-
-
 plan_app = typer.Typer(
-    cls=_DefaultRun,
+    cls=DefaultRunGroup,
     no_args_is_help=True,
     add_completion=False,
     help="Path planning among moving obstacles.",

@@ -109,6 +109,28 @@ class Study(Protocol):
         """One line for logs and reports."""
 
 
+def missing_run_tasks(
+    algorithm: str, problem: str, runs: int, done: set, batch_size: int
+) -> list[Task]:
+    """Tasks computing the runs ``0 .. runs - 1`` of ``(algorithm, problem)`` not in ``done``.
+
+    Missing runs are grouped into contiguous stretches (a task is ``first_run`` + ``n_runs``),
+    each cut into batches of at most ``batch_size``; with nothing done this is the regular grid.
+    ``done`` holds ``(algorithm, problem, run)`` keys.
+    """
+    out: list[Task] = []
+    start = None
+    for k in range(runs + 1):
+        missing = k < runs and (algorithm, problem, k) not in done
+        if missing and start is None:
+            start = k
+        elif not missing and start is not None:
+            for first in range(start, k, batch_size):
+                out.append(Task(algorithm, problem, first, min(batch_size, k - first)))
+            start = None
+    return out
+
+
 @dataclass(frozen=True)
 class StudyKind:
     """A registered study kind (see the module docstring).

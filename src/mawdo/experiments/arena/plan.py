@@ -19,7 +19,7 @@ from typing import Annotated, Any, ClassVar, Literal
 from pydantic import Field, field_validator, model_validator
 
 from mawdo.experiments.plans import PlanError, StudyPlanBase
-from mawdo.experiments.protocol import Task
+from mawdo.experiments.protocol import Task, missing_run_tasks
 from mawdo.streams import name_word, seed_word
 
 ARENA_SCHEMA = 1
@@ -194,14 +194,7 @@ class ArenaPlan(StudyPlanBase):
         out = []
         for fam in self.families:
             for p in self.planners:
-                missing = [k for k in range(self.n) if (p, fam, k) not in done]
-                runs: list[list[int]] = []
-                for k in missing:  # contiguous stretches of at most batch_size scenes
-                    if runs and runs[-1][-1] == k - 1 and len(runs[-1]) < self.batch_size:
-                        runs[-1].append(k)
-                    else:
-                        runs.append([k])
-                out.extend(Task(p, fam, r[0], len(r)) for r in runs)
+                out += missing_run_tasks(p, fam, self.n, done, self.batch_size)
         return out
 
     def task_spec(self, task: Task) -> dict[str, Any]:

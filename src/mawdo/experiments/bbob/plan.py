@@ -22,7 +22,7 @@ from typing import Annotated, Any, ClassVar, Literal
 from pydantic import AfterValidator, Field, field_validator, model_validator
 
 from mawdo.experiments.plans import PlanError, StudyPlanBase
-from mawdo.experiments.protocol import Task
+from mawdo.experiments.protocol import Task, missing_run_tasks
 from mawdo.optimizers import OPTIMIZERS, PAPER_ALGORITHMS, make_optimizer
 from mawdo.streams import name_word
 from mawdo.suites import SUITES, evaluation_budget
@@ -291,10 +291,7 @@ class SuitePlan(StudyPlanBase):
         out: list[Task] = []
         for prob in self.problems:
             for algo in self.algorithms:
-                missing = [k for k in range(self.runs) if (algo, prob, k) not in done_set]
-                for start, stop in _stretches(missing):
-                    for first in range(start, stop, self.batch_size):
-                        out.append(Task(algo, prob, first, min(self.batch_size, stop - first)))
+                out += missing_run_tasks(algo, prob, self.runs, done_set, self.batch_size)
         return out
 
     def task_spec(self, task: Task) -> dict[str, Any]:
@@ -324,17 +321,6 @@ class SuitePlan(StudyPlanBase):
             f"{','.join(map(str, self.dims))} x {self.runs} runs, budget {self.budget:g} x D "
             f"evaluations, seed {self.seed}"
         )
-
-
-def _stretches(indices: list[int]) -> list[tuple[int, int]]:
-    """``[0,1,2,5,6]`` -> ``[(0,3), (5,7)]`` (half-open)."""
-    out: list[tuple[int, int]] = []
-    for k in indices:
-        if out and out[-1][1] == k:
-            out[-1] = (out[-1][0], k + 1)
-        else:
-            out.append((k, k + 1))
-    return out
 
 
 # --------------------------------------------------------------------------- presets

@@ -30,7 +30,7 @@ from typing import Annotated, Any, ClassVar, Literal
 from pydantic import AfterValidator, Field, field_validator
 
 from mawdo.experiments.plans import PlanError, StudyPlanBase
-from mawdo.experiments.protocol import Task
+from mawdo.experiments.protocol import Task, missing_run_tasks
 from mawdo.functions import FUNCTIONS, PAPER_SUITE
 from mawdo.optimizers import ABLATION_ALGORITHMS, OPTIMIZERS, PAPER_ALGORITHMS, make_optimizer
 from mawdo.streams import name_word, seed_word
@@ -240,10 +240,7 @@ class ExperimentPlan(StudyPlanBase):
         out: list[Task] = []
         for fn in self.functions:
             for algo in self.algorithms:
-                missing = [k for k in range(self.runs) if (algo, fn, k) not in done_set]
-                for start, stop in _stretches(missing):
-                    for first in range(start, stop, self.batch_size):
-                        out.append(Task(algo, fn, first, min(self.batch_size, stop - first)))
+                out += missing_run_tasks(algo, fn, self.runs, done_set, self.batch_size)
         return out
 
     def task_spec(self, task: Task) -> dict[str, Any]:
@@ -269,17 +266,6 @@ class ExperimentPlan(StudyPlanBase):
             f"{' (equal evaluations)' if self.budget == 'evals' else ''}"
             f"{', shifted' if self.shifted else ''}, seed {self.seed}"
         )
-
-
-def _stretches(indices: list[int]) -> list[tuple[int, int]]:
-    """``[0,1,2,5,6]`` -> ``[(0,3), (5,7)]`` (half-open)."""
-    out: list[tuple[int, int]] = []
-    for k in indices:
-        if out and out[-1][1] == k:
-            out[-1] = (out[-1][0], k + 1)
-        else:
-            out.append((k, k + 1))
-    return out
 
 
 # --------------------------------------------------------------------------- presets
