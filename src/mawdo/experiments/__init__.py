@@ -1,4 +1,5 @@
-"""Studies (SPEC 3): plans -> runner -> SQLite store -> statistics, reports, plots.
+"""Studies: plans -> runner -> SQLite store -> statistics, reports, plots
+(docs/deviations.md#d-protocol).
 
 >>> from mawdo.experiments import preset_plan, run_plan, write_report
 >>> plan = preset_plan("smoke")

@@ -1,6 +1,7 @@
 """Statistics of a sweep: summaries, Wilcoxon rank-sum vs the reference, Holm, Friedman.
 
-Pure functions on arrays; they know nothing about stores or files (SPEC 3).
+Pure functions on arrays; they know nothing about stores or files
+(docs/deviations.md#d-protocol).
 
 * Summary: Best (min), Ave (mean), Std (sample, ``ddof=1``), median, worst.
 * Wilcoxon rank-sum (Mann-Whitney U), two-sided, normal approximation with continuity and tie

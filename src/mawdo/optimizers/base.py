@@ -35,7 +35,8 @@ class Space:
         return 2.0 * (x - self.lb) / (self.ub - self.lb) - 1.0
 
     def from_unit(self, p: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
-        """Map ``[-1, 1]^D`` to problem coordinates: ``x = lb + (p + 1)/2 (ub - lb)`` (SPEC 1.1).
+        """Map ``[-1, 1]^D`` to problem coordinates: ``x = lb + (p + 1)/2 (ub - lb)``
+        (docs/deviations.md#d-wdo).
 
         Computed in one array (``out`` when given), with no temporaries of ``p``'s size.
         """

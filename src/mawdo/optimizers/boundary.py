@@ -23,7 +23,8 @@ def reflect_damped(
     """Reflective-damped boundary (MAWDO paper Eqs. 15-16).
 
     A coordinate past bound ``b`` becomes ``2b - p`` and its velocity ``-eta * u``; whatever is
-    still outside after one reflection (a step longer than the box) is clipped (SPEC 1.3).
+    still outside after one reflection (a step longer than the box) is clipped
+    (docs/deviations.md#d-mawdo-boundary).
 
     Parameters
     ----------

@@ -2,7 +2,8 @@
 
 The MEWDO paper (Zhang, Yang & Chen, Math. Comput. Simul. 231, 2025) was not available to us.
 This is our reconstruction from its one-line description in the MAWDO paper ("multi-strategy
-enhanced WDO"), as SPEC 1.4 asks: an ensemble of WDO-family update strategies whose share of the
+enhanced WDO"), as our reading asks
+(docs/deviations.md#d-mewdo): an ensemble of WDO-family update strategies whose share of the
 population adapts to each strategy's recent success rate. Every output that names it says
 "reconstructed"; see docs/deviations.md.
 

@@ -45,7 +45,8 @@ from mawdo.streams import RunStreams
 
 @dataclass(frozen=True)
 class WindParams(Params):
-    """Coefficients and switches of the WDO family (defaults: classic WDO, SPEC 1.1).
+    """Coefficients and switches of the WDO family (defaults: classic WDO,
+    docs/deviations.md#d-wdo).
 
     Parameters
     ----------

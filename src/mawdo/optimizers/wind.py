@@ -1,7 +1,7 @@
 """The WDO family's update equations as pure array functions.
 
 Shapes: ``R`` runs, ``N`` parcels, ``G`` groups, ``D`` dimensions. Positions ``p`` live in the
-normalised box ``[-1, 1]^D`` (SPEC 1.1). Equation numbers refer to the MAWDO paper
+normalised box ``[-1, 1]^D`` (docs/deviations.md#d-wdo). Equation numbers refer to the MAWDO paper
 (Liu, Mohd Zain & Mao, arXiv 2511.20394) unless stated otherwise.
 """
 
@@ -61,7 +61,7 @@ def hierarchical_guidance(pbest, gbest, tbest, w1, w2, w3_eff):
         B = (w1 pbest + w2 gbest_g + w3_eff tbest) / (w1 + w2 + w3_eff)
 
     The paper states ``w1 + w2 + w3 = 1`` but the gate (Eq. 11) breaks that sum; without the
-    division B would shrink toward the origin (SPEC 1.3, docs/deviations.md).
+    division B would shrink toward the origin (docs/deviations.md#d-mawdo-renorm).
 
     ``pbest`` ``(R, N, D)``; ``gbest`` ``(R, N, D)`` (each parcel's group best); ``tbest``
     ``(R, D)``; ``w3_eff`` scalar or ``(R, N)``.

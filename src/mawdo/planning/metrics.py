@@ -1,4 +1,4 @@
-"""Per-run metrics of a planning run (SPEC 4.4, paper Table 6 plus what it lacks).
+"""Per-run metrics of a planning run (docs/deviations.md#d-gap, paper Table 6 plus what it lacks).
 
 Computed from the executed route, the scenario, the exact oracle and the independent checker;
 nothing here trusts the cost kernel that produced the plans.

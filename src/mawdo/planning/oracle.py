@@ -118,7 +118,8 @@ def scenario_optimum(
     t : float
         Time (time steps) at which moving obstacles are frozen (ignored if ``static_only``).
     static_only : bool
-        Use only the static obstacles (a lower bound for the dynamic problem, SPEC 4.4);
+        Use only the static obstacles (a lower bound for the dynamic problem,
+        docs/deviations.md#d-gap);
         otherwise all obstacles frozen at ``t``.
     start : array_like, shape (2,), optional
         Start (pixels); default the scenario's start.
