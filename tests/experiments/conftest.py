@@ -33,12 +33,12 @@ VALUE_COLUMNS = (
 )
 
 
-def stored_values(path) -> list[tuple]:
+def stored_values(path, columns: str = VALUE_COLUMNS) -> list[tuple]:
     """Every run's value columns, in key order (comparable across stores)."""
     conn = sqlite3.connect(path)
     try:
         return conn.execute(
-            f"SELECT {VALUE_COLUMNS} FROM runs ORDER BY algorithm, problem, run"
+            f"SELECT {columns} FROM runs ORDER BY algorithm, problem, run"
         ).fetchall()
     finally:
         conn.close()

@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import sqlite3
-
 import pytest
 
 from mawdo.experiments import run_plan
 from mawdo.experiments.bbob import SuitePlan
+
+from ..conftest import stored_values as stored_columns
 
 # Three groups of BBOB (separable, high conditioning, weak structure), two instances, two
 # dimensions; batch_size 2 cuts 3 runs into 2 + 1, so batches are not the runs' unit. CMA-ES
@@ -39,13 +39,7 @@ VALUE_COLUMNS = (
 
 def stored_values(path) -> list[tuple]:
     """Every run's value columns (not wall times or task ids), in key order."""
-    conn = sqlite3.connect(path)
-    try:
-        return conn.execute(
-            f"SELECT {VALUE_COLUMNS} FROM runs ORDER BY algorithm, problem, run"
-        ).fetchall()
-    finally:
-        conn.close()
+    return stored_columns(path, VALUE_COLUMNS)
 
 
 @pytest.fixture(scope="session")
