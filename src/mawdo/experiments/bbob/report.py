@@ -16,6 +16,7 @@ from mawdo.experiments.bbob.measures import (
     median_precision,
     success_counts,
 )
+from mawdo.experiments.bbob.summary import headline
 from mawdo.experiments.tables import Table, to_csv, to_latex, to_markdown
 
 
@@ -93,7 +94,9 @@ def _write(table: Table, out: Path) -> list[Path]:
     return files
 
 
-def write_suite_report(store_path, out_dir, plots: bool = True, svg: bool = False, **_) -> Path:
+def write_suite_report(
+    store_path, out_dir, plots: bool = True, svg: bool = False, reference: str = "mawdo", **_
+) -> Path:
     """Write ``report.md``, the tables (``.md/.tex/.csv``) and the figures into ``out_dir``.
 
     Parameters
@@ -104,6 +107,8 @@ def write_suite_report(store_path, out_dir, plots: bool = True, svg: bool = Fals
         Output folder (created).
     plots, svg : bool
         Draw the figures (PNG), also as SVG.
+    reference : str
+        The algorithm the headline sentences (``summary.md``) are about.
 
     Returns
     -------
@@ -115,6 +120,9 @@ def write_suite_report(store_path, out_dir, plots: bool = True, svg: bool = Fals
     out.mkdir(parents=True, exist_ok=True)
     if not study.runs:
         raise ValueError(f"{store_path} holds no finished run yet; run the study first")
+    summary = headline(study, reference or "mawdo")
+    if summary:
+        (out / "summary.md").write_text("\n".join(summary) + "\n", encoding="utf-8")
     tables = [friedman_table(study)]
     for dim in study.dims:
         tables += [art_table(study, dim), fixed_budget_table(study, dim)]
@@ -124,6 +132,8 @@ def write_suite_report(store_path, out_dir, plots: bool = True, svg: bool = Fals
         f"Functions {', '.join(f'f{f}' for f in study.functions)}; D {study.dims}; budget "
         f"{study.budget:g} x D evaluations; {len(study.runs)} runs stored"
         f"{f', {study.failed} failed' if study.failed else ''}. Precision is f - f_opt.",
+        "",
+        *summary,
         "",
     ]
     for t in tables:
