@@ -267,15 +267,20 @@ def failure_gallery(store: Store, out: Path, limit: int | None = None) -> list[t
 
 
 def write_arena_report(
-    store_path, out_dir, *, figures: bool = True, gallery_limit: int | None = 200
+    store_path, out_dir, *, figures: bool = True, gallery_limit: int | None = 200, worst: int = 3
 ) -> Path:
-    """Tables (Markdown, LaTeX, CSV), ECDFs and the failure gallery into ``out_dir``; returns
-    the Markdown report's path."""
+    """Tables (Markdown, LaTeX, CSV), headline sentences (``summary.md``), ECDFs, the failure
+    gallery and the ``worst`` worst scenes of MAWDO (re-run, see
+    :func:`mawdo.experiments.arena.summary.render_worst`) into ``out_dir``; returns the Markdown
+    report's path."""
+    from mawdo.experiments.arena.summary import headline, render_worst
+
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     with Store.read(store_path) as store:
         plan = _plan_of(store)
         tables = arena_tables(store)
+        summary = headline(store)
         figs = arena_figures(store, out) if figures else []
         gallery = failure_gallery(store, out, gallery_limit) if figures else []
         rejected = [
@@ -295,8 +300,18 @@ def write_arena_report(
         (out / f"{t.name}.md").write_text(to_markdown(t))
         (out / f"{t.name}.tex").write_text(to_latex(t, label=f"tab:{t.name}"))
         (out / f"{t.name}.csv").write_text(to_csv(t))
-    md = [f"# Planning arena: {plan.name}", "", plan.describe(), ""]
+    if summary:
+        (out / "summary.md").write_text("\n".join(summary) + "\n", encoding="utf-8")
+    md = [f"# Planning arena: {plan.name}", "", plan.describe(), "", *summary, ""]
     md += [to_markdown(t) for t in tables]
+    shown = render_worst(store_path, out, "mawdo", worst) if figures and worst else []
+    if shown:
+        md.append(f"\n## The {len(shown)} worst runs of mawdo (re-run from the stored scene)\n")
+        for w in shown:
+            ok = w["success"] and w["collision_free"]
+            verdict = f"succeeds, gap {w['gap']:.3f}" if ok else "fails (no gap)"
+            md.append(f"- {w['family']}, `{w['scene_file']}`: {verdict}\n")
+            md.append(f"  ![{Path(w['image']).stem}]({w['image']})\n")
     md += [f"![{p.stem}]({p.name})\n" for p in figs]
     if rejected:
         md.append("## Rejected scenes (not planner failures)\n")

@@ -1,0 +1,112 @@
+"""Headline sentences and worst scenes of a planning arena, generated from its store.
+
+The README quotes the sentences verbatim (``summary.md``; a test checks the quote), so every
+claim about the planner's success, collisions and optimality gap is a number of stored runs.
+The worst scenes of a planner are its failed or colliding runs first, then its largest gaps;
+their images are drawn by re-running the planner on the stored scene with the stored seed (the
+store keeps traces of failures only), and the re-run must give the stored verdict and gap, so
+an image can never show a different run from the one the table counts.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from mawdo.experiments.store import Store
+
+NO_TRACE = ("trace", "scene_toml")
+
+
+def _ok_rows(store: Store, planner: str, family: str | None = None) -> list:
+    rows = store.rows(planner, family, skip=NO_TRACE)
+    return [r for _, _, r in rows if r.status == "ok" and r.error_text is None]
+
+
+def _rates(rows: list) -> tuple[float, float, float]:
+    n = len(rows)
+    succ = sum(bool(r.success) for r in rows) / n
+    coll = sum(r.collision_free == 0 for r in rows) / n
+    gaps = [r.gap for r in rows if r.success]
+    return succ, coll, float(np.median(gaps)) if gaps else float("nan")
+
+
+def headline(store: Store) -> list[str]:
+    """Sentences (Markdown list items) about every planner of the arena, from stored rows.
+
+    Per planner over all families: success and collision rates, median gap; and the family
+    where it succeeds least (ties: the largest median gap).
+    """
+    plan = store.plan
+    lines = []
+    for p in plan.planners:
+        rows = _ok_rows(store, p)
+        if not rows:
+            continue
+        succ, coll, gap = _rates(rows)
+        per_fam = {f: _rates(_ok_rows(store, p, f)) for f in plan.families if _ok_rows(store, p, f)}
+        worst = min(per_fam, key=lambda f: (per_fam[f][0], -np.nan_to_num(per_fam[f][2])))
+        ws, _, wg = per_fam[worst]
+        lines.append(
+            f"- {p}: {100 * succ:.1f} % success and {100 * coll:.1f} % colliding runs over "
+            f"{len(rows)} scenes, median gap {gap:.3f}; weakest family {worst} "
+            f"({100 * ws:.0f} % success, median gap {wg:.3f})."
+        )
+    return lines
+
+
+def worst_runs(store: Store, planner: str, k: int = 3) -> list[tuple[str, object]]:
+    """The ``k`` worst runs of ``planner`` as ``(family, row)``: failures, then largest gaps."""
+
+    def badness(item):
+        _, r = item
+        failed = not (r.success and r.collision_free)
+        return (not failed, -(r.gap if r.gap is not None and np.isfinite(r.gap) else np.inf))
+
+    items = [(f, r) for f in store.plan.families for r in _ok_rows(store, planner, f)]
+    return sorted(items, key=badness)[:k]
+
+
+def render_worst(store_path, out_dir, planner: str = "mawdo", k: int = 3) -> list[dict]:
+    """Re-run and draw the ``k`` worst runs of ``planner``; returns one dict per run.
+
+    Each dict has ``family``, ``scene``, ``image`` (relative to ``out_dir``), ``scene_file``,
+    ``success``, ``collision_free``, ``gap``. Raises ``RuntimeError`` if a re-run does not
+    reproduce the stored verdict and gap (the scene or the planner changed since the study).
+    """
+    from mawdo.experiments.arena.execute import _from_plan_result
+    from mawdo.experiments.arena.report import scenario_from_toml
+    from mawdo.planning import render
+    from mawdo.planning.planner import plan as run_planner
+
+    out = Path(out_dir)
+    (out / "worst").mkdir(parents=True, exist_ok=True)
+    made = []
+    with Store.read(store_path) as store:
+        ap = store.plan
+        if planner not in ap.algorithms:
+            return []
+        for fam, r in worst_runs(store, planner, k):
+            full = next(x for _, _, x in store.rows(planner, fam) if x.run == r.run)
+            sc = scenario_from_toml(full.scene_toml, r.scene_name)
+            res = run_planner(sc, algorithm=planner, seed=r.planner_seed, config=ap.planner,
+                              **dict(ap.overrides))  # fmt: skip
+            m = _from_plan_result(res, r.l_star)
+            same_gap = (np.isnan(m["gap"]) and not r.success) or np.isclose(m["gap"], r.gap)
+            if m["success"] != r.success or m["collision_free"] != r.collision_free or not same_gap:
+                raise RuntimeError(
+                    f"re-running {planner} on {r.scene_name} gave success={m['success']}, "
+                    f"gap={m['gap']}, stored success={r.success}, gap={r.gap}: the planner or "
+                    "the scene changed since the study; re-run the study"
+                )
+            img = Path("worst") / f"{r.scene_name}__{planner}.png"
+            scene_file = Path("worst") / f"{r.scene_name}.toml"
+            (out / scene_file).write_text(full.scene_toml, encoding="utf-8")
+            gap = f"gap {r.gap:.3f}" if r.success and r.collision_free else "failed"
+            render.snapshot_grid({f"{planner} on {r.scene_name} ({gap})": res}, out / img,
+                                 rows=1, cols=4, dpi=80)  # fmt: skip
+            made.append({"family": fam, "scene": r.scene_name, "image": str(img),
+                         "scene_file": str(scene_file), "success": bool(r.success),
+                         "collision_free": bool(r.collision_free), "gap": r.gap})  # fmt: skip
+    return made

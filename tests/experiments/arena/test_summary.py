@@ -1,0 +1,74 @@
+"""The arena's headline sentences state numbers recomputed from the raw store; the worst runs
+come failures first, then by gap, and their images are re-runs that reproduce the stored run."""
+
+from __future__ import annotations
+
+import hashlib
+import re
+import sqlite3
+import statistics
+
+from mawdo.experiments import Store
+from mawdo.experiments.arena.summary import headline, render_worst, worst_runs
+
+from .test_arena import reference  # noqa: F401 - the module's tiny study, as a fixture
+
+
+def raw(db, planner):
+    conn = sqlite3.connect(db)
+    try:
+        return conn.execute(
+            "SELECT success, collision_free, gap, problem FROM runs WHERE algorithm = ? "
+            "AND status = 'ok' AND error_text IS NULL",
+            (planner,),
+        ).fetchall()
+    finally:
+        conn.close()
+
+
+def test_headline_numbers_are_the_stores(reference):  # noqa: F811
+    with Store.read(reference) as store:
+        lines = headline(store)
+    assert [s.split(":")[0] for s in lines] == ["- mawdo", "- straight"]
+    for line in lines:
+        planner = line[2:].split(":")[0]
+        rows = raw(reference, planner)
+        succ = 100 * sum(r[0] for r in rows) / len(rows)
+        coll = 100 * sum(r[1] == 0 for r in rows) / len(rows)
+        m = re.search(r"([\d.]+) % success and ([\d.]+) % colliding runs over (\d+) scenes", line)
+        assert m, line
+        assert float(m[1]) == round(succ, 1) and float(m[2]) == round(coll, 1)
+        assert int(m[3]) == len(rows)
+        gaps = [r[2] for r in rows if r[0]]
+        if gaps:
+            assert f"median gap {statistics.median(gaps):.3f};" in line
+
+
+def test_worst_runs_put_failures_first_then_the_largest_gaps(reference):  # noqa: F811
+    with Store.read(reference) as store:
+        worst = worst_runs(store, "straight", k=6)
+    bad = [not (r.success and r.collision_free) for _, r in worst]
+    assert bad == sorted(bad, reverse=True)  # every failure before every success
+    gaps = [r.gap for _, r in worst if r.success and r.collision_free]
+    assert gaps == sorted(gaps, reverse=True)
+    assert len(worst) == len(raw(reference, "straight"))
+
+
+def test_worst_images_are_reruns_of_the_stored_runs(reference, tmp_path):  # noqa: F811
+    made = render_worst(reference, tmp_path, "mawdo", k=2)
+    assert len(made) == 2
+    with Store.read(reference) as store:
+        expect = [r.scene_name for _, r in worst_runs(store, "mawdo", k=2)]
+    assert [m["scene"] for m in made] == expect
+    for m in made:
+        assert (tmp_path / m["image"]).stat().st_size > 10_000
+        text = (tmp_path / m["scene_file"]).read_text(encoding="utf-8")
+        conn = sqlite3.connect(reference)
+        try:
+            (stored,) = conn.execute(
+                "SELECT scene_hash FROM runs WHERE algorithm = 'mawdo' AND scene_name = ?",
+                (m["scene"],),
+            ).fetchone()
+        finally:
+            conn.close()
+        assert hashlib.sha256(text.encode("utf-8")).hexdigest() == stored
