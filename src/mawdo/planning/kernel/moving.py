@@ -3,8 +3,9 @@ is at each path time, which segments come within reach of it (a lens test), and 
 of those, piece by piece of the obstacle's motion.
 
 One compiled function per step; :func:`_moving_pass` runs them for one obstacle and one block.
-The arithmetic is that of the single function they were cut from, statement for statement, and
-the steps are inlined into it (Numba IR inlining), so the compiled pass is the one it was.
+The steps are inlined into it (Numba IR inlining). The lens test of step 2 measures without a
+division (a filter with room to spare; see :func:`_near_segments`); the centres and the exact
+tests are computed as they always were, so every count is the same.
 """
 
 from __future__ import annotations
