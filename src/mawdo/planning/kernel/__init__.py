@@ -28,7 +28,11 @@ the exact tests alone (which get the very numbers they would get without the fil
 * Standing obstacles: one pass of distances to the bounding-circle centre. Within the *accept
   disc* (for a circle, the circle itself: the exact test; for a polygon, the largest disc about
   that centre inside it, grown by ``r``) a segment hits; beyond the bounding circle it misses;
-  in between, the polygon test runs.
+  in between, the polygon test runs. The pass measures without a division (``cross^2 <= r^2
+  |ab|^2`` where the foot of the perpendicular falls inside the segment, else the nearer end):
+  a division made the loop several times slower. That distance only decides segments more than
+  :data:`_MARGIN` from both radii; a block with any segment closer is measured again exactly
+  (:func:`_exact_distances`), so every verdict is the exact distance's.
 * Polygon test: separating axes (convex-hull edge normals and the segment's normal) reject. For
   a convex polygon they also accept (overlap on every axis means intersection) and otherwise
   prove the two disjoint, when the distance is attained at a polygon vertex or a segment end
@@ -41,7 +45,9 @@ the exact tests alone (which get the very numbers they would get without the fil
   segment the centre moves at most ``vmax`` from where it was at ``ta`` and will be at ``tb``,
   so it stays within ``sqrt(a^2 - d^2)`` (``a = vmax (tb - ta) / 2``, ``d`` half their
   distance) of the point that moves uniformly between the two; relative to that point the robot
-  moves along a segment. Exact for a segment within one piece, up to the rounding room. The
+  moves along a segment. Exact for a segment within one piece, up to the rounding room, which
+  also covers measuring that segment's distance without a division
+  (:func:`_segment_reaches_origin`; blocks with NaN or huge coordinates keep the division). The
   segments that pass it are walked piece by piece, as above; those spanning more than
   :data:`_PIECES` pieces are first tested against the box of the obstacle's positions over them
   (sparse tables of knot boxes), and the pieces' relative segments are measured in one pass.
@@ -82,6 +88,7 @@ from mawdo.planning.kernel.moving import (
     Block,
     _centres,
     _exact_moving,
+    _lens_reach,
     _moving_pass,
     _near_segments,
     _room,
@@ -89,9 +96,11 @@ from mawdo.planning.kernel.moving import (
 from mawdo.planning.kernel.passes import (
     _block_paths,
     _box_tables,
+    _exact_distances,
     _fill_boxes,
     _static_pass,
     _stride,
+    _sure_distances,
 )
 from mawdo.planning.kernel.population import _layout, population_cost, scratch_size
 from mawdo.planning.kernel.primitives import (
@@ -102,6 +111,7 @@ from mawdo.planning.kernel.primitives import (
     _point_segment_d2,
     _polygon_hit,
     _segment_hits_polygon,
+    _segment_reaches_origin,
     _segments_touch,
 )
 

@@ -3,8 +3,9 @@ is at each path time, which segments come within reach of it (a lens test), and 
 of those, piece by piece of the obstacle's motion.
 
 One compiled function per step; :func:`_moving_pass` runs them for one obstacle and one block.
-The arithmetic is that of the single function they were cut from, statement for statement, and
-the steps are inlined into it (Numba IR inlining), so the compiled pass is the one it was.
+The steps are inlined into it (Numba IR inlining). The lens test of step 2 measures without a
+division (a filter with room to spare; see :func:`_near_segments`); the centres and the exact
+tests are computed as they always were, so every count is the same.
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from mawdo.planning.kernel.primitives import (
     _point_segment_d2,
     _polygon_hit,
     _segment_hits_polygon,
+    _segment_reaches_origin,
 )
 
 Block = namedtuple("Block", ["t0", "speed", "bn", "npts", "sane", "cmax", "tmax"])
@@ -153,13 +155,30 @@ def _room(i, blk, pre):
 
 
 @njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+def _lens_reach(p, rho, vm, room, tt, cxp, cyp, cep):
+    """How far (pixels) segment p may come from the moving point of the lens test and still
+    reach obstacle i's bounding circle (see :func:`_near_segments`)."""
+    dcx = cxp[p + 1] - cxp[p]
+    dcy = cyp[p + 1] - cyp[p]
+    ha = 0.5 * vm * (tt[p + 1] - tt[p])
+    ea = cep[p]
+    eb = cep[p + 1]
+    e = 0.5 * (ea + eb)  # the true half distance is at least d - e
+    dev = math.sqrt(max(ha * ha - 0.25 * (dcx * dcx + dcy * dcy) + 2.0 * e * (ha + e), 0.0))
+    dev += max(ea, eb)
+    return (rho + dev) * (1.0 + _MARGIN) + room
+
+
+@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
 def _near_segments(i, blk, room, path, work, obs, pre):
     """Step 2: flag the segments that come within reach of obstacle i; returns how many.
 
     While the robot is on a segment, the centre moves at most vmax from where it was at
     ta and where it will be at tb, so it stays within sqrt(a^2 - d^2) (a = vmax (tb - ta) / 2,
     d half the distance between the two) of the point that moves uniformly between them; the
-    robot, relative to that point, moves along a segment. Branch-free.
+    robot, relative to that point, moves along a segment. Branch-free. Sane blocks measure the
+    distance without a division (:func:`_segment_reaches_origin`, a filter with room to spare),
+    others as before (NaN and infinities compare as they always did).
     """
     px, py, tt = path[0], path[1], path[2]
     near, flagged, real = work[0], work[1], work[2]
@@ -169,24 +188,28 @@ def _near_segments(i, blk, room, path, work, obs, pre):
     npt = blk.bn * blk.npts
     vm = pre[0][i]
     nnear = 0
-    for p in range(npt - 1):
-        dcx = cxp[p + 1] - cxp[p]
-        dcy = cyp[p + 1] - cyp[p]
-        ha = 0.5 * vm * (tt[p + 1] - tt[p])
-        ea = cep[p]
-        eb = cep[p + 1]
-        e = 0.5 * (ea + eb)  # the true half distance is at least d - e
-        dev = math.sqrt(
-            max(ha * ha - 0.25 * (dcx * dcx + dcy * dcy) + 2.0 * e * (ha + e), 0.0)
-        ) + max(ea, eb)
-        reach = (rho + dev) * (1.0 + _MARGIN) + room
-        d = _point_segment_d2(
-            0.0, 0.0, px[p] - cxp[p], py[p] - cyp[p], px[p + 1] - cxp[p + 1],
-            py[p + 1] - cyp[p + 1],
-        )  # fmt: skip
-        close = d <= reach * reach and real[p]
-        nnear += 1 if close else 0
-        near[p] = close
+    if blk.sane:
+        for p in range(npt - 1):
+            reach = _lens_reach(p, rho, vm, room, tt, cxp, cyp, cep)
+            close = (
+                _segment_reaches_origin(
+                    px[p] - cxp[p], py[p] - cyp[p], px[p + 1] - cxp[p + 1],
+                    py[p + 1] - cyp[p + 1], reach * reach,
+                )
+                & real[p]
+            )  # fmt: skip
+            nnear += 1 if close else 0
+            near[p] = close
+    else:
+        for p in range(npt - 1):
+            reach = _lens_reach(p, rho, vm, room, tt, cxp, cyp, cep)
+            d = _point_segment_d2(
+                0.0, 0.0, px[p] - cxp[p], py[p] - cyp[p], px[p + 1] - cxp[p + 1],
+                py[p + 1] - cyp[p + 1],
+            )  # fmt: skip
+            close = d <= reach * reach and real[p]
+            nnear += 1 if close else 0
+            near[p] = close
     if nnear == 0:
         return 0
     nf = 0

@@ -65,6 +65,25 @@ def _point_segment_d2(px, py, ax, ay, bx, by):
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
+def _segment_reaches_origin(ax, ay, bx, by, r2):
+    """Segment ab comes within ``sqrt(r2)`` of the origin (pixels), up to rounding: a filter.
+
+    The distance of :func:`_point_segment_d2` without its division (which kept loops over it
+    several times slower): the nearest point is an end unless the foot of the perpendicular
+    falls inside, and then ``d^2 |ab|^2 = cross^2``. Both differ from the true distance by
+    rounding only (relative to the coordinates), far below the callers' room; finite
+    coordinates only (callers with NaN or huge ones use :func:`_point_segment_d2`).
+    """
+    dx = bx - ax
+    dy = by - ay
+    dot = -(ax * dx + ay * dy)  # (origin - a) . (b - a)
+    ee = dx * dx + dy * dy
+    cross = ax * dy - ay * dx
+    end2 = ax * ax + ay * ay if dot <= 0.0 else bx * bx + by * by
+    return cross * cross <= r2 * ee if (dot > 0.0) & (dot < ee) else end2 <= r2
+
+
+@njit(cache=True, fastmath=False, error_model="numpy")
 def _orient(ax, ay, bx, by, cx, cy):
     return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax)
 
