@@ -64,8 +64,8 @@ SAMPLE_FUNCTIONS = (1, 8, 15, 21)  # Sphere, Rosenbrock, Rastrigin rotated, Gall
 PROBE_BUDGET, PROBE_RUNS = 1000, 2
 
 
-def _run_task(plan, algo: str, fid: int, dim: int) -> tuple[int, float, float]:
-    """Evaluations, CPU seconds and wall seconds of one study task (all ``plan.runs`` runs)."""
+def _run_task(plan, algo: str, fid: int, dim: int) -> tuple[list[int], float, float]:
+    """Each run's evaluations, CPU and wall seconds of one study task (``plan.runs`` runs)."""
     from mawdo.experiments.bbob import execute_suite_task
     from mawdo.experiments.bbob.plan import problem_key
     from mawdo.experiments.protocol import Task
@@ -76,7 +76,7 @@ def _run_task(plan, algo: str, fid: int, dim: int) -> tuple[int, float, float]:
     cpu, wall = time.process_time() - c, time.perf_counter() - w
     if any(r.error_text for r in rows):
         raise RuntimeError(f"{algo} failed on f{fid} D={dim}: {rows[0].error_text}")
-    return sum(r.nfev for r in rows), cpu, wall
+    return [r.nfev for r in rows], cpu, wall
 
 
 def measure_rates(plan, functions=SAMPLE_FUNCTIONS) -> dict:
@@ -85,6 +85,8 @@ def measure_rates(plan, functions=SAMPLE_FUNCTIONS) -> dict:
     Each algorithm first runs a tiny task, so Numba's compilation or cache loading (paid once
     per worker process) is not timed. The probe runs the study's own task with its final target
     (runs that reach 1e-8 stop, as in the study), at ``PROBE_BUDGET x D`` evaluations.
+    ``stopped`` holds the evaluations of the probe's runs that stopped early, ``runs`` their
+    number in all.
     """
     probe = plan.with_overrides(budget=PROBE_BUDGET, runs=PROBE_RUNS, instances=[1])
     tiny = plan.with_overrides(budget=50, runs=1, instances=[1])  # a few iterations: every kernel
@@ -92,13 +94,29 @@ def measure_rates(plan, functions=SAMPLE_FUNCTIONS) -> dict:
     for algo in plan.algorithms:
         for dim in plan.dims:
             _run_task(tiny, algo, 15, dim)  # warm: JIT or kernel cache, imports
-            n = cpu = wall = 0.0
+            nfev, cpu, wall = [], 0.0, 0.0
             for fid in functions:
                 e, c, w = _run_task(probe, algo, fid, dim)
-                n, cpu, wall = n + e, cpu + c, wall + w
-            full = len(functions) * PROBE_RUNS * evaluation_budget(PROBE_BUDGET, dim)
-            rate[algo, dim] = {"rate": n / cpu, "wall_rate": n / wall, "used": n / full}
+                nfev, cpu, wall = nfev + e, cpu + c, wall + w
+            cap = evaluation_budget(PROBE_BUDGET, dim)
+            rate[algo, dim] = {
+                "rate": sum(nfev) / cpu,
+                "wall_rate": sum(nfev) / wall,
+                "used": sum(nfev) / (len(nfev) * cap),
+                "stopped": [e for e in nfev if e < cap],
+                "runs": len(nfev),
+            }
     return rate
+
+
+def budget_share(r: dict, max_evals: int) -> float:
+    """Expected share of ``max_evals`` a run spends, from the probe's early stops.
+
+    A probe run that stopped spends the same at any larger budget; the others are counted at
+    ``max_evals``, though some would stop between the probe's budget and ``max_evals``.
+    """
+    n_stopped = len(r["stopped"])
+    return (sum(r["stopped"]) + (r["runs"] - n_stopped) * max_evals) / (r["runs"] * max_evals)
 
 
 def study_projection(workers: int = 2) -> list[dict]:
@@ -106,8 +124,11 @@ def study_projection(workers: int = 2) -> list[dict]:
 
     Rates from :func:`measure_rates` (warmed, on ``SAMPLE_FUNCTIONS``, early stopping on); a
     preset's time is the sum over (algorithm, D) of its evaluations over that rate, divided by
-    ``workers``. Its evaluations are counted at the full budget, so the projection is an upper
-    bound: runs that reach 1e-8 (at most ``used`` of the probe's budget) stop earlier.
+    ``workers``. ``upper`` counts every run at its full budget; ``estimate`` scales each
+    (algorithm, D) by :func:`budget_share` of the sample (4 of 24 functions, so a rough guide;
+    it still counts runs that stop after the probe's budget in full). Runs that stop are
+    deterministic continuations for CMA-ES and random search; for algorithms whose schedule
+    depends on the budget (GWO, WOA), the probe's early stops are only indicative.
     """
     full, quick = preset_plan("bbob-full"), preset_plan("bbob-quick")
     rate = measure_rates(full)
@@ -122,18 +143,18 @@ def study_projection(workers: int = 2) -> list[dict]:
     out = []
     for plan, target in ((quick, 10.0), (full, 30.0)):
         per = len(plan.functions) * len(plan.instances) * plan.runs
-        sec = sum(
-            per * evaluation_budget(plan.budget, d) / rate[a, d]["rate"]
-            for a in plan.algorithms
-            for d in plan.dims
-        )
-        minutes = sec / workers / 60
-        flag = "ok" if minutes <= target else "MISSED"
+        upper = est = 0.0
+        for a in plan.algorithms:
+            for d in plan.dims:
+                cap = evaluation_budget(plan.budget, d)
+                sec = per * cap / rate[a, d]["rate"] / workers / 60
+                upper, est = upper + sec, est + sec * budget_share(rate[a, d], cap)
+        flag = "ok" if est <= target else "MISSED"
         print(
-            f"  {plan.name:10s} projected <= {minutes:7.1f} min on {workers} workers "
-            f"(target <= {target:.0f} min) {flag}"
+            f"  {plan.name:10s} projected {est:7.1f} min (upper bound {upper:7.1f}) on "
+            f"{workers} workers (target <= {target:.0f} min) {flag}"
         )
-        out.append({"preset": plan.name, "minutes": minutes})
+        out.append({"preset": plan.name, "minutes": est, "upper_minutes": upper})
     return out
 
 
