@@ -5,13 +5,21 @@ one uniform draw per point), so the gap to the bare ``ioh`` loop is the cost of 
 the evaluation recorder and the batching. The bare loop calls ``problem(X)`` on batches of the
 same shape as many times. Target (issue 13): pipeline overhead <= 2x the bare call. CMA-ES and
 MAWDO are timed too, for information (their own algorithm cost is not pipeline overhead).
+The bare call hands ioh nested lists, as our formula does (ioh converts them faster than arrays).
+
+Then the suite-study presets are projected from every algorithm's measured rate
+(:func:`study_projection`; ``python -m benchmarks.bench_bbob projection`` runs it alone).
 """
 
 from __future__ import annotations
 
+import sys
 import time
 
 import numpy as np
+
+from mawdo.experiments.bbob import preset_plan
+from mawdo.suites import evaluation_budget
 
 DIM, RUNS, POP, BUDGET = 20, 10, 50, 1000  # 1000 x D = 20 000 evaluations per run
 FUNCTIONS = (1, 8, 15, 21)
@@ -30,7 +38,7 @@ def bare_ioh(fid: int, repeats: int = 3) -> float:
     for _ in range(repeats):
         t = time.perf_counter()
         for _ in range(batches):
-            np.asarray(p(X), dtype=float)
+            np.asarray(p(X.tolist()), dtype=float)
         best = min(best, time.perf_counter() - t)
     return best
 
@@ -50,50 +58,110 @@ def pipeline(fid: int, algo: str, repeats: int = 3, runs: int = RUNS) -> tuple[f
     return best, nfev
 
 
-def study_projection(workers: int = 2) -> list[dict]:
-    """Projected wall time of the ``bbob-quick`` and ``bbob-full`` presets on ``workers``.
+# The projection's sample: cheap to costly ioh calls, one that stops early (f1) and multimodal
+# ones that do not, so early stopping and per-call cost enter the measured rates.
+SAMPLE_FUNCTIONS = (1, 8, 15, 21)  # Sphere, Rosenbrock, Rastrigin rotated, Gallagher 101
+PROBE_BUDGET, PROBE_RUNS = 1000, 2
 
-    Each algorithm's evaluations per second are measured on f15 (multimodal, so no run stops
-    early) at D = 5 and D = 20, 2 runs of 1e3 x D evaluations through the study's own task
-    (:func:`execute_suite_task`); a preset's time is the sum over (algorithm, D) of its
-    evaluations over that rate, divided by ``workers``. An upper bound: runs that reach 1e-8
-    stop early.
-    """
-    from mawdo.experiments.bbob import execute_suite_task, preset_plan
+
+def _run_task(plan, algo: str, fid: int, dim: int) -> tuple[list[int], float, float]:
+    """Each run's evaluations, CPU and wall seconds of one study task (``plan.runs`` runs)."""
+    from mawdo.experiments.bbob import execute_suite_task
     from mawdo.experiments.bbob.plan import problem_key
     from mawdo.experiments.protocol import Task
-    from mawdo.suites import evaluation_budget
 
-    full, quick = preset_plan("bbob-full"), preset_plan("bbob-quick")
-    probe = quick.with_overrides(budget=1e3, runs=2, functions=[15], instances=[1])
+    spec = plan.task_spec(Task(algo, problem_key(fid, 1, dim), 0, plan.runs))
+    c, w = time.process_time(), time.perf_counter()
+    rows = execute_suite_task(spec)
+    cpu, wall = time.process_time() - c, time.perf_counter() - w
+    if any(r.error_text for r in rows):
+        raise RuntimeError(f"{algo} failed on f{fid} D={dim}: {rows[0].error_text}")
+    return [r.nfev for r in rows], cpu, wall
+
+
+def measure_rates(plan, functions=SAMPLE_FUNCTIONS) -> dict:
+    """Evaluations per CPU second of each (algorithm, D) of ``plan`` over ``functions``.
+
+    Each algorithm first runs a tiny task, so Numba's compilation or cache loading (paid once
+    per worker process) is not timed. The probe runs the study's own task with its final target
+    (runs that reach 1e-8 stop, as in the study), at ``PROBE_BUDGET x D`` evaluations.
+    ``stopped`` holds the evaluations of the probe's runs that stopped early, ``runs`` their
+    number in all.
+    """
+    probe = plan.with_overrides(budget=PROBE_BUDGET, runs=PROBE_RUNS, instances=[1])
+    tiny = plan.with_overrides(budget=50, runs=1, instances=[1])  # a few iterations: every kernel
     rate = {}
-    for algo in full.algorithms:
-        for dim in full.dims:
-            spec = probe.task_spec(Task(algo, problem_key(15, 1, dim), 0, 2))
-            t = time.perf_counter()
-            rows = execute_suite_task(spec)
-            rate[algo, dim] = sum(r.nfev for r in rows) / (time.perf_counter() - t)
+    for algo in plan.algorithms:
+        for dim in plan.dims:
+            _run_task(tiny, algo, 15, dim)  # warm: JIT or kernel cache, imports
+            nfev, cpu, wall = [], 0.0, 0.0
+            for fid in functions:
+                e, c, w = _run_task(probe, algo, fid, dim)
+                nfev, cpu, wall = nfev + e, cpu + c, wall + w
+            cap = evaluation_budget(PROBE_BUDGET, dim)
+            rate[algo, dim] = {
+                "rate": sum(nfev) / cpu,
+                "wall_rate": sum(nfev) / wall,
+                "used": sum(nfev) / (len(nfev) * cap),
+                "stopped": [e for e in nfev if e < cap],
+                "runs": len(nfev),
+            }
+    return rate
+
+
+def budget_share(r: dict, max_evals: int) -> float:
+    """Expected share of ``max_evals`` a run spends, from the probe's early stops.
+
+    A probe run that stopped spends the same at any larger budget; the others are counted at
+    ``max_evals``, though some would stop between the probe's budget and ``max_evals``.
+    """
+    n_stopped = len(r["stopped"])
+    return (sum(r["stopped"]) + (r["runs"] - n_stopped) * max_evals) / (r["runs"] * max_evals)
+
+
+def study_projection(workers: int = 2) -> list[dict]:
+    """Projected CPU time of the ``bbob-quick`` and ``bbob-full`` presets on ``workers``.
+
+    Rates from :func:`measure_rates` (warmed, on ``SAMPLE_FUNCTIONS``, early stopping on); a
+    preset's time is the sum over (algorithm, D) of its evaluations over that rate, divided by
+    ``workers``. ``upper`` counts every run at its full budget; ``estimate`` scales each
+    (algorithm, D) by :func:`budget_share` of the sample (4 of 24 functions, so a rough guide;
+    it still counts runs that stop after the probe's budget in full). Runs that stop are
+    deterministic continuations for CMA-ES and random search; for algorithms whose schedule
+    depends on the budget (GWO, WOA), the probe's early stops are only indicative.
+    """
+    full, quick = preset_plan("bbob-full"), preset_plan("bbob-quick")
+    rate = measure_rates(full)
+    sample = ", ".join(f"f{f}" for f in SAMPLE_FUNCTIONS)
+    print(
+        f"  rates on {sample}, instance 1, {PROBE_RUNS} runs x {PROBE_BUDGET} x D, "
+        "final target 1e-8 (warmed):"
+    )
+    print(f"  {'algorithm':11s} {'D':>3s} {'evals/CPU s':>12s} {'evals/wall s':>13s} {'used':>6s}")
+    for (a, d), r in sorted(rate.items()):
+        print(f"  {a:11s} {d:3d} {r['rate']:12.3e} {r['wall_rate']:13.3e} {r['used']:6.1%}")
     out = []
     for plan, target in ((quick, 10.0), (full, 30.0)):
         per = len(plan.functions) * len(plan.instances) * plan.runs
-        sec = sum(
-            per * evaluation_budget(plan.budget, d) / rate[a, d]
-            for a in plan.algorithms
-            for d in plan.dims
-        )
-        minutes = sec / workers / 60
-        flag = "ok" if minutes <= target else "MISSED"
+        upper = est = 0.0
+        for a in plan.algorithms:
+            for d in plan.dims:
+                cap = evaluation_budget(plan.budget, d)
+                sec = per * cap / rate[a, d]["rate"] / workers / 60
+                upper, est = upper + sec, est + sec * budget_share(rate[a, d], cap)
+        flag = "ok" if est <= target else "MISSED"
         print(
-            f"  {plan.name:10s} projected {minutes:7.1f} min on {workers} workers "
-            f"(target <= {target:.0f} min) {flag}"
+            f"  {plan.name:10s} projected {est:7.1f} min (upper bound {upper:7.1f}) on "
+            f"{workers} workers (target <= {target:.0f} min) {flag}"
         )
-        out.append({"preset": plan.name, "minutes": minutes})
-    slow = ", ".join(f"{a} D={d}: {r:.2e}" for (a, d), r in sorted(rate.items()))
-    print(f"  evaluations/s per (algorithm, D): {slow}")
+        out.append({"preset": plan.name, "minutes": est, "upper_minutes": upper})
     return out
 
 
-def main() -> list[dict]:
+def main(argv: list[str] | None = None) -> list[dict]:
+    """The pipeline overhead table, then the projection; ``projection`` alone runs the latter."""
+    if argv and argv[0] == "projection":
+        return study_projection()
     pipeline(1, "random", repeats=1)  # imports, ioh problem construction
     print(
         f"BBOB D={DIM}, {RUNS} runs x {BUDGET}*D evaluations (random search, pop {POP}); best of 3"
@@ -121,4 +189,4 @@ def main() -> list[dict]:
 
 
 if __name__ == "__main__":
-    main()
+    main(sys.argv[1:])

@@ -150,3 +150,19 @@ def test_missing_extra_says_which_install_fixes_it(monkeypatch, suite, module):
             get_problem(suite, 1, dim=10)
     finally:
         cec._opfunu_function.cache_clear()
+
+
+@pytest.mark.parametrize("fid", [1, 8, 15, 21])
+@pytest.mark.parametrize("dim", [5, 20])
+def test_bbob_batches_leave_ioh_in_the_state_its_own_array_call_leaves(fid, dim):
+    # the formula hands ioh nested lists (faster to convert); ioh's count and best-so-far, which
+    # an IOH logger would read, must be those of ioh's own ndarray batch call
+    f = get_problem("bbob", fid, instance=1, dim=dim)
+    ref = ioh.get_problem(fid, 1, dim, ioh.ProblemClass.REAL)
+    for seed in range(3):
+        X = points(dim, 13, -5, 5, seed)
+        np.testing.assert_array_equal(f.func(X), np.asarray(ref(X), dtype=float))
+    got, want = f.func.problem.state, ref.state
+    assert got.evaluations == want.evaluations == 39
+    assert got.current_best.y == want.current_best.y
+    np.testing.assert_array_equal(got.current_best.x, want.current_best.x)

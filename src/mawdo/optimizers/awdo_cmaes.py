@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mawdo.optimizers.base import Space
+from mawdo.optimizers.cmaes_ref import ask_generation
 from mawdo.optimizers.wdo import Wind, WindParams, WindState
 from mawdo.streams import RunStreams
 
@@ -83,10 +84,10 @@ class AWDOCMA(Wind):
         for r, cma in enumerate(state.cmas):
             fr = f[r]
             finite = np.isfinite(fr)
-            worst = fr[finite].max() + 1.0 if finite.any() else 1.0
-            fr = np.where(finite, fr, worst)
-            cma.tell([(state.arx[r, i], float(fr[i])) for i in range(fr.size)])
-        state.arx = np.stack(
-            [np.stack([cma.ask() for _ in range(state.arx.shape[1])]) for cma in state.cmas]
-        )
+            if not finite.all():
+                worst = fr[finite].max() + 1.0 if finite.any() else 1.0
+                fr = np.where(finite, fr, worst)
+            cma.tell(list(zip(state.arx[r], fr.tolist(), strict=True)))
+        # the same samples as N calls of cma.ask(), drawn as one generation
+        state.arx = np.stack([ask_generation(cma, state.arx.shape[1]) for cma in state.cmas])
         return state

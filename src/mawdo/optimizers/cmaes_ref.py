@@ -13,6 +13,11 @@ When ``CMA.should_stop()`` fires, the run restarts from a new uniform mean with 
 run cannot double its population alone; docs/bbob.md). ``result.metadata["restarts"]`` counts
 each run's restarts. Warm start: the ``x0`` points are
 evaluated first, alone, and the CMA-ES starts from the best of them.
+
+A generation is sampled by :func:`ask_generation`, which reproduces ``lambda`` calls of
+``CMA.ask()`` draw for draw in a few array operations (``ask()`` costs ~5 us of Python per
+sample); it reads the library's private state, so ``pyproject.toml`` pins the ``cmaes`` versions
+it was checked against and ``tests/optimizers/test_cmaes_batch_ask.py`` guards the equality.
 """
 
 from __future__ import annotations
@@ -51,6 +56,58 @@ class CMAESParams(Params):
     def __post_init__(self) -> None:
         super().__post_init__()
         check_range("sigma0", self.sigma0, 0.0, 1.0, low_open=True)
+
+
+def ask_generation(cma, n: int) -> np.ndarray:
+    """``n`` samples of a ``cmaes.CMA``, bit-identical to ``n`` calls of ``cma.ask()``.
+
+    ``ask()`` draws ``z ~ N(0, I)`` from the CMA's ``RandomState``, maps it to
+    ``x = m + sigma B diag(D) z`` and, with bounds, redraws an infeasible ``x`` up to
+    ``n_max_resampling`` times before clipping one more draw. Here the draws come in blocks of
+    as many rows as samples are still missing: each draw yields at most one sample, so a block
+    never draws past what the ``ask()`` calls would have drawn, and the generator ends in the
+    same state. The matrix-vector products are one stacked ``matmul``, which calls the same
+    BLAS ``gemv`` as ``ask()``'s ``dot`` (a ``gemm`` would round differently).
+
+    Parameters
+    ----------
+    cma : cmaes.CMA
+        The optimizer (``cmaes`` 0.13.1, as pinned; its private sampling state is read and
+        advanced).
+    n : int
+        Samples to draw, >= 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape ``(n, dim)``, in the CMA's coordinates, in the order ``ask()`` returns them.
+    """
+    dim = cma._n_dim
+    out = np.empty((n, dim))
+    if n == 0:
+        return out  # ask() never called: the eigendecomposition must not run either
+    B, D = cma._eigen_decomposition()
+    BD = B.dot(np.diag(D))  # as in CMA._sample_solution, so the same matrix
+    bounds, max_tries = cma._bounds, cma._n_max_resampling
+    k = tries = 0  # samples made; infeasible draws for the sample being made
+    while k < n:
+        Z = cma._rng.randn(n - k, dim)
+        X = cma._mean + cma._sigma * np.matmul(BD, Z[:, :, None])[:, :, 0]
+        if bounds is None:
+            out[k:] = X
+            return out
+        feasible = np.all((X >= bounds[:, 0]) & (X <= bounds[:, 1]), axis=1)
+        if tries == 0 and max_tries > 0 and feasible.all():
+            out[k:] = X
+            return out
+        for x, ok in zip(X, feasible, strict=True):
+            if tries == max_tries:  # ask(): the draw after the last resampling is clipped
+                out[k], k, tries = cma._repair_infeasible_params(x), k + 1, 0
+            elif ok:
+                out[k], k, tries = x, k + 1, 0
+            else:
+                tries += 1
+    return out
 
 
 def default_pop_size(dim: int) -> int:
@@ -113,7 +170,7 @@ class CMAES(Optimizer):
         if state.x0 is not None:
             return state.x0
         lam = self.params.pop_size
-        state.U = np.stack([np.stack([c.ask() for _ in range(lam)]) for c in state.cmas])
+        state.U = np.stack([ask_generation(c, lam) for c in state.cmas])
         return np.clip(sp.lb + state.U * (sp.ub - sp.lb), sp.lb, sp.ub)
 
     def tell(self, state: CMAESState, X: np.ndarray, F: np.ndarray) -> CMAESState:
@@ -127,10 +184,11 @@ class CMAES(Optimizer):
         for r, cma in enumerate(state.cmas):
             fr = F[r]
             finite = np.isfinite(fr)
-            # cmaes ranks by value; +inf (invalid) becomes just worse than the worst valid value
-            worst = fr[finite].max() + 1.0 + abs(fr[finite].max()) if finite.any() else 1.0
-            fr = np.where(finite, fr, worst)
-            cma.tell([(state.U[r, i], float(fr[i])) for i in range(fr.size)])
+            if not finite.all():
+                # cmaes ranks by value; +inf (invalid) becomes just worse than the worst valid one
+                worst = fr[finite].max() + 1.0 + abs(fr[finite].max()) if finite.any() else 1.0
+                fr = np.where(finite, fr, worst)
+            cma.tell(list(zip(state.U[r], fr.tolist(), strict=True)))
             if self.params.restarts and cma.should_stop():
                 state.cmas[r] = self._new_cma(state.streams.generators[r], sp.dim)
                 state.restarts[r] += 1
