@@ -16,6 +16,7 @@ piecewise-linear motion, hit distance ``r + clearance``). The fallback order is:
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 
 from mawdo.planning.check import check_trajectory
 from mawdo.planning.cost import PathCost
@@ -23,6 +24,35 @@ from mawdo.planning.path import advance, densify
 from mawdo.planning.scenario import Scenario
 
 __all__ = ["Elite", "Guard"]
+
+
+@njit(cache=True)
+def _distinct_first(X, order, size, min_dist):
+    """Indices, in ``order``, of the first ``size`` rows of ``X`` that differ from every row
+    already taken by more than ``min_dist`` in some coordinate (a NaN difference never counts as
+    distinct, as with ``numpy.max``); replaces a NumPy loop of small calls that cost ~5 ms per
+    replan."""
+    keep = np.empty(size, np.int64)
+    k = 0
+    for i in order:
+        distinct = True
+        for a in range(k):
+            j, far = keep[a], 0.0
+            for d in range(X.shape[1]):
+                gap = abs(X[j, d] - X[i, d])
+                if gap != gap:  # NaN: numpy's max and min would propagate it
+                    far = gap
+                    break
+                far = max(far, gap)
+            if not far > min_dist:
+                distinct = False
+                break
+        if distinct:
+            keep[k] = i
+            k += 1
+            if k == size:
+                break
+    return keep[:k]
 
 
 class Elite:
@@ -40,9 +70,10 @@ class Elite:
         """Offer a batch (candidates ``(n, D)``, costs ``(n,)``); returns ``f`` unchanged."""
         X, fv = np.atleast_2d(X), np.atleast_1d(np.asarray(f, dtype=float))
         ok = np.isfinite(fv)
-        if not ok.any():
-            return f
-        X, fv = X[ok], fv[ok]
+        if not ok.all():  # the usual batch is all finite: no masked copy of it then
+            if not ok.any():
+                return f
+            X, fv = X[ok], fv[ok]
         if len(self.f) == self.size and fv.min() >= self.f[-1]:
             return f  # nothing in this batch would enter (the usual case late in a run)
         if len(fv) > self.size:  # the batch's best few, without sorting it all
@@ -50,14 +81,12 @@ class Elite:
             take = part[np.argsort(fv[part], kind="stable")]
         else:
             take = np.argsort(fv, kind="stable")
-        allx = np.vstack([self.X, X[take]]) if self.X.size else X[take].copy()
+        allx = np.vstack([self.X, X[take]]) if self.X.size else X[take]
         allf = np.r_[self.f, fv[take]]
-        keep: list[int] = []
-        for i in np.argsort(allf, kind="stable"):
-            if not keep or np.min(np.max(np.abs(allx[keep] - allx[i]), axis=1)) > self.min_dist:
-                keep.append(int(i))
-                if len(keep) == self.size:
-                    break
+        order = np.argsort(allf, kind="stable")
+        keep = _distinct_first(
+            np.ascontiguousarray(allx, dtype=float), order, self.size, self.min_dist
+        )
         self.X, self.f = allx[keep].copy(), allf[keep]
         return f
 

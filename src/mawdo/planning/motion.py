@@ -116,6 +116,8 @@ def _interval_knots(motion: Motion, inner: np.ndarray, t0: float, t1: float):
         raise ValueError(f"knots need t0 <= t1, got t0={t0}, t1={t1}")
     if t1 == t0:
         times = np.array([t0])
+    elif not inner.size:  # the usual piece: what np.unique gives, without the sort
+        times = np.array([t0, t1])
     else:
         times = np.unique(np.concatenate(([t0], inner, [t1])))
     return times, motion.offset(times)
@@ -290,6 +292,10 @@ class BoundedRandomWalk(Motion):
     seed: np.random.SeedSequence
     hold: int = 1
     _walk: list = field(init=False, repr=False, default_factory=list)  # unfolded blocks cache
+    # the folded positions of every block drawn so far (a one-item list, the dataclass is
+    # frozen): cumsum and fold work element by element, so a prefix of them is what a shorter
+    # walk gives, and offset() need not redo them over the whole walk at each call
+    _folded: list = field(init=False, repr=False, default_factory=list)
 
     @property
     def is_static(self) -> bool:  # type: ignore[override]
@@ -318,7 +324,11 @@ class BoundedRandomWalk(Motion):
             return np.zeros(t.shape + (2,))
         q = t / self.hold
         n = int(np.ceil(np.max(q))) + 1 if t.size else 1
-        pos = fold(self.unfolded(n), self.lo, self.hi)
+        if not self._folded or len(self._folded[0]) < n + 1:
+            self.unfolded(n)  # draws the blocks that cover n
+            whole = fold(self.unfolded(len(self._walk) * _WALK_BLOCK), self.lo, self.hi)
+            self._folded[:] = [whole]
+        pos = self._folded[0]
         i = np.minimum(np.floor(q).astype(np.int64), n - 1)
         frac = (q - i)[..., None]
         return pos[i] + frac * (pos[i + 1] - pos[i])
