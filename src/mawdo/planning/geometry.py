@@ -18,6 +18,7 @@ Minkowski sum of the shape and a disc of radius ``r``). Two representations are 
 
 from __future__ import annotations
 
+import functools
 import weakref
 from dataclasses import dataclass
 
@@ -48,11 +49,21 @@ def circumscribed_polygon(center, radius: float, n: int = CIRCLE_SEGMENTS) -> sh
     """
     if radius <= 0:
         return shapely.Point(center)
-    angles = (2.0 * np.arange(n) + 1.0) * np.pi / n
-    rho = radius / np.cos(np.pi / n)  # circumradius of a polygon with apothem `radius`
-    x = center[0] + rho * np.cos(angles)
-    y = center[1] + rho * np.sin(angles)
+    cos_a, sin_a, inv = _unit_polygon(int(n))
+    rho = radius / inv  # circumradius of a polygon with apothem `radius`
+    x = center[0] + rho * cos_a
+    y = center[1] + rho * sin_a
     return shapely.Polygon(np.column_stack([x, y]))
+
+
+@functools.lru_cache(maxsize=16)
+def _unit_polygon(n: int) -> tuple[np.ndarray, np.ndarray, float]:
+    """Cosines and sines of the ``n``-gon's vertex angles and ``cos(pi / n)``, computed once
+    per ``n`` (the oracle follower builds hundreds of polygons per run)."""
+    angles = (2.0 * np.arange(n) + 1.0) * np.pi / n
+    cos_a, sin_a = np.cos(angles), np.sin(angles)
+    cos_a.flags.writeable = sin_a.flags.writeable = False
+    return cos_a, sin_a, np.cos(np.pi / n)
 
 
 def shape_geometry(shape, offset=(0.0, 0.0), n: int = CIRCLE_SEGMENTS):

@@ -28,7 +28,9 @@ Models
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -102,6 +104,8 @@ def fold_turn_times(velocity: float, lo: float, hi: float, t0: float, t1: float)
     a = (velocity * t0 - lo) / span
     b = (velocity * t1 - lo) / span
     ka, kb = min(a, b), max(a, b)
+    if math.floor(ka) + 1.0 >= math.ceil(kb):  # no integer inside: the usual short interval
+        return np.empty(0)
     k = np.arange(np.floor(ka) + 1.0, np.ceil(kb))  # integers strictly inside (ka, kb)
     times = (lo + k * span) / velocity
     times = times[(times > t0) & (times < t1)]  # guard against rounding at the ends
@@ -189,7 +193,7 @@ class ConstantVelocity(Motion):
     lo: tuple[float, float]
     hi: tuple[float, float]
 
-    @property
+    @cached_property  # asked at every step and piece; the fields never change (frozen)
     def is_static(self) -> bool:  # type: ignore[override]
         span = np.subtract(self.hi, self.lo)
         return not np.any((np.asarray(self.velocity) != 0.0) & (span > 0.0))
@@ -235,7 +239,7 @@ class Patrol(Motion):
         total = self._cum[-1]
         return total / self.speed if self.speed > 0 and total > 0 else np.inf
 
-    @property
+    @cached_property  # asked at every step and piece; the fields never change (frozen)
     def is_static(self) -> bool:  # type: ignore[override]
         return not np.isfinite(self.period)
 
@@ -297,7 +301,7 @@ class BoundedRandomWalk(Motion):
     # walk gives, and offset() need not redo them over the whole walk at each call
     _folded: list = field(init=False, repr=False, default_factory=list)
 
-    @property
+    @cached_property  # asked at every step and piece; the fields never change (frozen)
     def is_static(self) -> bool:  # type: ignore[override]
         return self.step == 0.0 or bool(np.all(np.subtract(self.hi, self.lo) <= 0.0))
 
