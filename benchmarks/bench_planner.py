@@ -4,8 +4,9 @@ paper scenario in receding horizon, and the exact oracle's build + query time.
 Targets: static single-shot on the maze / U-trap / rooms families (20 scenes each): 0 collisions,
 median gap <= 1.01, p95 <= 1.05, median time <= 50 ms; paper scenario, dynamic, 10 seeds:
 gap <= 1.02, replan p95 <= 20 ms, 0 collisions; oracle build + query on a 366 x 366 map with 30
-polygons <= 20 ms. The map families are the test suite's (``tests/planning/maps.py``); run from
-the repository root. ``python -m benchmarks planner``.
+polygons <= 20 ms; seconds per arena run by family (issue 14, CPU time). The map families are
+the test suite's (``tests/planning/maps.py``); run from the repository root.
+``python -m benchmarks planner``.
 """
 
 from __future__ import annotations
@@ -88,6 +89,29 @@ def paper_dynamic(seeds=range(10), algorithm: str = "mawdo") -> None:
     )
 
 
+def arena_runs(
+    families=("forest", "maze", "dense", "crossing", "u_trap", "rooms"),
+    algorithms=("mawdo", "oracle_follower"),
+) -> None:
+    """Seconds per arena run (scene 0 of each family, ``realtime`` preset) in *CPU* time of this
+    process, which a machine shared with other jobs leaves far steadier than wall time (the
+    planner is single-threaded); issue 14 budgets the arena by these per-run costs."""
+    from mawdo.planning.planner import ORACLE_FOLLOWER, follow_oracle, plan
+    from mawdo.planning.scenes import generate_scene
+
+    print("arena runs, scene 0 per family, realtime preset, CPU seconds per run")
+    for alg in algorithms:
+        if alg != ORACLE_FOLLOWER:  # compile outside the timing
+            plan(generate_scene(families[0], 0, seed=0).scenario, alg, seed=0, max_steps=2)
+        row = []
+        for fam in families:
+            sc = generate_scene(fam, 0, seed=0).scenario
+            t = time.process_time()
+            res = follow_oracle(sc) if alg == ORACLE_FOLLOWER else plan(sc, alg, seed=0)
+            row.append(f"{fam} {time.process_time() - t:5.2f} s ({res.steps} steps)")
+        print(f"  {alg:16s} " + ", ".join(row))
+
+
 def oracle(polygons: int = 30, repeats: int = 20) -> None:
     import shapely
 
@@ -120,6 +144,7 @@ def main() -> None:
     oracle()
     static_families()
     paper_dynamic()
+    arena_runs()
 
 
 if __name__ == "__main__":

@@ -18,6 +18,8 @@ Minkowski sum of the shape and a disc of radius ``r``). Two representations are 
 
 from __future__ import annotations
 
+import functools
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -47,11 +49,21 @@ def circumscribed_polygon(center, radius: float, n: int = CIRCLE_SEGMENTS) -> sh
     """
     if radius <= 0:
         return shapely.Point(center)
-    angles = (2.0 * np.arange(n) + 1.0) * np.pi / n
-    rho = radius / np.cos(np.pi / n)  # circumradius of a polygon with apothem `radius`
-    x = center[0] + rho * np.cos(angles)
-    y = center[1] + rho * np.sin(angles)
+    cos_a, sin_a, inv = _unit_polygon(int(n))
+    rho = radius / inv  # circumradius of a polygon with apothem `radius`
+    x = center[0] + rho * cos_a
+    y = center[1] + rho * sin_a
     return shapely.Polygon(np.column_stack([x, y]))
+
+
+@functools.lru_cache(maxsize=16)
+def _unit_polygon(n: int) -> tuple[np.ndarray, np.ndarray, float]:
+    """Cosines and sines of the ``n``-gon's vertex angles and ``cos(pi / n)``, computed once
+    per ``n`` (the oracle follower builds hundreds of polygons per run)."""
+    angles = (2.0 * np.arange(n) + 1.0) * np.pi / n
+    cos_a, sin_a = np.cos(angles), np.sin(angles)
+    cos_a.flags.writeable = sin_a.flags.writeable = False
+    return cos_a, sin_a, np.cos(np.pi / n)
 
 
 def shape_geometry(shape, offset=(0.0, 0.0), n: int = CIRCLE_SEGMENTS):
@@ -102,6 +114,9 @@ def inflate(shape, r: float, offset=(0.0, 0.0), n: int = CIRCLE_SEGMENTS) -> sha
     return shapely.union_all(np.concatenate([[poly], hulls]))
 
 
+_STATIC_INFLATED: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
 def inflated_obstacles(
     scenario: Scenario, t: float = 0.0, indices=None, n: int = CIRCLE_SEGMENTS
 ) -> list[shapely.Polygon]:
@@ -113,9 +128,22 @@ def inflated_obstacles(
         Which obstacles (default all); ``scenario.static_indices`` gives the static ones.
     """
     idx = range(len(scenario.obstacles)) if indices is None else indices
-    offsets = scenario.offsets(t)
     r = scenario.robot_radius
-    return [inflate(scenario.obstacles[i].shape, r, offsets[i], n) for i in idx]
+    # static shapes are the same at every t: inflated once per scenario (the oracle follower
+    # asks at every step); shapely geometries are immutable, so sharing them is safe
+    cache = _STATIC_INFLATED.setdefault(scenario, {})
+    out = []
+    for i in idx:
+        o = scenario.obstacles[i]
+        if o.is_static:
+            off = o.offset(float(t))
+            key = (i, float(r), int(n), float(off[0]), float(off[1]))
+            if key not in cache:
+                cache[key] = inflate(o.shape, r, off, n)
+            out.append(cache[key])
+        else:
+            out.append(inflate(o.shape, r, o.offset(float(t)), n))
+    return out
 
 
 def _hull_halfplanes(vertices: np.ndarray, r: float) -> np.ndarray:

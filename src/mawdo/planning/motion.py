@@ -28,7 +28,9 @@ Models
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -102,6 +104,8 @@ def fold_turn_times(velocity: float, lo: float, hi: float, t0: float, t1: float)
     a = (velocity * t0 - lo) / span
     b = (velocity * t1 - lo) / span
     ka, kb = min(a, b), max(a, b)
+    if math.floor(ka) + 1.0 >= math.ceil(kb):  # no integer inside: the usual short interval
+        return np.empty(0)
     k = np.arange(np.floor(ka) + 1.0, np.ceil(kb))  # integers strictly inside (ka, kb)
     times = (lo + k * span) / velocity
     times = times[(times > t0) & (times < t1)]  # guard against rounding at the ends
@@ -116,6 +120,8 @@ def _interval_knots(motion: Motion, inner: np.ndarray, t0: float, t1: float):
         raise ValueError(f"knots need t0 <= t1, got t0={t0}, t1={t1}")
     if t1 == t0:
         times = np.array([t0])
+    elif not inner.size:  # the usual piece: what np.unique gives, without the sort
+        times = np.array([t0, t1])
     else:
         times = np.unique(np.concatenate(([t0], inner, [t1])))
     return times, motion.offset(times)
@@ -187,7 +193,7 @@ class ConstantVelocity(Motion):
     lo: tuple[float, float]
     hi: tuple[float, float]
 
-    @property
+    @cached_property  # asked at every step and piece; the fields never change (frozen)
     def is_static(self) -> bool:  # type: ignore[override]
         span = np.subtract(self.hi, self.lo)
         return not np.any((np.asarray(self.velocity) != 0.0) & (span > 0.0))
@@ -233,7 +239,7 @@ class Patrol(Motion):
         total = self._cum[-1]
         return total / self.speed if self.speed > 0 and total > 0 else np.inf
 
-    @property
+    @cached_property  # asked at every step and piece; the fields never change (frozen)
     def is_static(self) -> bool:  # type: ignore[override]
         return not np.isfinite(self.period)
 
@@ -290,8 +296,12 @@ class BoundedRandomWalk(Motion):
     seed: np.random.SeedSequence
     hold: int = 1
     _walk: list = field(init=False, repr=False, default_factory=list)  # unfolded blocks cache
+    # the folded positions of every block drawn so far (a one-item list, the dataclass is
+    # frozen): cumsum and fold work element by element, so a prefix of them is what a shorter
+    # walk gives, and offset() need not redo them over the whole walk at each call
+    _folded: list = field(init=False, repr=False, default_factory=list)
 
-    @property
+    @cached_property  # asked at every step and piece; the fields never change (frozen)
     def is_static(self) -> bool:  # type: ignore[override]
         return self.step == 0.0 or bool(np.all(np.subtract(self.hi, self.lo) <= 0.0))
 
@@ -318,7 +328,11 @@ class BoundedRandomWalk(Motion):
             return np.zeros(t.shape + (2,))
         q = t / self.hold
         n = int(np.ceil(np.max(q))) + 1 if t.size else 1
-        pos = fold(self.unfolded(n), self.lo, self.hi)
+        if not self._folded or len(self._folded[0]) < n + 1:
+            self.unfolded(n)  # draws the blocks that cover n
+            whole = fold(self.unfolded(len(self._walk) * _WALK_BLOCK), self.lo, self.hi)
+            self._folded[:] = [whole]
+        pos = self._folded[0]
         i = np.minimum(np.floor(q).astype(np.int64), n - 1)
         frac = (q - i)[..., None]
         return pos[i] + frac * (pos[i + 1] - pos[i])
