@@ -5,7 +5,9 @@
 leader with a strict ``<``; then for every whale draw ``r1, r2``, the ``l`` draw and ``p``, and
 loop over the dimensions, drawing ``rand_leader_index`` inside the ``for j`` loop and writing
 ``Positions(i, j)`` in place. The draws come from queues, so both codes see the same numbers; the
-vectorised implementation must reproduce every iteration's population.
+Numba kernel must reproduce every iteration's population (to 1e-13: the port's ``exp``/``cos`` are
+``math``'s). ``literal_move`` is one move alone, given the same ``exp``/``cos`` values, and must
+agree bit for bit.
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ import pytest
 
 from mawdo.optimizers.base import Space
 from mawdo.optimizers.registry import make_optimizer
-from mawdo.optimizers.woa import WOAState, search_in_place
+from mawdo.optimizers.woa import WOAState, woa_step
 from tests.optimizers.fixed_streams import FixedStreams
 
 
@@ -152,40 +154,85 @@ def test_in_place_matters_for_these_draws():
     assert any(not np.allclose(a, b) for a, b in zip(in_place, per_whale, strict=True))
 
 
-def literal_chain(X, new, search, idx, A, C):
-    """The search entries of WOA.m's loop alone: sequential over whales, in place."""
-    out = X.copy()
+def literal_move(X, leader, a, u, e, c, ur, lb, ub, *, in_place=True):
+    """One move of ``WOA.m``'s ``for i``/``for j`` loops per run, scalar by scalar, then the clamp.
+
+    ``e[r][i] cos[r][i]`` stand for ``exp(b l) cos(l 2 pi)`` (given, so both codes use the same
+    transcendental values); ``in_place=False`` reads every other whale from a copy of ``X``.
+    """
     R, N, D = X.shape
+    out = np.empty_like(X)
     for r in range(R):
-        P = X[r].copy()
+        P = [list(map(float, row)) for row in X[r]]
+        old = [list(row) for row in P]
         for i in range(N):
+            r1, r2, _, p = u[r, :, i]
+            A = 2 * a * r1 - a  # Eq. (2.3)
+            C = 2 * r2  # Eq. (2.4)
             for j in range(D):
-                if search[r, i]:
-                    xr = P[idx[r, i, j], j]
-                    P[i, j] = xr - A[r, i] * abs(C[r, i] * xr - P[i, j])
+                if p < 0.5:
+                    if abs(A) >= 1:
+                        draw = ur[r, i, j] if ur.shape[2] > 1 else ur[r, i, 0]
+                        k = math.floor(N * draw + 1) - 1
+                        X_rand = P[k] if in_place else old[k]
+                        D_X_rand = abs(C * X_rand[j] - P[i][j])  # Eq. (2.7)
+                        P[i][j] = X_rand[j] - A * D_X_rand  # Eq. (2.8)
+                    else:
+                        D_Leader = abs(C * leader[r, j] - P[i][j])  # Eq. (2.1)
+                        P[i][j] = leader[r, j] - A * D_Leader  # Eq. (2.2)
                 else:
-                    P[i, j] = new[r, i, j]
-        out[r] = P
+                    distance2Leader = abs(leader[r, j] - P[i][j])
+                    P[i][j] = distance2Leader * e[r, i] * c[r, i] + leader[r, j]  # Eq. (2.5)
+        out[r] = np.clip(np.array(P), lb, ub)
     return out
 
 
-def test_search_sweeps_solve_long_chains_exactly():
-    """Every whale searches and reads the previous one: a chain as deep as the population."""
+def random_move_case(seed, R=3, N=15, D=6, per_dimension=True):
+    """A move with ``a`` near 2: about a quarter of the whales search (``|A| >= 1``, ``p < .5``)."""
+    rng = np.random.default_rng(seed)
+    X = rng.uniform(-2, 2, (R, N, D))
+    leader = rng.uniform(-2, 2, (R, D))
+    u = rng.random((R, 4, N))
+    l = rng.uniform(-2, 1, (R, N))
+    ur = rng.random((R, N, D if per_dimension else 1))
+    lb, ub = np.full(D, -2.5), np.full(D, 2.5)  # the search move overshoots: the clamp acts
+    return X, leader, 1.9, u, np.exp(l), np.cos(2 * np.pi * l), ur, lb, ub
+
+
+@pytest.mark.parametrize("in_place", [True, False], ids=["in-place", "snapshot"])
+@pytest.mark.parametrize("per_dimension", [True, False], ids=["per-dimension", "per-whale"])
+@pytest.mark.parametrize("seed", range(6))
+def test_kernel_move_equals_the_literal_loop_bit_for_bit(seed, per_dimension, in_place):
+    case = random_move_case(seed, per_dimension=per_dimension)
+    got = np.empty_like(case[0])
+    woa_step(*case[:7], in_place, *case[7:], got)
+    want = literal_move(*case, in_place=in_place)
+    np.testing.assert_array_equal(got, want)
+    u = case[3]
+    A = 2 * 1.9 * u[:, 0] - 1.9
+    search = (u[:, 3] < 0.5) & (np.abs(A) >= 1)
+    assert search.sum() >= 5  # the case exercises the search move (and the clamp, below)
+    assert np.any(np.abs(got) == 2.5)
+
+
+def test_kernel_solves_a_chain_as_deep_as_the_population():
+    """Every whale searches and reads the previous one, whose new coordinate it must see."""
     rng = np.random.default_rng(5)
     R, N, D = 2, 12, 3
     X = rng.uniform(-1, 1, (R, N, D))
-    search = np.ones((R, N), bool)
-    idx = np.broadcast_to(np.maximum(np.arange(N) - 1, 0)[None, :, None], (R, N, D)).copy()
-    A = rng.uniform(1.0, 1.5, (R, N)) * rng.choice([-1, 1], (R, N))
-    C = rng.uniform(0, 2, (R, N))
-    got = search_in_place(X, X.copy(), search, idx, A, C)
-    np.testing.assert_array_equal(got, literal_chain(X, X, search, idx, A, C))
-    # and a random mix of search and non-search whales with random indices
-    search = rng.random((R, N)) < 0.6
-    idx = rng.integers(0, N, (R, N, D))
-    new = rng.uniform(-1, 1, (R, N, D))
-    got = search_in_place(X, new, search, idx, A, C)
-    np.testing.assert_array_equal(got, literal_chain(X, new, search, idx, A, C))
+    u = rng.random((R, 4, N))
+    u[:, 0] = rng.choice([0.0, 0.99], (R, N))  # |A| = a >= 1: the search move
+    u[:, 3] = 0.1
+    ur = np.broadcast_to(((np.maximum(np.arange(N) - 1, 0) + 0.5) / N)[None, :, None], (R, N, D))
+    e = c = np.ones((R, N))
+    lb, ub = np.full(D, -50.0), np.full(D, 50.0)
+    args = (X, np.zeros((R, D)), 1.2, u, e, c, np.ascontiguousarray(ur), True, lb, ub)
+    got = np.empty_like(X)
+    woa_step(*args, got)
+    np.testing.assert_array_equal(got, literal_move(*args[:7], lb, ub))
+    snapshot = np.empty_like(X)
+    woa_step(*args[:7], False, lb, ub, snapshot)
+    assert not np.array_equal(got[:, 2:], snapshot[:, 2:])  # the chain changes the result
 
 
 @pytest.mark.parametrize(

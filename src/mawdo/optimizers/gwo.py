@@ -16,6 +16,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
 from mawdo.optimizers.base import Optimizer, Params, Space, initial_population
 from mawdo.optimizers.kernels import gwo_step, seed_xoshiro
@@ -41,8 +42,9 @@ class GWOParams(Params):
     demote_leaders: bool = False
 
 
-def update_leaders_reference(lead_f, lead_x, F, X):
-    """Leader update of ``GWO.m``, exactly, vectorised over runs and wolves.
+@njit(cache=True, nogil=True)
+def leaders_in_place(lead_f, lead_x, F, X):  # pragma: no cover - compiled
+    """``GWO.m``'s leader update, literally, in place on ``lead_f (R, 3)``, ``lead_x (R, 3, D)``.
 
     ``GWO.m`` scans the wolves in order with strict comparisons::
 
@@ -50,40 +52,35 @@ def update_leaders_reference(lead_f, lead_x, F, X):
         if f > alpha and f < beta: beta = f
         if f > alpha and f > beta and f < delta: delta = f
 
-    Since alpha is the running minimum, beta can only take an ``f_i`` greater than the running
-    minimum before wolf ``i``, and it keeps the smallest such value; delta likewise takes the
-    smallest ``f_i`` greater than beta before wolf ``i``. Both are prefix computations.
-
-    Parameters
-    ----------
-    lead_f : numpy.ndarray
-        Scores of alpha, beta, delta before this iteration, shape ``(R, 3)``.
-    lead_x : numpy.ndarray
-        Their positions, shape ``(R, 3, D)``.
-    F, X : numpy.ndarray
-        This iteration's scores ``(R, N)`` and positions ``(R, N, D)``.
+    ``F (R, N)`` (no NaN), ``X (R, N, D)``. Each leader's position is copied once, from the last
+    wolf that set it in this scan.
     """
-    R, N = F.shape
-    rows = np.arange(R)
-    a0, b0, d0 = lead_f[:, 0:1], lead_f[:, 1:2], lead_f[:, 2:3]
-    # alpha before wolf i: min(alpha0, f_0..f_{i-1})
-    run_min = np.minimum.accumulate(np.concatenate([a0, F], axis=1), axis=1)
-    alpha_before = run_min[:, :-1]
-    beta_ok = F > alpha_before  # and f < beta_before, which the running min below takes care of
-    beta_cand = np.where(beta_ok, F, np.inf)
-    beta_run = np.minimum.accumulate(np.concatenate([b0, beta_cand], axis=1), axis=1)
-    beta_before = beta_run[:, :-1]
-    delta_ok = (F > alpha_before) & (F > beta_before)
-    delta_cand = np.where(delta_ok, F, np.inf)
+    R, N, D = X.shape
+    who = np.empty(3, np.intp)
+    for r in range(R):
+        a, b, d = lead_f[r, 0], lead_f[r, 1], lead_f[r, 2]
+        who[:] = -1
+        for i in range(N):
+            f = F[r, i]
+            if f < a:
+                a, who[0] = f, i
+            if f > a and f < b:
+                b, who[1] = f, i
+            if f > a and f > b and f < d:
+                d, who[2] = f, i
+        lead_f[r, 0], lead_f[r, 1], lead_f[r, 2] = a, b, d
+        for k in range(3):
+            if who[k] >= 0:
+                for j in range(D):
+                    lead_x[r, k, j] = X[r, who[k], j]
 
-    new_f = lead_f.copy()
-    new_x = lead_x.copy()
-    for k, (cand, old) in enumerate(((F, a0), (beta_cand, b0), (delta_cand, d0))):
-        j = np.argmin(cand, axis=1)  # first index of the minimum = the wolf that set it
-        cj = cand[rows, j]
-        take = cj < old[:, 0]
-        new_f[take, k] = cj[take]
-        new_x[take, k] = X[take, j[take]]
+
+def update_leaders_reference(lead_f, lead_x, F, X):
+    """Leader update of ``GWO.m`` (:func:`leaders_in_place`) on copies: returns the new
+    ``(lead_f (R, 3), lead_x (R, 3, D))`` from this iteration's scores ``F (R, N)`` and
+    positions ``X (R, N, D)``."""
+    new_f, new_x = lead_f.astype(float), lead_x.astype(float)
+    leaders_in_place(new_f, new_x, np.asarray(F, float), np.asarray(X, float))
     return new_f, new_x
 
 
@@ -168,7 +165,9 @@ class GWO(Optimizer):
         return state.X
 
     def tell(self, state: GWOState, X: np.ndarray, F: np.ndarray) -> GWOState:
-        update = update_leaders_demoting if self.params.demote_leaders else update_leaders_reference
-        state.lead_f, state.lead_x = update(state.lead_f, state.lead_x, F, X)
+        if self.params.demote_leaders:
+            state.lead_f, state.lead_x = update_leaders_demoting(state.lead_f, state.lead_x, F, X)
+        else:
+            leaders_in_place(state.lead_f, state.lead_x, F, X)
         state.t += 1
         return state

@@ -328,41 +328,50 @@ def mewdo_step(
     """
     R, N, D = p.shape
     u_old = np.empty(D)
+    up = np.empty(D)  # u_old[perm]
+    v = np.empty(D)
     alpha, g, RT, c = coef[0], coef[1], coef[2], coef[3]
     for r in range(R):
         for i in range(N):
-            for d in range(D):
+            for d in range(D):  # the gathers first, one loop per strategy: the loops vectorise
                 u_old[d] = u[r, i, d]
+            for d in range(D):
+                up[d] = u_old[perm[r, i, d]]
             s = strat[r, i]
             rk = rank[r, i]
-            for d in range(D):
-                q = p[r, i, d]
-                up = u_old[perm[r, i, d]]
-                if s == 0:
-                    v = (
+            if s == 0:
+                for d in range(D):
+                    q = p[r, i, d]
+                    v[d] = (
                         (1.0 - alpha) * u_old[d]
                         - g * q
                         + abs(1.0 - 1.0 / rk) * RT * (pbest[r, tb[r], d] - q)
-                        + c * up / rk
+                        + c * up[d] / rk
                     )
-                elif s == 1:
-                    a1, g1 = draws[r, i, 1], draws[r, i, 2]
-                    RT1, c1 = draws[r, i, 3], draws[r, i, 4]
-                    v = (
+            elif s == 1:
+                a1, g1 = draws[r, i, 1], draws[r, i, 2]
+                RT1, c1 = draws[r, i, 3], draws[r, i, 4]
+                for d in range(D):
+                    q = p[r, i, d]
+                    v[d] = (
                         (1.0 - a1) * u_old[d]
                         - g1 * q
                         + RT1 * (pbest[r, tb[r], d] - q) / rk
-                        + c1 * up / rk
+                        + c1 * up[d] / rk
                     )
-                else:
-                    v = (
+            else:
+                gi = guide[r, i]
+                for d in range(D):
+                    q = p[r, i, d]
+                    v[d] = (
                         (1.0 - alpha) * u_old[d]
                         - g * (q - centre[r, d])
-                        + (pbest[r, guide[r, i], d] - q)
-                        + c * up
+                        + (pbest[r, gi, d] - q)
+                        + c * up[d]
                     )
-                v = min(max(v, -vmax), vmax)
-                q = min(max(q + v, -1.0), 1.0)
-                u[r, i, d] = v
+            for d in range(D):
+                vd = min(max(v[d], -vmax), vmax)
+                q = min(max(p[r, i, d] + vd, -1.0), 1.0)
+                u[r, i, d] = vd
                 p[r, i, d] = q
                 X[r, i, d] = lb[d] + (q + 1.0) * 0.5 * width[d]

@@ -24,16 +24,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
-from mawdo.optimizers.base import (
-    Optimizer,
-    Params,
-    Space,
-    as_x0,
-    check_range,
-    initial_population,
-    ranks,
-)
+from mawdo.optimizers.base import Optimizer, Params, Space, as_x0, check_range, initial_population
 from mawdo.optimizers.kernels import mewdo_step, update_personal_best
 from mawdo.streams import RunStreams
 
@@ -83,6 +76,73 @@ def update_shares(succ_rate, q, lr, q_min):
     return q / q.sum(axis=1, keepdims=True)
 
 
+@njit(cache=True, nogil=True)
+def choose_strategies(f, pbest_f, q, draws, rank, tb, strat, guide):  # pragma: no cover - compiled
+    """Each parcel's rank, strategy and guide, written to ``rank``, ``tb``, ``strat``, ``guide``.
+
+    Parameters (``R`` runs, ``N`` parcels, ``K`` strategies)
+    ----------
+    f, pbest_f : (R, N)
+        Last pressures and personal-best pressures (no NaN).
+    q : (R, K)
+        Strategy shares; parcel ``i`` takes the first strategy whose cumulative share is
+        ``>= draws[r, i, 0]`` (the inverse CDF; the last one if rounding leaves none).
+    draws : (R, N, 6)
+        The parcels' uniforms; ``draws[..., 5]`` picks the guide of strategy 2.
+    rank : (R, N) float
+        1-based rank of ``f`` (1 = best, ties by index, as a stable sort).
+    tb : (R,) int
+        Index of the least ``pbest_f`` (the first one).
+    strat, guide : (R, N) int
+        Strategy of each parcel, and the parcel of rank ``floor(draws[..., 5] (rank - 1)) + 1``
+        (a better one, or itself when it is the best).
+    """
+    R, N = f.shape
+    K = q.shape[1]
+    order = np.empty(N, np.intp)
+    cdf = np.empty(K)
+    for r in range(R):
+        for k in range(N):  # insertion sort: stable, no allocation, fast for N ~ 50
+            j = k
+            v = f[r, k]
+            while j > 0 and f[r, order[j - 1]] > v:
+                order[j] = order[j - 1]
+                j -= 1
+            order[j] = k
+        for k in range(N):
+            rank[r, order[k]] = k + 1.0
+        best = 0
+        for i in range(1, N):
+            if pbest_f[r, i] < pbest_f[r, best]:
+                best = i
+        tb[r] = best
+        acc = 0.0
+        for k in range(K):  # numpy.cumsum's order
+            acc += q[r, k]
+            cdf[k] = acc
+        for i in range(N):
+            n = 0
+            for k in range(K):
+                n += draws[r, i, 0] > cdf[k]
+            strat[r, i] = min(n, K - 1)
+            guide[r, i] = order[int(np.floor(draws[r, i, 5] * (rank[r, i] - 1.0)))]
+
+
+@njit(cache=True, nogil=True)
+def strategy_success(strategy, F, f, n_used, n_succ):  # pragma: no cover - compiled
+    """Per run and strategy ``k``: parcels that used it (``n_used``) and those whose new pressure
+    ``F`` beat their last one ``f`` (``n_succ``), both ``(R, K)``, overwritten."""
+    R, N = F.shape
+    n_used[:] = 0
+    n_succ[:] = 0
+    for r in range(R):
+        for i in range(N):
+            k = strategy[r, i]
+            if 0 <= k < n_used.shape[1]:
+                n_used[r, k] += 1
+                n_succ[r, k] += F[r, i] < f[r, i]
+
+
 @dataclass
 class MEWDOState:
     p: np.ndarray
@@ -128,17 +188,11 @@ class MEWDO(Optimizer):
         if s.t == 0:
             return s.space.from_unit(s.p)
         R, N, D = s.p.shape
-        r = ranks(s.f).astype(float)  # (R, N)
-        tb = np.argmin(s.pbest_f, axis=1)
         perm = s.streams.shuffle_rows(np.empty((R, N, D), np.int16 if D < 2**15 else np.int32))
         draws = s.streams.random((N, 6))
-        # strategy choice by inverse CDF of the shares
-        cdf = np.cumsum(s.q, axis=1)[:, None, :]
-        strat = np.minimum((draws[..., 0:1] > cdf).sum(axis=2), N_STRATEGIES - 1)
-        # strategy 2 pulls toward the pbest of a random parcel ranked better (or itself if best)
-        better = np.floor(draws[..., 5] * (r - 1)).astype(np.int64)  # rank index < own
-        order = np.argsort(s.f, axis=1, kind="stable")
-        guide = np.take_along_axis(order, better, axis=1)
+        r, tb = np.empty((R, N)), np.empty(R, np.intp)
+        strat, guide = np.empty((R, N), np.int64), np.empty((R, N), np.int64)
+        choose_strategies(s.f, s.pbest_f, s.q, draws, r, tb, strat, guide)
         centre = s.p.mean(axis=1)
         X = np.empty_like(s.p)
         coef = np.array([P.alpha, P.g, P.RT, P.c])
@@ -150,11 +204,11 @@ class MEWDO(Optimizer):
 
     def tell(self, state: MEWDOState, X: np.ndarray, F: np.ndarray) -> MEWDOState:
         s, P = state, self.params
+        R = F.shape[0]
         if s.t > 0:
-            success = F < s.f
-            used = np.stack([(s.strategy == k) for k in range(N_STRATEGIES)], axis=-1)  # R,N,K
-            n_used = used.sum(axis=1)
-            n_succ = (used & success[..., None]).sum(axis=1)
+            n_used = np.empty((R, N_STRATEGIES), np.int64)
+            n_succ = np.empty((R, N_STRATEGIES), np.int64)
+            strategy_success(s.strategy, F, s.f, n_used, n_succ)
             rate = np.where(n_used > 0, n_succ / np.maximum(n_used, 1), 0.0)
             s.q = np.where(
                 n_used.sum(axis=1, keepdims=True) > 0, update_shares(rate, s.q, P.lr, P.q_min), s.q

@@ -21,12 +21,12 @@ Two details of ``WOA.m`` that the paper's vector notation hides, both defaults h
   ``X_kj`` is the *new* (not yet clamped) coordinate when ``k < i`` and the old one when
   ``k >= i`` (``"snapshot"``: always the old one). Only the search move reads other whales.
 
-The in-place rule makes whale ``i`` depend on whales ``k < i``, a chain through the search moves
-only. We solve that chain without a loop over whales: each sweep recomputes every search entry
-from the current estimate (:func:`search_in_place`); entries whose chain is ``s`` links deep are
-exact after sweep ``s``, and the sweeps stop when nothing changes, which happens only at the
-unique solution of the (acyclic) system, i.e. at ``WOA.m``'s sequential result, bit for bit. In
-practice 2-6 sweeps per iteration. See ``docs/deviations.md#d-woa``.
+The in-place rule makes whale ``i`` depend on whales ``k < i``, so :func:`woa_step` (Numba) runs
+``WOA.m``'s loops literally: for each run, each whale in order, each coordinate. It takes the
+random numbers drawn by :meth:`WOA._draws` from the runs' own streams, and ``e^{b l}``,
+``cos(2 pi l)`` from NumPy, and does the rest of the arithmetic in ``WOA.m``'s order without
+fastmath, so it gives the numbers of the earlier vectorised NumPy code bit for bit. See
+``docs/deviations.md#d-woa``.
 """
 
 from __future__ import annotations
@@ -34,6 +34,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
 from mawdo.optimizers.base import Optimizer, Params, Space, check_choice, initial_population
 from mawdo.streams import RunStreams
@@ -73,63 +74,85 @@ class WOAParams(Params):
         check_choice("update", self.update, ("in_place", "snapshot"))
 
 
-def leader_moves(X, leader, A, C, l, b):
-    """Eqs. 2.1-2.2 (encircle) and 2.5 (spiral) for all whales.
+@njit(cache=True, nogil=True, error_model="numpy")
+def woa_step(X, leader, a, u, e, c, ur, in_place, lb, ub, out):  # pragma: no cover - compiled
+    """``WOA.m``'s move of every whale of every run, written to ``out`` clamped to ``[lb, ub]``.
 
-    Shapes: ``X (R, N, D)``, ``leader (R, D)``, ``A, C, l (R, N)``. Returns both candidates.
-    """
-    Ls = leader[:, None, :]
-    A3, C3, l3 = A[..., None], C[..., None], l[..., None]
-    encircle = Ls - A3 * np.abs(C3 * Ls - X)
-    spiral = np.abs(Ls - X) * np.exp(b * l3) * np.cos(2.0 * np.pi * l3) + Ls
-    return encircle, spiral
-
-
-def search_move(X, X_rand, A, C):
-    """Eqs. 2.7-2.8: ``X_rand - A |C X_rand - X|`` with ``A, C (R, N)``, positions ``(R, N, D)``."""
-    return X_rand - A[..., None] * np.abs(C[..., None] * X_rand - X)
-
-
-def search_in_place(X, new, search, idx, A, C):
-    """The search entries of ``WOA.m``'s in-place loop, solved by sweeps (see module docstring).
-
-    Parameters
+    Parameters (shapes with ``R`` runs, ``N`` whales, ``D`` dimensions)
     ----------
-    X : numpy.ndarray
-        Positions the iteration started with, ``(R, N, D)``.
-    new : numpy.ndarray
-        New positions of the non-search whales (values at search whales are ignored).
-    search : numpy.ndarray of bool
-        ``(R, N)``: whales taking the search move.
-    idx : numpy.ndarray of int
-        Random whale of each coordinate, ``(R, N, D)`` (constant along ``D`` for ``per_whale``).
-    A, C : numpy.ndarray
-        Per-whale coefficients, ``(R, N)``.
+    X : (R, N, D)
+        Positions the iteration started with (clamped); read only.
+    leader : (R, D)
+        Best-so-far whale ``X*`` of each run.
+    a : float
+        ``a = 2 - 2 (t - 1) / T`` in ``[0, 2]``.
+    u : (R, 4, N)
+        ``r1, r2``, the ``l`` draw (unused here) and ``p`` of each whale, each in ``[0, 1)``:
+        ``A = 2 a r1 - a``, ``C = 2 r2`` (Eqs. 2.3-2.4), spiral when ``p >= 0.5``.
+    e, c : (R, N)
+        ``e^{b l}`` and ``cos(2 pi l)`` of each whale (Eq. 2.5), from NumPy's ``exp``/``cos``.
+    ur : (R, N, D) or (R, N, 1)
+        Random-whale draws in ``[0, 1)``: whale ``k = floor(N ur)`` (``WOA.m``'s
+        ``floor(N rand + 1)``, 0-based); one per coordinate, or one per whale when the last axis
+        has length 1.
+    in_place : bool
+        ``WOA.m``'s order: whale ``i``'s search move reads the new, not yet clamped, coordinate
+        of a whale ``k < i`` (and the old one for ``k >= i``). False: every whale reads ``X``.
+    lb, ub : (D,)
+        The box; each run is clamped after all its whales moved (``WOA.m`` clamps at the next
+        evaluation), with ``numpy.clip``'s comparisons.
+    out : (R, N, D)
+        The new positions.
     """
-    N = X.shape[1]
-    earlier = idx < np.arange(N)[None, :, None]  # k < i: WOA.m reads whale k's new coordinate
-    old_src = np.take_along_axis(X, idx, axis=1)
-    mask = search[..., None]
-    out = np.where(mask, search_move(X, old_src, A, C), new)
-    for _ in range(N):  # depth of the k < i chain is < N, so N sweeps always suffice
-        src = np.where(earlier, np.take_along_axis(out, idx, axis=1), old_src)
-        nxt = np.where(mask, search_move(X, src, A, C), out)
-        if np.array_equal(nxt, out):
-            break
-        out = nxt
-    return out
+    R, N, D = X.shape
+    per_dim = ur.shape[2] > 1
+    for r in range(R):
+        # in place, the run's positions are copied to ``out`` first: out[k] is then the new
+        # coordinate for k < i and still the old one for k >= i, with no branch on k
+        src = out[r] if in_place else X[r]
+        if in_place:
+            out[r] = X[r]
+        for i in range(N):
+            A = 2.0 * a * u[r, 0, i] - a  # Eq. 2.3
+            C = 2.0 * u[r, 1, i]  # Eq. 2.4
+            if u[r, 3, i] >= 0.5:  # Eq. 2.5, spiral
+                ei, ci = e[r, i], c[r, i]
+                for j in range(D):
+                    L = leader[r, j]
+                    out[r, i, j] = abs(L - X[r, i, j]) * ei * ci + L
+            elif abs(A) < 1.0:  # Eqs. 2.1-2.2, encircle the leader
+                for j in range(D):
+                    L = leader[r, j]
+                    out[r, i, j] = L - A * abs(C * L - X[r, i, j])
+            else:  # Eqs. 2.7-2.8, search around random whales
+                for j in range(D):
+                    k = min(int(ur[r, i, j if per_dim else 0] * N), N - 1)
+                    xk = src[k, j]
+                    out[r, i, j] = xk - A * abs(C * xk - X[r, i, j])
+        for i in range(N):
+            for j in range(D):
+                v = out[r, i, j]
+                if v == v:  # NaN stays NaN, as in numpy.clip
+                    v = v if v > lb[j] else lb[j]
+                    v = v if v < ub[j] else ub[j]
+                out[r, i, j] = v
 
 
-def woa_move(X, leader, X_rand, a, r1, r2, p, l, b):
-    """Eqs. 2.1-2.8 for all whales from one snapshot (``update="snapshot"``).
-
-    Shapes: ``X (R, N, D)``, ``leader (R, D)``, ``X_rand (R, N, D)`` (the random whale's
-    coordinates for each entry), ``r1, r2, p, l`` per whale ``(R, N)``; ``a`` scalar.
-    """
-    A, C = 2.0 * a * r1 - a, 2.0 * r2
-    encircle, spiral = leader_moves(X, leader, A, C, l, b)
-    shrink = np.where((np.abs(A) < 1.0)[..., None], encircle, search_move(X, X_rand, A, C))
-    return np.where((p < 0.5)[..., None], shrink, spiral)
+@njit(cache=True, nogil=True)
+def update_leader(X, F, leader_x, leader_f):  # pragma: no cover - compiled
+    """``WOA.m``'s leader update, in place: per run, the first whale with the least ``F`` (as
+    ``numpy.argmin``) replaces the leader when strictly better. ``X (R, N, D)``, ``F (R, N)``
+    without NaN, ``leader_x (R, D)``, ``leader_f (R,)``."""
+    R, N, D = X.shape
+    for r in range(R):
+        j = 0
+        for i in range(1, N):
+            if F[r, i] < F[r, j]:
+                j = i
+        if F[r, j] < leader_f[r]:
+            leader_f[r] = F[r, j]
+            for d in range(D):
+                leader_x[r, d] = X[r, j, d]
 
 
 @dataclass
@@ -163,45 +186,34 @@ class WOA(Optimizer):
         )
 
     def _draws(self, state: WOAState):
-        """Per whale ``r1, r2, l, p`` (WOA.m's order) and the random whale index of each entry."""
+        """``a``; per whale ``r1, r2``, the ``l`` draw and ``p`` as ``u (R, 4, N)`` (WOA.m's order)
+        with ``l (R, N)``; the random-whale draw of each entry ``ur``."""
         N, D = state.X.shape[1:]
         frac = (state.t - 1) / state.T
         u = state.streams.random((4, N))
-        r1, r2, ul, p = (u[:, k] for k in range(4))
+        ul = u[:, 2]
         if self.params.l_range == "paper":
             l = 2.0 * ul - 1.0
         else:
             a2 = -1.0 - frac
             l = (a2 - 1.0) * ul + 1.0
-        shape = (N, D) if self.params.random_whale == "per_dimension" else (N, 1)
-        ur = state.streams.random(shape)
-        idx = np.minimum((ur * N).astype(np.int64), N - 1)  # floor(N rand + 1), 0-based
-        return 2.0 - 2.0 * frac, r1, r2, p, l, np.broadcast_to(idx, state.X.shape)
+        ur = state.streams.random((N, D) if self.params.random_whale == "per_dimension" else (N, 1))
+        return 2.0 - 2.0 * frac, u, l, ur
 
     def ask(self, state: WOAState) -> np.ndarray:
+        """Move every whale (one kernel pass, :func:`woa_step`); returns a new array each call."""
         if state.t > 0:
-            X = state.X
-            a, r1, r2, p, l, idx = self._draws(state)
-            if self.params.update == "snapshot":
-                X_rand = np.take_along_axis(X, idx, axis=1)
-                new = woa_move(X, state.leader_x, X_rand, a, r1, r2, p, l, self.params.b)
-            else:
-                A, C = 2.0 * a * r1 - a, 2.0 * r2
-                encircle, spiral = leader_moves(X, state.leader_x, A, C, l, self.params.b)
-                lead = (p < 0.5)[..., None]
-                new = np.where(lead, encircle, spiral)
-                search = (p < 0.5) & (np.abs(A) >= 1.0)
-                if search.any():
-                    new = search_in_place(X, new, search, idx, A, C)
-            state.X = np.clip(new, state.space.lb, state.space.ub)
+            a, u, l, ur = self._draws(state)
+            e, c = np.exp(self.params.b * l), np.cos(2.0 * np.pi * l)  # Eq. 2.5
+            X = np.empty_like(state.X)
+            in_place = self.params.update == "in_place"
+            sp = state.space
+            lb, ub = np.asarray(sp.lb, float), np.asarray(sp.ub, float)
+            woa_step(state.X, state.leader_x, a, u, e, c, ur, in_place, lb, ub, X)
+            state.X = X
         return state.X
 
     def tell(self, state: WOAState, X: np.ndarray, F: np.ndarray) -> WOAState:
-        # WOA.m scans whales in order with a strict <: the first minimum, only if it improves.
-        j = np.argmin(F, axis=1)
-        fj = F[np.arange(F.shape[0]), j]
-        better = fj < state.leader_f
-        state.leader_f = np.where(better, fj, state.leader_f)
-        state.leader_x[better] = X[better, j[better]]
+        update_leader(X, F, state.leader_x, state.leader_f)
         state.t += 1
         return state
