@@ -67,7 +67,10 @@ def _stride(n):
     return (n + 511) // 512 * 512 + 72
 
 
-@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+# Not inlined: compiled on its own its loops run more than twice as fast as inlined into the
+# population loop (0.67 -> 0.28 ms a call of 1360 candidates without obstacles), and one call
+# per block costs nothing.
+@njit(cache=True, fastmath=False, error_model="numpy")
 def _block_paths(X, c0, bn, start, goal, t0, speed, path, out_len, out_turn):
     """Lay the paths of candidates ``c0 .. c0 + bn - 1`` end to end, with their lengths (C1),
     times, velocities and turning (C3).
@@ -217,7 +220,8 @@ def _sure_distances(cx, cy, npt, px, py, real, a2, rho, margin, near, hits):
     return nnear
 
 
-@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+# Not inlined either: on its own it compiles to tighter loops than inside the population loop.
+@njit(cache=True, fastmath=False, error_model="numpy")
 def _static_pass(i, ox, oy, bn, npts, path, work, cls, obs, extra, a2, margin, hits, ncol):
     """Hits of the block's segments on obstacle i standing at offset ``(ox, oy)``.
 
