@@ -25,6 +25,7 @@ FLOORS = (
     ("mawdo.viz", 0),
     ("mawdo.validate", 0),  # argument checks: used by the core itself
     ("mawdo.budget", 0),
+    ("mawdo.jitcache", 0),  # drops stale Numba caches before any kernel loads
     ("mawdo.shuffle", 0),  # O(d) permutations: drawn by streams, inlined by optimizer kernels
     ("mawdo.optimizers", 1),
     ("mawdo.functions", 1),

@@ -6,10 +6,15 @@
 (30,)
 """
 
-from mawdo.minimize import make_problem, minimize
-from mawdo.optimizers import OPTIMIZERS, make_optimizer
-from mawdo.problem import ObjectiveError, Problem
-from mawdo.result import OptimizeResult
+from mawdo.jitcache import drop_stale_caches
+
+# before any kernel module loads: a cached kernel may hold an old version of a helper it inlined
+drop_stale_caches()
+
+from mawdo.minimize import make_problem, minimize  # noqa: E402
+from mawdo.optimizers import OPTIMIZERS, make_optimizer  # noqa: E402
+from mawdo.problem import ObjectiveError, Problem  # noqa: E402
+from mawdo.result import OptimizeResult  # noqa: E402
 
 __version__ = "0.2.0"
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import hashlib
 import time
+import tomllib
 import traceback
 from dataclasses import dataclass
 from typing import Any
@@ -56,6 +57,13 @@ class ArenaRow(RunRow):
     first_plan_s: float | None = column("real")
     nfev: int | None = column("int")
     trace: bytes | None = column("blob")
+
+
+def scenario_from_toml(text: str, name: str):
+    """A stored scene's TOML text as a :class:`~mawdo.planning.scenario.Scenario`."""
+    from mawdo.planning.scenario import scenario_from_dict
+
+    return scenario_from_dict(tomllib.loads(text), source=name)
 
 
 def scene_hash(toml_text: str) -> str:

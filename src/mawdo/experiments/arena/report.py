@@ -11,11 +11,11 @@
 
 from __future__ import annotations
 
-import tomllib
 from pathlib import Path
 
 import numpy as np
 
+from mawdo.experiments.arena.execute import scenario_from_toml
 from mawdo.experiments.arena.plan import ArenaPlan
 from mawdo.experiments.store import Store
 from mawdo.experiments.tables import Table, to_csv, to_latex, to_markdown
@@ -198,13 +198,6 @@ def arena_figures(store: Store, out: Path) -> list[Path]:
     paths.append(out / "ecdf_gap.png")
     fig.savefig(paths[1])
     return paths
-
-
-def scenario_from_toml(text: str, name: str):
-    """The stored scene as a :class:`~mawdo.planning.scenario.Scenario`."""
-    from mawdo.planning.scenario import scenario_from_dict
-
-    return scenario_from_dict(tomllib.loads(text), source=name)
 
 
 def first_collision_time(result) -> float | None:

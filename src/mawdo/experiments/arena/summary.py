@@ -75,8 +75,7 @@ def render_worst(store_path, out_dir, planner: str = "mawdo", k: int = 3) -> lis
     ``success``, ``collision_free``, ``gap``. Raises ``RuntimeError`` if a re-run does not
     reproduce the stored verdict and gap (the scene or the planner changed since the study).
     """
-    from mawdo.experiments.arena.execute import _from_plan_result
-    from mawdo.experiments.arena.report import scenario_from_toml
+    from mawdo.experiments.arena.execute import _from_plan_result, scenario_from_toml
     from mawdo.planning import render
     from mawdo.planning.planner import plan as run_planner
 
