@@ -32,6 +32,10 @@ def _rates(rows: list) -> tuple[float, float, float]:
     return succ, coll, float(np.median(gaps)) if gaps else float("nan")
 
 
+def _gap(g: float) -> str:
+    return "no successful run" if np.isnan(g) else f"median gap {g:.3f}"
+
+
 def headline(store: Store) -> list[str]:
     """Sentences (Markdown list items) about every planner of the arena, from stored rows.
 
@@ -50,8 +54,8 @@ def headline(store: Store) -> list[str]:
         ws, _, wg = per_fam[worst]
         lines.append(
             f"- {p}: {100 * succ:.1f} % success and {100 * coll:.1f} % colliding runs over "
-            f"{len(rows)} scenes, median gap {gap:.3f}; weakest family {worst} "
-            f"({100 * ws:.0f} % success, median gap {wg:.3f})."
+            f"{len(rows)} scenes, {_gap(gap)}; weakest family {worst} "
+            f"({100 * ws:.0f} % success, {_gap(wg)})."
         )
     return lines
 
