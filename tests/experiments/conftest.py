@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 import sqlite3
+import subprocess
+import time
+from pathlib import Path
 
 import pytest
 
@@ -51,3 +54,24 @@ def reference_store(tmp_path_factory):
     summary = run_plan(small_plan(), path, workers=1, progress=False)
     assert summary.complete and summary.failed == 0
     return path
+
+
+def wait_for_tasks(db: Path, proc: subprocess.Popen, at_least: int, timeout: float = 60) -> int:
+    """Wait until a runner process has stored ``at_least`` tasks in ``db``; returns the count."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if proc.poll() is not None:
+            raise AssertionError(f"runner exited early: {proc.communicate()}")
+        if db.exists():
+            try:
+                conn = sqlite3.connect(f"{db.resolve().as_uri()}?mode=ro", uri=True, timeout=1)
+                try:
+                    n = conn.execute("SELECT COUNT(*) FROM tasks").fetchone()[0]
+                finally:
+                    conn.close()
+                if n >= at_least:
+                    return n
+            except sqlite3.OperationalError:
+                pass  # tables not created yet
+        time.sleep(0.01)
+    raise AssertionError("runner stored no task in time")

@@ -108,8 +108,7 @@ def report_dice(store_path, out_dir) -> Path:
     return path
 
 
-if "dice" not in STUDY_KINDS:
-    register_kind(StudyKind("dice", DicePlan, execute_dice, DiceRow, report=report_dice))
+register_kind(StudyKind("dice", DicePlan, execute_dice, DiceRow, report=report_dice))
 
 
 def expected_totals(plan: DicePlan) -> dict[tuple[str, int], int]:
@@ -248,3 +247,16 @@ def test_missing_run_tasks_cut_contiguous_stretches_into_batches():
     assert got == [Task("a", "p", 2, 1), Task("a", "p", 4, 2), Task("a", "p", 6, 1)]
     assert missing_run_tasks("a", "p", 3, set(), batch_size=5) == [Task("a", "p", 0, 3)]
     assert missing_run_tasks("a", "p", 2, {("a", "p", 0), ("a", "p", 1)}, 4) == []
+
+
+def test_registering_a_kind_again_keeps_the_first_and_a_name_clash_is_refused():
+    first = STUDY_KINDS["dice"]
+    again = register_kind(StudyKind("dice", DicePlan, execute_dice, DiceRow))  # as after a reload
+    assert again is first and STUDY_KINDS["dice"] is first
+
+    class OtherPlan(DicePlan):
+        pass
+
+    with pytest.raises(ValueError, match="already registered"):
+        register_kind(StudyKind("dice", OtherPlan, execute_dice, DiceRow))
+    assert STUDY_KINDS["dice"] is first

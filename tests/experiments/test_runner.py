@@ -5,10 +5,8 @@ from __future__ import annotations
 
 import os
 import signal
-import sqlite3
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -19,7 +17,7 @@ from mawdo.experiments import ExperimentPlan, Store, Task, execute_task, run_pla
 from mawdo.experiments import runner as runner_mod
 from mawdo.experiments.benchmark import execute as bench_exec_mod
 
-from .conftest import small_plan, stored_values
+from .conftest import small_plan, stored_values, wait_for_tasks
 
 # A plan whose tasks are slow enough (~0.1 s each, batch of one run) to kill the runner
 # between tasks, and numerous enough that a kill after the first task leaves most undone.
@@ -101,26 +99,6 @@ def test_a_finished_store_is_skipped(reference_store, tmp_path):
     assert (summary.done, summary.skipped, summary.tasks) == (0, small_plan().total_runs, 0)
 
 
-def _wait_for_tasks(db: Path, proc: subprocess.Popen, at_least: int, timeout: float = 60) -> int:
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        if proc.poll() is not None:
-            raise AssertionError(f"runner exited early: {proc.communicate()}")
-        if db.exists():
-            try:
-                conn = sqlite3.connect(f"{db.resolve().as_uri()}?mode=ro", uri=True, timeout=1)
-                try:
-                    n = conn.execute("SELECT COUNT(*) FROM tasks").fetchone()[0]
-                finally:
-                    conn.close()
-                if n >= at_least:
-                    return n
-            except sqlite3.OperationalError:
-                pass  # tables not created yet
-        time.sleep(0.01)
-    raise AssertionError("runner stored no task in time")
-
-
 def _start(plan_file: Path, db: Path, *extra: str) -> subprocess.Popen:
     return subprocess.Popen(
         [
@@ -154,7 +132,7 @@ def test_kill_9_then_resume_equals_an_uninterrupted_run(slow_plan_file, tmp_path
     db = tmp_path / "killed.db"
     proc = _start(slow_plan_file, db)
     try:
-        _wait_for_tasks(db, proc, at_least=1)
+        wait_for_tasks(db, proc, at_least=1)
     finally:
         proc.send_signal(signal.SIGKILL)
         proc.communicate(timeout=30)
@@ -202,7 +180,7 @@ def test_ctrl_c_stops_the_pool_keeps_finished_tasks_and_says_how_to_resume(
     db = tmp_path / "sigint.db"
     proc = _start(slow_plan_file, db, "--workers", "2")
     try:
-        _wait_for_tasks(db, proc, at_least=1)
+        wait_for_tasks(db, proc, at_least=1)
         proc.send_signal(signal.SIGINT)
         out, err = proc.communicate(timeout=30)
     finally:

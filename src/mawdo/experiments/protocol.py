@@ -174,7 +174,17 @@ imported; a plug-in kind registers when its module is."""
 
 
 def register_kind(kind: StudyKind) -> StudyKind:
-    """Add ``kind`` to :data:`STUDY_KINDS` (a duplicate name is an error)."""
+    """Add ``kind`` to :data:`STUDY_KINDS` and return the registered kind.
+
+    Registering again under a name the same plan class already holds (a reload of the kind's
+    module) keeps the first registration; a different plan class under a taken name is an error.
+    """
+    if kind.name in STUDY_KINDS:
+        old = STUDY_KINDS[kind.name]
+        if f"{old.plan.__module__}.{old.plan.__qualname__}" == (
+            f"{kind.plan.__module__}.{kind.plan.__qualname__}"
+        ):
+            return old
     return STUDY_KINDS.register(kind.name, kind)
 
 

@@ -9,7 +9,6 @@ import sqlite3
 import statistics
 import subprocess
 import sys
-import time
 import tomllib
 from pathlib import Path
 
@@ -19,6 +18,8 @@ import pytest
 from mawdo.experiments import PlanError, Store, run_plan
 from mawdo.experiments.arena import ArenaPlan, arena_tables, write_arena_report
 from mawdo.experiments.arena.report import COLUMNS
+
+from ..conftest import wait_for_tasks
 
 # forest (static), crossing (moving discs only: no static obstacle at all), a short planner
 TINY = {
@@ -212,25 +213,6 @@ def test_two_workers_store_the_same_values_as_one(reference, tmp_path):
     assert values(db3) == values(reference)
 
 
-def _wait_for_tasks(db: Path, proc: subprocess.Popen, at_least: int, timeout=120) -> None:
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        if proc.poll() is not None:
-            raise AssertionError(f"runner exited early: {proc.communicate()}")
-        if db.exists():
-            try:
-                conn = sqlite3.connect(f"{db.resolve().as_uri()}?mode=ro", uri=True, timeout=1)
-                try:
-                    if conn.execute("SELECT COUNT(*) FROM tasks").fetchone()[0] >= at_least:
-                        return
-                finally:
-                    conn.close()
-            except sqlite3.OperationalError:
-                pass  # tables not created yet
-        time.sleep(0.01)
-    raise AssertionError("runner stored no task in time")
-
-
 @pytest.mark.slow
 def test_kill_9_then_resume_computes_nothing_twice(reference, tmp_path):
     db = tmp_path / "killed.db"
@@ -238,7 +220,7 @@ def test_kill_9_then_resume_computes_nothing_twice(reference, tmp_path):
            "--no-progress"]  # fmt: skip
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
-        _wait_for_tasks(db, proc, at_least=1)
+        wait_for_tasks(db, proc, at_least=1, timeout=120)
     finally:
         proc.send_signal(signal.SIGKILL)
         proc.communicate(timeout=30)

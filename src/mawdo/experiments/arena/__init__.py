@@ -15,21 +15,20 @@ from mawdo.experiments.arena.plan import (
     arena_preset,
 )
 from mawdo.experiments.arena.report import arena_tables, write_arena_report
-from mawdo.experiments.protocol import STUDY_KINDS, StudyKind, register_kind
+from mawdo.experiments.protocol import StudyKind, register_kind
 
 KIND = "arena"
 
-if KIND not in STUDY_KINDS:  # a reload must not register twice
-    register_kind(
-        StudyKind(
-            name=KIND,
-            plan=ArenaPlan,
-            execute=execute_arena_task,
-            row=ArenaRow,
-            report=write_arena_report,
-            description="planning arena: generated scene families x planners (issue 14)",
-        )
+register_kind(
+    StudyKind(
+        name=KIND,
+        plan=ArenaPlan,
+        execute=execute_arena_task,
+        row=ArenaRow,
+        report=write_arena_report,
+        description="planning arena: generated scene families x planners (issue 14)",
     )
+)
 
 __all__ = [
     "ARENA_PRESETS",

@@ -18,21 +18,20 @@ from mawdo.experiments.bbob.plan import (
     preset_plan,
 )
 from mawdo.experiments.bbob.report import write_suite_report
-from mawdo.experiments.protocol import STUDY_KINDS, StudyKind, register_kind
+from mawdo.experiments.protocol import StudyKind, register_kind
 
 KIND = "bbob"
 
-if KIND not in STUDY_KINDS:  # a reload must not register twice
-    register_kind(
-        StudyKind(
-            name=KIND,
-            plan=SuitePlan,
-            execute=execute_suite_task,
-            row=SuiteRow,
-            report=write_suite_report,
-            description="standard suites (BBOB via ioh, CEC via opfunu) under COCO's protocol",
-        )
+register_kind(
+    StudyKind(
+        name=KIND,
+        plan=SuitePlan,
+        execute=execute_suite_task,
+        row=SuiteRow,
+        report=write_suite_report,
+        description="standard suites (BBOB via ioh, CEC via opfunu) under COCO's protocol",
     )
+)
 
 __all__ = [
     "KIND",

@@ -17,21 +17,20 @@ from mawdo.experiments.benchmark.plan import (
     preset_plan,
 )
 from mawdo.experiments.benchmark.report import write_report
-from mawdo.experiments.protocol import STUDY_KINDS, StudyKind, register_kind
+from mawdo.experiments.protocol import StudyKind, register_kind
 
 KIND = "benchmark"
 
-if KIND not in STUDY_KINDS:  # a reload must not register twice
-    register_kind(
-        StudyKind(
-            name=KIND,
-            plan=ExperimentPlan,
-            execute=execute_benchmark_task,
-            row=BenchmarkRow,
-            report=write_report,
-            description="benchmark functions: algorithms x functions x runs (Tables 3, 5)",
-        )
+register_kind(
+    StudyKind(
+        name=KIND,
+        plan=ExperimentPlan,
+        execute=execute_benchmark_task,
+        row=BenchmarkRow,
+        report=write_report,
+        description="benchmark functions: algorithms x functions x runs (Tables 3, 5)",
     )
+)
 
 __all__ = [
     "KIND",

@@ -19,21 +19,20 @@ from mawdo.experiments.planning.plan import (
     study_preset,
 )
 from mawdo.experiments.planning.report import write_study_report
-from mawdo.experiments.protocol import STUDY_KINDS, StudyKind, register_kind
+from mawdo.experiments.protocol import StudyKind, register_kind
 
 KIND = "planning"
 
-if KIND not in STUDY_KINDS:  # a reload must not register twice
-    register_kind(
-        StudyKind(
-            name=KIND,
-            plan=StudyPlan,
-            execute=execute_planning_task,
-            row=PlanningRow,
-            report=write_study_report,
-            description="path planning: algorithms x runs on a scenario (Table 6)",
-        )
+register_kind(
+    StudyKind(
+        name=KIND,
+        plan=StudyPlan,
+        execute=execute_planning_task,
+        row=PlanningRow,
+        report=write_study_report,
+        description="path planning: algorithms x runs on a scenario (Table 6)",
     )
+)
 
 __all__ = [
     "run_metrics_kept",
