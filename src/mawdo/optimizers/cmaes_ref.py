@@ -63,11 +63,13 @@ def ask_generation(cma, n: int) -> np.ndarray:
 
     ``ask()`` draws ``z ~ N(0, I)`` from the CMA's ``RandomState``, maps it to
     ``x = m + sigma B diag(D) z`` and, with bounds, redraws an infeasible ``x`` up to
-    ``n_max_resampling`` times before clipping one more draw. Here the draws come in blocks of
-    as many rows as samples are still missing: each draw yields at most one sample, so a block
-    never draws past what the ``ask()`` calls would have drawn, and the generator ends in the
-    same state. The matrix-vector products are one stacked ``matmul``, which calls the same
-    BLAS ``gemv`` as ``ask()``'s ``dot`` (a ``gemm`` would round differently).
+    ``n_max_resampling`` times before clipping one more draw. Here the draws come in blocks
+    (:func:`_accept_draws` walks them in ``ask()``'s order); a block may draw past what the
+    ``ask()`` calls would have drawn, so the generator is then rewound and advanced by exactly
+    the draws used. ``randn`` yields one sequence whatever the block shapes (its cached second
+    Gaussian lives in the state), so the samples and the final state are ``ask()``'s. The
+    matrix-vector products are one stacked ``matmul``, which calls the same BLAS ``gemv`` as
+    ``ask()``'s ``dot`` (a ``gemm`` would round differently).
 
     Parameters
     ----------
@@ -83,31 +85,55 @@ def ask_generation(cma, n: int) -> np.ndarray:
         Shape ``(n, dim)``, in the CMA's coordinates, in the order ``ask()`` returns them.
     """
     dim = cma._n_dim
-    out = np.empty((n, dim))
     if n == 0:
-        return out  # ask() never called: the eigendecomposition must not run either
+        return np.empty((0, dim))  # ask() never called: the eigendecomposition must not run
     B, D = cma._eigen_decomposition()
     BD = B.dot(np.diag(D))  # as in CMA._sample_solution, so the same matrix
-    bounds, max_tries = cma._bounds, cma._n_max_resampling
-    k = tries = 0  # samples made; infeasible draws for the sample being made
-    while k < n:
-        Z = cma._rng.randn(n - k, dim)
-        X = cma._mean + cma._sigma * np.matmul(BD, Z[:, :, None])[:, :, 0]
-        if bounds is None:
-            out[k:] = X
-            return out
-        feasible = np.all((X >= bounds[:, 0]) & (X <= bounds[:, 1]), axis=1)
-        if tries == 0 and max_tries > 0 and feasible.all():
-            out[k:] = X
-            return out
-        for x, ok in zip(X, feasible, strict=True):
-            if tries == max_tries:  # ask(): the draw after the last resampling is clipped
-                out[k], k, tries = cma._repair_infeasible_params(x), k + 1, 0
-            elif ok:
-                out[k], k, tries = x, k + 1, 0
-            else:
-                tries += 1
+    rng, bounds, max_tries = cma._rng, cma._bounds, cma._n_max_resampling
+
+    def draw(rows: int) -> np.ndarray:
+        Z = rng.randn(rows, dim)
+        return cma._mean + cma._sigma * np.matmul(BD, Z[:, :, None])[:, :, 0]
+
+    if bounds is None:
+        return draw(n)
+    saved = rng.get_state()
+    X = draw(n)
+    feasible = np.all((X >= bounds[:, 0]) & (X <= bounds[:, 1]), axis=1)
+    if max_tries > 0 and feasible.all():
+        return X  # the common case: every first draw is inside the box
+    out, used = _accept_draws(cma, X, feasible, n, draw)
+    rng.set_state(saved)  # the blocks may have drawn past ask(): rewind, redraw what was used
+    rng.randn(used * dim)
     return out
+
+
+def _accept_draws(cma, X: np.ndarray, feasible: np.ndarray, n: int, draw) -> tuple:
+    """The ``n`` samples ``ask()`` makes from the draws ``X`` (more drawn as needed).
+
+    Sample ``k`` takes the first feasible draw among the next ``n_max_resampling`` draws, or
+    else clips the draw after them. Returns the samples and how many draws they used.
+    """
+    bounds, max_tries = cma._bounds, cma._n_max_resampling
+    out = np.empty((n, X.shape[1]))
+    worst = n * (max_tries + 1)  # every sample spends all its tries and one clipped draw
+    p = 0  # next unused draw
+    for k in range(n):
+        while True:
+            hit = np.flatnonzero(feasible[p : p + max_tries])
+            if hit.size or X.shape[0] > p + max_tries:
+                break
+            # neither a feasible draw nor the clipped one is drawn yet: draw more (doubling)
+            more = min(worst - X.shape[0], max(p + max_tries + 1 - X.shape[0], X.shape[0]))
+            Y = draw(more)
+            X = np.concatenate([X, Y])
+            ok = np.all((Y >= bounds[:, 0]) & (Y <= bounds[:, 1]), axis=1)
+            feasible = np.concatenate([feasible, ok])
+        if hit.size:
+            out[k], p = X[p + hit[0]], p + hit[0] + 1
+        else:  # ask(): the draw after the last resampling is clipped
+            out[k], p = cma._repair_infeasible_params(X[p + max_tries]), p + max_tries + 1
+    return out, p
 
 
 def default_pop_size(dim: int) -> int:
