@@ -101,11 +101,18 @@ def run_suite(plan, out: Path, **run_options) -> None:
         raise typer.Exit(1)
 
 
-def report_suite(store: Path, out: Path, plots: bool, svg: bool) -> None:
-    """Write the suite study's report from ``store`` into ``out``."""
+def report_suite(
+    stores: list[Path], out: Path, plots: bool, svg: bool, reference: str | None = None
+) -> None:
+    """Write the suite study's report from ``stores`` (one study, merged) into ``out``."""
+    from mawdo.experiments import StoreError
     from mawdo.experiments.bbob import write_suite_report
 
-    report = write_suite_report(store, out, plots=plots, svg=svg)
+    try:
+        report = write_suite_report(stores, out, plots=plots, svg=svg, reference=reference)
+    except (StoreError, ValueError) as exc:
+        typer.echo(f"error: {exc}", err=True)
+        raise typer.Exit(1) from None
     typer.echo(f"wrote the suite report to {out}/ (start with {report})")
 
 

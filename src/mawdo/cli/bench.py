@@ -133,7 +133,11 @@ def run_cmd(
 
 @bench_app.command("report")
 def report_cmd(
-    store: Path = typer.Argument(..., help="Results store written by `run`."),
+    stores: list[Path] = typer.Argument(
+        ...,
+        help="Results store written by `run`; for a suite study, several stores of one study "
+        "(e.g. one per dimension) are reported together.",
+    ),
     out: Path = typer.Option(Path("report"), "--out", "-o", help="Output directory."),
     plots: bool = typer.Option(True, "--plots/--no-plots", help="Draw figures."),
     svg: bool = typer.Option(False, "--svg", help="Also write SVG figures."),
@@ -148,10 +152,21 @@ def report_cmd(
     check_output_dir(out, "--out folder")
     from mawdo.cli.bbob import is_suite_store, report_suite
 
-    if is_suite_store(store):
-        return report_suite(store, out, plots, svg)
+    suite = [is_suite_store(s) for s in stores]
+    if all(suite):
+        return report_suite(stores, out, plots, svg, reference)
+    if len(stores) > 1:
+        missing = [str(s) for s in stores if not s.exists()]
+        if missing:
+            _fail(f"no such results store: {', '.join(missing)}", code=1)
+        others = ", ".join(str(s) for s, ok in zip(stores, suite, strict=True) if not ok)
+        _fail(
+            f"several stores are reported together only for suite studies (`run --suite`); "
+            f"{others} is not one: report each store on its own",
+            code=1,
+        )
     try:
-        files = write_report(store, out, plots=plots, svg=svg, reference=reference)
+        files = write_report(stores[0], out, plots=plots, svg=svg, reference=reference)
     except (StoreError, ValueError) as exc:
         _fail(str(exc), code=1)
     typer.echo(f"wrote {len(files)} files to {out}/ (start with {out / 'report.md'})")

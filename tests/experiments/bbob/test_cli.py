@@ -91,3 +91,18 @@ def test_run_resume_export_report_through_the_command(tmp_path):
     assert (tmp_path / "rep" / "art_d3.csv").is_file()
     bad = mawdo("bench", "export", "--format", "coco", "s.db", "logs", cwd=tmp_path)
     assert bad.returncode == 1 and "only export format is 'ioh'" in bad.stderr
+
+
+def test_report_of_stores_run_per_dimension(tmp_path):
+    for dim in ("2", "3"):
+        run = ("bench", "run", "--suite", "bbob", "--functions", "1", "--instances", "1",
+               "--dims", dim, "--budget", "20", "--runs", "2", "--algorithms", "random",
+               "--out", f"d{dim}.db", "--no-progress")  # fmt: skip
+        assert mawdo(*run, cwd=tmp_path).returncode == 0
+    rep = mawdo("bench", "report", "d2.db", "d3.db", "--out", "rep", "--no-plots", cwd=tmp_path)
+    assert rep.returncode == 0, rep.stderr
+    assert {p.name for p in (tmp_path / "rep").glob("art_d*.csv")} == {"art_d2.csv", "art_d3.csv"}
+    twice = mawdo("bench", "report", "d2.db", "d2.db", "--out", "r2", cwd=tmp_path)
+    assert twice.returncode == 1 and "report them separately" in twice.stderr
+    missing = mawdo("bench", "report", "d2.db", "nope.db", "--out", "r3", cwd=tmp_path)
+    assert missing.returncode == 1 and "no such results store: nope.db" in missing.stderr

@@ -8,6 +8,7 @@ budgets (:func:`precision_at`) with :mod:`mawdo.experiments.bbob_metrics`.
 from __future__ import annotations
 
 import functools
+import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -88,14 +89,34 @@ class StudyRuns:
         ]
 
 
-def load_runs(store_path) -> StudyRuns:
-    """Every stored run of a suite-study store (read-only).
+def load_runs(store_paths) -> StudyRuns:
+    """Every stored run of one suite-study store, or of several merged (read-only).
+
+    Several stores are one study when they hold the same suite at the same budget per
+    dimension (e.g. ``bbob-full`` run once per dimension into its own file): their algorithms,
+    functions and dimensions are united, in the order first seen.
+
+    Parameters
+    ----------
+    store_paths : str, Path or sequence of them
+        One store, or several.
 
     Raises
     ------
     StoreError
-        Not a results store, or a store of another study kind.
+        Not a results store, a store of another study kind, or stores that are not one study
+        (another suite or budget, or the same run stored twice).
     """
+    if isinstance(store_paths, (str, os.PathLike)):
+        return _load_one(store_paths)
+    paths = list(store_paths)
+    if not paths:
+        raise ValueError("no results store given; name one or more suite-study stores")
+    parts = [_load_one(p) for p in paths]
+    return parts[0] if len(parts) == 1 else _merge(parts, paths)
+
+
+def _load_one(store_path) -> StudyRuns:
     from mawdo.experiments.store import StoreError
 
     with Store.read(store_path) as store:
@@ -134,6 +155,42 @@ def load_runs(store_path) -> StudyRuns:
         plan.budget,
         out,
         failed,
+    )
+
+
+def _merge(parts: list[StudyRuns], paths: list) -> StudyRuns:
+    """One study from the studies of several stores; refuses what would mix two studies."""
+    from mawdo.experiments.store import StoreError
+
+    first = parts[0]
+    seen: dict[tuple, object] = {}
+    for part, path in zip(parts, paths, strict=True):
+        if (part.suite, part.budget) != (first.suite, first.budget):
+            raise StoreError(
+                f"{path} holds suite {part.suite} at {part.budget:g} x D evaluations, but "
+                f"{paths[0]} holds {first.suite} at {first.budget:g} x D: report them separately"
+            )
+        for r in part.runs:
+            key = (r.algorithm, r.function_id, r.instance, r.dim, r.run)
+            if key in seen:
+                raise StoreError(
+                    f"{path} and {seen[key]} both hold run {r.run} of {r.algorithm} on "
+                    f"f{r.function_id} instance {r.instance} at D = {r.dim}: they are not parts "
+                    f"of one study; report them separately"
+                )
+            seen[key] = path
+
+    def union(field: str) -> tuple:
+        return tuple(dict.fromkeys(v for p in parts for v in getattr(p, field)))
+
+    return StudyRuns(
+        first.suite,
+        union("algorithms"),
+        union("functions"),
+        tuple(sorted(union("dims"))),
+        first.budget,
+        [r for p in parts for r in p.runs],
+        sum(p.failed for p in parts),
     )
 
 

@@ -4,6 +4,7 @@ LaTeX, CSV) and figures (runtime ECDFs, convergence), from the store only.
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 from mawdo.experiments.bbob.data import StudyRuns, load_runs
@@ -94,6 +95,12 @@ def _write(table: Table, out: Path) -> list[Path]:
     return files
 
 
+def _names(store_path) -> str:
+    """The store file name(s), without folders (reports are moved and committed)."""
+    paths = [store_path] if isinstance(store_path, (str, os.PathLike)) else store_path
+    return " + ".join(Path(p).name for p in paths)
+
+
 def write_suite_report(
     store_path, out_dir, plots: bool = True, svg: bool = False, reference: str = "mawdo", **_
 ) -> Path:
@@ -101,8 +108,9 @@ def write_suite_report(
 
     Parameters
     ----------
-    store_path : str or Path
-        A store of a suite study (``mawdo bench run --suite ...``).
+    store_path : str, Path or sequence of them
+        A store of a suite study (``mawdo bench run --suite ...``), or several stores of one
+        study (e.g. one per dimension), merged by :func:`~mawdo.experiments.bbob.data.load_runs`.
     out_dir : str or Path
         Output folder (created).
     plots, svg : bool
@@ -119,7 +127,7 @@ def write_suite_report(
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     if not study.runs:
-        raise ValueError(f"{store_path} holds no finished run yet; run the study first")
+        raise ValueError(f"{_names(store_path)} holds no finished run yet; run the study first")
     summary = headline(study, reference or "mawdo")
     if summary:
         (out / "summary.md").write_text("\n".join(summary) + "\n", encoding="utf-8")
@@ -131,7 +139,8 @@ def write_suite_report(
         "",
         f"Functions {', '.join(f'f{f}' for f in study.functions)}; D {study.dims}; budget "
         f"{study.budget:g} x D evaluations; {len(study.runs)} runs stored"
-        f"{f', {study.failed} failed' if study.failed else ''}. Precision is f - f_opt.",
+        f"{f', {study.failed} failed' if study.failed else ''} (from {_names(store_path)}). "
+        "Precision is f - f_opt.",
         "",
         *summary,
         "",
