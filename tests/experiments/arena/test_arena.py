@@ -147,6 +147,12 @@ def test_each_row_stores_its_scene_which_reruns_alone_to_the_same_numbers(refere
     from mawdo.planning.path import polyline_length
 
     assert polyline_length(res.route) == pytest.approx(r.length, rel=1e-12)
+    # the stored verdict and clearance are the independent checker's on the re-planned route
+    from mawdo.planning.check import check_trajectory
+
+    check = check_trajectory(res.route, sc, times=res.route_times)
+    assert r.collision_free == int(check.ok)
+    assert r.clearance == check.min_clearance
 
 
 def test_straight_baseline_numbers_match_a_hand_computation(reference):
