@@ -81,6 +81,7 @@ class RunLog:
     def __init__(self, budget: Budget, runs: int, x_start: np.ndarray) -> None:
         self.budget = budget
         self.best_f = np.full(runs, np.inf)
+        self.rows = np.arange(runs)
         self.best_x = np.tile(x_start, (runs, 1))
         self.active = np.ones(runs, dtype=bool)
         self.status = np.zeros(runs, dtype=np.int64)
@@ -104,12 +105,12 @@ class RunLog:
 
         The driver keeps its own best-so-far from evaluated points only; stopped runs freeze.
         """
-        R = F.shape[0]
-        j = np.argmin(F, axis=1)
-        fj = F[np.arange(R), j]
+        j = F.argmin(axis=1)
+        fj = F[self.rows, j]
         better = self.active & (fj < self.best_f)
-        self.best_f = np.where(better, fj, self.best_f)
-        self.best_x[better] = X[better, j[better]]
+        if better.any():  # late in a run most iterations improve nothing: no masked writes
+            self.best_f[better] = fj[better]
+            self.best_x[better] = X[better, j[better]]
         self.nit[self.active] = it
         self.hist.append(self.best_f.copy())
         self.hist_nfev.append(nfev.copy())

@@ -183,7 +183,8 @@ class Problem:
             out = self.fun(X)
         else:
             out = [self.fun(x) for x in X]
-        out = self._as_real(out)
+        if type(out) is not np.ndarray or out.dtype != np.float64:  # the usual output passes
+            out = self._as_real(out)
         n = X.shape[0]
         if out.shape != (n,):
             if self.vectorized:
@@ -251,9 +252,8 @@ class Evaluator:
         """
         R, n, D = X.shape
         m = n if limit is None else max(0, min(n, limit))
-        F = np.full((R, n), np.inf)
         if m == 0:
-            return F
+            return np.full((R, n), np.inf)
         # A copy: an objective that writes into its argument must not move the candidates the
         # optimizer keeps (and the driver returns) out of the box.
         flat = X[:, :m].reshape(R * m, D).copy()
@@ -269,11 +269,18 @@ class Evaluator:
                 f"objective {self.problem.name!r} raised {type(exc).__name__}: {exc} "
                 f"(algorithm {self.algorithm!r}, {where}iteration {iteration})"
             ) from exc
+        # F is the driver's own array (never the objective's, which it may reuse or keep)
+        F = np.empty((R, n))
+        head = F[:, :m]
         if self.problem.noise:
-            vals = vals + self.noise_streams.random((m,))
-        vals[~np.isfinite(vals)] = np.inf
-        F[:, :m] = vals
-        self.nfev += np.where(active, m, 0)
+            np.add(vals, self.noise_streams.random((m,)), out=head)
+        else:
+            head[...] = vals
+        F[:, m:] = np.inf
+        finite = np.isfinite(head)
+        if not finite.all():  # the rare case: no masked write otherwise
+            head[~finite] = np.inf
+        self.nfev[active] += m
         return F
 
     def _failing_run(self, X: np.ndarray) -> int | None:

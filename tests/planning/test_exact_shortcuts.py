@@ -66,6 +66,25 @@ def test_elite_equals_the_numpy_loop_it_replaced():
         assert len(ref.f) == size  # the comparison reached a full elite
 
 
+def test_full_elite_with_non_finite_costs_equals_the_numpy_loop():
+    """The early exit is taken before the finite filter: a -inf or NaN in the batch must
+    still end as the filtered test decided."""
+    rng = np.random.default_rng(8)
+    fast, ref = Elite(4, 1.0), NumpyElite(4, 1.0)
+    for k in range(60):
+        X = rng.uniform(0, 100, (12, 5))
+        f = rng.random(12) + (1.0 if k > 3 else 0.0)  # after the first batches: nothing enters
+        special = rng.choice([np.nan, -np.inf, np.inf], size=int(rng.integers(0, 4)))
+        f[rng.choice(12, size=len(special), replace=False)] = special
+        if k % 7 == 6:
+            f[rng.integers(12)] = 0.01 * rng.random()  # a newcomer among the non-finite ones
+        fast.add(X, f)
+        ref.add(X, f)
+        np.testing.assert_array_equal(fast.f, ref.f)
+        np.testing.assert_array_equal(fast.X.reshape(-1, 5), ref.X.reshape(-1, 5))
+    assert len(ref.f) == 4
+
+
 def test_random_walk_queried_forward_equals_a_fresh_walk_per_query():
     seed = np.random.SeedSequence(5, spawn_key=(2,))
     kept = BoundedRandomWalk(1.5, (-30.0, -20.0), (80.0, 90.0), seed, hold=3)

@@ -94,8 +94,36 @@ def make_optimizer(algorithm: str | Optimizer, **options) -> Optimizer:
         check_params(algorithm.params)
         return algorithm
     spec = OPTIMIZERS[algorithm]
-    check_options(spec.cls.params_class, options)
-    opt = spec.cls(name=spec.name, **{**spec.preset, **options})
-    check_params(opt.params)
+    key = _params_key(spec.name, options)
+    params = _PARAMS.get(key) if key is not None else None
+    if params is None:
+        check_options(spec.cls.params_class, options)
+        opt = spec.cls(name=spec.name, **{**spec.preset, **options})
+        check_params(opt.params)
+        if key is not None and len(_PARAMS) < _PARAMS_MAX:
+            _PARAMS[key] = opt.params
+    else:  # the same name and options were checked before: their (frozen) Params are valid
+        opt = spec.cls(params, name=spec.name)
     opt.metadata = spec.metadata()
     return opt
+
+
+# Validated Params per (algorithm, options): a receding-horizon planner builds the same
+# optimizer every replan, and the checks cost ~0.1 ms each time.
+_PARAMS: dict = {}
+_PARAMS_MAX = 1024
+_PLAIN = (int, float, str, bool)
+
+
+def _params_key(name: str, options: dict):
+    """A cache key for plain option values, typed and by ``repr`` (so ``True`` is not ``1``
+    and ``-0.0`` is not ``0.0``); None when a value is anything else."""
+    items = []
+    for k, v in options.items():
+        if type(v) is tuple:
+            if not all(type(x) in _PLAIN for x in v):
+                return None
+        elif type(v) not in _PLAIN:
+            return None
+        items.append((k, type(v).__name__, repr(v)))
+    return name, tuple(sorted(items))

@@ -18,6 +18,7 @@ Low-dimensional stabilisation (D <= ``low_dim``): per-group coefficients (Eqs. 1
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -158,6 +159,14 @@ def group_starts(N: int, G: int) -> np.ndarray:
     return starts
 
 
+_words = functools.cache(words_per_permutation)  # a Python loop over D, asked every iteration
+
+
+def _box_arrays(space: Space) -> tuple[np.ndarray, np.ndarray]:
+    """``(lb, ub - lb)`` as float arrays for the kernel."""
+    return np.asarray(space.lb, float), np.asarray(space.ub - space.lb, float)
+
+
 @dataclass
 class WindState:
     """Arrays of ``R`` runs in normalised space (``p, u, pbest`` are ``(R, N, D)``)."""
@@ -177,6 +186,9 @@ class WindState:
     streams: RunStreams
     restarted: np.ndarray | None = None  # (R, m) parcels restarted in the last ask
     rng: np.ndarray | None = None  # (R, 4) xoshiro256** state per run, for the permutations
+    # the kernel's fixed per-group coefficients ``(R, N, 4)`` and the ``coef`` they were laid
+    # out from: rebuilt only when ``coef`` is replaced (a redraw), not at every ask
+    coef_kernel: tuple | None = None
 
 
 class Wind(Optimizer):
@@ -245,14 +257,14 @@ class Wind(Optimizer):
         restart = P.restart and s.t % P.restart_every == 0
         m = P.n_restart if restart else 0
         X = np.empty((R, N + (m if P.obl else 0), D))
-        width = s.space.ub - s.space.lb
+        lb, width = _box_arrays(s.space)
         wind_step(
             s.p, s.u, s.pbest, s.pbest_f, rank, perm, rng, rng is not _NO_RNG,
-            words_per_permutation(D), coef_draw, coef,
+            _words(D), coef_draw, coef,
             gstarts, guidance,
-            np.asarray(w, float), P.gate, 2.0 * np.sqrt(D), s.low_dim, P.velocity == "awdo",
+            np.asarray(w, float), P.gate, 2.0 * math.sqrt(D), s.low_dim, P.velocity == "awdo",
             float(s.vmax), P.boundary == "reflect", float(P.eta),
-            np.asarray(s.space.lb, float), np.asarray(width, float), X,
+            lb, width, X,
         )  # fmt: skip
         s.restarted = None
         if restart:
@@ -306,6 +318,11 @@ class Wind(Optimizer):
             and type(self)._coefficients is Wind._coefficients
         ):
             return (1 if P.coef_draw == "iteration" else 2), _NO_COEF
+        if s.low_dim and not P.hetero_redraw and type(self)._coefficients is Wind._coefficients:
+            # fixed per-group coefficients: the same array every iteration, laid out once
+            if s.coef_kernel is None or s.coef_kernel[0] is not s.coef:
+                s.coef_kernel = (s.coef, np.ascontiguousarray(s.coef[:, s.gid], dtype=float))
+            return 0, s.coef_kernel[1]
         parts = np.broadcast_arrays(*(np.asarray(c, float) for c in self._coefficients(s)))
         arr = np.stack(parts, axis=-1)
         if arr.ndim == 1:  # four scalars

@@ -85,14 +85,20 @@ class Elite:
 
     def add(self, X: np.ndarray, f: np.ndarray) -> np.ndarray:
         """Offer a batch (candidates ``(n, D)``, costs ``(n,)``); returns ``f`` unchanged."""
-        X, fv = np.atleast_2d(X), np.atleast_1d(np.asarray(f, dtype=float))
+        fv = np.atleast_1d(np.asarray(f, dtype=float))
+        # nothing in this batch would enter (the usual case late in a run): decided before any
+        # other work. The elite holds finite costs only, so an inf here changes nothing, and a
+        # NaN fails the test and takes the full path below.
+        if len(self.f) == self.size and fv.min() >= self.f[-1]:
+            return f
+        X = np.atleast_2d(X)
         ok = np.isfinite(fv)
         if not ok.all():  # the usual batch is all finite: no masked copy of it then
             if not ok.any():
                 return f
             X, fv = X[ok], fv[ok]
-        if len(self.f) == self.size and fv.min() >= self.f[-1]:
-            return f  # nothing in this batch would enter (the usual case late in a run)
+            if len(self.f) == self.size and fv.min() >= self.f[-1]:
+                return f  # -inf hid it above
         if len(fv) > self.size:  # the batch's best few, without sorting it all
             part = np.argpartition(fv, self.size - 1)[: self.size]
         else:

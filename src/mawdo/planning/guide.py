@@ -121,10 +121,12 @@ class Guide:
         best = total[0]
         cand = np.nonzero(ok & (total <= self.max_ratio * best + 1e-9))[0]
         cand = cand[np.argsort(total[cand], kind="stable")]
-        base = wind[0]
+        # every candidate's class key in one array operation (elementwise, so the same
+        # numbers as one candidate at a time), rows read back as tuples in the loop
+        keys = np.round((wind[cand] - wind[0]) / (2 * np.pi)).astype(int)
         seen, out = set(), []
-        for v in cand:
-            key = tuple(np.round((wind[v] - base) / (2 * np.pi)).astype(int))
+        for v, row in zip(cand, keys, strict=True):
+            key = tuple(row)
             if key in seen:
                 continue
             seen.add(key)
