@@ -62,6 +62,7 @@ OPTIMIZERS: Registry[AlgorithmSpec] = Registry("algorithm")
 
 
 def register(spec: AlgorithmSpec) -> AlgorithmSpec:
+    _PARAMS.clear()  # a name registered anew may bring another class or preset
     return OPTIMIZERS.register(spec.name, spec)
 
 
