@@ -16,7 +16,7 @@ SUMMARIES = sorted((ROOT / "docs" / "results").glob("**/summary.md"))
 
 def unpack(packed: Path, folder: Path) -> Path:
     """A committed xz-compressed store, decompressed into ``folder``."""
-    db = folder / "store.db"
+    db = folder / packed.name.removesuffix(".xz")
     with lzma.open(packed) as src, open(db, "wb") as dst:
         shutil.copyfileobj(src, dst)
     return db
@@ -32,13 +32,14 @@ def test_readme_quotes_the_generated_sentences(summary):
 
 
 def test_bbob_sentences_are_those_of_the_committed_store(tmp_path):
-    """The committed BBOB store (xz) gives exactly the committed headline sentences."""
+    """The committed BBOB stores (xz, one per dimension) give exactly the committed sentences."""
     from mawdo.experiments.bbob.data import load_runs
     from mawdo.experiments.bbob.summary import headline
 
-    db = unpack(ROOT / "docs" / "results" / "bbob" / "store-d5.db.xz", tmp_path)
-    summary = (ROOT / "docs" / "results" / "bbob" / "summary.md").read_text(encoding="utf-8")
-    assert headline(load_runs(db)) == summary.splitlines()
+    folder = ROOT / "docs" / "results" / "bbob"
+    dbs = [unpack(folder / f"store-d{d}.db.xz", tmp_path) for d in (5, 20)]
+    summary = (folder / "summary.md").read_text(encoding="utf-8")
+    assert headline(load_runs(dbs)) == summary.splitlines()
 
 
 def test_arena_sentences_are_those_of_the_committed_store(tmp_path):
