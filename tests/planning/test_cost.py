@@ -251,6 +251,15 @@ def test_api_shapes_and_errors():
         cost(x, start=(1.0, 2.0, 3.0))
     with pytest.raises(ValueError, match="t0 must be"):
         cost(x, t0=-1.0)
+    for bad in (np.nan, np.inf):  # each end and t0, each coordinate
+        with pytest.raises(ValueError, match="start must be a finite"):
+            cost(x, start=(20.0, bad))
+        with pytest.raises(ValueError, match="start must be a finite"):
+            cost(x, start=(bad, 20.0))
+        with pytest.raises(ValueError, match="goal must be a finite"):
+            cost.parts(x[None], goal=(bad, 300.0))
+        with pytest.raises(ValueError, match="t0 must be"):
+            cost(x, t0=bad)
     with pytest.raises(ValueError, match="mode must be one of"):
         PathCost(sc, mode="frozen")
     with pytest.raises(ValueError, match="n_waypoints"):
@@ -270,6 +279,8 @@ def test_nan_candidates_get_nan_and_leave_the_others_alone():
         out = cost(X2)
         assert np.isnan(out[3])
         np.testing.assert_array_equal(np.delete(out, 3), np.delete(clean, 3))
+        # a batch with no finite coordinate at all still evaluates (to NaN), no exception
+        assert np.isnan(cost(np.full((2, X.shape[1]), np.nan))).all()
 
 
 def test_assemble_paths():

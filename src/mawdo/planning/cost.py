@@ -37,6 +37,7 @@ Default weights (why)
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -114,6 +115,14 @@ def assemble_paths(X, start, goal) -> np.ndarray:
     return np.concatenate([s, pts, g], axis=1)
 
 
+def _end(name: str, p) -> np.ndarray:
+    """A path end as the kernel takes it (contiguous float64, shape (2,)), or a clear error."""
+    p = np.ascontiguousarray(p, dtype=np.float64)  # one compiled layout
+    if p.shape != (2,) or not (math.isfinite(p[0]) and math.isfinite(p[1])):
+        raise ValueError(f"{name} must be a finite (x, y) pair, got {p!r}")
+    return p
+
+
 class PathCost:
     """The paper's path cost for a population, evaluated by one compiled kernel call.
 
@@ -171,6 +180,7 @@ class PathCost:
         self._motion: tuple | None = None
         self._frozen = MotionTable.frozen(len(self.flat.thresh)).kernel_arrays(0.0)
         self._scratch = np.empty(0)  # the kernel's work space, kept from call to call
+        self._no_offsets = np.zeros((len(self.flat.thresh), 2))
 
     @property
     def dim(self) -> int:
@@ -226,14 +236,15 @@ class PathCost:
     def _motion_table(self, X, start, t0: float, goal) -> MotionTable:
         # Every segment is shorter than the diagonal of a box holding all points, so the robot
         # reaches the goal before t0 + (m + 1) diag / v: a table to there covers every query.
-        # One min/max over all coordinates gives a (square) box cheaply.
-        lo, hi = X.min(), X.max()
-        if not (np.isfinite(lo) and np.isfinite(hi)):  # NaN candidates just get a NaN cost
+        # One min/max over all coordinates gives a (square) box cheaply; the rest is done on
+        # Python floats, since numpy's scalar operations cost microseconds per call here.
+        lo, hi = float(X.min()), float(X.max())
+        if not (math.isfinite(lo) and math.isfinite(hi)):  # NaN candidates get a NaN cost
             finite = X[np.isfinite(X)]
-            lo, hi = (finite.min(), finite.max()) if finite.size else (0.0, 0.0)
-        ends = np.concatenate([start, goal])
-        lo, hi = min(lo, ends.min()), max(hi, ends.max())
-        diag = np.sqrt(2.0) * float(hi - lo)
+            lo, hi = (float(finite.min()), float(finite.max())) if finite.size else (0.0, 0.0)
+        lo = min(lo, float(start[0]), float(start[1]), float(goal[0]), float(goal[1]))
+        hi = max(hi, float(start[0]), float(start[1]), float(goal[0]), float(goal[1]))
+        diag = math.sqrt(2.0) * (hi - lo)
         t_need = t0 + (self.n_waypoints + 1) * diag / self.scenario.robot_speed
         table = self._table
         if table is None or not table.covers(t0, t_need):
@@ -250,18 +261,10 @@ class PathCost:
             raise ValueError(
                 f"X must have shape (n, {self.dim}) for {self.n_waypoints} waypoints, got {X.shape}"
             )
-        start = (
-            self.scenario.start
-            if start is None
-            else np.ascontiguousarray(start, dtype=np.float64)  # one compiled layout
-        )
-        if start.shape != (2,) or not np.all(np.isfinite(start)):
-            raise ValueError(f"start must be a finite (x, y) pair, got {start!r}")
-        goal = self.scenario.goal if goal is None else np.ascontiguousarray(goal, dtype=np.float64)
-        if goal.shape != (2,) or not np.all(np.isfinite(goal)):
-            raise ValueError(f"goal must be a finite (x, y) pair, got {goal!r}")
+        start = _end("start", self.scenario.start if start is None else start)
+        goal = _end("goal", self.scenario.goal if goal is None else goal)
         t0 = float(t0)
-        if not np.isfinite(t0) or t0 < 0:
+        if not math.isfinite(t0) or t0 < 0:
             raise ValueError(f"t0 must be finite and >= 0, got {t0!r}")
         n = X2.shape[0]
         out_cost = np.empty(n)
@@ -270,14 +273,13 @@ class PathCost:
         out_ncol = np.empty(n, dtype=np.int64)
         if n == 0:
             return out_cost, out_len, out_ncol, out_turn
-        n_obs = len(self.flat.thresh)
         spacetime = self.mode == "spacetime"
         if spacetime:
             table = self._motion_table(X2, start, t0, goal)
             if self._motion is None or self._motion[0] is not table or self._motion[1] != t0:
                 self._motion = (table, t0, table.kernel_arrays(t0))
             motion = self._motion[2]
-            snap = np.zeros((n_obs, 2))
+            snap = self._no_offsets  # read only by the kernel in spacetime mode
         else:
             motion = self._frozen
             if self._snap is None or self._snap[0] != t0:
