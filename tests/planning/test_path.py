@@ -69,6 +69,39 @@ def test_densify_preserves_length_and_endpoints(pts, m):
         assert polyline_length(full) == pytest.approx(polyline_length(pts), rel=1e-9, abs=1e-9)
 
 
+def _densify_by_list(points, m):
+    """densify's rule, written the plain way: keep the last m interior vertices, then split
+    the longest piece at its midpoint (the earliest on the route on ties), re-measuring the
+    list of pieces every time."""
+    pts = np.asarray(points, dtype=float)
+    inner = pts[1:-1][-m:]
+    base = np.vstack([pts[:1], inner, pts[-1:]])
+    seg = np.hypot(*np.diff(base, axis=0).T)
+    pieces = [(j, 0.0, 1.0) for j in range(len(seg))]  # in route order
+    for _ in range(m - len(inner)):
+        lengths = [seg[j] * (b - a) for j, a, b in pieces]
+        i = lengths.index(max(lengths))  # first maximum: the earliest piece
+        j, a, b = pieces[i]
+        c = 0.5 * (a + b)
+        pieces[i : i + 1] = [(j, a, c), (j, c, b)]
+    out = []
+    for k, (j, a, _) in enumerate(pieces):
+        if k > 0:  # each piece but the first starts at a vertex or a cut
+            out.append(base[j] if a == 0.0 else base[j] + a * (base[j + 1] - base[j]))
+    return np.array(out).reshape(-1, 2)
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    st.lists(st.tuples(st.integers(0, 6), st.integers(0, 6)), min_size=2, max_size=9),
+    st.integers(1, 30),
+)
+def test_densify_equals_the_plain_list_version(pts, m):
+    # a coarse integer grid makes equal segment lengths (ties) and repeated points common
+    pts = 50.0 * np.array(pts, dtype=float)
+    np.testing.assert_array_equal(densify(pts, m), _densify_by_list(pts, m))
+
+
 @settings(max_examples=60, deadline=None)
 @given(
     st.lists(st.tuples(st.floats(0, 100), st.floats(0, 100)), min_size=2, max_size=8),

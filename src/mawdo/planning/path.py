@@ -108,9 +108,16 @@ def densify(points: np.ndarray, m: int) -> np.ndarray:
         heapq.heappush(heap, (0.5 * neg, j, a, c))
         heapq.heappush(heap, (0.5 * neg, j, c, b))
     cuts.sort()
-    j = np.array([c[0] for c in cuts])
-    t = np.array([c[1] for c in cuts])[:, None]
+    j = np.fromiter((c[0] for c in cuts), np.int64, len(cuts))
+    t = np.fromiter((c[1] for c in cuts), np.float64, len(cuts))[:, None]
     new = base[j] + t * (base[j + 1] - base[j])
-    # interleave: original vertex k (k >= 1) comes after every cut on segments < k
-    order = np.argsort(np.r_[np.arange(1, len(base) - 1), j + t[:, 0]], kind="stable")
-    return np.vstack([base[1:-1], new])[order]
+    # interleave: original vertex k (k >= 1) comes after every cut on segments < k, and the
+    # cuts are sorted by (segment, parameter), so vertex k lands at k - 1 + (cuts before it)
+    before = np.cumsum(np.bincount(j, minlength=len(base) - 1))[:-1]
+    vrow = np.arange(len(base) - 2) + before
+    out = np.empty((m, 2))
+    is_vertex = np.zeros(m, dtype=bool)
+    is_vertex[vrow] = True
+    out[vrow] = base[1:-1]
+    out[~is_vertex] = new
+    return out
