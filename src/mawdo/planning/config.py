@@ -65,6 +65,14 @@ class PlannerConfig:
         vertex, at most ``max_waypoints``); never lowers it.
     max_waypoints : int
         Upper limit of that raise.
+    hold_straight : bool
+        Receding horizon, space-time mode: skip the optimisation while the plan runs straight
+        to the goal and the guard verifies it collision-free to its end, since no candidate
+        can cost less (C1 at its lower bound, the straight-line distance; C2 = C3 = 0). Those
+        steps count as ``holds`` in the result and have no replan (no latency). The verdict
+        rests on the scenario's obstacle motion being the prediction at every step, as it is
+        for the cost and the guard. Off in the ``paper`` and ``study`` presets, which replan
+        every step as the paper does.
     """
 
     pop_size: int = 240
@@ -88,6 +96,7 @@ class PlannerConfig:
     guide_copies: int = 3
     auto_waypoints: bool = True
     max_waypoints: int = 48
+    hold_straight: bool = True
 
     def __post_init__(self) -> None:
         for name in ("pop_size", "first_iters", "replan_iters", "replan_every", "n_waypoints"):
@@ -118,10 +127,12 @@ class PlannerConfig:
 
 # Named settings: the paper's study size, and a real-time setting that meets 20 Hz replanning.
 PRESETS = {
-    "paper": PlannerConfig(pop_size=1360, first_iters=300, replan_iters=15),
+    "paper": PlannerConfig(pop_size=1360, first_iters=300, replan_iters=15, hold_straight=False),
     "realtime": PlannerConfig(pop_size=240, first_iters=300, replan_iters=15),
     # the study: the paper's 1360 particles for the first plan, real-time replans
-    "study": PlannerConfig(pop_size=240, first_pop_size=1360, first_iters=300, replan_iters=15),
+    "study": PlannerConfig(
+        pop_size=240, first_pop_size=1360, first_iters=300, replan_iters=15, hold_straight=False
+    ),
     "quick": PlannerConfig(pop_size=80, first_iters=60, replan_iters=5),
     # single-shot queries in tens of milliseconds: the guide's routes do the topology, a short
     # refinement smooths them
@@ -173,6 +184,9 @@ class PlanResult:
         Route segments whose clearance fell below the planner's margin without colliding.
     waits, evasions : int
         Steps the guard waited in place / made an evasive move (no safe candidate).
+    holds : int
+        Steps driven on a kept straight plan without optimising
+        (:attr:`PlannerConfig.hold_straight`).
     fallbacks : int
         Times the guard drove an elite candidate other than the optimizer's best.
     """
@@ -193,6 +207,7 @@ class PlanResult:
     waits: int = 0
     evasions: int = 0
     fallbacks: int = 0
+    holds: int = 0
 
     @property
     def steps(self) -> int:

@@ -17,12 +17,15 @@ from mawdo.planning.config import PlannerConfig, PlanResult, Replan, _Drive
 from mawdo.planning.cost import PathCost, assemble_paths
 from mawdo.planning.guard import Elite, Guard
 from mawdo.planning.guide import Guide
-from mawdo.planning.path import advance, densify
+from mawdo.planning.path import advance, densify, polyline_length
 from mawdo.planning.scenario import Scenario
 from mawdo.planning.seeding import _optimise, _seeds, _via_paths
 from mawdo.streams import replan_seed_sequences
 
 NO_ROUTE = "no collision-free route found"
+# a plan whose waypoints lie within this of the straight line to the goal (px), and no longer
+# than it by more than this, is straight (see Run._holds)
+STRAIGHT_TOL = 1e-6
 
 # one guide per (scenario, clearance, k): the graph and the goal's tree are built once
 _GUIDES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
@@ -77,7 +80,7 @@ class Run:
         )
         self.guard = Guard(sc, cfg.clearance)
         self.replans: list[Replan] = []
-        self.counts = {"waits": 0, "evasions": 0, "fallbacks": 0}
+        self.counts = {"waits": 0, "evasions": 0, "fallbacks": 0, "holds": 0}
 
     # -- seeds ---------------------------------------------------------------------------------
 
@@ -185,7 +188,9 @@ class Run:
                 break
             if step == max_steps:
                 break
-            if remainder is None or force or (self.dynamic and step % cfg.replan_every == 0):
+            if self._holds(remainder, force, step):
+                self.counts["holds"] += 1
+            elif remainder is None or force or (self.dynamic and step % cfg.replan_every == 0):
                 cands, _ = self.optimise(pos, step, remainder)
                 left = cfg.replan_every - step % cfg.replan_every if self.dynamic else 0
                 chosen = self.choose(cands, pos, step, v * left)
@@ -205,6 +210,32 @@ class Run:
             pos, remainder, passed, frac = advance(remainder, v)
             drive.move(step, pos, passed, frac)
         return self._finish(drive, reason)
+
+    def _holds(self, remainder, force: bool, step: int) -> bool:
+        """Keep the plan without optimising (:attr:`PlannerConfig.hold_straight`): it runs
+        straight to the goal and the guard finds it collision-free to its end.
+
+        Such a plan has the least cost any candidate can have: C1 equals the straight-line
+        distance, its lower bound, and C2 = C3 = 0. The predictions it was verified against are
+        the same at every later step, so it stays verified until the goal.
+        """
+        cfg = self.cfg
+        if remainder is None or force or not (self.dynamic and cfg.hold_straight):
+            return False
+        if cfg.mode != "spacetime":  # the frozen-map planner judges by another model
+            return False
+        a, b = remainder[0], remainder[-1]
+        d = b - a
+        direct = float(np.hypot(d[0], d[1]))
+        if len(remainder) > 2:
+            inner = remainder[1:-1] - a
+            off = np.abs(inner[:, 0] * d[1] - inner[:, 1] * d[0]) / max(direct, 1e-300)
+            if off.max() > STRAIGHT_TOL:
+                return False
+        length = polyline_length(remainder)
+        if length > direct + STRAIGHT_TOL:  # collinear but doubling back
+            return False
+        return self.guard.stretch_hits(remainder, float(step), length) == 0
 
     def _reachable(self):
         """Length (px) of a route around the static obstacles, or why there is none.

@@ -35,6 +35,7 @@ METRICS = (
     "evasions",
     "elite_fallbacks",
     "near_misses",
+    "holds",
 )
 
 
@@ -106,4 +107,6 @@ def run_metrics(result: PlanResult, l_star: float | None = None, snapshots: int 
         "evasions": int(getattr(result, "evasions", 0)),
         "elite_fallbacks": int(getattr(result, "fallbacks", 0)),
         "near_misses": int(getattr(result, "near_misses", 0)),
+        # steps on a kept straight plan, without a replan (PlannerConfig.hold_straight)
+        "holds": int(getattr(result, "holds", 0)),
     }

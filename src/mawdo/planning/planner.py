@@ -177,7 +177,9 @@ def result_to_bytes(result: PlanResult) -> bytes:
         success=np.array(result.success),
         collision_free=np.array(result.collision_free),
         min_clearance=np.array(result.min_clearance),
-        events=np.array([result.waits, result.evasions, result.fallbacks, result.near_misses]),
+        events=np.array(
+            [result.waits, result.evasions, result.fallbacks, result.near_misses, result.holds]
+        ),
     )
     return buf.getvalue()
 
@@ -207,8 +209,9 @@ def result_from_bytes(data: bytes, scenario) -> PlanResult:
     algorithm, seed, reason = (str(x) for x in z["meta"])
     extra = {}
     if "events" in z.files:  # payloads written since the guard (issue 10)
-        w, e, f, nm = (int(x) for x in z["events"])
+        w, e, f, nm, *held = (int(x) for x in z["events"])  # holds: written since 0.3
         extra = dict(
+            holds=held[0] if held else 0,
             collision_free=bool(z["collision_free"]),
             min_clearance=float(z["min_clearance"]),
             waits=w,
