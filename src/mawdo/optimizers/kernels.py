@@ -63,7 +63,6 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
     perm,
     rng,
     use_rng,
-    W,
     coef_draw,
     coef,
     gstarts,
@@ -82,7 +81,8 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
 ):  # pragma: no cover - compiled
     """One WDO-family move of every parcel of every run, in place on ``p`` and ``u``.
 
-    Long by design: one fused Numba iteration of the WDO family; splitting it adds calls.
+    Long by design: one fused Numba iteration of the WDO family (the leaders and the shuffle
+    are inlined helpers); separate kernels per component would add passes over the arrays.
 
     Parameters (shapes with ``R`` runs, ``N`` parcels, ``G`` groups, ``D`` dimensions)
     ----------
@@ -94,10 +94,11 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
     perm : (R, N, D) int
         Permutation of the dimensions per parcel (Coriolis term ``u[perm]``); read only when
         ``use_rng`` is false.
-    rng : (R, 4) uint64, use_rng : bool, W : int
+    rng : (R, 4) uint64, use_rng : bool
         Per-run xoshiro256** states (:func:`seed_xoshiro`); when used, each parcel's permutation
-        is drawn here from ``W = words_per_permutation(D)`` of its run's outputs by
-        :func:`shuffle_from_words` (no ``(R, N, D)`` permutation array is stored).
+        is the one :func:`shuffle_from_words` draws from the next
+        ``words_per_permutation(D)`` outputs of its run's generator, applied to the velocities
+        by :func:`shuffle_values` (no permutation is stored).
     coef_draw : int
         0: coefficients from ``coef``. 1: AWDO's ``a_t, g_t, RT_t, c_t ~ U[0, 1)`` drawn here,
         four outputs of the run's generator per iteration (53-bit uniforms), before any
@@ -125,42 +126,21 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
     gbest = np.empty(G, np.intp)
     w3e = np.empty(G)
     centre = np.zeros((G, D))
-    u_old = np.empty(D)
-    pr = np.empty(D, np.intp)
-    up = np.empty(D)  # u_old[pr]
+    up = np.empty(D)  # u[r, i][perm]: the Coriolis term's permuted velocity
     Bv = np.empty(D)  # guidance B of the parcel
-    wbuf = np.empty(max(W, 1), np.uint64)
     cw = np.empty(4)  # alpha, g, RT, c of the parcel
     for r in range(R):
-        tb = 0
-        for g in range(G):  # leaders: first minimum, like numpy.argmin
-            best = gstarts[g]
-            for k in range(gstarts[g] + 1, gstarts[g + 1]):
-                if pbest_f[r, k] < pbest_f[r, best]:
-                    best = k
-            gbest[g] = best
-            if pbest_f[r, best] < pbest_f[r, tb] or g == 0:
-                tb = best
-        for g in range(G):
-            w3e[g] = w[2]
-            if guidance == 2 and gate:
-                acc = 0.0
-                for d in range(D):
-                    diff = pbest[r, gbest[g], d] - pbest[r, tb, d]
-                    acc += diff * diff
-                w3e[g] = w[2] * min(1.0, np.sqrt(acc) / d_max)
-            if centre_on:
-                a, b = gstarts[g], gstarts[g + 1]
-                for d in range(D):
-                    acc = 0.0
-                    for k in range(a, b):
-                        acc += p[r, k, d]
-                    centre[g, d] = acc / (b - a)
+        tb = run_leaders(p, pbest, pbest_f, r, gstarts, guidance, w, gate, d_max, centre_on,
+                         gbest, w3e, centre)  # fmt: skip
+        # the run's generator lives in locals (registers) while its parcels move
+        rr = r if use_rng else 0  # rng is a (1, 4) placeholder without use_rng
+        s0, s1, s2, s3 = rng[rr, 0], rng[rr, 1], rng[rr, 2], rng[rr, 3]
         rc = r if coef.shape[0] > 1 else 0
         per_parcel = coef.shape[1] > 1
         if coef_draw == 1:
             for k in range(4):
-                cw[k] = np.float64(xoshiro_next(rng, r) >> _SHIFT11) * _U53
+                wd, s0, s1, s2, s3 = xoshiro_step(s0, s1, s2, s3)
+                cw[k] = np.float64(wd >> _SHIFT11) * _U53
         for g in range(G):
             lead = tb if guidance == 0 else gbest[g]
             denom = w[0] + w[1] + w3e[g]
@@ -169,7 +149,8 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
                 rk = rank[r, i]
                 if coef_draw == 2:
                     for k in range(4):
-                        cw[k] = np.float64(xoshiro_next(rng, r) >> _SHIFT11) * _U53
+                        wd, s0, s1, s2, s3 = xoshiro_step(s0, s1, s2, s3)
+                        cw[k] = np.float64(wd >> _SHIFT11) * _U53
                 if coef_draw == 0:
                     ci = i if per_parcel else 0
                     for k in range(4):
@@ -179,17 +160,15 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
                 RT = cw[2]
                 wp = RT / rk if awdo else abs(1.0 - 1.0 / rk) * RT  # pressure weight
                 wc = cw[3] / rk  # Coriolis weight
-                for d in range(D):
-                    u_old[d] = u[r, i, d]
+                # shuffling a copy of the velocities with the swaps that would build the
+                # permutation gives u[perm] with no index array and no gather
                 if use_rng:
-                    for k in range(W):
-                        wbuf[k] = xoshiro_next(rng, r)
-                    shuffle_from_words(wbuf, 0, pr)
+                    for d in range(D):
+                        up[d] = u[r, i, d]
+                    s0, s1, s2, s3 = shuffle_values(up, s0, s1, s2, s3)
                 else:
                     for d in range(D):
-                        pr[d] = perm[r, i, d]
-                for d in range(D):  # the gathers first: the arithmetic below vectorises
-                    up[d] = u_old[pr[d]]
+                        up[d] = u[r, i, perm[r, i, d]]
                 if guidance == 2:  # Eq. 5 renormalised, the division folded into the weights
                     for d in range(D):
                         Bv[d] = (
@@ -198,20 +177,97 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
                 else:
                     for d in range(D):
                         Bv[d] = pbest[r, lead, d]
-                for d in range(D):
-                    q = p[r, i, d]
-                    v = a1 * u_old[d] - grav * (q - centre[g, d]) + wp * (Bv[d] - q) + wc * up[d]
-                    v = min(max(v, -vmax), vmax)
-                    q = q + v
-                    if reflect:
+                # one loop per boundary policy: no branch on the policy inside the hot loop
+                if reflect:
+                    for d in range(D):
+                        q = p[r, i, d]
+                        v = a1 * u[r, i, d] - grav * (q - centre[g, d]) + wp * (Bv[d] - q)
+                        v = min(max(v + wc * up[d], -vmax), vmax)
+                        q = q + v
                         over = q > 1.0
                         under = q < -1.0
                         q = 2.0 - q if over else (-2.0 - q if under else q)
                         v = -eta * v if (over or under) else v
-                    q = min(max(q, -1.0), 1.0)
-                    p[r, i, d] = q
-                    u[r, i, d] = v
-                    X[r, i, d] = lb[d] + (q + 1.0) * 0.5 * width[d]
+                        p[r, i, d] = min(max(q, -1.0), 1.0)
+                        u[r, i, d] = v
+                else:
+                    for d in range(D):
+                        q = p[r, i, d]
+                        v = a1 * u[r, i, d] - grav * (q - centre[g, d]) + wp * (Bv[d] - q)
+                        v = min(max(v + wc * up[d], -vmax), vmax)
+                        p[r, i, d] = min(max(q + v, -1.0), 1.0)
+                        u[r, i, d] = v
+                for d in range(D):
+                    X[r, i, d] = lb[d] + (p[r, i, d] + 1.0) * 0.5 * width[d]
+        if use_rng:
+            rng[r, 0], rng[r, 1], rng[r, 2], rng[r, 3] = s0, s1, s2, s3
+
+
+@njit(cache=True, nogil=True, inline="always")
+def run_leaders(p, pbest, pbest_f, r, gstarts, guidance, w, gate, d_max, centre_on, gbest, w3e,
+                centre):  # fmt: skip  # pragma: no cover - compiled
+    """Run ``r``'s leaders for :func:`wind_step`: each group's best parcel ``gbest (G,)``, the
+    gated ``w3`` of each group ``w3e (G,)`` (Eq. 10), the group centroids ``centre (G, D)``
+    when ``centre_on`` (Eqs. 22-23); returns ``tbest``'s index (first minima, as argmin)."""
+    G = gstarts.size - 1
+    D = p.shape[2]
+    tb = 0
+    for g in range(G):
+        best = gstarts[g]
+        for k in range(gstarts[g] + 1, gstarts[g + 1]):
+            if pbest_f[r, k] < pbest_f[r, best]:
+                best = k
+        gbest[g] = best
+        if pbest_f[r, best] < pbest_f[r, tb] or g == 0:
+            tb = best
+    for g in range(G):
+        w3e[g] = w[2]
+        if guidance == 2 and gate:
+            acc = 0.0
+            for d in range(D):
+                diff = pbest[r, gbest[g], d] - pbest[r, tb, d]
+                acc += diff * diff
+            w3e[g] = w[2] * min(1.0, np.sqrt(acc) / d_max)
+        if centre_on:
+            a, b = gstarts[g], gstarts[g + 1]
+            for d in range(D):
+                acc = 0.0
+                for k in range(a, b):
+                    acc += p[r, k, d]
+                centre[g, d] = acc / (b - a)
+    return tb
+
+
+@njit(cache=True, nogil=True, inline="always")
+def shuffle_values(vals, s0, s1, s2, s3):  # pragma: no cover - compiled
+    """Permute ``vals`` ``(d,)`` in place as ``vals[perm]``, ``perm`` being the permutation
+    :func:`shuffle_from_words` builds from the next ``words_per_permutation(d)`` outputs of the
+    xoshiro256** state ``(s0, s1, s2, s3)``; returns the advanced state.
+
+    The same Fisher-Yates swaps applied to the values instead of to ``range(d)``: swap ``k``
+    exchanges the entries at ``k`` and ``j``, so entry ``k`` ends up holding ``vals[perm[k]]``.
+    Words are drawn when :func:`shuffle_from_words` moves to its next one, so the state advances
+    by exactly the words it would read.
+    """
+    d = vals.shape[0]
+    if d < 2:
+        return s0, s1, s2, s3
+    x, s0, s1, s2, s3 = xoshiro_step(s0, s1, s2, s3)
+    prod = 1
+    for k in range(d - 1, 0, -1):
+        n = k + 1
+        if prod * n > _BATCH:
+            x, s0, s1, s2, s3 = xoshiro_step(s0, s1, s2, s3)
+            prod = 1
+        prod *= n
+        un = np.uint64(n)
+        hi = ((x >> _SHIFT32) * un + (((x & _LOW32) * un) >> _SHIFT32)) >> _SHIFT32
+        x = x * un  # the low 64 bits: the rest of the word, for the next range
+        j = np.intp(hi)
+        tmp = vals[k]
+        vals[k] = vals[j]
+        vals[j] = tmp
+    return s0, s1, s2, s3
 
 
 _U32 = 1.0 / 4294967296.0
@@ -235,15 +291,6 @@ def xoshiro_step(s0, s1, s2, s3):  # pragma: no cover - compiled
     s2 ^= t
     s3 = _rotl(s3, 45)
     return result, s0, s1, s2, s3
-
-
-@njit(cache=True, nogil=True, inline="always")
-def xoshiro_next(state, r):  # pragma: no cover - compiled
-    """Next 64-bit output of run ``r``'s xoshiro256** generator; ``state`` ``(R, 4)`` uint64
-    is advanced in place."""
-    out, s0, s1, s2, s3 = xoshiro_step(state[r, 0], state[r, 1], state[r, 2], state[r, 3])
-    state[r, 0], state[r, 1], state[r, 2], state[r, 3] = s0, s1, s2, s3
-    return out
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
@@ -316,14 +363,33 @@ def seed_xoshiro(streams) -> np.ndarray:
 
 @njit(cache=True, nogil=True, error_model="numpy")
 def mewdo_step(
-    p, u, pbest, rank, tb, guide, centre, strat, draws, perm, coef, vmax, lb, width, X
+    p,
+    u,
+    pbest,
+    rank,
+    tb,
+    guide,
+    centre,
+    strat,
+    draws,
+    perm,
+    words,
+    use_words,
+    coef,
+    vmax,
+    lb,
+    width,
+    X,
 ):  # pragma: no cover - compiled
     """MEWDO (reconstructed)'s move: each parcel applies only the strategy it drew.
 
     ``strat (R, N)``: 0 classic WDO toward ``pbest[tb]``; 1 AWDO with the parcel's coefficients
     ``draws[r, i, 1:5]``; 2 toward ``pbest[guide]`` with unit pressure and rank, gravity toward
-    ``centre (R, D)``. ``coef = (alpha, g, RT, c)`` of strategies 0 and 2; ``perm (R, N, D)``
-    the Coriolis permutations. Velocity clamped to ``vmax``, position clipped to ``[-1, 1]``,
+    ``centre (R, D)``. ``coef = (alpha, g, RT, c)`` of strategies 0 and 2. The Coriolis
+    permutations: with ``use_words``, parcel ``i``'s is
+    ``shuffle_from_words(words[r], i W, .)`` (``W = words_per_permutation(D)``, applied to the
+    velocities by :func:`shuffle_values_from_words`) from ``words (R, N W)`` uint64, else
+    ``perm (R, N, D)``. Velocity clamped to ``vmax``, position clipped to ``[-1, 1]``,
     ``X = lb + (p + 1)/2 width``. Same equations as ``wind.wdo_velocity``/``awdo_velocity``.
     """
     R, N, D = p.shape
@@ -331,12 +397,18 @@ def mewdo_step(
     up = np.empty(D)  # u_old[perm]
     v = np.empty(D)
     alpha, g, RT, c = coef[0], coef[1], coef[2], coef[3]
+    W = words.shape[1] // N if use_words else 0
     for r in range(R):
         for i in range(N):
             for d in range(D):  # the gathers first, one loop per strategy: the loops vectorise
                 u_old[d] = u[r, i, d]
-            for d in range(D):
-                up[d] = u_old[perm[r, i, d]]
+            if use_words:
+                for d in range(D):
+                    up[d] = u_old[d]
+                shuffle_values_from_words(words[r], i * W, up)
+            else:
+                for d in range(D):
+                    up[d] = u_old[perm[r, i, d]]
             s = strat[r, i]
             rk = rank[r, i]
             if s == 0:
@@ -375,3 +447,29 @@ def mewdo_step(
                 u[r, i, d] = vd
                 p[r, i, d] = q
                 X[r, i, d] = lb[d] + (q + 1.0) * 0.5 * width[d]
+
+
+@njit(cache=True, nogil=True, inline="always")
+def shuffle_values_from_words(words, base, vals):  # pragma: no cover - compiled
+    """Permute ``vals`` ``(d,)`` in place as ``vals[perm]``, ``perm`` being the permutation
+    ``shuffle_from_words(words, base, perm)`` builds (the same swaps, on the values)."""
+    d = vals.shape[0]
+    if d < 2:
+        return
+    w = base
+    x = words[w]
+    prod = 1
+    for k in range(d - 1, 0, -1):
+        n = k + 1
+        if prod * n > _BATCH:
+            w += 1
+            x = words[w]
+            prod = 1
+        prod *= n
+        un = np.uint64(n)
+        hi = ((x >> _SHIFT32) * un + (((x & _LOW32) * un) >> _SHIFT32)) >> _SHIFT32
+        x = x * un
+        j = np.intp(hi)
+        tmp = vals[k]
+        vals[k] = vals[j]
+        vals[j] = tmp
