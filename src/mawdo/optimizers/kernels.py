@@ -142,7 +142,8 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
                 wd, s0, s1, s2, s3 = xoshiro_step(s0, s1, s2, s3)
                 cw[k] = np.float64(wd >> _SHIFT11) * _U53
         for g in range(G):
-            lead = tb if guidance == 0 else gbest[g]
+            gb = gbest[g]  # a local: the compiler cannot tell that Bv's stores leave gbest alone
+            lead = tb if guidance == 0 else gb
             denom = w[0] + w[1] + w3e[g]
             b1, b2, b3 = w[0] / denom, w[1] / denom, w3e[g] / denom
             for i in range(gstarts[g], gstarts[g + 1]):
@@ -171,9 +172,7 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
                         up[d] = u[r, i, perm[r, i, d]]
                 if guidance == 2:  # Eq. 5 renormalised, the division folded into the weights
                     for d in range(D):
-                        Bv[d] = (
-                            b1 * pbest[r, i, d] + b2 * pbest[r, gbest[g], d] + b3 * pbest[r, tb, d]
-                        )
+                        Bv[d] = b1 * pbest[r, i, d] + b2 * pbest[r, gb, d] + b3 * pbest[r, tb, d]
                 else:
                     for d in range(D):
                         Bv[d] = pbest[r, lead, d]
