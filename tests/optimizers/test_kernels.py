@@ -16,10 +16,10 @@ from mawdo.optimizers.kernels import (
     mewdo_step,
     segment_ranks,
     update_personal_best,
-    wind_step,
     words_per_permutation,
 )
 from mawdo.optimizers.wdo import group_starts
+from mawdo.optimizers.wind_kernel import wind_step
 from mawdo.streams import RunStreams
 
 M64 = (1 << 64) - 1

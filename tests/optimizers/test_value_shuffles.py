@@ -7,10 +7,10 @@ import pytest
 from mawdo.optimizers.kernels import (
     mewdo_step,
     shuffle_from_words,
-    shuffle_values,
     shuffle_values_from_words,
     words_per_permutation,
 )
+from mawdo.optimizers.wind_kernel import shuffle_values
 from mawdo.shuffle import fisher_yates_batch
 
 M64 = (1 << 64) - 1

@@ -34,12 +34,8 @@ from mawdo.optimizers.base import (
     initial_population,
 )
 from mawdo.optimizers.boundary import BOUNDARY_POLICIES, confine_positions
-from mawdo.optimizers.kernels import (
-    seed_xoshiro,
-    segment_ranks,
-    update_personal_best,
-    wind_step,
-)
+from mawdo.optimizers.kernels import seed_xoshiro, segment_ranks, update_personal_best
+from mawdo.optimizers.wind_kernel import wind_step
 from mawdo.streams import RunStreams
 
 
