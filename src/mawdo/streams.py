@@ -79,7 +79,18 @@ class RunStreams:
 
     def uniform(self, low, high, shape=()) -> np.ndarray:
         """U[low, high) draws, shape ``(R, *shape)``; bounds broadcast against ``shape``."""
-        return low + (np.asarray(high) - low) * self.random(shape)
+        out = self.random(shape)
+        width = np.asarray(high) - low
+        if (
+            np.broadcast_shapes(np.shape(width), np.shape(low), out.shape) == out.shape
+            and np.result_type(width, low, out) == out.dtype
+        ):
+            # in place, no temporaries of the draw's size: ``r * w + low`` is ``low + w * r``
+            # bit for bit (IEEE products and sums are commutative)
+            out *= width
+            out += low
+            return out
+        return low + width * out
 
     def normal(self, shape=()) -> np.ndarray:
         """Standard normal draws, shape ``(R, *shape)``."""

@@ -16,10 +16,10 @@ from mawdo.optimizers.kernels import (
     mewdo_step,
     segment_ranks,
     update_personal_best,
-    wind_step,
     words_per_permutation,
 )
 from mawdo.optimizers.wdo import group_starts
+from mawdo.optimizers.wind_kernel import wind_step
 from mawdo.streams import RunStreams
 
 M64 = (1 << 64) - 1
@@ -139,7 +139,7 @@ def test_wind_step_equals_the_numpy_equations(guidance, gate, centre_on, awdo, r
     segment_ranks(f, group_starts(N, G if scope == "group" else 1), rank)
     X = np.empty((R, N, D))
     P, U = p.copy(), u.copy()
-    wind_step(P, U, pbest, pbest_f, rank, perm, np.ones((1, 4), np.uint64), False, 0, 0, coef,
+    wind_step(P, U, pbest, pbest_f, rank, perm, np.ones((1, 4), np.uint64), False, 0, coef,
               group_starts(N, G), guidance, w, gate, 2 * np.sqrt(D), centre_on, awdo, vmax,
               reflect, eta, lb, ub - lb, X)  # fmt: skip
     np.testing.assert_allclose(P, ep, rtol=0, atol=1e-14)
@@ -241,7 +241,7 @@ def test_wind_step_draws_each_parcels_permutation_from_its_runs_xoshiro():
     out = []
     for mode in ("perm", "rng"):
         P, U, X, st = p.copy(), u.copy(), np.empty((R, N, D)), state.copy()
-        wind_step(P, U, pbest, pbest_f, rank, perm, st, mode == "rng", W, 0, *args, X)
+        wind_step(P, U, pbest, pbest_f, rank, perm, st, mode == "rng", 0, *args, X)
         out.append((P, U))
     np.testing.assert_array_equal(out[0][0], out[1][0])
     np.testing.assert_array_equal(out[0][1], out[1][1])
@@ -272,10 +272,10 @@ def test_wind_step_draws_awdo_coefficients_before_the_permutations(coef_draw):
     args = (group_starts(N, 1), 0, np.zeros(3), False, 1.0, False, True, 0.3, False, 0.5,
             np.zeros(D), np.ones(D))  # fmt: skip
     P1, U1, X = p.copy(), u.copy(), np.empty((R, N, D))
-    wind_step(P1, U1, pbest, pbest_f, rank, perm, state.copy(), True, W, coef_draw,
+    wind_step(P1, U1, pbest, pbest_f, rank, perm, state.copy(), True, coef_draw,
               np.zeros((1, 1, 4)), *args, X)  # fmt: skip
     P0, U0 = p.copy(), u.copy()
-    wind_step(P0, U0, pbest, pbest_f, rank, perm, state.copy(), False, W, 0, coef, *args, X)
+    wind_step(P0, U0, pbest, pbest_f, rank, perm, state.copy(), False, 0, coef, *args, X)
     np.testing.assert_array_equal(U1, U0)
     np.testing.assert_array_equal(P1, P0)
 
@@ -307,8 +307,8 @@ def test_mewdo_step_equals_the_numpy_strategies():
     ep = np.clip(p + eu, -1, 1)
     P, U, X = p.copy(), u.copy(), np.empty((R, N, D))
     lb, width = np.full(D, -3.0), np.full(D, 4.0)
-    mewdo_step(P, U, pbest, r, tb, guide, centre, strat, draws, perm,
-               np.array([alpha, g, RT, c]), vmax, lb, width, X)  # fmt: skip
+    mewdo_step(P, U, pbest, r, tb, guide, centre, strat, draws, perm, np.zeros((1, 1), np.uint64),
+               False, np.array([alpha, g, RT, c]), vmax, lb, width, X)  # fmt: skip
     np.testing.assert_array_equal(U, eu)
     np.testing.assert_array_equal(P, ep)
     np.testing.assert_allclose(X, lb + (ep + 1) / 2 * width, rtol=1e-15)

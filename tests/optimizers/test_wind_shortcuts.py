@@ -34,3 +34,16 @@ def test_laid_out_coefficients_move_parcels_as_the_broadcast_did(redraw, dim):
     np.testing.assert_array_equal(runs[0].x, runs[1].x)
     np.testing.assert_array_equal(runs[0].history, runs[1].history)
     assert runs[0].history[:, -1].min() < runs[0].history[:, 0].min()  # the runs did move
+
+
+@pytest.mark.parametrize("dim", [4, 12])
+def test_wdo_fixed_coefficients_laid_out_once_move_parcels_as_the_broadcast_did(dim):
+    fast = make_optimizer("wdo", pop_size=20, alpha=0.3, RT=2.5)
+    plain = PerIteration(fast.params, name="wdo")
+    runs = [
+        minimize(rastrigin, [(-5, 5)] * dim, algorithm=opt, runs=3, seed=4, max_iter=40)
+        for opt in (fast, plain)
+    ]
+    np.testing.assert_array_equal(runs[0].x, runs[1].x)
+    np.testing.assert_array_equal(runs[0].history, runs[1].history)
+    assert runs[0].history[:, -1].min() < runs[0].history[:, 0].min()

@@ -4,8 +4,10 @@ The equations live as readable NumPy array functions in :mod:`mawdo.optimizers.w
 :mod:`mawdo.optimizers.boundary` and :mod:`mawdo.optimizers.gwo`; these kernels compute the same
 numbers in one sweep with no ``(R, N, D)`` temporaries (issue 15: a third of the NumPy time went
 to fresh temporaries and their page faults). ``tests/optimizers/test_kernels.py`` checks each
-kernel against the NumPy functions. No kernel draws random numbers: every draw comes from the
-run's own generator (:class:`mawdo.streams.RunStreams`) before the kernel is called.
+kernel against the NumPy functions. Every random number comes from the run's own generator
+(:class:`mawdo.streams.RunStreams`), drawn before the call or through a xoshiro256** state seeded
+once from it (:func:`seed_xoshiro`). The WDO family's kernel is in
+:mod:`mawdo.optimizers.wind_kernel`.
 """
 
 from __future__ import annotations
@@ -53,167 +55,6 @@ def segment_ranks(F, starts, out):  # pragma: no cover - compiled
                     out[r, a + order[k]] = k + 1.0
 
 
-@njit(cache=True, nogil=True, error_model="numpy")
-def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
-    p,
-    u,
-    pbest,
-    pbest_f,
-    rank,
-    perm,
-    rng,
-    use_rng,
-    W,
-    coef_draw,
-    coef,
-    gstarts,
-    guidance,
-    w,
-    gate,
-    d_max,
-    centre_on,
-    awdo,
-    vmax,
-    reflect,
-    eta,
-    lb,
-    width,
-    X,
-):  # pragma: no cover - compiled
-    """One WDO-family move of every parcel of every run, in place on ``p`` and ``u``.
-
-    Long by design: one fused Numba iteration of the WDO family; splitting it adds calls.
-
-    Parameters (shapes with ``R`` runs, ``N`` parcels, ``G`` groups, ``D`` dimensions)
-    ----------
-    p, u : (R, N, D) positions and velocities, updated in place.
-    pbest : (R, N, D), pbest_f : (R, N)
-        Personal bests; the group bests and the global best are located here.
-    rank : (R, N) float
-        Rank ``r_i`` of each parcel (population or group scope), 1 = best.
-    perm : (R, N, D) int
-        Permutation of the dimensions per parcel (Coriolis term ``u[perm]``); read only when
-        ``use_rng`` is false.
-    rng : (R, 4) uint64, use_rng : bool, W : int
-        Per-run xoshiro256** states (:func:`seed_xoshiro`); when used, each parcel's permutation
-        is drawn here from ``W = words_per_permutation(D)`` of its run's outputs by
-        :func:`shuffle_from_words` (no ``(R, N, D)`` permutation array is stored).
-    coef_draw : int
-        0: coefficients from ``coef``. 1: AWDO's ``a_t, g_t, RT_t, c_t ~ U[0, 1)`` drawn here,
-        four outputs of the run's generator per iteration (53-bit uniforms), before any
-        permutation; 2: four per parcel, before the parcel's permutation.
-    coef : (R or 1, N or 1, 4)
-        ``alpha, g, RT, c`` per parcel (or shared by the run's parcels) when ``coef_draw == 0``.
-    gstarts : (G + 1,) int
-        Group boundaries (contiguous groups).
-    guidance : int
-        0 ``B = tbest``, 1 ``B = gbest_g``, 2 hierarchical (Eq. 5) with weights ``w = (w1, w2,
-        w3)`` and, when ``gate``, ``w3`` scaled by the distance gate of Eq. 10 (``d_max``).
-    centre_on : bool
-        Gravity toward the group centroid (Eqs. 22-23) instead of the origin.
-    awdo : bool
-        AWDO velocity (Eq. 4) instead of WDO's (Bayraktar 2013 Eq. 1).
-    vmax : float
-        Velocity clamp.
-    reflect : bool, eta : float
-        Reflect-damp boundary (Eqs. 15-16) or clip (Eq. 3).
-    lb, width : (D,)
-        Problem box: ``X = lb + (p + 1)/2 width`` is written to ``X[:, :N]``.
-    """
-    R, N, D = p.shape
-    G = gstarts.size - 1
-    gbest = np.empty(G, np.intp)
-    w3e = np.empty(G)
-    centre = np.zeros((G, D))
-    u_old = np.empty(D)
-    pr = np.empty(D, np.intp)
-    up = np.empty(D)  # u_old[pr]
-    Bv = np.empty(D)  # guidance B of the parcel
-    wbuf = np.empty(max(W, 1), np.uint64)
-    cw = np.empty(4)  # alpha, g, RT, c of the parcel
-    for r in range(R):
-        tb = 0
-        for g in range(G):  # leaders: first minimum, like numpy.argmin
-            best = gstarts[g]
-            for k in range(gstarts[g] + 1, gstarts[g + 1]):
-                if pbest_f[r, k] < pbest_f[r, best]:
-                    best = k
-            gbest[g] = best
-            if pbest_f[r, best] < pbest_f[r, tb] or g == 0:
-                tb = best
-        for g in range(G):
-            w3e[g] = w[2]
-            if guidance == 2 and gate:
-                acc = 0.0
-                for d in range(D):
-                    diff = pbest[r, gbest[g], d] - pbest[r, tb, d]
-                    acc += diff * diff
-                w3e[g] = w[2] * min(1.0, np.sqrt(acc) / d_max)
-            if centre_on:
-                a, b = gstarts[g], gstarts[g + 1]
-                for d in range(D):
-                    acc = 0.0
-                    for k in range(a, b):
-                        acc += p[r, k, d]
-                    centre[g, d] = acc / (b - a)
-        rc = r if coef.shape[0] > 1 else 0
-        per_parcel = coef.shape[1] > 1
-        if coef_draw == 1:
-            for k in range(4):
-                cw[k] = np.float64(xoshiro_next(rng, r) >> _SHIFT11) * _U53
-        for g in range(G):
-            lead = tb if guidance == 0 else gbest[g]
-            denom = w[0] + w[1] + w3e[g]
-            b1, b2, b3 = w[0] / denom, w[1] / denom, w3e[g] / denom
-            for i in range(gstarts[g], gstarts[g + 1]):
-                rk = rank[r, i]
-                if coef_draw == 2:
-                    for k in range(4):
-                        cw[k] = np.float64(xoshiro_next(rng, r) >> _SHIFT11) * _U53
-                if coef_draw == 0:
-                    ci = i if per_parcel else 0
-                    for k in range(4):
-                        cw[k] = coef[rc, ci, k]
-                a1 = 1.0 - cw[0]
-                grav = cw[1]
-                RT = cw[2]
-                wp = RT / rk if awdo else abs(1.0 - 1.0 / rk) * RT  # pressure weight
-                wc = cw[3] / rk  # Coriolis weight
-                for d in range(D):
-                    u_old[d] = u[r, i, d]
-                if use_rng:
-                    for k in range(W):
-                        wbuf[k] = xoshiro_next(rng, r)
-                    shuffle_from_words(wbuf, 0, pr)
-                else:
-                    for d in range(D):
-                        pr[d] = perm[r, i, d]
-                for d in range(D):  # the gathers first: the arithmetic below vectorises
-                    up[d] = u_old[pr[d]]
-                if guidance == 2:  # Eq. 5 renormalised, the division folded into the weights
-                    for d in range(D):
-                        Bv[d] = (
-                            b1 * pbest[r, i, d] + b2 * pbest[r, gbest[g], d] + b3 * pbest[r, tb, d]
-                        )
-                else:
-                    for d in range(D):
-                        Bv[d] = pbest[r, lead, d]
-                for d in range(D):
-                    q = p[r, i, d]
-                    v = a1 * u_old[d] - grav * (q - centre[g, d]) + wp * (Bv[d] - q) + wc * up[d]
-                    v = min(max(v, -vmax), vmax)
-                    q = q + v
-                    if reflect:
-                        over = q > 1.0
-                        under = q < -1.0
-                        q = 2.0 - q if over else (-2.0 - q if under else q)
-                        v = -eta * v if (over or under) else v
-                    q = min(max(q, -1.0), 1.0)
-                    p[r, i, d] = q
-                    u[r, i, d] = v
-                    X[r, i, d] = lb[d] + (q + 1.0) * 0.5 * width[d]
-
-
 _U32 = 1.0 / 4294967296.0
 
 
@@ -235,15 +76,6 @@ def xoshiro_step(s0, s1, s2, s3):  # pragma: no cover - compiled
     s2 ^= t
     s3 = _rotl(s3, 45)
     return result, s0, s1, s2, s3
-
-
-@njit(cache=True, nogil=True, inline="always")
-def xoshiro_next(state, r):  # pragma: no cover - compiled
-    """Next 64-bit output of run ``r``'s xoshiro256** generator; ``state`` ``(R, 4)`` uint64
-    is advanced in place."""
-    out, s0, s1, s2, s3 = xoshiro_step(state[r, 0], state[r, 1], state[r, 2], state[r, 3])
-    state[r, 0], state[r, 1], state[r, 2], state[r, 3] = s0, s1, s2, s3
-    return out
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
@@ -316,14 +148,33 @@ def seed_xoshiro(streams) -> np.ndarray:
 
 @njit(cache=True, nogil=True, error_model="numpy")
 def mewdo_step(
-    p, u, pbest, rank, tb, guide, centre, strat, draws, perm, coef, vmax, lb, width, X
+    p,
+    u,
+    pbest,
+    rank,
+    tb,
+    guide,
+    centre,
+    strat,
+    draws,
+    perm,
+    words,
+    use_words,
+    coef,
+    vmax,
+    lb,
+    width,
+    X,
 ):  # pragma: no cover - compiled
     """MEWDO (reconstructed)'s move: each parcel applies only the strategy it drew.
 
     ``strat (R, N)``: 0 classic WDO toward ``pbest[tb]``; 1 AWDO with the parcel's coefficients
     ``draws[r, i, 1:5]``; 2 toward ``pbest[guide]`` with unit pressure and rank, gravity toward
-    ``centre (R, D)``. ``coef = (alpha, g, RT, c)`` of strategies 0 and 2; ``perm (R, N, D)``
-    the Coriolis permutations. Velocity clamped to ``vmax``, position clipped to ``[-1, 1]``,
+    ``centre (R, D)``. ``coef = (alpha, g, RT, c)`` of strategies 0 and 2. The Coriolis
+    permutations: with ``use_words``, parcel ``i``'s is
+    ``shuffle_from_words(words[r], i W, .)`` (``W = words_per_permutation(D)``, applied to the
+    velocities by :func:`shuffle_values_from_words`) from ``words (R, N W)`` uint64, else
+    ``perm (R, N, D)``. Velocity clamped to ``vmax``, position clipped to ``[-1, 1]``,
     ``X = lb + (p + 1)/2 width``. Same equations as ``wind.wdo_velocity``/``awdo_velocity``.
     """
     R, N, D = p.shape
@@ -331,12 +182,18 @@ def mewdo_step(
     up = np.empty(D)  # u_old[perm]
     v = np.empty(D)
     alpha, g, RT, c = coef[0], coef[1], coef[2], coef[3]
+    W = words.shape[1] // N if use_words else 0
     for r in range(R):
         for i in range(N):
             for d in range(D):  # the gathers first, one loop per strategy: the loops vectorise
                 u_old[d] = u[r, i, d]
-            for d in range(D):
-                up[d] = u_old[perm[r, i, d]]
+            if use_words:
+                for d in range(D):
+                    up[d] = u_old[d]
+                shuffle_values_from_words(words[r], i * W, up)
+            else:
+                for d in range(D):
+                    up[d] = u_old[perm[r, i, d]]
             s = strat[r, i]
             rk = rank[r, i]
             if s == 0:
@@ -375,3 +232,29 @@ def mewdo_step(
                 u[r, i, d] = vd
                 p[r, i, d] = q
                 X[r, i, d] = lb[d] + (q + 1.0) * 0.5 * width[d]
+
+
+@njit(cache=True, nogil=True, inline="always")
+def shuffle_values_from_words(words, base, vals):  # pragma: no cover - compiled
+    """Permute ``vals`` ``(d,)`` in place as ``vals[perm]``, ``perm`` being the permutation
+    ``shuffle_from_words(words, base, perm)`` builds (the same swaps, on the values)."""
+    d = vals.shape[0]
+    if d < 2:
+        return
+    w = base
+    x = words[w]
+    prod = 1
+    for k in range(d - 1, 0, -1):
+        n = k + 1
+        if prod * n > _BATCH:
+            w += 1
+            x = words[w]
+            prod = 1
+        prod *= n
+        un = np.uint64(n)
+        hi = ((x >> _SHIFT32) * un + (((x & _LOW32) * un) >> _SHIFT32)) >> _SHIFT32
+        x = x * un
+        j = np.intp(hi)
+        tmp = vals[k]
+        vals[k] = vals[j]
+        vals[j] = tmp

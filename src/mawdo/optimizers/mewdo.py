@@ -21,16 +21,20 @@ No greedy selection: every parcel moves, as in WDO.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
 
 from mawdo.optimizers.base import Optimizer, Params, Space, as_x0, check_range, initial_population
-from mawdo.optimizers.kernels import mewdo_step, update_personal_best
+from mawdo.optimizers.kernels import mewdo_step, update_personal_best, words_per_permutation
 from mawdo.streams import RunStreams
 
 N_STRATEGIES = 3
+_NO_PERM = np.zeros((1, 1, 1), np.int16)
+_NO_WORDS = np.zeros((1, 1), np.uint64)
+_words = functools.cache(words_per_permutation)  # a Python loop over D, asked every iteration
 
 
 @dataclass(frozen=True)
@@ -188,7 +192,14 @@ class MEWDO(Optimizer):
         if s.t == 0:
             return s.space.from_unit(s.p)
         R, N, D = s.p.shape
-        perm = s.streams.shuffle_rows(np.empty((R, N, D), np.int16 if D < 2**15 else np.int32))
+        if hasattr(s.streams, "raw_words"):
+            # the words shuffle_rows would turn into permutations; the kernel applies each
+            # permutation to the velocities directly (no (R, N, D) index array, no gather)
+            words = s.streams.raw_words(np.empty((R, N * _words(D)), np.uint64))
+            perm = _NO_PERM
+        else:  # stand-in streams hand out the permutations
+            perm = s.streams.shuffle_rows(np.empty((R, N, D), np.int16 if D < 2**15 else np.int32))
+            words = _NO_WORDS
         draws = s.streams.random((N, 6))
         r, tb = np.empty((R, N)), np.empty(R, np.intp)
         strat, guide = np.empty((R, N), np.int64), np.empty((R, N), np.int64)
@@ -197,8 +208,9 @@ class MEWDO(Optimizer):
         X = np.empty_like(s.p)
         coef = np.array([P.alpha, P.g, P.RT, P.c])
         width = np.asarray(s.space.ub - s.space.lb, float)
-        mewdo_step(s.p, s.u, s.pbest, r, tb, guide, centre, strat, draws, perm, coef,
-                   float(P.vmax), np.asarray(s.space.lb, float), width, X)  # fmt: skip
+        mewdo_step(s.p, s.u, s.pbest, r, tb, guide, centre, strat, draws, perm, words,
+                   words is not _NO_WORDS, coef, float(P.vmax), np.asarray(s.space.lb, float),
+                   width, X)  # fmt: skip
         s.strategy = strat
         return X
 

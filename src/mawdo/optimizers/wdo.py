@@ -34,13 +34,8 @@ from mawdo.optimizers.base import (
     initial_population,
 )
 from mawdo.optimizers.boundary import BOUNDARY_POLICIES, confine_positions
-from mawdo.optimizers.kernels import (
-    seed_xoshiro,
-    segment_ranks,
-    update_personal_best,
-    wind_step,
-    words_per_permutation,
-)
+from mawdo.optimizers.kernels import seed_xoshiro, segment_ranks, update_personal_best
+from mawdo.optimizers.wind_kernel import wind_step
 from mawdo.streams import RunStreams
 
 
@@ -159,9 +154,6 @@ def group_starts(N: int, G: int) -> np.ndarray:
     return starts
 
 
-_words = functools.cache(words_per_permutation)  # a Python loop over D, asked every iteration
-
-
 def _box_arrays(space: Space) -> tuple[np.ndarray, np.ndarray]:
     """``(lb, ub - lb)`` as float arrays for the kernel."""
     return np.asarray(space.lb, float), np.asarray(space.ub - space.lb, float)
@@ -260,7 +252,7 @@ class Wind(Optimizer):
         lb, width = _box_arrays(s.space)
         wind_step(
             s.p, s.u, s.pbest, s.pbest_f, rank, perm, rng, rng is not _NO_RNG,
-            _words(D), coef_draw, coef,
+            coef_draw, coef,
             gstarts, guidance,
             np.asarray(w, float), P.gate, 2.0 * math.sqrt(D), s.low_dim, P.velocity == "awdo",
             float(s.vmax), P.boundary == "reflect", float(P.eta),
@@ -311,14 +303,15 @@ class Wind(Optimizer):
         otherwise ``_coefficients`` (which subclasses may override) stacked into
         ``(R or 1, N or 1, 4)``."""
         P = self.params
-        if (
-            kernel_rng
-            and P.velocity == "awdo"
-            and not s.low_dim
-            and type(self)._coefficients is Wind._coefficients
-        ):
+        builtin = type(self)._coefficients is Wind._coefficients
+        if builtin and not s.low_dim and P.velocity == "wdo":
+            # WDO's four fixed scalars: laid out once per state, not broadcast at every ask
+            if s.coef_kernel is None:
+                s.coef_kernel = (None, np.array([[[P.alpha, P.g, P.RT, P.c]]], dtype=float))
+            return 0, s.coef_kernel[1]
+        if kernel_rng and P.velocity == "awdo" and not s.low_dim and builtin:
             return (1 if P.coef_draw == "iteration" else 2), _NO_COEF
-        if s.low_dim and not P.hetero_redraw and type(self)._coefficients is Wind._coefficients:
+        if s.low_dim and not P.hetero_redraw and builtin:
             # fixed per-group coefficients: the same array every iteration, laid out once
             if s.coef_kernel is None or s.coef_kernel[0] is not s.coef:
                 s.coef_kernel = (s.coef, np.ascontiguousarray(s.coef[:, s.gid], dtype=float))
