@@ -9,7 +9,7 @@ import sqlite3
 import statistics
 
 from mawdo.experiments import Store
-from mawdo.experiments.arena.summary import headline, render_worst, worst_runs
+from mawdo.experiments.arena.summary import headline, render_worst, strengths, worst_runs
 
 from .test_arena import reference  # noqa: F401 - the module's tiny study, as a fixture
 
@@ -28,7 +28,7 @@ def raw(db, planner):
 
 def test_headline_numbers_are_the_stores(reference):  # noqa: F811
     with Store.read(reference) as store:
-        lines = headline(store)
+        lines = headline(store)[:2]
     assert [s.split(":")[0] for s in lines] == ["- mawdo", "- straight"]
     for line in lines:
         planner = line[2:].split(":")[0]
@@ -72,3 +72,62 @@ def test_worst_images_are_reruns_of_the_stored_runs(reference, tmp_path):  # noq
         finally:
             conn.close()
         assert hashlib.sha256(text.encode("utf-8")).hexdigest() == stored
+
+
+def _sql(db, query, *args):
+    conn = sqlite3.connect(db)
+    try:
+        return conn.execute(query, args).fetchall()
+    finally:
+        conn.close()
+
+
+def test_strength_sentences_are_the_stores(reference):  # noqa: F811
+    with Store.read(reference) as store:
+        lines = strengths(store)
+        assert headline(store)[-len(lines) :] == lines
+    ok = "status = 'ok' AND error_text IS NULL"
+    hit = {
+        n
+        for (n,) in _sql(
+            reference,
+            f"SELECT scene_name FROM runs WHERE algorithm = 'straight' AND {ok} "
+            "AND collision_free = 0",
+        )
+    }
+    assert hit, "the tiny study needs a colliding straight line"
+    ours = [
+        r
+        for r in _sql(
+            reference,
+            f"SELECT scene_name, success, gap FROM runs WHERE algorithm = 'mawdo' AND {ok}",
+        )
+        if r[0] in hit
+    ]
+    succ = 100 * sum(r[1] for r in ours) / len(ours)
+    won = [r[2] for r in ours if r[1]]
+    gap = f"median gap {statistics.median(won):.3f}" if won else "no successful run"
+    expect = [
+        f"- On the {len(hit)} scenes where straight's route collides: "
+        f"mawdo {succ:.0f} % success, {gap}."
+    ]
+    gaps = _sql(
+        reference,
+        f"SELECT gap, problem FROM runs WHERE algorithm = 'mawdo' AND {ok} AND success = 1",
+    )
+    if gaps:
+        g, fam = max(gaps)
+        expect.append(f"- Largest gap of a successful run: mawdo {g:.3f} ({fam}).")
+    p95 = {}
+    for fam, v in _sql(
+        reference,
+        f"SELECT problem, latency_p95_ms FROM runs WHERE algorithm = 'mawdo' AND {ok}",
+    ):
+        if v is not None:  # a run whose plan was held to the goal has no replan
+            p95.setdefault(fam, []).append(v)
+    meds = [statistics.median(v) for v in p95.values()]
+    expect.append(
+        "- Replan latency p95, median over a family's scenes, lowest-highest family: "
+        f"mawdo {min(meds):.1f}-{max(meds):.1f} ms (wall time on the machine that ran the study)."
+    )
+    assert lines == expect

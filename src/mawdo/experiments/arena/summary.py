@@ -57,6 +57,60 @@ def headline(store: Store) -> list[str]:
             f"{len(rows)} scenes, {_gap(gap)}; weakest family {worst} "
             f"({100 * ws:.0f} % success, {_gap(wg)})."
         )
+    return lines + strengths(store)
+
+
+def strengths(store: Store) -> list[str]:
+    """Where our planner is good and where it is weak, as sentences of stored numbers.
+
+    Against each baseline that does not see time: our planners' success and median gap on the
+    scenes where that baseline's route collides. Then per optimizer its largest gap (and
+    family), and the range over families of the median per-run replan latency p95 (wall time
+    of the machine that filled the store).
+    """
+    plan = store.plan
+    ours = [a for a in plan.algorithms if _ok_rows(store, a)]
+    if not ours:
+        return []
+    by_scene = {a: {r.scene_name: r for r in _ok_rows(store, a)} for a in ours}
+    lines = []
+    for b in plan.baselines:
+        hit = {r.scene_name for r in _ok_rows(store, b) if r.collision_free == 0}
+        if not hit:
+            continue
+        parts = []
+        for a in ours:
+            rows = [by_scene[a][n] for n in hit if n in by_scene[a]]
+            succ, _, gap = _rates(rows) if rows else (float("nan"), 0.0, float("nan"))
+            parts.append(f"{a} {100 * succ:.0f} % success, {_gap(gap)}")
+        lines.append(
+            f"- On the {len(hit)} scenes where {b}'s route collides: " + "; ".join(parts) + "."
+        )
+    worst, lat = [], []
+    for a in ours:
+        gaps = [(r.gap, f) for f in plan.families for r in _ok_rows(store, a, f) if r.success]
+        if gaps:
+            g, f = max(gaps)
+            worst.append(f"{a} {g:.3f} ({f})")
+        meds = [
+            float(np.median(v))
+            for f in plan.families
+            if (
+                v := [
+                    r.latency_p95_ms for r in _ok_rows(store, a, f) if r.latency_p95_ms is not None
+                ]
+            )
+        ]
+        if meds:
+            lat.append(f"{a} {min(meds):.1f}-{max(meds):.1f} ms")
+    if worst:
+        lines.append("- Largest gap of a successful run: " + ", ".join(worst) + ".")
+    if lat:
+        lines.append(
+            "- Replan latency p95, median over a family's scenes, lowest-highest family: "
+            + ", ".join(lat)
+            + " (wall time on the machine that ran the study)."
+        )
     return lines
 
 
