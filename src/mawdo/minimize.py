@@ -90,6 +90,7 @@ def make_problem(
             name=fun.name,
             f_star=fun.f_star,
             x_star=fun.x_star,
+            pure=True,  # tests/functions: no benchmark function writes into its argument
         )
     if not callable(fun):
         raise TypeError(

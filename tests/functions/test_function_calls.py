@@ -85,6 +85,44 @@ def test_formula_is_pure(name):
     np.testing.assert_array_equal(f.func(X), first)  # deterministic
 
 
+@pytest.mark.parametrize("name", ALL)
+def test_every_variant_minimize_builds_is_pure(name):
+    # minimize() hands these functions the optimizer's own candidates (Problem.pure, no copy):
+    # shifted variants, other dimensions and the standard bounds must not write either
+    f = FUNCTIONS[name]
+    dims = [f.dim] + ([2, 7] if f.scalable and f.min_dim <= 2 else [])
+    for dim in dims:
+        for kw in ({}, {"shifted": True, "shift_seed": 3}, {"preset": "standard"}):
+            g = get_function(name, dim=dim, **kw)
+            X = _points(g, 5, seed=dim)
+            before = X.copy()
+            g.func(X)
+            np.testing.assert_array_equal(X, before)
+
+
+def test_a_pure_problem_is_evaluated_without_a_copy_and_gives_the_same_values():
+    from mawdo.problem import Evaluator, Problem
+    from mawdo.streams import RunStreams
+
+    seen = []
+
+    def spy(X):
+        seen.append(X)
+        return (X**2).sum(axis=1)
+
+    X = np.random.default_rng(0).uniform(-1, 1, (2, 4, 3))
+    out = {}
+    for pure in (False, True):
+        seen.clear()
+        prob = Problem(fun=spy, lb=-np.ones(3), ub=np.ones(3), pure=pure)
+        ev = Evaluator(
+            prob, RunStreams.from_seed_sequences(np.random.SeedSequence(0).spawn(2)), "t"
+        )
+        out[pure] = ev(X, 1, np.ones(2, bool))
+        assert np.shares_memory(seen[0], X) == pure  # a user's objective gets a copy
+    np.testing.assert_array_equal(out[True], out[False])
+
+
 def test_records_are_immutable():
     f = FUNCTIONS["sphere"]
     with pytest.raises(dataclasses.FrozenInstanceError):
