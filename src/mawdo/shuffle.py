@@ -28,18 +28,20 @@ def words_per_permutation(d: int) -> int:
 
 
 @njit(cache=True, nogil=True, inline="always")
-def shuffle_from_words(words, base, out):  # pragma: no cover - compiled
-    """Fill ``out`` ``(d,)`` with a permutation of ``range(d)`` drawn from ``words[base:]``.
+def bounded_draw(x, n):  # pragma: no cover - compiled
+    """``j`` uniform in ``[0, n)`` from the 64-bit word ``x``, and the rest of the word:
+    ``j = floor(x n / 2**64)``, ``x <- x n mod 2**64`` (batched multiply-shift)."""
+    un = np.uint64(n)
+    hi = ((x >> _SHIFT32) * un + (((x & _LOW32) * un) >> _SHIFT32)) >> _SHIFT32
+    return np.intp(hi), x * un
 
-    Fisher-Yates: swap ``k = d-1 .. 1`` exchanges ``out[k]`` and ``out[j]``, ``j`` uniform in
-    ``[0, k]``. Several ``j`` come from one 64-bit word ``x`` by batched multiply-shift
-    (Brackett-Rozinsky & Lemire 2024, without the rejection step): ``j = floor(x (k+1) / 2**64)``,
-    then ``x <- x (k+1) mod 2**64``, while the product of the ranges stays <= 2**32; each
-    permutation's probability is ``1/d!`` within a relative ``2**-32``.
-    """
-    d = out.shape[0]
-    for k in range(d):
-        out[k] = k
+
+@njit(cache=True, nogil=True, inline="always")
+def shuffle_values_from_words(words, base, vals):  # pragma: no cover - compiled
+    """Permute ``vals`` ``(d,)`` in place with the swaps of :func:`shuffle_from_words`, so that
+    entry ``k`` ends up holding ``vals[perm[k]]`` (the kernels shuffle values this way, with no
+    permutation array)."""
+    d = vals.shape[0]
     if d < 2:
         return
     w = base
@@ -52,13 +54,25 @@ def shuffle_from_words(words, base, out):  # pragma: no cover - compiled
             x = words[w]
             prod = 1
         prod *= n
-        un = np.uint64(n)
-        hi = ((x >> _SHIFT32) * un + (((x & _LOW32) * un) >> _SHIFT32)) >> _SHIFT32
-        x = x * un  # the low 64 bits: the rest of the word, for the next range
-        j = np.intp(hi)
-        tmp = out[k]
-        out[k] = out[j]
-        out[j] = tmp
+        j, x = bounded_draw(x, n)
+        tmp = vals[k]
+        vals[k] = vals[j]
+        vals[j] = tmp
+
+
+@njit(cache=True, nogil=True, inline="always")
+def shuffle_from_words(words, base, out):  # pragma: no cover - compiled
+    """Fill ``out`` ``(d,)`` with a permutation of ``range(d)`` drawn from ``words[base:]``.
+
+    Fisher-Yates: swap ``k = d-1 .. 1`` exchanges ``out[k]`` and ``out[j]``, ``j`` uniform in
+    ``[0, k]``. Several ``j`` come from one 64-bit word ``x`` by batched multiply-shift
+    (Brackett-Rozinsky & Lemire 2024, without the rejection step, :func:`bounded_draw`) while
+    the product of the ranges stays <= 2**32; each permutation's probability is ``1/d!`` within
+    a relative ``2**-32``.
+    """
+    for k in range(out.shape[0]):
+        out[k] = k
+    shuffle_values_from_words(words, base, out)
 
 
 @njit(cache=True, nogil=True)

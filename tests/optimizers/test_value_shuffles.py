@@ -13,25 +13,15 @@ from mawdo.optimizers.kernels import (
 from mawdo.optimizers.wind_kernel import shuffle_values
 from mawdo.shuffle import fisher_yates_batch
 
+from .test_kernels import python_xoshiro
+
 M64 = (1 << 64) - 1
 DIMS = [1, 2, 3, 7, 13, 30, 40, 101]
 
 
 def xoshiro_words(state, n):
-    """``n`` outputs of xoshiro256** (Blackman & Vigna) from ``state`` in Python integers, and
-    the final state."""
-    s = [int(v) for v in state]
-    rotl = lambda x, k: ((x << k) | (x >> (64 - k))) & M64  # noqa: E731
-    out = []
-    for _ in range(n):
-        out.append(rotl((s[1] * 5) & M64, 7) * 9 & M64)
-        t = (s[1] << 17) & M64
-        s[2] ^= s[0]
-        s[3] ^= s[1]
-        s[1] ^= s[2]
-        s[0] ^= s[3]
-        s[2] ^= t
-        s[3] = rotl(s[3], 45)
+    """``n`` outputs of xoshiro256** from ``state`` (the Python-integer port), and the state."""
+    out, s = python_xoshiro(state, n)
     return np.array(out, np.uint64), s
 
 

@@ -19,6 +19,7 @@ from mawdo.shuffle import (  # noqa: F401  (re-exported)
     _BATCH,
     fisher_yates_batch,
     shuffle_from_words,
+    shuffle_values_from_words,
     words_per_permutation,
 )
 
@@ -232,29 +233,3 @@ def mewdo_step(
                 u[r, i, d] = vd
                 p[r, i, d] = q
                 X[r, i, d] = lb[d] + (q + 1.0) * 0.5 * width[d]
-
-
-@njit(cache=True, nogil=True, inline="always")
-def shuffle_values_from_words(words, base, vals):  # pragma: no cover - compiled
-    """Permute ``vals`` ``(d,)`` in place as ``vals[perm]``, ``perm`` being the permutation
-    ``shuffle_from_words(words, base, perm)`` builds (the same swaps, on the values)."""
-    d = vals.shape[0]
-    if d < 2:
-        return
-    w = base
-    x = words[w]
-    prod = 1
-    for k in range(d - 1, 0, -1):
-        n = k + 1
-        if prod * n > _BATCH:
-            w += 1
-            x = words[w]
-            prod = 1
-        prod *= n
-        un = np.uint64(n)
-        hi = ((x >> _SHIFT32) * un + (((x & _LOW32) * un) >> _SHIFT32)) >> _SHIFT32
-        x = x * un
-        j = np.intp(hi)
-        tmp = vals[k]
-        vals[k] = vals[j]
-        vals[j] = tmp

@@ -12,7 +12,7 @@ import numpy as np
 from numba import njit
 
 from mawdo.optimizers.kernels import _SHIFT11, _U53, xoshiro_step
-from mawdo.shuffle import _BATCH, _LOW32, _SHIFT32
+from mawdo.shuffle import _BATCH, bounded_draw
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
@@ -221,10 +221,7 @@ def shuffle_values(vals, s0, s1, s2, s3):  # pragma: no cover - compiled
             x, s0, s1, s2, s3 = xoshiro_step(s0, s1, s2, s3)
             prod = 1
         prod *= n
-        un = np.uint64(n)
-        hi = ((x >> _SHIFT32) * un + (((x & _LOW32) * un) >> _SHIFT32)) >> _SHIFT32
-        x = x * un  # the low 64 bits: the rest of the word, for the next range
-        j = np.intp(hi)
+        j, x = bounded_draw(x, n)
         tmp = vals[k]
         vals[k] = vals[j]
         vals[j] = tmp
