@@ -89,3 +89,11 @@ def test_holds_are_stored_and_old_payloads_read_as_none_held():
     np.savez_compressed(buf, **z)
     old = result_from_bytes(buf.getvalue(), sc)
     assert old.holds == 0 and old.near_misses == res.near_misses
+
+
+def test_with_sparse_replans_only_replan_steps_can_be_held():
+    sc = generate_scene("forest", 1, 0).scenario
+    kept = plan(sc, "mawdo", seed=1, config="quick", replan_every=3)
+    full = plan(sc, "mawdo", seed=1, config="quick", replan_every=3, hold_straight=False)
+    assert kept.holds > 0 and kept.collision_free
+    assert len(kept.replans) + kept.holds == len(full.replans) < full.steps

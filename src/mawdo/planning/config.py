@@ -69,7 +69,7 @@ class PlannerConfig:
         Receding horizon, space-time mode: skip the optimisation while the plan runs straight
         to the goal and the guard verifies it collision-free to its end, since no candidate
         can cost less (C1 at its lower bound, the straight-line distance; C2 = C3 = 0). Those
-        steps count as ``holds`` in the result and have no replan (no latency). The verdict
+        skipped replans count as ``holds`` in the result and have no latency. The verdict
         rests on the scenario's obstacle motion being the prediction at every step, as it is
         for the cost and the guard. Off in the ``paper`` and ``study`` presets, which replan
         every step as the paper does.
@@ -185,7 +185,7 @@ class PlanResult:
     waits, evasions : int
         Steps the guard waited in place / made an evasive move (no safe candidate).
     holds : int
-        Steps driven on a kept straight plan without optimising
+        Replans skipped because the plan ran straight to the goal, cleared by the guard
         (:attr:`PlannerConfig.hold_straight`).
     fallbacks : int
         Times the guard drove an elite candidate other than the optimizer's best.

@@ -188,9 +188,10 @@ class Run:
                 break
             if step == max_steps:
                 break
-            if self._holds(remainder, force, step):
+            replan = remainder is None or force or (self.dynamic and step % cfg.replan_every == 0)
+            if replan and self._holds(remainder, force, step):
                 self.counts["holds"] += 1
-            elif remainder is None or force or (self.dynamic and step % cfg.replan_every == 0):
+            elif replan:
                 cands, _ = self.optimise(pos, step, remainder)
                 left = cfg.replan_every - step % cfg.replan_every if self.dynamic else 0
                 chosen = self.choose(cands, pos, step, v * left)
