@@ -58,8 +58,8 @@ def test_holds_only_a_straight_plan_the_guard_clears_to_the_goal():
 def test_holding_drives_the_same_length_with_fewer_replans(family, algorithm):
     # a held plan costs the least any candidate can: re-optimising it cannot shorten the route
     sc = generate_scene(family, 1, 0).scenario
-    kept = plan(sc, algorithm, seed=1, config="quick")
-    full = plan(sc, algorithm, seed=1, config="quick", hold_straight=False)
+    kept = plan(sc, algorithm, seed=1, config="quick", hold_gap=0.0)
+    full = plan(sc, algorithm, seed=1, config="quick", hold_straight=False, hold_gap=0.0)
     assert kept.success and kept.collision_free and full.success
     assert polyline_length(kept.route) == pytest.approx(polyline_length(full.route), rel=1e-12)
     assert full.holds == 0
@@ -93,7 +93,9 @@ def test_holds_are_stored_and_old_payloads_read_as_none_held():
 
 def test_with_sparse_replans_only_replan_steps_can_be_held():
     sc = generate_scene("forest", 1, 0).scenario
-    kept = plan(sc, "mawdo", seed=1, config="quick", replan_every=3)
-    full = plan(sc, "mawdo", seed=1, config="quick", replan_every=3, hold_straight=False)
+    kept = plan(sc, "mawdo", seed=1, config="quick", replan_every=3, hold_gap=0.0)
+    full = plan(
+        sc, "mawdo", seed=1, config="quick", replan_every=3, hold_straight=False, hold_gap=0.0
+    )
     assert kept.holds > 0 and kept.collision_free
     assert len(kept.replans) + kept.holds == len(full.replans) < full.steps

@@ -221,7 +221,7 @@ def demo(
         ("minimum clearance (px)", f"{m['min_clearance_px']:.2f}"),
         ("replan latency p50 / p95 (ms)", f"{m['latency_p50_ms']:.1f} / {m['latency_p95_ms']:.1f}"),
         ("steps", str(m["steps"])),
-        ("steps on a kept straight plan (no replan)", str(m["holds"])),
+        ("steps on a kept plan (no replan)", str(m["holds"])),
     ]
     for k, v in rows:
         t.add_row(k, v)

@@ -26,6 +26,8 @@ NO_ROUTE = "no collision-free route found"
 # a plan whose waypoints lie within this of the straight line to the goal (px), and no longer
 # than it by more than this, is straight (see Run._holds)
 STRAIGHT_TOL = 1e-6
+# a replan whose best cost is below its warm start's by less than this (relative) found nothing
+STALL_TOL = 1e-9
 
 # one guide per (scenario, clearance, k): the graph and the goal's tree are built once
 _GUIDES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
@@ -81,6 +83,8 @@ class Run:
         self.guard = Guard(sc, cfg.clearance)
         self.replans: list[Replan] = []
         self.counts = {"waits": 0, "evasions": 0, "fallbacks": 0, "holds": 0}
+        self.stalled = False  # the last optimisation returned its warm start unchanged
+        self.held = 0  # replans skipped since the last one made
 
     # -- seeds ---------------------------------------------------------------------------------
 
@@ -133,6 +137,7 @@ class Run:
             pop,
         )
         best = res.x[0]
+        self.stalled = not first and self._stalled(res.fun[0], x0[:1], pos, t)
         cands = [best] + [x for x in elite.X if np.max(np.abs(x - best)) > 1e-12]
         latency = time.perf_counter() - t_start
         length, ncol, _ = self.cost.parts(best[None, :], start=pos, t0=t)
@@ -151,6 +156,13 @@ class Run:
         )
         return np.array(cands), latency
 
+    def _stalled(self, best: float, warm, pos, t: float) -> bool:
+        """True when the search found nothing better than its warm start (the previous
+        plan's remainder): rounding may make a collinear variant an ulp cheaper, which is not
+        a better route, hence the relative tolerance."""
+        cost = float(self.cost(warm, start=pos, t0=t)[0])
+        return bool(best >= cost - STALL_TOL * abs(cost))
+
     # -- the guard -----------------------------------------------------------------------------
 
     def choose(self, cands, pos, step: int, horizon: float):
@@ -163,6 +175,7 @@ class Run:
                 safe = int(self.cost.parts(x[None, :], start=pos, t0=0.0)[1][0]) == 0
             if safe:
                 self.counts["fallbacks"] += i > 0
+                self.chosen_index = i
                 return route
         return None
 
@@ -191,7 +204,9 @@ class Run:
             replan = remainder is None or force or (self.dynamic and step % cfg.replan_every == 0)
             if replan and self._holds(remainder, force, step):
                 self.counts["holds"] += 1
+                self.held += 1
             elif replan:
+                self.held = 0
                 cands, _ = self.optimise(pos, step, remainder)
                 left = cfg.replan_every - step % cfg.replan_every if self.dynamic else 0
                 chosen = self.choose(cands, pos, step, v * left)
@@ -207,23 +222,33 @@ class Run:
                         break
                     remainder = assemble_paths(cands[:1], pos, sc.goal)[0]
                     continue
+                self.stalled = self.stalled and self.chosen_index == 0
                 stuck, remainder, force = 0, chosen, False
             pos, remainder, passed, frac = advance(remainder, v)
             drive.move(step, pos, passed, frac)
         return self._finish(drive, reason)
 
     def _holds(self, remainder, force: bool, step: int) -> bool:
-        """Keep the plan without optimising (:attr:`PlannerConfig.hold_straight`): it runs
-        straight to the goal and the guard finds it collision-free to its end.
+        """Keep the plan without optimising: it runs straight to the goal
+        (:attr:`PlannerConfig.hold_straight`) or the last search could not improve it and it is
+        near the shortest static route (:attr:`PlannerConfig.hold_gap`), and the guard finds it
+        collision-free to its end.
 
-        Such a plan has the least cost any candidate can have: C1 equals the straight-line
-        distance, its lower bound, and C2 = C3 = 0. The predictions it was verified against are
-        the same at every later step, so it stays verified until the goal.
+        A straight plan has the least cost any candidate can have: C1 equals the straight-line
+        distance, its lower bound, and C2 = C3 = 0. The predictions a plan was verified against
+        are the same at every later step, so it stays verified until the goal.
         """
-        cfg = self.cfg
-        if remainder is None or force or not (self.dynamic and cfg.hold_straight):
+        if remainder is None or force or not self.dynamic:
             return False
-        if cfg.mode != "spacetime":  # the frozen-map planner judges by another model
+        if self.cfg.mode != "spacetime":  # the frozen-map planner judges by another model
+            return False
+        length = polyline_length(remainder)
+        if not (self._straight(remainder, length) or self._near_shortest(remainder, length)):
+            return False
+        return self.guard.stretch_hits(remainder, float(step), length) == 0
+
+    def _straight(self, remainder, length: float) -> bool:
+        if not self.cfg.hold_straight:
             return False
         a, b = remainder[0], remainder[-1]
         d = b - a
@@ -233,10 +258,13 @@ class Run:
             off = np.abs(inner[:, 0] * d[1] - inner[:, 1] * d[0]) / max(direct, 1e-300)
             if off.max() > STRAIGHT_TOL:
                 return False
-        length = polyline_length(remainder)
-        if length > direct + STRAIGHT_TOL:  # collinear but doubling back
+        return length <= direct + STRAIGHT_TOL  # else collinear but doubling back
+
+    def _near_shortest(self, remainder, length: float) -> bool:
+        gap = self.cfg.hold_gap
+        if not (self.stalled and gap > 0 and self.guide is not None):
             return False
-        return self.guard.stretch_hits(remainder, float(step), length) == 0
+        return length <= (1.0 + gap) * self.guide.shortest(remainder[0])
 
     def _reachable(self):
         """Length (px) of a route around the static obstacles, or why there is none.

@@ -106,6 +106,10 @@ class Guide:
         d0 = np.hypot(*(self.graph.nodes[seen] - pos).T)
         return self.graph.dijkstra(seen, d0)
 
+    def shortest(self, pos) -> float:
+        """Length (px) of the shortest route from ``pos`` to the goal (``inf`` if none)."""
+        return float(self.query(pos)[0][0])
+
     def routes(self, pos) -> list[np.ndarray]:
         """Up to ``k`` routes ``(j, 2)`` from ``pos`` to the goal, shortest first, in distinct
         homotopy classes; empty if the goal cannot be reached around the static obstacles."""

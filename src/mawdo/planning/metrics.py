@@ -107,6 +107,6 @@ def run_metrics(result: PlanResult, l_star: float | None = None, snapshots: int 
         "evasions": int(getattr(result, "evasions", 0)),
         "elite_fallbacks": int(getattr(result, "fallbacks", 0)),
         "near_misses": int(getattr(result, "near_misses", 0)),
-        # steps on a kept straight plan, without a replan (PlannerConfig.hold_straight)
+        # steps on a kept plan, without a replan (PlannerConfig.hold_straight, hold_gap)
         "holds": int(getattr(result, "holds", 0)),
     }
