@@ -13,6 +13,7 @@ from mawdo.optimizers.boundary import apply_boundary, confine_positions, reflect
 from mawdo.optimizers.gwo import gwo_move
 from mawdo.optimizers.kernels import (
     gwo_step,
+    halves_to_unit,
     mewdo_step,
     segment_ranks,
     update_personal_best,
@@ -196,6 +197,38 @@ def test_gwo_step_equals_gwo_move_on_the_same_uniforms():
     one = np.empty((1, N, D))
     gwo_step(X[1:], lead[1:], 0.7, state[1:].copy(), True, np.zeros((1, 2, 3, 1, 1)), lb, ub, one)
     np.testing.assert_array_equal(one[0], out[1])  # a run alone draws what it draws in a batch
+
+
+def test_magic_number_halves_equal_float_times_two_to_minus_32():
+    edge = [0, 1, 2**32 - 1, 2**32, 2**63, 2**64 - 1, 0xFFFFFFFF00000000, 0x00000001FFFFFFFF]
+    rand = np.random.default_rng(5).integers(0, 2**64, 200, dtype=np.uint64, endpoint=False)
+    words = np.concatenate([np.array(edge, dtype=np.uint64), rand])
+    r1, r2 = np.empty(words.size), np.empty(words.size)
+    halves_to_unit(words, r1, r2)
+    want1 = [float(int(w) & 0xFFFFFFFF) * 2.0**-32 for w in words]  # Python floats, by hand
+    want2 = [float(int(w) >> 32) * 2.0**-32 for w in words]
+    assert r1.tolist() == want1 and r2.tolist() == want2
+    assert r1[2] == r2[5] == 1.0 - 2.0**-32 and r1[0] == r2[0] == 0.0
+
+
+def test_gwo_step_xoshiro_path_equals_the_array_path_bit_for_bit():
+    """The in-kernel magic-number conversion against NumPy's uint64 -> float on the same words."""
+    rng = np.random.default_rng(8)
+    R, N, D = 3, 6, 5
+    X = rng.uniform(-3, 3, (R, N, D))
+    lead = rng.uniform(-3, 3, (R, 3, D))
+    lb, ub = np.full(D, -1.0), np.full(D, 1.5)  # narrow: some wolves are clipped
+    state = rng.integers(1, 2**63, (R, 4), dtype=np.int64).astype(np.uint64)
+    w = np.array([python_xoshiro(s, 3 * N * D)[0] for s in state], np.uint64).reshape(R, N, D, 3)
+    r1 = (w & np.uint64(0xFFFFFFFF)).astype(float) * 2.0**-32
+    r2 = (w >> np.uint64(32)).astype(float) * 2.0**-32
+    r = np.stack([r1, r2], axis=1).transpose(0, 1, 4, 2, 3)  # (R, 2, 3, N, D)
+    want = np.empty_like(X)
+    gwo_step(X, lead, 0.7, np.ones((1, 4), np.uint64), False, r, lb, ub, want)
+    got = np.empty_like(X)
+    gwo_step(X, lead, 0.7, state.copy(), True, np.zeros((1, 2, 3, 1, 1)), lb, ub, got)
+    np.testing.assert_array_equal(got, want)
+    assert np.any(got == lb) and np.any(got == ub) and np.unique(got).size > R * N
 
 
 @pytest.mark.parametrize("policy", ["clip", "reflect"])

@@ -79,6 +79,62 @@ def xoshiro_step(s0, s1, s2, s3):  # pragma: no cover - compiled
     return result, s0, s1, s2, s3
 
 
+# A 32-bit word ``x`` as a double without a uint64 -> double conversion (this CPU family has no
+# SIMD one; the scalar conversion cost more than the xoshiro step): the double whose bits are
+# ``0x4330000000000000 | x`` is ``2**52 + x`` exactly, so ``(it - 2**52) * 2**-32`` equals
+# ``float(x) * 2**-32`` bit for bit for every ``x < 2**52``.
+_MAGIC = np.uint64(0x4330000000000000)
+_TWO52 = 4503599627370496.0
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _magic_bits(x):  # pragma: no cover - compiled
+    return x | _MAGIC
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _magic_unit(bits_as_double):  # pragma: no cover - compiled
+    return (bits_as_double - _TWO52) * _U32
+
+
+@njit(cache=True, nogil=True)
+def halves_to_unit(words, r1, r2):  # pragma: no cover - compiled
+    """``r1 = (w & 0xFFFFFFFF) 2**-32`` and ``r2 = (w >> 32) 2**-32`` of each uint64 word of
+    ``words`` (1-D), through the magic-number conversion :func:`gwo_step` uses; ``r1, r2`` in
+    ``[0, 1)``, same length, overwritten. Exposed so the tests can check the conversion."""
+    lo = np.empty(words.size, np.uint64)
+    hi = np.empty(words.size, np.uint64)
+    for m in range(words.size):
+        lo[m] = _magic_bits(words[m] & _LOW32)
+        hi[m] = _magic_bits(words[m] >> _SHIFT32)
+    lof, hif = lo.view(np.float64), hi.view(np.float64)
+    for m in range(words.size):
+        r1[m] = _magic_unit(lof[m])
+        r2[m] = _magic_unit(hif[m])
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _gwo_wolf(X, lead_x, q, i, a, r1, r2, lb, ub, out):  # pragma: no cover - compiled
+    """Wolf ``i`` of run ``q``: Eqs. 3.3-3.7 and the clip, with ``r1[3 d + k]``, ``r2[3 d + k]``
+    the uniforms of dimension ``d`` and leader ``k``."""
+    two_a = 2.0 * a
+    for d in range(X.shape[2]):
+        x = X[q, i, d]
+        acc = 0.0
+        for k in range(3):
+            L = lead_x[q, k, d]
+            A = r1[3 * d + k] * two_a - a
+            dist = abs(r2[3 * d + k] * (2.0 * L) - x) * A
+            acc += L
+            acc -= dist
+        v = acc / 3.0
+        if v > ub[d]:
+            v = ub[d]
+        elif v < lb[d]:
+            v = lb[d]
+        out[q, i, d] = v
+
+
 @njit(cache=True, nogil=True, error_model="numpy")
 def gwo_step(X, lead_x, a, rng, use_rng, r, lb, ub, out):  # pragma: no cover - compiled
     """GWO's move (Eqs. 3.3-3.7) of every wolf, clipped to ``[lb, ub]``, written to ``out``.
@@ -91,34 +147,30 @@ def gwo_step(X, lead_x, a, rng, use_rng, r, lb, ub, out):  # pragma: no cover - 
     (``r`` of shape ``(R, 2, 3, N, D)``).
     """
     R, N, D = X.shape
-    two_a = 2.0 * a
+    M = 3 * D
+    # a wolf's words first (the xoshiro loop stores bits only), then its arithmetic
+    lo, hi = np.empty(M, np.uint64), np.empty(M, np.uint64)
+    lof, hif = lo.view(np.float64), hi.view(np.float64)
+    r1, r2 = np.empty(M), np.empty(M)
     for q in range(R):
         # the run's generator state lives in locals (registers) for the whole run
         qq = q if use_rng else 0  # rng is a (1, 4) placeholder without use_rng
         s0, s1, s2, s3 = rng[qq, 0], rng[qq, 1], rng[qq, 2], rng[qq, 3]
         for i in range(N):
-            for d in range(D):
-                x = X[q, i, d]
-                acc = 0.0
-                for k in range(3):
-                    if use_rng:
-                        wd, s0, s1, s2, s3 = xoshiro_step(s0, s1, s2, s3)
-                        r1 = np.float64(wd & _LOW32) * _U32
-                        r2 = np.float64(wd >> _SHIFT32) * _U32
-                    else:
-                        r1 = r[q, 0, k, i, d]
-                        r2 = r[q, 1, k, i, d]
-                    L = lead_x[q, k, d]
-                    A = r1 * two_a - a
-                    dist = abs(r2 * (2.0 * L) - x) * A
-                    acc += L
-                    acc -= dist
-                v = acc / 3.0
-                if v > ub[d]:
-                    v = ub[d]
-                elif v < lb[d]:
-                    v = lb[d]
-                out[q, i, d] = v
+            if use_rng:
+                for m in range(M):
+                    wd, s0, s1, s2, s3 = xoshiro_step(s0, s1, s2, s3)
+                    lo[m] = _magic_bits(wd & _LOW32)
+                    hi[m] = _magic_bits(wd >> _SHIFT32)
+                for m in range(M):
+                    r1[m] = _magic_unit(lof[m])
+                    r2[m] = _magic_unit(hif[m])
+            else:
+                for d in range(D):
+                    for k in range(3):
+                        r1[3 * d + k] = r[q, 0, k, i, d]
+                        r2[3 * d + k] = r[q, 1, k, i, d]
+            _gwo_wolf(X, lead_x, q, i, a, r1, r2, lb, ub, out)
         if use_rng:
             rng[q, 0], rng[q, 1], rng[q, 2], rng[q, 3] = s0, s1, s2, s3
 
