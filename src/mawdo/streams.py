@@ -73,9 +73,27 @@ class RunStreams:
         """U[0, 1) draws, shape ``(R, *shape)``."""
         shape = (shape,) if np.isscalar(shape) else tuple(shape)
         out = np.empty((self.runs, *shape))
-        for g, o in zip(self.generators, out, strict=True):
-            g.random(out=o) if o.ndim else o.__setitem__((), g.random())
+        # rows of a 2-D view: shape () gives length-1 rows (iterating (R,) would give scalars)
+        for g, o in zip(self.generators, out.reshape(self.runs, -1), strict=True):
+            g.random(out=o)
         return out
+
+    def random_parts(self, *shapes) -> list[np.ndarray]:
+        """U[0, 1) draws of several shapes, one generator call per run: the arrays
+        ``(R, *shape)`` that successive :meth:`random` calls would give, bit for bit.
+
+        Each run fills one row with all its numbers (its generator yields them in the order of
+        ``shapes``), saving a Python call per run and extra shape (issue 15: ~1 us each).
+        The arrays are views of one buffer, each C-contiguous per run.
+        """
+        shapes = [(s,) if np.isscalar(s) else tuple(s) for s in shapes]
+        sizes = [int(np.prod(s, dtype=np.int64)) for s in shapes]
+        buf = np.empty((self.runs, sum(sizes)))
+        for g, row in zip(self.generators, buf, strict=True):
+            g.random(out=row)
+        cut = np.cumsum([0, *sizes])
+        spans = zip(cut[:-1], cut[1:], shapes, strict=True)
+        return [buf[:, a:b].reshape(self.runs, *s) for a, b, s in spans]
 
     def uniform(self, low, high, shape=()) -> np.ndarray:
         """U[low, high) draws, shape ``(R, *shape)``; bounds broadcast against ``shape``."""

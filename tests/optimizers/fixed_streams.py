@@ -23,6 +23,10 @@ class FixedStreams:
         shape = (shape,) if np.isscalar(shape) else tuple(shape)
         return self._next("random", shape)
 
+    def random_parts(self, *shapes):
+        """Successive ``random`` draws, as :meth:`mawdo.streams.RunStreams.random_parts`."""
+        return [self.random(s) for s in shapes]
+
     def uniform(self, low, high, shape=()):
         return low + (np.asarray(high) - low) * self.random(shape)
 

@@ -29,3 +29,20 @@ def test_uniform_equals_the_formula_it_replaced(low, high, shape):
     assert got.dtype == want.dtype and got.shape == want.shape
     np.testing.assert_array_equal(got, want)
     assert np.unique(got).size == got.size  # distinct draws, not a constant
+
+
+@pytest.mark.parametrize(
+    "shapes", [((4, 5), (5, 3)), ((4, 5), (5, 1)), ((2,), (), (3, 2, 2)), ((7, 6),)]
+)
+def test_random_parts_equal_successive_random_calls(shapes):
+    mine = streams(11)
+    got = mine.random_parts(*shapes)
+    ref = streams(11)
+    want = [ref.random(s) for s in shapes]
+    assert len(got) == len(want)
+    for g, w in zip(got, want, strict=True):
+        assert g.shape == w.shape
+        np.testing.assert_array_equal(g, w)
+    # each generator is left where the separate calls leave it
+    np.testing.assert_array_equal(mine.random(2), ref.random(2))
+    assert np.unique(np.concatenate([g.ravel() for g in got])).size == sum(g.size for g in got)

@@ -190,14 +190,14 @@ class WOA(Optimizer):
         with ``l (R, N)``; the random-whale draw of each entry ``ur``."""
         N, D = state.X.shape[1:]
         frac = (state.t - 1) / state.T
-        u = state.streams.random((4, N))
+        per_dim = self.params.random_whale == "per_dimension"
+        u, ur = state.streams.random_parts((4, N), (N, D) if per_dim else (N, 1))
         ul = u[:, 2]
         if self.params.l_range == "paper":
             l = 2.0 * ul - 1.0
         else:
             a2 = -1.0 - frac
             l = (a2 - 1.0) * ul + 1.0
-        ur = state.streams.random((N, D) if self.params.random_whale == "per_dimension" else (N, 1))
         return 2.0 - 2.0 * frac, u, l, ur
 
     def ask(self, state: WOAState) -> np.ndarray:
