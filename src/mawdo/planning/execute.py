@@ -83,8 +83,8 @@ class Run:
         self.guard = Guard(sc, cfg.clearance)
         self.replans: list[Replan] = []
         self.counts = {"waits": 0, "evasions": 0, "fallbacks": 0, "holds": 0}
-        self.stalled = False  # the last optimisation returned its warm start unchanged
-        self.held = 0  # replans skipped since the last one made
+        self.stalled = False  # the last search found nothing cheaper than its warm start
+        self.chosen_index = 0  # which candidate the guard accepted at the last replan
 
     # -- seeds ---------------------------------------------------------------------------------
 
@@ -137,7 +137,8 @@ class Run:
             pop,
         )
         best = res.x[0]
-        self.stalled = not first and self._stalled(res.fun[0], x0[:1], pos, t)
+        # only where it can matter: the extra cost call then changes nothing in other presets
+        self.stalled = not first and cfg.hold_gap > 0 and self._stalled(res.fun[0], x0[:1], pos, t)
         cands = [best] + [x for x in elite.X if np.max(np.abs(x - best)) > 1e-12]
         latency = time.perf_counter() - t_start
         length, ncol, _ = self.cost.parts(best[None, :], start=pos, t0=t)
@@ -204,9 +205,7 @@ class Run:
             replan = remainder is None or force or (self.dynamic and step % cfg.replan_every == 0)
             if replan and self._holds(remainder, force, step):
                 self.counts["holds"] += 1
-                self.held += 1
             elif replan:
-                self.held = 0
                 cands, _ = self.optimise(pos, step, remainder)
                 left = cfg.replan_every - step % cfg.replan_every if self.dynamic else 0
                 chosen = self.choose(cands, pos, step, v * left)
