@@ -1,4 +1,5 @@
-"""One planning run: guide -> seeds -> refine -> guard -> move, then the checker's judgement.
+"""One planning run: guide -> seeds -> refine -> polish -> guard -> move, then the checker's
+judgement.
 
 :func:`mawdo.planning.planner.plan` builds a :class:`Run` and calls :meth:`Run.execute`. The
 steps of each (re)plan are those of the planner module's docstring; this module holds the loop
@@ -18,6 +19,7 @@ from mawdo.planning.cost import PathCost, assemble_paths
 from mawdo.planning.guard import Elite, Guard
 from mawdo.planning.guide import Guide
 from mawdo.planning.path import advance, densify, polyline_length
+from mawdo.planning.polish import polish
 from mawdo.planning.scenario import Scenario
 from mawdo.planning.seeding import _optimise, _seeds, _via_paths
 from mawdo.streams import replan_seed_sequences
@@ -122,10 +124,11 @@ class Run:
         t_start = time.perf_counter()
         x0 = self._x0(pos, remainder, rng, pop)
         elite = Elite(cfg.elite_size)
+        watched = _Watched(self.cost, elite)
         t = float(step)
 
         res = _optimise(
-            _Watched(self.cost, elite),
+            watched,
             pos,
             t,
             self.algorithm,
@@ -136,9 +139,9 @@ class Run:
             None if first else cfg.replan_time,
             pop,
         )
-        best = res.x[0]
         # only where it can matter: the extra cost call then changes nothing in other presets
         self.stalled = not first and cfg.hold_gap > 0 and self._stalled(res.fun[0], x0[:1], pos, t)
+        best, fun, nfev = self._polish(res, watched, pos, t)
         cands = [best] + [x for x in elite.X if np.max(np.abs(x - best)) > 1e-12]
         latency = time.perf_counter() - t_start
         length, ncol, _ = self.cost.parts(best[None, :], start=pos, t0=t)
@@ -147,15 +150,34 @@ class Run:
                 step=step,
                 position=np.array(pos, dtype=float),
                 waypoints=best.reshape(-1, 2).copy(),
-                cost=float(res.fun[0]),
+                cost=fun,
                 length=float(length[0]),
                 collisions=int(ncol[0]),
                 latency=latency,
-                nfev=int(res.nfev[0]),
+                nfev=nfev,
                 history=res.history[0].copy(),
             )
         )
         return np.array(cands), latency
+
+    def _polish(self, res, watched: _Watched, pos, t: float):
+        """The search's best after :func:`~mawdo.planning.polish.polish` (its cost and the
+        evaluations of both); the elite sees every variant. The stall flag stays the search's:
+        a polished plan was still one the search could not improve."""
+        x, fx, nfev = res.x[0], float(res.fun[0]), int(res.nfev[0])
+        if self.cfg.polish_rounds == 0:
+            return x, fx, nfev
+        x, fx, extra = polish(
+            lambda X: watched(X, start=pos, t0=t),
+            x,
+            fx,
+            pos,
+            self.sc.goal,
+            self.cfg.polish_rounds,
+            self.cfg.polish_steps,
+            *self.cost.bounds,
+        )
+        return x, fx, nfev + extra
 
     def _stalled(self, best: float, warm, pos, t: float) -> bool:
         """True when the search found nothing better than its warm start (the previous

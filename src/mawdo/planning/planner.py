@@ -5,7 +5,8 @@ observes the obstacles, the
 optimizer is seeded with the guide's routes (exact visibility graph, distinct homotopy classes,
 re-rooted at the robot), the previous best path (reached waypoints dropped, the rest re-spread)
 and perturbed copies, and runs for an iteration or wall-time budget on the cost of
-:class:`~mawdo.planning.cost.PathCost` (``spacetime`` mode by default). The guard verifies the
+:class:`~mawdo.planning.cost.PathCost` (``spacetime`` mode by default); its best is polished by
+a greedy local descent (:mod:`mawdo.planning.polish`). The guard verifies the
 stretch to be driven before the next replan and falls back to the elite, to waiting or to an
 evasive move; the independent checker judges the executed route (:mod:`mawdo.planning.execute`).
 This module holds the public entry points (``plan``, the oracle-following baseline) and the
@@ -73,7 +74,8 @@ def plan(
     -----
     Pipeline per (re)plan: guide routes from the exact visibility graph (re-rooted at the
     robot), seeds (guide routes, perturbed copies, the warm start), refinement by the optimizer
-    under the paper's cost, then the guard (:mod:`mawdo.planning.guard`) before every move.
+    under the paper's cost, a polish of its best (``polish_rounds``), then the guard
+    (:mod:`mawdo.planning.guard`) before every move.
     """
     sc = _resolve(scenario)
     cfg = _config(config, overrides)
