@@ -9,6 +9,7 @@ import numpy as np
 
 from mawdo.planning.cost import CostWeights
 from mawdo.planning.scenario import Scenario, get_scenario
+from mawdo.validate import check_int
 
 
 @dataclass(frozen=True)
@@ -144,10 +145,7 @@ class PlannerConfig:
                 raise ValueError(f"PlannerConfig.{name}={getattr(self, name)!r} must be >= 1")
         if not (np.isfinite(self.hold_gap) and self.hold_gap >= 0):
             raise ValueError(f"PlannerConfig.hold_gap={self.hold_gap!r} must be finite and >= 0")
-        if not isinstance(self.polish_rounds, int | np.integer) or self.polish_rounds < 0:
-            raise ValueError(
-                f"PlannerConfig.polish_rounds={self.polish_rounds!r} must be an integer >= 0"
-            )
+        check_int("PlannerConfig.polish_rounds", self.polish_rounds, 0)
         steps = np.asarray(self.polish_steps, float)
         if steps.ndim != 1 or steps.size == 0 or not np.all((steps > 0) & (steps <= 1)):
             raise ValueError(
