@@ -11,6 +11,7 @@ from collections.abc import Callable
 
 import numpy as np
 
+from mawdo.blocks import block_sizes, join_results
 from mawdo.budget import CALLBACK, DEFAULT_MAX_ITER, Budget, RunLog
 from mawdo.optimizers.base import Optimizer, Space
 from mawdo.optimizers.registry import make_optimizer
@@ -124,6 +125,7 @@ def minimize(
     shift_seed: int = 0,
     preset: str = "paper",
     progress: bool = False,
+    runs_per_block: int | None = None,
     **options,
 ) -> OptimizeResult:
     """Minimise ``fun`` over a box with ``runs`` independent runs of one algorithm.
@@ -160,6 +162,12 @@ def minimize(
         placed in the initial population; the rest is drawn at random.
     progress : bool
         Show a progress bar (rich).
+    runs_per_block : int, optional
+        Most runs evaluated together, >= 1: a larger batch goes in blocks of runs, one after
+        another, with the same results (:mod:`mawdo.blocks`). Default: blocks whose state fits
+        in a core's cache (about 1 MiB per state array), which keeps the time per evaluation
+        flat in ``runs``; one block with ``callback`` or ``max_time``, which see the whole
+        batch. Pass ``runs`` for an objective that must see every run in each call.
     **options
         Algorithm coefficients, e.g. ``pop_size=50``, ``groups=8``; each a finite number in its
         range (:data:`mawdo.validate.OPTION_RANGES`).
@@ -171,41 +179,78 @@ def minimize(
     """
     _check_driver_arguments(runs, seed, first_run, callback, progress, x0)
     budget = Budget(max_iter, max_evals, target, max_time)
+    whole = callback is not None or max_time is not None
+    _check_blocks(runs_per_block, runs, whole)
     problem = make_problem(
         fun, bounds, lb=lb, ub=ub, dim=dim, vectorized=vectorized, shifted=shifted,
         shift_seed=shift_seed, preset=preset,
     )  # fmt: skip
     opt = make_optimizer(algorithm, **options)
-    algo_streams, noise_streams = _streams(seed, runs, first_run)
-    evaluator = Evaluator(problem, noise_streams, opt.name)
-    space = Space(problem.lb, problem.ub)
-    state = opt.init(space, algo_streams, budget.horizon(opt.params.pop_size), x0)
-    log = RunLog(budget, runs, space.from_unit(np.zeros(problem.dim)))
-    bar = _progress(progress, opt.name, problem.name, budget.max_iter, budget.max_evals)
-
-    def snapshot(message: str) -> OptimizeResult:
-        return _result(opt, problem, seed, log, evaluator.nfev, message)
-
+    # a per-run x0 of the wrong length must fail naming the batch's runs, not a block's
+    if whole or (x0 is not None and np.ndim(x0) == 3 and np.shape(x0)[0] != runs):
+        sizes = [runs]
+    else:
+        sizes = block_sizes(runs, runs_per_block, opt.params.pop_size, problem.dim)
+    bar = _progress(progress, opt.name, problem.name, budget.max_iter, budget.max_evals, sizes)
+    parts, done = [], 0
     try:
+        for size in sizes:
+            part_x0 = x0[done : done + size] if x0 is not None and np.ndim(x0) == 3 else x0
+            run = _Batch(problem, opt, budget, seed, first_run + done, size, part_x0)
+            parts.append(run.drive(callback, bar))
+            done += size
+    finally:
+        if bar is not None:
+            bar.close()
+    return parts[0] if len(parts) == 1 else join_results(parts, opt.per_run_metadata)
+
+
+class _Batch:
+    """One batch of runs through the driver loop: init -> (ask, evaluate, tell)*."""
+
+    def __init__(self, problem: Problem, opt: Optimizer, budget: Budget, seed, first_run: int,
+                 runs: int, x0) -> None:  # fmt: skip
+        self.problem, self.opt, self.seed = problem, opt, seed
+        algo_streams, noise_streams = _streams(seed, runs, first_run)
+        self.evaluator = Evaluator(problem, noise_streams, opt.name)
+        space = Space(problem.lb, problem.ub)
+        self.state = opt.init(space, algo_streams, budget.horizon(opt.params.pop_size), x0)
+        self.log = RunLog(budget, runs, space.from_unit(np.zeros(problem.dim)))
+
+    def snapshot(self, message: str) -> OptimizeResult:
+        return _result(self.opt, self.problem, self.seed, self.log, self.evaluator.nfev, message)
+
+    def drive(self, callback, bar) -> OptimizeResult:
+        opt, log, evaluator = self.opt, self.log, self.evaluator
         it = 0
         while True:
             it += 1
-            X = opt.ask(state)
+            X = opt.ask(self.state)
             limit = log.eval_limit(evaluator.nfev)
             F = evaluator(X, it, log.active, limit)
-            state = opt.tell(state, X, F)
+            self.state = opt.tell(self.state, X, F)
             log.record(it, X, F, evaluator.nfev)
             if bar is not None:
                 bar.advance(it, evaluator.nfev.max(), log.best_f.min())
             if log.finished(it, X.shape[1], limit):
                 break
-            if callback is not None and callback(snapshot("in progress")):
+            if callback is not None and callback(self.snapshot("in progress")):
                 log.stop(CALLBACK)
                 break
-    finally:
         if bar is not None:
-            bar.close()
-    return snapshot(log.message)
+            bar.next_block()
+        return self.snapshot(log.message)
+
+
+def _check_blocks(runs_per_block, runs: int, whole: bool) -> None:
+    if runs_per_block is None:
+        return
+    check_int("runs_per_block", runs_per_block, 1)
+    if whole and runs_per_block < runs:
+        raise ValueError(
+            f"runs_per_block={runs_per_block} < runs={runs} cannot be combined with callback or "
+            "max_time, which see the whole batch: leave runs_per_block=None"
+        )
 
 
 def _check_driver_arguments(runs, seed, first_run, callback, progress, x0) -> None:
@@ -251,10 +296,11 @@ def _result(opt, problem, seed, log: RunLog, nfev, message: str) -> OptimizeResu
 class _Bar:
     """A thin rich progress bar over iterations (or evaluations under an evaluation budget)."""
 
-    def __init__(self, label: str, total: int, by_evals: bool) -> None:
+    def __init__(self, label: str, total: int, by_evals: bool, blocks: int = 1) -> None:
         from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
         self.by_evals = by_evals
+        self.per_block, self.offset, self.best = total, 0, np.inf
         self.progress = Progress(
             TextColumn("[bold]{task.description}"),
             BarColumn(),
@@ -263,18 +309,25 @@ class _Bar:
             TimeRemainingColumn(),
             transient=True,
         )
-        self.task = self.progress.add_task(label, total=total, best="-")
+        self.task = self.progress.add_task(label, total=total * blocks, best="-")
         self.progress.start()
 
     def advance(self, it: int, nfev: int, best: float) -> None:
-        self.progress.update(self.task, completed=nfev if self.by_evals else it, best=f"{best:.4g}")
+        self.best = min(self.best, best)
+        done = self.offset + (nfev if self.by_evals else it)
+        self.progress.update(self.task, completed=done, best=f"{self.best:.4g}")
+
+    def next_block(self) -> None:
+        """Move on to the next block of runs (each block counts ``total`` once)."""
+        self.offset += self.per_block
 
     def close(self) -> None:
         self.progress.stop()
 
 
-def _progress(show: bool, algo: str, prob: str, max_iter, max_evals):
+def _progress(show: bool, algo: str, prob: str, max_iter, max_evals, sizes: list[int]):
     if not show:
         return None
     by_evals = max_iter is None
-    return _Bar(f"{algo} on {prob}", max_evals if by_evals else max_iter, by_evals)
+    label = f"{algo} on {prob}" + (f" ({len(sizes)} blocks of runs)" if len(sizes) > 1 else "")
+    return _Bar(label, max_evals if by_evals else max_iter, by_evals, len(sizes))

@@ -103,6 +103,8 @@ class Optimizer(ABC):
 
     name: ClassVar[str] = "optimizer"
     params_class: ClassVar[type[Params]] = Params
+    per_run_metadata: ClassVar[tuple[str, ...]] = ()
+    """Keys of ``metadata`` that hold one entry per run (joined when runs go in blocks)."""
 
     def __init__(self, params: Params | None = None, name: str | None = None, **options) -> None:
         if name is not None:

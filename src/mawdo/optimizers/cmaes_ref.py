@@ -156,6 +156,7 @@ class CMAES(Optimizer):
 
     name = "cmaes"
     params_class = CMAESParams
+    per_run_metadata = ("restarts",)
 
     def __init__(self, params: Params | None = None, name: str | None = None, **options) -> None:
         if params is None and "pop_size" in options and "auto_pop_size" not in options:

@@ -183,6 +183,7 @@ def run_problem(
         first_run=first_run,
         max_evals=max_evals,
         target=target,
+        runs_per_block=runs,  # the recorder reads every call as R x m rows, run-major
         **options,
     )
     traces = rec.traces()
