@@ -345,3 +345,13 @@ def test_mewdo_step_equals_the_numpy_strategies():
     np.testing.assert_array_equal(U, eu)
     np.testing.assert_array_equal(P, ep)
     np.testing.assert_allclose(X, lb + (ep + 1) / 2 * width, rtol=1e-15)
+
+
+@pytest.mark.parametrize("shape", [(1, 1, 1), (3, 50, 30), (2, 7, 1000)])
+def test_mewdo_centroid_is_numpy_mean_to_the_bit(shape):
+    from mawdo.optimizers.mewdo import centroid
+
+    p = np.random.default_rng(sum(shape)).normal(0, 1e3, shape)
+    out = np.full((shape[0], shape[2]), np.nan)
+    centroid(p, out)
+    np.testing.assert_array_equal(out, p.mean(axis=1))

@@ -147,6 +147,22 @@ def strategy_success(strategy, F, f, n_used, n_succ):  # pragma: no cover - comp
                 n_succ[r, k] += F[r, i] < f[r, i]
 
 
+@njit(cache=True, nogil=True)
+def centroid(p, out):  # pragma: no cover - compiled
+    """Mean over the parcels of ``p (R, N, D)`` into ``out (R, D)``: ``p.mean(axis=1)`` to the
+    bit (NumPy sums a middle axis parcel by parcel, then divides by N), without its overhead
+    (about a tenth of an iteration at R = 30, N = 50, D = 30)."""
+    R, N, D = p.shape
+    out[:] = 0.0
+    for r in range(R):
+        for i in range(N):
+            for d in range(D):
+                out[r, d] += p[r, i, d]
+    for r in range(R):
+        for d in range(D):
+            out[r, d] /= N
+
+
 @dataclass
 class MEWDOState:
     p: np.ndarray
@@ -204,7 +220,8 @@ class MEWDO(Optimizer):
         r, tb = np.empty((R, N)), np.empty(R, np.intp)
         strat, guide = np.empty((R, N), np.int64), np.empty((R, N), np.int64)
         choose_strategies(s.f, s.pbest_f, s.q, draws, r, tb, strat, guide)
-        centre = s.p.mean(axis=1)
+        centre = np.empty((R, D))
+        centroid(s.p, centre)
         X = np.empty_like(s.p)
         coef = np.array([P.alpha, P.g, P.RT, P.c])
         width = np.asarray(s.space.ub - s.space.lb, float)
