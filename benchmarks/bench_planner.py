@@ -65,13 +65,14 @@ def paper_dynamic(seeds=range(10), algorithm: str = "mawdo") -> None:
 
     sc = get_scenario("paper")
     l_star = static_optimum(sc)
-    gaps, lat, bad, fails, events = [], [], 0, 0, np.zeros(4, int)
+    gaps, lat, bad, fails, events, clear = [], [], 0, 0, np.zeros(4, int), []
     for seed in seeds:
         res = plan(sc, algorithm, seed=seed)
         m = run_metrics(res, l_star=l_star, snapshots=0)
         bad += not m["collision_free"]
         fails += not res.success
         gaps.append(m["gap"])
+        clear.append(m["min_clearance_px"])
         lat.extend(res.latencies)
         events += [res.waits, res.evasions, res.fallbacks, res.near_misses]
     g = np.array(gaps)
@@ -85,7 +86,8 @@ def paper_dynamic(seeds=range(10), algorithm: str = "mawdo") -> None:
     )
     print(
         f"  guard events over all seeds: waits {events[0]}, evasions {events[1]}, "
-        f"elite fallbacks {events[2]}, near misses {events[3]}"
+        f"elite fallbacks {events[2]}, near misses {events[3]}; least clearance "
+        f"{min(clear):.2f} px (> 0 {_flag(min(clear) > 0)})"
     )
     # context for the gap target: the exact route on obstacles frozen each step, same scene
     oracle = run_metrics(follow_oracle(sc), l_star=l_star, snapshots=0)
