@@ -5,7 +5,7 @@ one uniform draw per point), so the gap to the bare ``ioh`` loop is the cost of 
 the evaluation recorder and the batching. The bare loop calls ``problem(X)`` on batches of the
 same shape as many times. Target (issue 13): pipeline overhead <= 2x the bare call. CMA-ES and
 MAWDO are timed too, for information (their own algorithm cost is not pipeline overhead).
-The bare call hands ioh nested lists, as our formula does (ioh converts them faster than arrays).
+The bare call hands ioh the float64 batch, as our formula does.
 
 Then the suite-study presets are projected from every algorithm's measured rate
 (:func:`study_projection`; ``python -m benchmarks.bench_bbob projection`` runs it alone).
@@ -38,7 +38,7 @@ def bare_ioh(fid: int, repeats: int = 3) -> float:
     for _ in range(repeats):
         t = time.perf_counter()
         for _ in range(batches):
-            np.asarray(p(X.tolist()), dtype=float)
+            np.asarray(p(X), dtype=float)
         best = min(best, time.perf_counter() - t)
     return best
 
