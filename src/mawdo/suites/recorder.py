@@ -18,8 +18,55 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
 from mawdo.suites.base import SuiteFunction, evaluation_budget, replace_formula
+
+
+@njit(cache=True, nogil=True)
+def scan_improvements(V, best, counted, nfev, r_out, e_out, y_out, last):  # pragma: no cover
+    """One batch's improvements of each run's best-so-far; updates ``best`` and ``nfev``.
+
+    Parameters (``R`` runs, ``m`` values each)
+    ----------
+    V : float64 (R, m)
+        The runs' values in evaluation order; NaN and +-inf never improve (the driver ranks
+        them worst).
+    best : float64 (R,)
+        Best-so-far before the batch (+inf before any finite value); updated.
+    counted : bool (R,)
+        Runs still recording; the others keep ``best`` and ``nfev``.
+    nfev : int64 (R,)
+        Evaluations recorded before the batch; ``m`` is added to counted runs.
+    r_out, e_out, y_out : (R m,)
+        Filled with ``k`` improvements, run by run: run, 1-based evaluation number, value.
+    last : int64 (R,)
+        Per run the batch index of its last improvement (its first least value), -1 if none.
+
+    Returns
+    -------
+    int
+        ``k``, the number of improvements.
+    """
+    R, m = V.shape
+    k = 0
+    for r in range(R):
+        last[r] = -1
+        if not counted[r]:
+            continue
+        b = best[r]
+        for j in range(m):
+            v = V[r, j]
+            if -np.inf < v < b:
+                b = v
+                r_out[k] = r
+                e_out[k] = nfev[r] + j + 1
+                y_out[k] = v
+                last[r] = j
+                k += 1
+        best[r] = b
+        nfev[r] += m
+    return k
 
 
 @dataclass(frozen=True)
@@ -98,20 +145,17 @@ class EvaluationRecorder:
         m = vals.size // R
         if m == 0 or vals.size != X.shape[0]:
             return  # a wrong shape: the driver raises ObjectiveError about it
-        V = np.where(np.isfinite(vals), vals, np.inf).reshape(R, m)  # NaN is worst, as driven
+        V = np.ascontiguousarray(vals, dtype=np.float64).reshape(R, m)
         counted = np.ones(R, bool) if self.target is None else ~(self.best <= self.target)
-        cm = np.minimum.accumulate(np.concatenate([self.best[:, None], V], axis=1), axis=1)
-        improved = (cm[:, 1:] < cm[:, :-1]) & counted[:, None]
-        r, j = np.nonzero(improved)
-        if r.size:
-            self._chunks.append((r, self.nfev[r] + j + 1, V[r, j]))
+        r, e, y = np.empty(R * m, np.int64), np.empty(R * m, np.int64), np.empty(R * m)
+        last = np.empty(R, np.int64)
+        k = scan_improvements(V, self.best, counted, self.nfev, r, e, y, last)
+        if k:
+            self._chunks.append((r[:k].copy(), e[:k].copy(), y[:k].copy()))
             if self.best_x is None:
                 self.best_x = np.full((R, X.shape[1]), np.nan)
-            last = np.argmin(V, axis=1)
-            upd = improved.any(axis=1)
+            upd = last >= 0
             self.best_x[upd] = X.reshape(R, m, -1)[upd, last[upd]]
-        self.best = np.where(counted, cm[:, -1], self.best)
-        self.nfev += np.where(counted, m, 0)
 
     def traces(self) -> list[RunTrace]:
         """The runs' records, in run order."""
