@@ -147,3 +147,41 @@ def test_quartic_noise_is_reproducible_and_per_run():
     np.testing.assert_array_equal(a.fun, b.fun)
     alone = minimize("quartic", algorithm="wdo", runs=1, seed=4, first_run=2, max_iter=20, dim=5)
     assert alone.fun[0] == a.fun[2]
+
+
+def test_compiled_driver_steps_equal_their_numpy_forms():
+    # the evaluator's value store and the run log's best-so-far, against the NumPy code they
+    # replaced, on values with NaN, +-inf, ties, inactive runs and a truncated batch
+    from mawdo.budget import take_best
+    from mawdo.problem import store_values
+
+    rng = np.random.default_rng(3)
+    R, n, m, D = 5, 7, 4, 3
+    for _ in range(50):
+        vals = np.round(rng.normal(size=(R, m)), 1)
+        vals[rng.random((R, m)) < 0.15] = rng.choice([np.nan, np.inf, -np.inf])
+        active = rng.random(R) < 0.7
+        nfev = rng.integers(0, 100, R)
+        F = np.full((R, n), -7.0)
+        want_nfev = nfev.copy()
+        store_values(vals, F, nfev, active)
+        ref = np.empty((R, n))
+        ref[:, :m] = np.where(np.isfinite(vals), vals, np.inf)
+        ref[:, m:] = np.inf
+        want_nfev[active] += m
+        np.testing.assert_array_equal(F, ref)
+        np.testing.assert_array_equal(nfev, want_nfev)
+
+        X = rng.normal(size=(R, n, D))
+        best_f = np.where(rng.random(R) < 0.3, np.inf, rng.normal(size=R))
+        best_x, nit = rng.normal(size=(R, D)), rng.integers(0, 9, R)
+        want = best_f.copy(), best_x.copy(), nit.copy()
+        j = F.argmin(axis=1)
+        fj = F[np.arange(R), j]
+        better = active & (fj < want[0])
+        want[0][better] = fj[better]
+        want[1][better] = X[better, j[better]]
+        want[2][active] = 11
+        take_best(X, F, active, best_f, best_x, nit, 11)
+        for got, w in zip((best_f, best_x, nit), want, strict=True):
+            np.testing.assert_array_equal(got, w)

@@ -13,6 +13,7 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
 from mawdo.result import STATUS_MESSAGES
 from mawdo.validate import check_int, check_real
@@ -65,6 +66,32 @@ class Budget:
         return math.ceil(self.max_evals / pop_size)
 
 
+@njit(cache=True, nogil=True)
+def take_best(X, F, active, best_f, best_x, nit, it):  # pragma: no cover - compiled
+    """Each active run's best of ``F`` (its first least value) replaces ``best_f``/``best_x`` when
+    strictly better; ``nit`` of active runs becomes ``it``.
+
+    ``F (R, n)`` comes from the evaluator (no NaN); ``X`` is ``(R, n, D)``. One pass instead
+    of NumPy's argmin, gathers and masked writes (about 5 us an iteration).
+    """
+    R, n = F.shape
+    if n == 0:
+        return
+    for r in range(R):
+        if not active[r]:
+            continue
+        j = 0
+        fj = F[r, 0]
+        for k in range(1, n):
+            if F[r, k] < fj:
+                fj = F[r, k]
+                j = k
+        if fj < best_f[r]:
+            best_f[r] = fj
+            best_x[r, :] = X[r, j, :]
+        nit[r] = it
+
+
 class RunLog:
     """Per-run best-so-far, history and status of a batch under one :class:`Budget`.
 
@@ -81,7 +108,6 @@ class RunLog:
     def __init__(self, budget: Budget, runs: int, x_start: np.ndarray) -> None:
         self.budget = budget
         self.best_f = np.full(runs, np.inf)
-        self.rows = np.arange(runs)
         self.best_x = np.tile(x_start, (runs, 1))
         self.active = np.ones(runs, dtype=bool)
         self.status = np.zeros(runs, dtype=np.int64)
@@ -105,13 +131,7 @@ class RunLog:
 
         The driver keeps its own best-so-far from evaluated points only; stopped runs freeze.
         """
-        j = F.argmin(axis=1)
-        fj = F[self.rows, j]
-        better = self.active & (fj < self.best_f)
-        if better.any():  # late in a run most iterations improve nothing: no masked writes
-            self.best_f[better] = fj[better]
-            self.best_x[better] = X[better, j[better]]
-        self.nit[self.active] = it
+        take_best(X, F, self.active, self.best_f, self.best_x, self.nit, it)
         self.hist.append(self.best_f.copy())
         self.hist_nfev.append(nfev.copy())
 

@@ -13,6 +13,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
+from numba import njit
 
 from mawdo.streams import RunStreams
 from mawdo.validate import check_int, real_array
@@ -219,6 +220,35 @@ class Problem:
             ) from exc
 
 
+@njit(cache=True, nogil=True)
+def store_values(vals, F, nfev, active):  # pragma: no cover - compiled
+    """``F[:, :m] = vals`` with NaN and +-inf as +inf, ``F[:, m:] = +inf``; ``nfev[active] += m``.
+
+    One pass instead of NumPy's copy, fill, ``isfinite`` and masked adds (about 10 us an
+    iteration, a tenth of an ``ioh`` call on 500 points).
+
+    Parameters
+    ----------
+    vals : float64 (R, m)
+        The objective's values of the first ``m`` candidates of each run.
+    F : float64 (R, n), n >= m
+        Written.
+    nfev : int64 (R,)
+        Evaluations per run; ``m`` is added where ``active``.
+    active : bool (R,)
+    """
+    R, m = vals.shape
+    n = F.shape[1]
+    for r in range(R):
+        for j in range(m):
+            v = vals[r, j]
+            F[r, j] = v if -np.inf < v < np.inf else np.inf
+        for j in range(m, n):
+            F[r, j] = np.inf
+        if active[r]:
+            nfev[r] += m
+
+
 class Evaluator:
     """Counts evaluations per run and calls the problem once per batch.
 
@@ -277,18 +307,11 @@ class Evaluator:
                 f"objective {self.problem.name!r} raised {type(exc).__name__}: {exc} "
                 f"(algorithm {self.algorithm!r}, {where}iteration {iteration})"
             ) from exc
+        if self.problem.noise:
+            vals = vals + self.noise_streams.random((m,))
         # F is the driver's own array (never the objective's, which it may reuse or keep)
         F = np.empty((R, n))
-        head = F[:, :m]
-        if self.problem.noise:
-            np.add(vals, self.noise_streams.random((m,)), out=head)
-        else:
-            head[...] = vals
-        F[:, m:] = np.inf
-        finite = np.isfinite(head)
-        if not finite.all():  # the rare case: no masked write otherwise
-            head[~finite] = np.inf
-        self.nfev[active] += m
+        store_values(vals, F, self.nfev, active)
         return F
 
     def _failing_run(self, X: np.ndarray) -> int | None:
