@@ -82,3 +82,24 @@ def test_zero_samples_leave_the_cma_untouched():
     twin._rng.set_state(cma._rng.get_state())
     assert ask_generation(twin, 0).shape == (0, 3)
     assert twin._B is None and same_generator(cma._rng, twin._rng)
+
+
+def test_both_generator_paths_are_taken(monkeypatch):
+    # blocks that drew exactly what the samples used leave the generator as it is; blocks that
+    # drew past them rewind it: the corner case above must meet both, so both are checked
+    import mawdo.optimizers.cmaes_ref as ref
+
+    seen = []
+    accept = ref._accept_draws
+
+    def spy(*args):
+        out, used, drawn = accept(*args)
+        seen.append(used == drawn)
+        return out, used, drawn
+
+    monkeypatch.setattr(ref, "_accept_draws", spy)
+    for dim in (5, 20):
+        bounds = np.tile([0.0, 1.0], (dim, 1))
+        cma = CMA(mean=np.zeros(dim), sigma=0.3, bounds=bounds, seed=dim, population_size=9)
+        drive(cma, 40, target=np.full(dim, -1.0))
+    assert any(seen) and not all(seen)

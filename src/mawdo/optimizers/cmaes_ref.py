@@ -102,9 +102,12 @@ def ask_generation(cma, n: int) -> np.ndarray:
     feasible = np.all((X >= bounds[:, 0]) & (X <= bounds[:, 1]), axis=1)
     if max_tries > 0 and feasible.all():
         return X  # the common case: every first draw is inside the box
-    out, used = _accept_draws(cma, X, feasible, n, draw)
-    rng.set_state(saved)  # the blocks may have drawn past ask(): rewind, redraw what was used
-    rng.randn(used * dim)
+    out, used, drawn = _accept_draws(cma, X, feasible, n, draw)
+    if used < drawn:  # the blocks drew past ask(): rewind, redraw what was used
+        rng.set_state(saved)
+        rng.randn(used * dim)
+    # (used == drawn, e.g. every sample spent all its tries on a slope against the bound: the
+    # state is already ask()'s, and redrawing would double the cost of the generation)
     return out
 
 
@@ -112,7 +115,8 @@ def _accept_draws(cma, X: np.ndarray, feasible: np.ndarray, n: int, draw) -> tup
     """The ``n`` samples ``ask()`` makes from the draws ``X`` (more drawn as needed).
 
     Sample ``k`` takes the first feasible draw among the next ``n_max_resampling`` draws, or
-    else clips the draw after them. Returns the samples and how many draws they used.
+    else clips the draw after them. Returns the samples, how many draws they used and how many
+    were drawn.
     """
     bounds, max_tries = cma._bounds, cma._n_max_resampling
     out = np.empty((n, X.shape[1]))
@@ -133,7 +137,7 @@ def _accept_draws(cma, X: np.ndarray, feasible: np.ndarray, n: int, draw) -> tup
             out[k], p = X[p + hit[0]], p + hit[0] + 1
         else:  # ask(): the draw after the last resampling is clipped
             out[k], p = cma._repair_infeasible_params(X[p + max_tries]), p + max_tries + 1
-    return out, p
+    return out, p, X.shape[0]
 
 
 def default_pop_size(dim: int) -> int:
