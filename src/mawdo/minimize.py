@@ -143,7 +143,8 @@ def minimize(
     algorithm : str or Optimizer
         A registered name (``mawdo list``) or an optimizer instance.
     runs : int
-        Independent runs, executed as one vectorised batch; >= 1.
+        Independent runs, executed as one vectorised batch (a large one in blocks of runs, see
+        ``runs_per_block``); >= 1.
     seed : int >= 0, sequence of int, SeedSequence or None
         Master seed; run ``r`` uses the ``r``-th spawned child, so its result is the same alone
         or in any batch.
