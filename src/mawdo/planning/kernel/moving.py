@@ -375,30 +375,36 @@ def _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, 
             _classify(i, nt, cls[0], verdict, cls[2], obs, extra, margin)
             for t in range(nt):
                 vmap[sidx[t]] = verdict[t]
+        # the entries within the bounding circle, listed without a branch (most are not)
+        inside = cls[3]
+        nin = 0
         for e in range(ne):
+            inside[nin] = e
+            nin += 1 if qd2[e] <= rho2 else 0
+        for q in range(nin):
+            e = inside[q]
             d = qd2[e]
-            if d <= rho2:
-                p = qseg[e]
-                if done[p]:
-                    continue
-                if convex and d > a2:
-                    v = vmap[e]
-                    hit = v == 1 or (
-                        v < 0
-                        and _segment_hits_polygon(
-                            qax[e], qay[e], qbx[e], qby[e], verts, i, nverts[i], thresh[i]
-                        )
+            p = qseg[e]
+            if done[p]:
+                continue
+            if convex and d > a2:
+                v = vmap[e]
+                hit = v == 1 or (
+                    v < 0
+                    and _segment_hits_polygon(
+                        qax[e], qay[e], qbx[e], qby[e], verts, i, nverts[i], thresh[i]
                     )
-                else:
-                    hit = d <= a2 or (
-                        not is_circle[i]
-                        and _polygon_hit(
-                            qax[e], qay[e], qbx[e], qby[e], i, thresh, verts, nverts, hull,
-                            nhull, extra, margin,
-                        )
-                    )  # fmt: skip
-                if hit:
-                    ncol[cand[p]] += 1
-                    done[p] = True
+                )
+            else:
+                hit = d <= a2 or (
+                    not is_circle[i]
+                    and _polygon_hit(
+                        qax[e], qay[e], qbx[e], qby[e], i, thresh, verts, nverts, hull,
+                        nhull, extra, margin,
+                    )
+                )  # fmt: skip
+            if hit:
+                ncol[cand[p]] += 1
+                done[p] = True
         if f >= nf:
             return
