@@ -3,8 +3,9 @@
 A run's result does not depend on the batch it is in (each run has its own streams), so a batch
 can go in blocks of runs, one after another, with the same numbers. Blocks whose state fits in a
 core's cache keep the time per evaluation flat in the number of runs: one batch of 1000 runs at
-D = 30, pop 50 moves 12 MB arrays through memory on every pass of an iteration and costs 7-10 %
-more per evaluation than a batch of 30 (benchmarks/bench_optimizers.py, "batch size").
+D = 30, pop 50 moves 12 MB arrays through memory on every pass of an iteration and cost 6-18 %
+more per evaluation than a batch of 30 on the development machine (benchmarks/bench_optimizers.py
+prints both: "1000" in blocks, "1000 in one block").
 """
 
 from __future__ import annotations
