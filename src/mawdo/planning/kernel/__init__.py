@@ -47,7 +47,9 @@ the exact tests alone (which get the very numbers they would get without the fil
   distance) of the point that moves uniformly between the two; relative to that point the robot
   moves along a segment. Exact for a segment within one piece, up to the rounding room, which
   also covers measuring that segment's distance without a division
-  (:func:`_segment_reaches_origin`; blocks with NaN or huge coordinates keep the division). The
+  (:func:`_segment_reach_levels`; blocks with NaN or huge coordinates keep the division). A
+  segment that comes within the accept radius less that deviation and the room is a sure hit,
+  counted there; the other
   segments that pass it are walked piece by piece, as above; those spanning more than
   :data:`_PIECES` pieces are first tested against the box of the obstacle's positions over them
   (sparse tables of knot boxes), and the pieces' relative segments are measured in one pass.
@@ -88,7 +90,7 @@ from mawdo.planning.kernel.moving import (
     Block,
     _centres,
     _exact_moving,
-    _lens_reach,
+    _lens_dev,
     _moving_pass,
     _near_segments,
     _room,
@@ -111,6 +113,7 @@ from mawdo.planning.kernel.primitives import (
     _point_segment_d2,
     _polygon_hit,
     _segment_hits_polygon,
+    _segment_reach_levels,
     _segment_reaches_origin,
     _segments_touch,
 )

@@ -23,7 +23,7 @@ from mawdo.planning.kernel.primitives import (
     _point_segment_d2,
     _polygon_hit,
     _segment_hits_polygon,
-    _segment_reaches_origin,
+    _segment_reach_levels,
 )
 
 Block = namedtuple("Block", ["t0", "speed", "bn", "npts", "sane", "cmax", "tmax"])
@@ -33,7 +33,7 @@ latest path time (time steps); as :func:`mawdo.planning.kernel.passes._block_pat
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _moving_pass(i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, grid, ncol):
+def _moving_pass(i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, grid, hits, ncol):
     """Hits of the block's segments on moving obstacle i (spacetime); adds them to ``ncol``.
 
     The exact test walks the robot's segments and the obstacle's constant-velocity pieces
@@ -44,7 +44,7 @@ def _moving_pass(i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, g
     """
     _centres(i, blk, path, work, obs, motion, grid)
     room = _room(i, blk, pre)
-    nf = _near_segments(i, blk, room, path, work, obs, pre)
+    nf = _near_segments(i, blk, room, a2, path, work, obs, pre, hits)
     if nf > 0:
         _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, pre, ncol)
 
@@ -117,14 +117,19 @@ def _centres(i, blk, path, work, obs, motion, grid):
             g += 1
         gfill[i] = g
         gwalk[i] = k
+        # (this obstacle's rows, indexed unsigned: no wraparound code in the loop)
+        gxr, gyr, ger, gkr = gx[gr], gy[gr], ge[gr], gk[gr]
         for p in range(npt):
             u = (tt[p] - t0) * gi
-            g = int(u) if u > 0.0 else 0
-            fr = u - g
-            cxp[p] = gx[gr, g] + fr * (gx[gr, g + 1] - gx[gr, g])
-            cyp[p] = gy[gr, g] + fr * (gy[gr, g + 1] - gy[gr, g])
-            cep[p] = ge[gr, g]
-            kpt[p] = gk[gr, g]  # the piece at the cell's start: at most one before (a hint)
+            gf = math.floor(u) if u > 0.0 else 0.0
+            g = np.uint32(gf)
+            fr = u - gf
+            x0 = gxr[g]
+            y0 = gyr[g]
+            cxp[p] = x0 + fr * (gxr[g + np.uint32(1)] - x0)
+            cyp[p] = y0 + fr * (gyr[g + np.uint32(1)] - y0)
+            cep[p] = ger[g]
+            kpt[p] = gkr[g]  # the piece at the cell's start: at most one before (a hint)
     else:
         # (times beyond the grid) walk
         for b in range(bn):
@@ -155,9 +160,9 @@ def _room(i, blk, pre):
 
 
 @njit(cache=True, fastmath=False, error_model="numpy", inline="always")
-def _lens_reach(p, rho, vm, room, tt, cxp, cyp, cep):
-    """How far (pixels) segment p may come from the moving point of the lens test and still
-    reach obstacle i's bounding circle (see :func:`_near_segments`)."""
+def _lens_dev(p, vm, tt, cxp, cyp, cep):
+    """How far (pixels) obstacle i's true centre may be from the moving point of the lens test
+    while the robot is on segment p (see :func:`_near_segments`)."""
     dcx = cxp[p + 1] - cxp[p]
     dcy = cyp[p + 1] - cyp[p]
     ha = 0.5 * vm * (tt[p + 1] - tt[p])
@@ -165,20 +170,25 @@ def _lens_reach(p, rho, vm, room, tt, cxp, cyp, cep):
     eb = cep[p + 1]
     e = 0.5 * (ea + eb)  # the true half distance is at least d - e
     dev = math.sqrt(max(ha * ha - 0.25 * (dcx * dcx + dcy * dcy) + 2.0 * e * (ha + e), 0.0))
-    dev += max(ea, eb)
-    return (rho + dev) * (1.0 + _MARGIN) + room
+    return dev + max(ea, eb)
 
 
 @njit(cache=True, fastmath=False, error_model="numpy", inline="always")
-def _near_segments(i, blk, room, path, work, obs, pre):
+def _near_segments(i, blk, room, a2, path, work, obs, pre, hits):
     """Step 2: flag the segments that come within reach of obstacle i; returns how many.
 
     While the robot is on a segment, the centre moves at most vmax from where it was at
     ta and where it will be at tb, so it stays within sqrt(a^2 - d^2) (a = vmax (tb - ta) / 2,
     d half the distance between the two) of the point that moves uniformly between them; the
     robot, relative to that point, moves along a segment. Branch-free. Sane blocks measure the
-    distance without a division (:func:`_segment_reaches_origin`, a filter with room to spare),
-    others as before (NaN and infinities compare as they always did).
+    distance without a division (:func:`_segment_reach_levels`, with room to spare), others as
+    before (NaN and infinities compare as they always did).
+
+    In sane blocks a segment whose relative segment comes within the accept radius
+    (``sqrt(a2)``) less that deviation and the room is a sure hit: at that moment the true
+    centre is within the accept disc of the robot, so the exact tests would find the hit on
+    the piece holding that moment. It is added to ``hits`` and not flagged (the exact tests
+    gave the same count for it, a little later).
     """
     px, py, tt = path[0], path[1], path[2]
     near, flagged, real = work[0], work[1], work[2]
@@ -189,20 +199,23 @@ def _near_segments(i, blk, room, path, work, obs, pre):
     vm = pre[0][i]
     nnear = 0
     if blk.sane:
+        acc = math.sqrt(a2) if a2 > 0.0 else -np.inf  # (a2 < 0: no accept disc)
         for p in range(npt - 1):
-            reach = _lens_reach(p, rho, vm, room, tt, cxp, cyp, cep)
-            close = (
-                _segment_reaches_origin(
-                    px[p] - cxp[p], py[p] - cyp[p], px[p + 1] - cxp[p + 1],
-                    py[p + 1] - cyp[p + 1], reach * reach,
-                )
-                & real[p]
+            dev = _lens_dev(p, vm, tt, cxp, cyp, cep)
+            reach = (rho + dev) * (1.0 + _MARGIN) + room
+            inner = (acc - dev) * (1.0 - _MARGIN) - room
+            close, sure = _segment_reach_levels(
+                px[p] - cxp[p], py[p] - cyp[p], px[p + 1] - cxp[p + 1], py[p + 1] - cyp[p + 1],
+                reach * reach, inner * inner if inner > 0.0 else -1.0,
             )  # fmt: skip
+            sure = sure & real[p]
+            close = close & real[p] & ~sure
+            hits[p] += 1 if sure else 0
             nnear += 1 if close else 0
             near[p] = close
     else:
         for p in range(npt - 1):
-            reach = _lens_reach(p, rho, vm, room, tt, cxp, cyp, cep)
+            reach = (rho + _lens_dev(p, vm, tt, cxp, cyp, cep)) * (1.0 + _MARGIN) + room
             d = _point_segment_d2(
                 0.0, 0.0, px[p] - cxp[p], py[p] - cyp[p], px[p + 1] - cxp[p + 1],
                 py[p + 1] - cyp[p + 1],
@@ -247,6 +260,8 @@ def _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, 
     # distances to the bounding-circle centre are found in one pass, then the exact tests run
     # for those within it, each segment counted once.
     cap = qax.shape[0]
+    for f in range(nf):
+        done[flagged[f]] = False  # (set once a piece hits; counted at the end)
     f = 0
     while True:
         ne = 0
@@ -310,7 +325,6 @@ def _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, 
                     f += 1
                     continue
             if ne + kb - k < cap:
-                done[p] = False
                 for kk in range(k, kb + 1):
                     k0 = kt[i, kk]
                     k1 = kt[i, kk + 1] if kk < last else np.inf
@@ -351,7 +365,7 @@ def _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, 
                         )
                     )
                 ):  # fmt: skip
-                    ncol[cand[p]] += 1
+                    done[p] = True
                     break
             f += 1
         for e in range(ne):
@@ -381,30 +395,26 @@ def _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, 
         for e in range(ne):
             inside[nin] = e
             nin += 1 if qd2[e] <= rho2 else 0
+        # (branch-free where it can be: whether an entry hits is as good as random)
         for q in range(nin):
             e = inside[q]
-            d = qd2[e]
             p = qseg[e]
-            if done[p]:
-                continue
-            if convex and d > a2:
-                v = vmap[e]
-                hit = v == 1 or (
-                    v < 0
-                    and _segment_hits_polygon(
+            hit = qd2[e] <= a2
+            if convex:
+                v = vmap[e]  # (2 for those within a2: not classified)
+                hit = hit | (v == 1)
+                if v < 0 and not done[p]:
+                    hit = _segment_hits_polygon(
                         qax[e], qay[e], qbx[e], qby[e], verts, i, nverts[i], thresh[i]
                     )
-                )
-            else:
-                hit = d <= a2 or (
-                    not is_circle[i]
-                    and _polygon_hit(
-                        qax[e], qay[e], qbx[e], qby[e], i, thresh, verts, nverts, hull,
-                        nhull, extra, margin,
-                    )
+            elif not hit and not is_circle[i] and not done[p]:
+                hit = _polygon_hit(
+                    qax[e], qay[e], qbx[e], qby[e], i, thresh, verts, nverts, hull, nhull,
+                    extra, margin,
                 )  # fmt: skip
-            if hit:
-                ncol[cand[p]] += 1
-                done[p] = True
+            done[p] = done[p] | hit
         if f >= nf:
-            return
+            break
+    for f in range(nf):
+        p = flagged[f]
+        ncol[cand[p]] += 1 if done[p] else 0

@@ -229,7 +229,7 @@ def population_cost(
             if moving[i]:
                 blk = Block(t0, speed, bn, npts, sane, cmax, tmax)
                 _moving_pass(
-                    i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, grid, ncol
+                    i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, grid, hits, ncol
                 )
             else:
                 ox = ko[i, 0, 0] if spacetime else snap_off[i, 0]

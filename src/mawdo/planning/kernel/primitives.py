@@ -74,13 +74,23 @@ def _segment_reaches_origin(ax, ay, bx, by, r2):
     rounding only (relative to the coordinates), far below the callers' room; finite
     coordinates only (callers with NaN or huge ones use :func:`_point_segment_d2`).
     """
+    return _segment_reach_levels(ax, ay, bx, by, r2, -1.0)[0]
+
+
+@njit(cache=True, fastmath=False, error_model="numpy")
+def _segment_reach_levels(ax, ay, bx, by, r2, s2):
+    """:func:`_segment_reaches_origin` for two radii at once: ``(within sqrt(r2), within
+    sqrt(s2))`` (a negative ``s2``: never)."""
     dx = bx - ax
     dy = by - ay
     dot = -(ax * dx + ay * dy)  # (origin - a) . (b - a)
     ee = dx * dx + dy * dy
     cross = ax * dy - ay * dx
     end2 = ax * ax + ay * ay if dot <= 0.0 else bx * bx + by * by
-    return cross * cross <= r2 * ee if (dot > 0.0) & (dot < ee) else end2 <= r2
+    foot = (dot > 0.0) & (dot < ee)
+    num = cross * cross if foot else end2
+    den = ee if foot else 1.0
+    return num <= r2 * den, num <= s2 * den
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
