@@ -114,8 +114,10 @@ class RunStreams:
         """Standard normal draws, shape ``(R, *shape)``."""
         shape = (shape,) if np.isscalar(shape) else tuple(shape)
         out = np.empty((self.runs, *shape))
-        for g, o in zip(self.generators, out, strict=True):
-            g.standard_normal(out=o) if o.ndim else o.__setitem__((), g.standard_normal())
+        # rows of a 2-D view (as random()): filling a flat row is faster than an n-D one (75 vs
+        # 100 us for 30 runs x 200 draws), with the same numbers in the same order
+        for g, o in zip(self.generators, out.reshape(self.runs, -1), strict=True):
+            g.standard_normal(out=o)
         return out
 
     def integers(self, high: int, shape=()) -> np.ndarray:
