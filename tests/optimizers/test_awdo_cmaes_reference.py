@@ -17,17 +17,11 @@ import pytest
 from mawdo.optimizers.base import Space
 from mawdo.optimizers.registry import make_optimizer
 from tests.optimizers.fixed_streams import FixedStreams
+from tests.optimizers.purecmaes_literal import purecmaes_wdo
 
 N, D = 6, 3
 LB, UB = -100.0, 100.0  # AWDO_v03.m's dimMin, dimMax
 MAXV = 0.3
-
-
-class Streams(FixedStreams):
-    """FixedStreams plus the integer draw AWDO-CMA makes for the CMA-ES seeds."""
-
-    def integers(self, high, shape=()):
-        return np.arange(self.runs, dtype=np.int64) + 11
 
 
 def fsphere(x):
@@ -89,15 +83,17 @@ def case():
     arx = rng.random((1, N, 4))
     mean0 = rng.random((1, 4))
     perm = np.stack([rng.permutation(D) for _ in range(N)])[None]
-    streams = Streams(
+    z = rng.normal(size=(1, N, 4))  # randn(4, 1) of each of the first CMA-ES samples
+    streams = FixedStreams(
         runs=1,
         random=[(pos0 + 1) / 2, (vel0 + MAXV) / (2 * MAXV), arx, mean0],
         permutations=[perm],
+        normal=[z],
     )
     opt = make_optimizer("awdo_cmaes", pop_size=N)
     space = Space(lb=np.full(D, LB), ub=np.full(D, UB))
     st = opt.init(space, streams, max_iter=10)
-    return opt, st, pos0[0], vel0[0], arx[0], perm[0]
+    return opt, st, pos0[0], vel0[0], arx[0], perm[0], mean0[0], z[0]
 
 
 def evaluate(X):
@@ -105,7 +101,7 @@ def evaluate(X):
 
 
 def test_first_move_uses_the_uniform_coefficients_of_awdo_v03(case):
-    opt, st, pos0, vel0, arx, perm = case
+    opt, st, pos0, vel0, arx, perm, mean0, z = case
     X0 = opt.ask(st)
     st = opt.tell(st, X0, evaluate(X0))
     X1 = opt.ask(st)
@@ -113,11 +109,16 @@ def test_first_move_uses_the_uniform_coefficients_of_awdo_v03(case):
     np.testing.assert_allclose(st.u[0], ref_vel, rtol=0, atol=1e-15)
     np.testing.assert_allclose(st.p[0], ref_pos, rtol=0, atol=1e-15)
     np.testing.assert_allclose(evaluate(X1)[0], ref_pres, rtol=1e-12)
-    assert st.streams.exhausted()
+    # every draw but the CMA-ES's first samples (drawn after the next evaluation) is spent
+    assert {k: len(q) for k, q in st.streams.queues.items()} == {
+        "random": 0,
+        "permutations": 0,
+        "normal": 1,
+    }
 
 
 def test_first_cmaes_update_recombines_the_uniform_samples(case):
-    opt, st, pos0, vel0, arx, perm = case
+    opt, st, pos0, vel0, arx, perm, mean0, z = case
     X0 = opt.ask(st)
     st = opt.tell(st, X0, evaluate(X0))
     assert np.array_equal(st.arx[0], arx)  # nothing sampled before the first move
@@ -125,5 +126,8 @@ def test_first_cmaes_update_recombines_the_uniform_samples(case):
     F1 = evaluate(X1)
     st = opt.tell(st, X1, F1)
     expect = purecmaes_first_mean(arx.tolist(), F1[0].tolist())
-    np.testing.assert_allclose(st.cmas[0].mean, expect, rtol=1e-12, atol=1e-15)
-    assert not np.allclose(st.arx[0], arx)  # the second move uses fresh CMA-ES samples
+    np.testing.assert_allclose(st.es.xmean[0], expect, rtol=1e-12, atol=1e-15)
+    # the second move's coefficients: the source's samples from the same randn draws
+    rec = purecmaes_wdo(2, {"arx": arx.tolist()}, N, F1[0].tolist(), mean0, z.tolist())
+    np.testing.assert_allclose(st.arx[0], rec["arx"], rtol=1e-12, atol=1e-14)
+    assert st.streams.exhausted()

@@ -12,7 +12,8 @@ can be negative or above 1: the reference does not bound them.
 
 The velocity is WDO's (``|1 - 1/i|`` pressure weight, ``c/i`` Coriolis) with the true ranks; the
 reference code indexes with the sort permutation instead (docs/deviations.md#d-awdo-cmaes). The
-CMA-ES is the maintained ``cmaes`` library (CyberAgentAILab), not our own.
+CMA-ES is the reference's own, ``purecmaes_wdo.m``, ported and batched over runs
+(:mod:`mawdo.optimizers.purecmaes`); each run draws its samples from its own stream.
 """
 
 from __future__ import annotations
@@ -22,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mawdo.optimizers.base import Space
-from mawdo.optimizers.cmaes_ref import ask_generation
+from mawdo.optimizers.purecmaes import PureCMAES
 from mawdo.optimizers.wdo import Wind, WindParams, WindState
 from mawdo.streams import RunStreams
 
@@ -42,7 +43,7 @@ class AWDOCMAParams(WindParams):
 
 @dataclass
 class AWDOCMAState(WindState):
-    cmas: list | None = None
+    es: PureCMAES | None = None  # one CMA-ES per run
     arx: np.ndarray | None = None  # (R, N, 4) coefficients in use
 
 
@@ -53,22 +54,13 @@ class AWDOCMA(Wind):
     params_class = AWDOCMAParams
 
     def init(self, space: Space, streams: RunStreams, max_iter: int, x0=None) -> AWDOCMAState:
-        try:
-            from cmaes import CMA
-        except ImportError as exc:  # pragma: no cover - cmaes is a hard dependency
-            raise ImportError("AWDO variant 'cmaes' needs the 'cmaes' package") from exc
         base = super().init(space, streams, max_iter, x0)
         N = self.params.pop_size
         # AWDO_v03.m: rec.arx = rand(4, popsize) moves the parcels once before the CMA-ES starts;
         # the CMA-ES's own initial mean is a separate U[0,1]^4 draw (rec.xmean = rand(4, 1)).
         arx = streams.random((N, 4))
-        means = streams.random((4,))
-        seeds = streams.integers(2**31 - 1)
-        cmas = [
-            CMA(mean=means[r], sigma=self.params.cma_sigma, population_size=N, seed=int(seeds[r]))
-            for r in range(streams.runs)
-        ]
-        return AWDOCMAState(**base.__dict__, cmas=cmas, arx=arx)
+        es = PureCMAES.start(streams.random((4,)), self.params.cma_sigma, N)
+        return AWDOCMAState(**base.__dict__, es=es, arx=arx)
 
     def _coefficients(self, s: AWDOCMAState):
         return tuple(s.arx[..., k : k + 1] for k in range(4))
@@ -80,14 +72,17 @@ class AWDOCMA(Wind):
             return state
         # The pressures of the move just made score the coefficient samples that made it (for the
         # first CMA-ES update these are the U[0,1] draws, as in AWDO_v03.m), then new samples.
-        f = state.f
-        for r, cma in enumerate(state.cmas):
-            fr = f[r]
-            finite = np.isfinite(fr)
-            if not finite.all():
-                worst = fr[finite].max() + 1.0 if finite.any() else 1.0
-                fr = np.where(finite, fr, worst)
-            cma.tell(list(zip(state.arx[r], fr.tolist(), strict=True)))
-        # the same samples as N calls of cma.ask(), drawn as one generation
-        state.arx = np.stack([ask_generation(cma, state.arx.shape[1]) for cma in state.cmas])
+        # (the source's counteval: the WDO iteration number, 2 after the first move)
+        state.es.tell(state.arx, _finite_pressures(state.f), counteval=state.t)
+        state.arx = state.es.sample(state.streams.normal(state.arx.shape[1:]))
         return state
+
+
+def _finite_pressures(f: np.ndarray) -> np.ndarray:
+    """Pressures (R, N) with NaN and infinities ranked last: worst finite + 1 in their place."""
+    finite = np.isfinite(f)
+    if finite.all():
+        return f
+    worst = np.where(finite, f, -np.inf).max(axis=1, keepdims=True)
+    worst = np.where(np.isfinite(worst), worst + 1.0, 1.0)
+    return np.where(finite, f, worst)
