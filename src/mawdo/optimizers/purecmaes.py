@@ -105,7 +105,17 @@ class PureCMAES:
 
     @classmethod
     def start(cls, xmean: np.ndarray, sigma: float, lam: int) -> PureCMAES:
-        """Initial state: mean ``xmean`` (R, n), step ``sigma``, identity covariance."""
+        """Initial state of R CMA-ES: identity covariance, zero paths.
+
+        Parameters
+        ----------
+        xmean : array_like, shape (R, n)
+            Initial means (AWDO: ``U[0, 1]^4`` draws, the source's ``rand(4, 1)``).
+        sigma : float
+            Initial step size, > 0 (0.5 in the source).
+        lam : int
+            Samples per generation, >= 2 (AWDO: the air population).
+        """
         xmean = np.array(xmean, dtype=float)
         R, n = xmean.shape
         eye = np.broadcast_to(np.eye(n), (R, n, n)).copy()
@@ -122,10 +132,18 @@ class PureCMAES:
         )
 
     def tell(self, arx: np.ndarray, fitness: np.ndarray, counteval: int) -> None:
-        """One update from samples ``arx`` (R, lam, n) and their fitness (R, lam), minimised.
+        """One update of every run, in place: mean, paths, covariance, step size, and every
+        few generations ``B`` and ``D``.
 
-        ``counteval`` is the source's iteration number (2 at the first call); it sets ``hsig``'s
-        normalisation and when ``B`` and ``D`` are recomputed.
+        Parameters
+        ----------
+        arx : numpy.ndarray, shape (R, lam, n)
+            The samples the fitness belongs to.
+        fitness : numpy.ndarray, shape (R, lam)
+            Their fitness, minimised; finite (callers rank NaN and infinities last first).
+        counteval : int
+            The source's iteration number, >= 2 (2 at the first call); it sets ``hsig``'s
+            normalisation and when ``B`` and ``D`` are recomputed.
         """
         c = self.cfg
         kernel.update(
@@ -142,5 +160,15 @@ class PureCMAES:
             self.invsqrtC = (self.B / self.D[:, None, :]) @ np.swapaxes(self.B, 1, 2)
 
     def sample(self, z: np.ndarray) -> np.ndarray:
-        """``xmean + sigma B (D z)`` for standard normal ``z`` (R, lam, n): new samples."""
+        """New samples ``xmean + sigma B (D z)``, the source's ``arx``.
+
+        Parameters
+        ----------
+        z : numpy.ndarray, shape (R, lam, n)
+            Standard normal draws, one ``randn(n, 1)`` per sample, from each run's stream.
+
+        Returns
+        -------
+        numpy.ndarray, shape (R, lam, n)
+        """
         return kernel.sample(self.xmean, self.sigma, self.B, self.D, np.ascontiguousarray(z))

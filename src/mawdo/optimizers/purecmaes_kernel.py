@@ -82,7 +82,19 @@ def update(arx, fitness, w, consts, counteval, xmean, sigma, pc, ps, C, invsqrtC
 
 @njit(cache=True, fastmath=False, error_model="numpy")
 def sample(xmean, sigma, B, D, z):
-    """``xmean + sigma B (D z)`` per run for standard normal ``z`` (R, lam, n)."""
+    """``xmean + sigma B (D z)`` per run: new samples, shape (R, lam, n).
+
+    Parameters
+    ----------
+    xmean : float64[:, :], shape (R, n)
+    sigma : float64[:], shape (R,)
+    B : float64[:, :, :], shape (R, n, n)
+        Eigenvectors of the covariance, in columns.
+    D : float64[:, :], shape (R, n)
+        Standard deviations along them.
+    z : float64[:, :, :], shape (R, lam, n)
+        Standard normal draws.
+    """
     R, lam, n = z.shape
     out = np.empty_like(z)
     for r in range(R):
