@@ -65,3 +65,23 @@ def test_a_run_is_the_same_alone_or_in_a_batch():
         xa, xb = batch.sample(z), alone.sample(z[2:3])
         assert np.array_equal(xa[2], xb[0])
         assert np.array_equal(batch.C[2], alone.C[0])
+
+
+def test_collapsed_samples_keep_finite_scales_and_the_step_size_stays_capped():
+    # Identical samples leave the rank-mu update empty and the covariance decays toward
+    # singular; the floor keeps D >= 1e-10 (and invsqrtC finite). A huge evolution path would
+    # grow sigma past any float; the cap holds it at SIGMA_MAX.
+    from mawdo.optimizers.purecmaes import EIG_FLOOR, SIGMA_MAX
+
+    lam = 8
+    es = PureCMAES.start(np.full((2, 4), 0.5), 0.5, lam)
+    arx = np.full((2, lam, 4), 0.5)
+    for it in range(2, 200):
+        es.tell(arx, np.zeros((2, lam)), it)
+    assert es.D.min() >= np.sqrt(EIG_FLOOR) and es.D.min() < 1e-6  # the floor held it
+    assert np.isfinite(es.invsqrtC).all()
+    assert np.isfinite(es.sample(np.ones((2, lam, 4)))).all()
+    es.ps[:] = 1e300  # norm(ps) / chiN - 1 ~ 1e300: exp overflows to inf
+    with np.errstate(over="ignore"):
+        es.tell(arx, np.zeros((2, lam)), 200)
+    assert (es.sigma == SIGMA_MAX).all()
