@@ -3,8 +3,10 @@
 ``purecmaes_wdo`` is Hansen's ``purecmaes.m`` cut into one call per WDO iteration: it is told
 the pressures of the ``lambda`` coefficient samples the parcels just used, updates mean, paths,
 covariance and step size, and draws ``lambda`` new samples. Here one such CMA-ES runs per run of a
-batch, all in array operations over the runs (axis 0), and each run's samples come from its own
-stream, so a run is the same alone or in any batch.
+batch (state arrays with a leading run axis): the update and the sampling are one compiled loop
+over the runs (:mod:`mawdo.optimizers.purecmaes_kernel`), the eigen decompositions one NumPy call
+for all runs, and each run's samples come from its own stream, so a run is the same alone or in
+any batch.
 
 Line for line as the MATLAB source (minimisation: ascending sort), with its particulars kept:
 ``hsig`` in the older squared-norm form, the covariance clipped at ``1e5`` before each eigen
