@@ -117,6 +117,11 @@ def main(argv: list[str] | None = None) -> dict:
         print(f"{algo:12s} {wall:8.3f} {us:8.3f} {US_TARGET:7.2f} {flag:6s} {extra}")
     print(f"{'objective':12s} {floor:8.3f} {'':8s}  (sphere alone, wall: the floor)")
     print("* mealpy 3.0.1 on the same problem, quoted from issue 15 (2026-11-23); NiaPy GWO 24.3")
+    if "cmaes" in out["us"]:
+        print(
+            "  cmaes: the reference CMA-ES is the maintained `cmaes` library, one CMA per run;"
+            " its cost is the library's per-run tell() (issue 15 note)"
+        )
     if args.quick:
         return out
 
