@@ -85,3 +85,16 @@ def test_collapsed_samples_keep_finite_scales_and_the_step_size_stays_capped():
     with np.errstate(over="ignore"):
         es.tell(arx, np.zeros((2, lam)), 200)
     assert (es.sigma == SIGMA_MAX).all()
+
+
+def test_invalid_fitness_ranks_after_every_valid_one_even_at_large_values():
+    from mawdo.optimizers.base import finite_last
+
+    F = np.array(
+        [[3.0, np.nan, 1e20, np.inf], [np.nan, np.nan, np.nan, np.nan], [1.0, 2.0, 0.0, 5.0]]
+    )
+    G = finite_last(F)
+    assert np.isfinite(G).all()
+    assert G[0, 1] > 1e20 and G[0, 3] > 1e20  # (1e20 + 1 would round back to 1e20)
+    assert np.array_equal(G[0, [0, 2]], F[0, [0, 2]]) and (G[1] == 1.0).all()
+    assert np.array_equal(G[2], F[2])

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mawdo.optimizers.base import Space
+from mawdo.optimizers.base import Space, finite_last
 from mawdo.optimizers.purecmaes import PureCMAES
 from mawdo.optimizers.wdo import Wind, WindParams, WindState
 from mawdo.streams import RunStreams
@@ -73,16 +73,6 @@ class AWDOCMA(Wind):
         # The pressures of the move just made score the coefficient samples that made it (for the
         # first CMA-ES update these are the U[0,1] draws, as in AWDO_v03.m), then new samples.
         # (the source's counteval: the WDO iteration number, 2 after the first move)
-        state.es.tell(state.arx, _finite_pressures(state.f), counteval=state.t)
+        state.es.tell(state.arx, finite_last(state.f), counteval=state.t)
         state.arx = state.es.sample(state.streams.normal(state.arx.shape[1:]))
         return state
-
-
-def _finite_pressures(f: np.ndarray) -> np.ndarray:
-    """Pressures (R, N) with NaN and infinities ranked last: worst finite + 1 in their place."""
-    finite = np.isfinite(f)
-    if finite.all():
-        return f
-    worst = np.where(finite, f, -np.inf).max(axis=1, keepdims=True)
-    worst = np.where(np.isfinite(worst), worst + 1.0, 1.0)
-    return np.where(finite, f, worst)

@@ -195,3 +195,19 @@ def ranks(F: np.ndarray) -> np.ndarray:
     r = np.empty_like(order)
     np.put_along_axis(r, order, np.arange(1, F.shape[-1] + 1), axis=-1)
     return r
+
+
+def finite_last(F: np.ndarray) -> np.ndarray:
+    """Fitness ``F`` (..., N) with NaN and infinities replaced by a finite value worse than every
+    finite one of their row (``1`` where a row has none), for CMA-ES updates that rank by value.
+
+    The replacement is ``worst + 1 + |worst|``: strictly above ``worst`` even where ``worst + 1``
+    rounds back to ``worst`` (``|worst|`` above 2**53). ``F`` is returned as is when all finite.
+    """
+    finite = np.isfinite(F)
+    if finite.all():
+        return F
+    worst = np.where(finite, F, -np.inf).max(axis=-1, keepdims=True)
+    some = np.isfinite(worst)
+    worst = np.where(some, worst, 0.0)
+    return np.where(finite, F, np.where(some, worst + 1.0 + np.abs(worst), 1.0))

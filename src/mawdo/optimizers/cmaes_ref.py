@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mawdo.optimizers.base import Optimizer, Params, Space, as_x0, check_range
+from mawdo.optimizers.base import Optimizer, Params, Space, as_x0, check_range, finite_last
 from mawdo.streams import RunStreams
 
 
@@ -212,14 +212,9 @@ class CMAES(Optimizer):
                 state.cmas[r] = self._new_cma(g, sp.dim, sp.to_unit(best[r]) * 0.5 + 0.5)
             state.x0 = None
             return state
+        F = finite_last(F)  # cmaes ranks by value: invalid ones just worse than the worst valid
         for r, cma in enumerate(state.cmas):
-            fr = F[r]
-            finite = np.isfinite(fr)
-            if not finite.all():
-                # cmaes ranks by value; +inf (invalid) becomes just worse than the worst valid one
-                worst = fr[finite].max() + 1.0 + abs(fr[finite].max()) if finite.any() else 1.0
-                fr = np.where(finite, fr, worst)
-            cma.tell(list(zip(state.U[r], fr.tolist(), strict=True)))
+            cma.tell(list(zip(state.U[r], F[r].tolist(), strict=True)))
             if self.params.restarts and cma.should_stop():
                 state.cmas[r] = self._new_cma(state.streams.generators[r], sp.dim)
                 state.restarts[r] += 1
