@@ -287,3 +287,29 @@ def test_assemble_paths():
     P = assemble_paths(np.arange(8.0).reshape(2, 4), (0, 0), (9, 9))
     assert P.shape == (2, 4, 2)
     np.testing.assert_array_equal(P[1], [[0, 0], [4, 5], [6, 7], [9, 9]])
+
+
+def test_spacetime_takes_paths_up_to_one_map_size_off_the_map_and_refuses_farther():
+    # a coordinate of 1e4 px on the 366 px map once asked for a 6 GiB motion table
+    sc = get_scenario("paper")
+    rng = np.random.default_rng(11)
+    X = rng.uniform(-366.0, 732.0, (120, 40))  # the whole allowed range, edges included
+    X[0, 0], X[1, 1] = -366.0, 732.0
+    X[100:, 0::2] = rng.uniform(-366.0, -40.0, (20, 20))  # mostly west of the map: few hits
+    assert_matches_reference(sc, X, "spacetime", 3.0, sc.start)
+    cost = PathCost(sc, mode="spacetime")
+    far = X.copy()
+    far[20, 5] = 1e4
+    with pytest.raises(
+        ValueError,
+        match=r"candidate coordinate is 10000 px, more than one map size outside .*bounds",
+    ):
+        cost.parts(far, t0=3.0)
+    with pytest.raises(ValueError, match=r"start or goal is -400 px, more than one map size"):
+        cost.parts(X, start=(-400.0, 20.0), t0=3.0)
+    # snapshot mode tabulates nothing and takes any finite coordinate; other rows keep theirs
+    far[20, 5] = 1e12
+    snap = PathCost(sc).parts(far, t0=3.0)
+    keep = np.arange(120) != 20
+    for got, ref in zip(snap, PathCost(sc).parts(X[keep], t0=3.0), strict=True):
+        np.testing.assert_array_equal(got[keep], ref)

@@ -123,6 +123,25 @@ def _end(name: str, p) -> np.ndarray:
     return p
 
 
+def _check_reach(lo: float, hi: float, sc: Scenario, what: str) -> None:
+    """Refuse candidate coordinates beyond one map size outside the map (spacetime mode).
+
+    The motion of the obstacles is tabulated until the robot could reach the goal, which grows
+    with the distances in the candidates: a coordinate of 1e4 px on a 366 px map asked for
+    gigabytes. One map size around the map covers any detour a planner would take.
+    """
+    size = max(float(sc.width), float(sc.height))
+    if lo < -size or hi > 2.0 * size:
+        bad = lo if lo < -size else hi
+        raise ValueError(
+            f"{what} is {bad:.6g} px, more than one map size outside the "
+            f"{sc.width:g} x {sc.height:g} px map ([{-size:g}, {2 * size:g}] px allowed in "
+            "spacetime mode, whose obstacle motion is tabulated as far as the paths reach); "
+            "keep them within that range (candidates within PathCost.bounds), or use "
+            "mode='snapshot'"
+        )
+
+
 class PathCost:
     """The paper's path cost for a population, evaluated by one compiled kernel call.
 
@@ -209,6 +228,12 @@ class PathCost:
         Returns
         -------
         numpy.ndarray, shape (n,) (a float for a single candidate)
+
+        Raises
+        ------
+        ValueError
+            In spacetime mode, for a finite coordinate (of a candidate, ``start`` or the goal)
+            more than one map size outside the map; NaN and infinite candidates get a NaN cost.
         """
         cost, _, _, _ = self._evaluate(X, start, t0)
         return cost
@@ -242,8 +267,11 @@ class PathCost:
         if not (math.isfinite(lo) and math.isfinite(hi)):  # NaN candidates get a NaN cost
             finite = X[np.isfinite(X)]
             lo, hi = (float(finite.min()), float(finite.max())) if finite.size else (0.0, 0.0)
-        lo = min(lo, float(start[0]), float(start[1]), float(goal[0]), float(goal[1]))
-        hi = max(hi, float(start[0]), float(start[1]), float(goal[0]), float(goal[1]))
+        _check_reach(lo, hi, self.scenario, "a candidate coordinate")
+        ends = (float(start[0]), float(start[1]), float(goal[0]), float(goal[1]))
+        _check_reach(min(ends), max(ends), self.scenario, "a coordinate of start or goal")
+        lo = min(lo, *ends)
+        hi = max(hi, *ends)
         diag = math.sqrt(2.0) * (hi - lo)
         t_need = t0 + (self.n_waypoints + 1) * diag / self.scenario.robot_speed
         table = self._table
