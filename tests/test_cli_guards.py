@@ -238,6 +238,7 @@ def test_a_refused_run_leaves_a_clean_store_that_reads_read_only(tmp_path):
         (("plan", "study", "--scenario", "missing.toml", "--out", "x.db"), ["missing.toml"]),
         (("plan", "missing.toml"), ["missing.toml"]),
         (("plan", "report", "missing.db"), ["missing.db"]),
+        (("plan", "paper", "--threads", "0"), ["--threads", "greater than or equal to 1"]),
     ],
 )
 def test_optimize_and_plan_errors_go_to_stderr(tmp_path, args, words):

@@ -81,6 +81,7 @@ def run_cmd(
     out: Path = typer.Option(Path("out/plan"), help="output folder (metrics.json, figures)"),
     figures: bool = typer.Option(True, help="write the snapshot grid and the GIF"),
     progress: bool = typer.Option(True, help="show a progress bar (stderr)"),
+    threads: int = typer.Option(1, min=1, help="threads for the population cost (same result)"),
 ):
     """Plan and execute one run; print and save its metrics."""
     from mawdo.cli.errors import bad_input, check_output_dir
@@ -95,7 +96,13 @@ def run_cmd(
     bar = _StepBar(progress, f"{algorithm} on {sc.name}")
     try:
         res = plan(
-            sc, algorithm=algorithm, seed=seed, config=preset, dynamic=not static, progress=bar
+            sc,
+            algorithm=algorithm,
+            seed=seed,
+            config=preset,
+            dynamic=not static,
+            progress=bar,
+            threads=threads,
         )
     finally:
         bar.close()
@@ -106,6 +113,7 @@ def run_cmd(
         "seed": seed,
         "preset": preset,
         "dynamic": not static,
+        "threads": threads,
         **(m or {"metrics_error": error}),
     }
     (out / "metrics.json").write_text(json.dumps(payload, indent=1))

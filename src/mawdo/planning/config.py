@@ -93,6 +93,11 @@ class PlannerConfig:
         latency. Off in the ``paper`` and ``study`` presets.
     polish_steps : tuple of float
         Step lengths of a polish move, as fractions of the way to the midpoint, each in (0, 1].
+    threads : int
+        Threads the cost of a population may use, >= 1 (:class:`~mawdo.planning.cost.PathCost`);
+        the result is the same whatever the count, except that a ``replan_time`` budget fits
+        more iterations. Leave it at 1 where several planners share the cores (a study with
+        several workers).
     """
 
     pop_size: int = 240
@@ -120,6 +125,7 @@ class PlannerConfig:
     hold_gap: float = 0.002
     polish_rounds: int = 5
     polish_steps: tuple = (0.5, 1.0)
+    threads: int = 1
 
     def __post_init__(self) -> None:
         for name in ("pop_size", "first_iters", "replan_iters", "replan_every", "n_waypoints"):
@@ -146,6 +152,7 @@ class PlannerConfig:
         if not (np.isfinite(self.hold_gap) and self.hold_gap >= 0):
             raise ValueError(f"PlannerConfig.hold_gap={self.hold_gap!r} must be finite and >= 0")
         check_int("PlannerConfig.polish_rounds", self.polish_rounds, 0)
+        check_int("PlannerConfig.threads", self.threads, 1)
         steps = np.asarray(self.polish_steps, float)
         if steps.ndim != 1 or steps.size == 0 or not np.all((steps > 0) & (steps <= 1)):
             raise ValueError(

@@ -43,7 +43,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mawdo.planning.geometry import FlatObstacles, MotionTable
-from mawdo.planning.kernel import population_cost, scratch_size
+from mawdo.planning.kernel.threads import ThreadedKernel
 from mawdo.planning.scenario import Scenario
 
 __all__ = ["CostWeights", "PathCost", "assemble_paths"]
@@ -158,6 +158,11 @@ class PathCost:
     clearance : float
         Margin (px, >= 0) added to the robot radius for the hit test of Eq. 27: a segment
         coming within ``r + clearance`` of an obstacle counts as a collision (default 0).
+    threads : int
+        Threads a call may use (default 1: the calling thread only). Populations are split
+        into chunks of rows of at least 16 candidates evaluated at once; the numbers are the
+        same bit for bit whatever the count. Leave it at 1 where processes already share the
+        cores (a study with several workers).
 
     Examples
     --------
@@ -172,6 +177,7 @@ class PathCost:
         weights: CostWeights | None = None,
         n_waypoints: int = 20,
         clearance: float = 0.0,
+        threads: int = 1,
     ) -> None:
         if mode not in MODES:
             raise ValueError(f"mode must be one of {MODES}, got {mode!r}")
@@ -198,8 +204,13 @@ class PathCost:
         self._snap: tuple | None = None
         self._motion: tuple | None = None
         self._frozen = MotionTable.frozen(len(self.flat.thresh)).kernel_arrays(0.0)
-        self._scratch = np.empty(0)  # the kernel's work space, kept from call to call
+        self._kernel = ThreadedKernel(threads)  # keeps the kernel's work space between calls
         self._no_offsets = np.zeros((len(self.flat.thresh), 2))
+
+    @property
+    def threads(self) -> int:
+        """Threads a call may use (see the class parameters)."""
+        return self._kernel.threads
 
     @property
     def dim(self) -> int:
@@ -314,11 +325,8 @@ class PathCost:
                 offsets = np.ascontiguousarray(self.scenario.offsets(t0), dtype=np.float64)
                 self._snap = (t0, offsets)
             snap = self._snap[1]
-        need = scratch_size(n, self.n_waypoints + 2, motion[3], spacetime)
-        if self._scratch.shape[0] < need:
-            self._scratch = np.empty(need + need // 4)
         w = self.weights
-        population_cost(
+        self._kernel(
             X2,
             start,
             goal,
@@ -330,7 +338,6 @@ class PathCost:
             motion,
             (float(w.alpha), float(w.beta), float(w.lam), float(w.k)),
             (out_cost, out_len, out_ncol, out_turn),
-            self._scratch,
         )
         if single:
             return out_cost[0], out_len[0], out_ncol[0], out_turn[0]

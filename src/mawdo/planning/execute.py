@@ -81,6 +81,7 @@ class Run:
             weights=cfg.weights,
             n_waypoints=self.m,
             clearance=cfg.clearance,
+            threads=cfg.threads,
         )
         self.guard = Guard(sc, cfg.clearance)
         self.replans: list[Replan] = []

@@ -59,7 +59,8 @@ the exact tests alone (which get the very numbers they would get without the fil
 Modules (a package so that each job has its own file; every name is importable from here as
 before): :mod:`.constants`, :mod:`.primitives` (exact geometry tests), :mod:`.classify`
 (vectorised polygon verdicts, obstacle tables), :mod:`.passes` (block layout, standing
-obstacles), :mod:`.moving` (moving obstacles, three steps), :mod:`.population` (the entry point).
+obstacles), :mod:`.moving` (moving obstacles, three steps), :mod:`.population` (the entry point),
+:mod:`.threads` (the entry point on chunks of rows at once, for ``PathCost(threads=k)``).
 """
 
 # ruff: noqa: F401 - private names are re-exported: callers import them from here as before

@@ -42,13 +42,15 @@ def scratch_size(n, npts, nk, spacetime):
     return _layout(n, npts, nk, spacetime)[8]
 
 
-@njit(cache=True, fastmath=False, error_model="numpy")
+@njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
 def population_cost(
     X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, out, scratch
 ):
     """Cost of every candidate path; writes the arrays of ``out`` in place.
 
     Long by design: one fused Numba pass; splitting it adds calls and array round trips.
+    Runs without the GIL: :class:`mawdo.planning.kernel.threads.ThreadedKernel` calls it on
+    chunks of rows at once.
 
     Long because it lays out one scratch buffer for every pass (a single allocation the caller
     keeps) and then runs the block loop over it; the passes themselves are separate functions.

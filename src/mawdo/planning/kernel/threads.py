@@ -1,0 +1,95 @@
+"""The cost kernel over a population on several threads: rows in chunks, one kernel call each.
+
+A candidate's cost, length, count and turning depend on that candidate alone (the filters in
+front of the exact tests only skip work whose outcome is certain), so chunks of rows can run at
+once and give the very numbers of one call. The chunks run in a Numba ``prange`` loop, on
+Numba's threading layer: its threads wait spinning for a moment after a call, so the next call
+starts without waking them (a pool of Python threads took about 0.1 ms to hand a chunk over,
+as long as a whole call of 240 candidates). The parallel function is compiled on the first call
+with ``threads > 1``; with ``threads = 1`` the kernel is called directly.
+
+Numba's threading layers differ in safety (its documentation, "The Threading Layers"): the
+``workqueue`` layer, the fallback where neither TBB nor OpenMP is installed, must not be
+entered from two threads at once, so calls go through a process-wide lock; and the OpenMP layer
+must not be used on both sides of a ``fork()`` (mawdo's study runner starts its workers with
+``forkserver`` or ``spawn``).
+"""
+
+from __future__ import annotations
+
+import threading
+
+import numpy as np
+from numba import njit, prange
+
+from mawdo.planning.kernel.population import population_cost, scratch_size
+from mawdo.validate import check_int
+
+# Fewer rows than this per chunk do not repay the hand-over.
+MIN_ROWS = 16
+
+_lock = threading.Lock()
+
+
+@njit(cache=True, parallel=True, nogil=True)
+def _chunked(bounds, X, start, goal, t0, speed, spacetime, obs, snap, motion, weights, out, buf):
+    """:func:`population_cost` on rows ``bounds[j]:bounds[j + 1]`` for every ``j`` at once,
+    chunk ``j`` working in row ``j`` of ``buf``."""
+    cost, length, ncol, turn = out
+    for j in prange(bounds.shape[0] - 1):
+        lo = bounds[j]
+        hi = bounds[j + 1]
+        part = (cost[lo:hi], length[lo:hi], ncol[lo:hi], turn[lo:hi])
+        population_cost(
+            X[lo:hi], start, goal, t0, speed, spacetime, obs, snap, motion, weights, part, buf[j]
+        )
+
+
+def chunk_bounds(n: int, threads: int) -> np.ndarray:
+    """Row boundaries ``[0, ..., n]`` of the chunks: as even as rows allow, at most
+    ``threads`` chunks and at least :data:`MIN_ROWS` rows in each (one chunk below that)."""
+    k = max(1, min(threads, n // MIN_ROWS))
+    return np.array([(j * n) // k for j in range(k + 1)], dtype=np.int64)
+
+
+class ThreadedKernel:
+    """Calls :func:`population_cost` on chunks of rows in parallel, keeping the scratch space
+    from call to call.
+
+    Parameters
+    ----------
+    threads : int
+        Chunks a call is split into, >= 1; they run on up to that many of Numba's threads
+        (``numba.get_num_threads()``, the number of cores unless set lower).
+    """
+
+    def __init__(self, threads: int = 1) -> None:
+        self.threads = check_int(
+            "threads", threads, 1, what="an integer >= 1 (1: the calling thread only)"
+        )
+        self._buf = np.empty((0, 0))
+        self._split = (-1, chunk_bounds(0, 1))  # (rows, their chunk bounds) of the last call
+
+    def _scratch(self, rows: int, need: int) -> np.ndarray:
+        if self._buf.shape[0] < rows or self._buf.shape[1] < need:
+            # a whole number of 4 KiB pages per row (the kernel lays its arrays out within a
+            # page), and a quarter more, so that slightly larger populations do not reallocate
+            cols = (need + need // 4 + 511) // 512 * 512
+            self._buf = np.empty((rows, cols))
+        return self._buf
+
+    def __call__(self, X, start, goal, t0, speed, spacetime, obs, snap, motion, weights, out):
+        """Fill ``out = (cost, length, n_collisions, turning)`` for the rows of ``X``; the
+        arguments are those of :func:`population_cost` without the scratch buffer."""
+        n, npts = X.shape[0], X.shape[1] // 2 + 2
+        if self._split[0] != n:  # (an optimizer calls with the same size every iteration)
+            self._split = (n, chunk_bounds(n, self.threads))
+        bounds = self._split[1]
+        k = bounds.size - 1
+        buf = self._scratch(k, scratch_size(-(-n // k), npts, motion[3], spacetime))
+        args = (X, start, goal, t0, speed, spacetime, obs, snap, motion, weights, out)
+        if k == 1:
+            population_cost(*args, buf[0])
+            return
+        with _lock:
+            _chunked(bounds, *args, buf)
