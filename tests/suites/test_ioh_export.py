@@ -1,6 +1,8 @@
 """Exported logs match the files ioh's own Analyzer writes, and read back to the input."""
 
 import json
+from importlib import metadata
+from types import SimpleNamespace
 
 import ioh
 import numpy as np
@@ -91,3 +93,85 @@ def test_bad_runs_are_refused(tmp_path):
     run = IOHRun(1, "Sphere", 2, 1, np.array([1, 3]), np.array([2.0, 1.0]), 2)
     with pytest.raises(ValueError, match="total_evals 2 < last eval"):
         write_analyzer_logs(tmp_path, [run], "x")
+
+
+# Scripted values per run (precision = value: the wrapped problem has no known optimum). Run 0
+# starts with two infinite values, run 1 never has a finite one (what CEC or a user's function
+# can give), run 2 is finite; every run's last value improves, where ioh's last line (the last
+# *evaluated* value) and ours (the best-so-far) agree.
+SCRIPTS = ([np.inf, np.inf, 5.0, 6.0, 0.25], [np.inf] * 4, [3.0, 1.5, 2.0, 0.5])
+
+
+def scripted_logs(tmp_path):
+    """The scripted runs logged by ioh's own Analyzer and written by us from our recorder."""
+    state = {"values": iter(())}
+    name = f"Scripted{tmp_path.name[-6:]}"  # ioh keeps wrapped problems for the process
+    ioh.wrap_problem(
+        lambda x: float(next(state["values"])), name, ioh.ProblemClass.REAL,
+        dimension=2, instance=1, lb=-5, ub=5,
+    )  # fmt: skip
+    problem = ioh.get_problem(name, 1, 2)
+    lg = ioh.logger.Analyzer(root=str(tmp_path), folder_name="ioh", algorithm_name="s")
+    problem.attach_logger(lg)
+    meta = SimpleNamespace(
+        function_id=problem.meta_data.problem_id, function_name=name, dim=2, instance=1,
+        f_star=0.0,
+    )  # fmt: skip
+    ours, X = [], np.linspace(-1, 1, 10).reshape(5, 2)
+    for script in SCRIPTS:
+        state["values"] = iter(script)
+        rec = EvaluationRecorder(lambda x, s=script: np.array(s[: len(x)]), 1)
+        rec(X[: len(script)])
+        for x in X[: len(script)]:
+            problem(x)
+        problem.reset()
+        ours += runs_from_traces(meta, rec.traces())
+    lg.close()
+    write_analyzer_logs(tmp_path / "ours", ours, "s")
+    return tmp_path / "ioh", tmp_path / "ours", meta
+
+
+def dat_lines(folder) -> list[tuple[int, float | None]]:
+    (dat,) = folder.rglob("*.dat")
+    out = []
+    for line in dat.read_text().splitlines():
+        if line and not line.startswith("evaluations"):
+            ev, val = line.split()
+            out.append((int(ev), None if val == "None" else float(val)))
+        elif line:
+            out.append((0, None))  # a run's header
+    return out
+
+
+def test_runs_without_a_finite_value_are_written_as_ioh_writes_them(tmp_path):
+    ioh_dir, our_dir, meta = scripted_logs(tmp_path)
+    theirs, mine = dat_lines(ioh_dir), dat_lines(our_dir)
+    assert [e for e, _ in mine] == [e for e, _ in theirs] == [0, 1, 3, 5, 0, 1, 0, 1, 2, 4]
+    for (_, a), (_, b) in zip(theirs, mine, strict=True):
+        assert (a is None) == (b is None)
+        assert b is None or b == pytest.approx(a, abs=1e-10)  # ioh prints 10 decimals
+    # ioh 0.4.2 leaves the run without a best point out of its meta data (so its file has 3
+    # blocks and 2 entries); we list it with every key of an entry
+    (ij,) = [json.loads(p.read_text()) for p in ioh_dir.glob("*.json")]
+    (mj,) = [json.loads(p.read_text()) for p in our_dir.glob("*.json")]
+    ir, mr = ij["scenarios"][0]["runs"], mj["scenarios"][0]["runs"]
+    assert len(ir) == 2 and len(mr) == 3
+    for a, b in zip(ir, [mr[0], mr[2]], strict=True):
+        assert (a["instance"], a["evals"], a["best"]["evals"]) == (
+            b["instance"], b["evals"], b["best"]["evals"],
+        )  # fmt: skip
+        assert b["best"]["y"] == a["best"]["y"]
+        np.testing.assert_array_equal(b["best"]["x"], a["best"]["x"])
+    assert mr[1] == {"instance": 1, "evals": 4, "best": {"evals": 0, "y": None, "x": [None] * 2}}
+    back = read_analyzer_logs(our_dir)  # our reader takes None as "no value yet"
+    assert [r["evals"].tolist() for r in back] == [[3, 5], [], [1, 2, 4]]
+    assert [r["precision"].tolist() for r in back] == [[5.0, 0.25], [], [3.0, 1.5, 0.5]]
+    assert [r["last_eval"] for r in back] == [5, 1, 4]
+    assert mj["function_id"] == ij["function_id"] == meta.function_id
+
+
+def test_version_is_the_installed_iohs(tmp_path):
+    ioh_dir, our_dir, _ = ioh_and_ours(tmp_path, 1, 1, dims=(2,), runs=1, batches=2)
+    (ij,) = [json.loads(p.read_text()) for p in ioh_dir.glob("*.json")]
+    (mj,) = [json.loads(p.read_text()) for p in our_dir.glob("*.json")]
+    assert mj["version"] == ij["version"] == metadata.version("ioh")

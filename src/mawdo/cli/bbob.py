@@ -20,6 +20,22 @@ def is_suite_preset(name: str | None) -> bool:
     return name is not None and (name in PRESETS or name.startswith("bbob"))
 
 
+def is_suite_plan_file(path: Path | None) -> bool:
+    """Whether the plan file at ``path`` holds a suite plan (``kind = "bbob"``, a ``suite``
+    field or a ``bbob-*`` preset); False for anything else, which the benchmark's reader then
+    reads (and reports, if it cannot)."""
+    from mawdo.experiments import PlanError
+    from mawdo.experiments.plans import read_plan_file
+
+    if path is None:
+        return False
+    try:
+        data = read_plan_file(path)
+    except PlanError:
+        return False
+    return data.get("kind") == "bbob" or "suite" in data or is_suite_preset(data.get("preset"))
+
+
 def is_suite_store(path: Path) -> bool:
     """Whether the store at ``path`` holds a suite study (False if it is not a store at all:
     the caller's own reading then reports what is wrong)."""
@@ -50,15 +66,23 @@ def _budget(text: str | None) -> float | None:
         ) from None
 
 
-def suite_plan(preset, suite, algorithms, functions, instances, dims, budget, **overrides):
-    """The plan of ``mawdo bench run`` for a suite study, from a preset or from flags.
+def suite_plan(
+    preset, suite, algorithms, functions, instances, dims, budget, *, plan_file=None,
+    variants=(), options=(), **overrides,
+):  # fmt: skip
+    """The plan of ``mawdo bench run`` for a suite study, from a preset, a plan file or flags;
+    ``--variant``/``--option`` texts add named variants and options (checked with the plan,
+    before anything runs).
 
     Raises
     ------
     PlanError
-        An invalid field (unknown suite, function id, dimension, budget <= 0 ...).
+        An invalid field (unknown suite, function id, dimension, budget <= 0, option ...).
+    ValueError
+        A malformed ``--variant``/``--option`` or missing flags.
     """
     from mawdo.experiments.bbob import SuitePlan, preset_plan
+    from mawdo.experiments.bbob.variants import cli_fields
 
     fields = {
         "suite": suite,
@@ -69,10 +93,18 @@ def suite_plan(preset, suite, algorithms, functions, instances, dims, budget, **
         "budget": _budget(budget),
         **overrides,
     }
+    base = None
     if preset is not None:
-        return preset_plan(preset).with_overrides(**fields)
-    if algorithms is None or functions is None:
+        base = preset_plan(preset)
+    elif plan_file is not None:
+        base = SuitePlan.from_file(plan_file)
+    elif algorithms is None or functions is None:
         raise ValueError("with --suite give --algorithms a,b and --functions (e.g. 1-24)")
+    if variants or options:
+        start = base.model_dump() if base is not None else {}
+        fields |= cli_fields(algorithms or list(start["algorithms"]), variants, options, start)
+    if base is not None:
+        return base.with_overrides(**fields)
     given = {k: v for k, v in fields.items() if v is not None}
     return SuitePlan.from_dict({"name": "cli", **given})
 

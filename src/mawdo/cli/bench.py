@@ -34,7 +34,9 @@ def _fail(msg: str, code: int = 2) -> None:
 @bench_app.command("run")
 def run_cmd(
     preset: str = typer.Option(None, "--preset", help="Named plan (see `presets`)."),
-    plan_file: Path = typer.Option(None, "--plan", help="Plan file (TOML).", exists=False),
+    plan_file: Path = typer.Option(
+        None, "--plan", help="Plan file (TOML; a suite plan also JSON).", exists=False
+    ),
     out: Path = typer.Option(Path("results.db"), "--out", "-o", help="Results store (SQLite)."),
     workers: int = typer.Option(1, "--workers", "-w", min=1, help="Local worker processes."),
     dask: str = typer.Option(None, "--dask", help="Dask scheduler address (tcp://host:8786)."),
@@ -57,6 +59,18 @@ def run_cmd(
     suite: str = typer.Option(None, "--suite", help="Standard suite: bbob, cec2017, cec2022."),
     instances: str = typer.Option(None, "--instances", help="With --suite: instances (1-5)."),
     dims: str = typer.Option(None, "--dims", help="With --suite: dimensions (5,20)."),
+    variant: list[str] = typer.Option(
+        None,
+        "--variant",
+        help="With --suite, repeatable: a named variant LABEL=ALGORITHM[:OPTION=VALUE,...] "
+        "(e.g. mawdo-r10=mawdo:restart_every=10), stored and reported under LABEL.",
+    ),
+    option: list[str] = typer.Option(
+        None,
+        "--option",
+        help="With --suite, repeatable: NAME.OPTION=VALUE for an algorithm or a variant "
+        "(e.g. mawdo.groups=4).",
+    ),
     progress: bool = typer.Option(True, "--progress/--no-progress", help="Progress bar."),
 ) -> None:
     """Run (or resume) a sweep. Stored runs are skipped; Ctrl-C keeps what finished.
@@ -69,20 +83,25 @@ def run_cmd(
     from mawdo.cli import bbob
     from mawdo.experiments import ExperimentPlan, PlanError, StoreError, preset_plan, run_plan
 
-    if suite is not None or bbob.is_suite_preset(preset):  # the standard-suite study
-        if plan_file is not None or iters is not None:
-            _fail("--plan and --iters do not apply to --suite studies (budget: --budget 1e4)")
+    if suite is not None or bbob.is_suite_preset(preset) or bbob.is_suite_plan_file(plan_file):
+        if iters is not None:
+            _fail("--iters does not apply to --suite studies (budget: --budget 1e4)")
+        if preset is not None and plan_file is not None:
+            _fail("give one of --preset NAME or --plan FILE, not both")
         try:
             splan = bbob.suite_plan(
                 preset, suite, _names(algorithms), functions, instances, dims, budget,
+                plan_file=plan_file, variants=variant or [], options=option or [],
                 runs=runs, seed=seed, pop_size=pop_size, batch_size=batch_size,
             )  # fmt: skip
         except PlanError as exc:
             _fail(f"invalid plan:\n{exc}")
+        except ValueError as exc:  # a malformed flag (--variant, --budget ...)
+            _fail(str(exc))
         run_opts = {"workers": workers, "dask": dask, "progress": progress}
         return bbob.run_suite(splan, out, **run_opts, force=force, retry_failed=retry_failed)
-    if instances is not None or dims is not None:
-        _fail("--instances and --dims need --suite bbob|cec2017|cec2022")
+    if instances is not None or dims is not None or variant or option:
+        _fail("--instances, --dims, --variant and --option need --suite bbob|cec2017|cec2022")
     if preset is not None and plan_file is not None:
         _fail("give one of --preset NAME or --plan FILE.toml, not both")
     if preset is None and plan_file is None and (algorithms is None or functions is None):

@@ -11,6 +11,16 @@ the same since it takes the running minimum). Like ioh, the logged ``raw_y`` is 
 meta data's ``best.y`` too. ioh prints 10 decimals; we print the shortest decimal that reads back
 to the same float, so the logs round-trip exactly.
 
+Runs without a finite value at first (NaN and +-inf never improve the best-so-far; CEC or a
+user's function can return them) start, as ioh writes them, with ``1 None``: every block opens
+at evaluation 1, which is how readers (``iohinspector``) tell one run from the next. A run with
+no finite value at all is that one line. ioh 0.4.2 leaves such a run out of the meta data (and
+writes no meta file when every run is one), so readers pair the remaining entries with the
+wrong blocks; we list every run, a run with no best point as ``{"evals": 0, "y": null, "x":
+[null, ...]}`` (D nulls: ``iohinspector``'s own convention for an unknown point), so every
+reader keeps every run. ``version`` is the installed ioh's (the format's release when ioh is not
+installed, e.g. for a CEC-only study).
+
 We write the files ourselves rather than through ``ioh``'s logger because our runs are batched:
 one ``problem(X)`` call holds the candidates of every run, which ioh's per-problem logger would
 merge into one run. ``tests/suites`` checks the files against the ones ``ioh`` itself writes.
@@ -22,12 +32,24 @@ import json
 import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from importlib import metadata
 from pathlib import Path
 
 import numpy as np
 
-FORMAT_VERSION = "0.3.22"  # the ioh release whose Analyzer format this follows
+FORMAT_VERSION = "0.4.2"
+"""The ioh release whose Analyzer files these follow (``tests/suites`` compares them)."""
 HEADER = "evaluations raw_y"
+NO_VALUE = "None"  # what ioh writes for a value that is not (yet) a finite number
+
+
+def ioh_version() -> str:
+    """The installed ioh's version, as ioh writes it in ``version``; :data:`FORMAT_VERSION`
+    when ioh is not installed."""
+    try:
+        return metadata.version("ioh")
+    except metadata.PackageNotFoundError:
+        return FORMAT_VERSION
 
 
 @dataclass(frozen=True)
@@ -108,6 +130,9 @@ def _check(run: IOHRun) -> None:
 
 def _dat_block(run: IOHRun) -> list[str]:
     lines = [HEADER]
+    if not run.evals.size or run.evals[0] > 1:
+        # Readers start a run at evaluation 1; ioh writes its unknown first value as None.
+        lines.append(f"1 {NO_VALUE}")
     prec = np.asarray(run.best_y, dtype=float) - run.f_opt
     lines += [f"{int(e)} {_num(y)}" for e, y in zip(run.evals, prec, strict=True)]
     if run.evals.size and run.total_evals > run.evals[-1]:
@@ -116,11 +141,12 @@ def _dat_block(run: IOHRun) -> list[str]:
 
 
 def _run_meta(run: IOHRun) -> dict:
-    best = {"evals": 0, "y": None}
+    # Every key of ioh's entry, always: a reader that misses one (iohinspector: best.x)
+    # drops the whole file.
+    best = {"evals": 0, "y": None, "x": [None] * run.dim}
     if run.evals.size:
         best = {"evals": int(run.evals[-1]), "y": float(run.best_y[-1] - run.f_opt)}
-    if run.best_x is not None:
-        best["x"] = [float(v) for v in run.best_x]
+        best["x"] = [None] * run.dim if run.best_x is None else [float(v) for v in run.best_x]
     return {"instance": int(run.instance), "evals": int(run.total_evals), "best": best}
 
 
@@ -153,7 +179,7 @@ def write_analyzer_logs(
         _check(run)
         by_fn.setdefault((run.function_id, run.function_name), {}).setdefault(run.dim, [])
         by_fn[(run.function_id, run.function_name)][run.dim].append(run)
-    written = []
+    written, version = [], ioh_version()
     for (fid, fname), dims in sorted(by_fn.items()):
         stem = _stem(dims[next(iter(dims))][0])
         (folder / f"data_{stem}").mkdir(parents=True, exist_ok=True)
@@ -166,7 +192,7 @@ def write_analyzer_logs(
                 {"dimension": dim, "path": rel, "runs": [_run_meta(r) for r in dims[dim]]}
             )
         meta = {
-            "version": FORMAT_VERSION,
+            "version": version,
             "suite": suite,
             "function_id": fid,
             "function_name": fname,
@@ -189,9 +215,9 @@ def read_analyzer_logs(folder) -> list[dict]:
     list of dict
         One per run, in file order: ``algorithm``, ``function_id``, ``function_name``, ``dim``,
         ``instance``, ``total_evals`` (from the meta data), ``evals`` and ``precision`` (the
-        improvements of the running minimum of the ``.dat`` block's ``raw_y``, i.e.
-        ``f - f_opt``), ``last_eval`` (the block's last evaluation), ``best`` (the meta data's
-        best entry).
+        improvements of the running minimum of the ``.dat`` block's finite ``raw_y``, i.e.
+        ``f - f_opt``; ``None``, NaN and inf lines never improve it), ``last_eval`` (the
+        block's last evaluation), ``best`` (the meta data's best entry).
     """
     out = []
     for meta_path in sorted(Path(folder).glob("IOHprofiler_*.json")):
@@ -202,7 +228,8 @@ def read_analyzer_logs(folder) -> list[dict]:
                 n_meta = len(sc["runs"])
                 raise ValueError(f"{sc['path']}: {len(blocks)} runs in data, {n_meta} in meta")
             for block, info in zip(blocks, sc["runs"], strict=True):
-                e, y = block[:, 0], block[:, 1]
+                finite = np.isfinite(block[:, 1])
+                e, y = block[finite, 0], block[finite, 1]
                 run_min = np.minimum.accumulate(y)
                 imp = np.concatenate([[True], run_min[1:] < run_min[:-1]]) if y.size else []
                 out.append(
@@ -215,7 +242,7 @@ def read_analyzer_logs(folder) -> list[dict]:
                         "total_evals": info["evals"],
                         "evals": e[imp].astype(np.int64),
                         "precision": run_min[imp],
-                        "last_eval": int(e[-1]) if e.size else 0,
+                        "last_eval": int(block[-1, 0]) if block.size else 0,
                         "best": info["best"],
                     }
                 )
@@ -231,5 +258,5 @@ def _dat_blocks(path: Path) -> list[np.ndarray]:
             blocks.append([])
             continue
         ev, val = line.split()[:2]
-        blocks[-1].append((float(ev), float(val)))
+        blocks[-1].append((float(ev), np.nan if val == NO_VALUE else float(val)))
     return [np.array(b, dtype=float).reshape(-1, 2) for b in blocks]

@@ -12,7 +12,9 @@ from __future__ import annotations
 import difflib
 import hashlib
 import json
+import tomllib
 from collections.abc import Mapping
+from pathlib import Path
 from typing import Any, ClassVar
 
 from pydantic import BaseModel, ConfigDict, ValidationError
@@ -53,6 +55,31 @@ class StudyPlanBase(BaseModel):
             raise PlanError(format_errors(exc, cls)) from None
 
     @classmethod
+    def from_file(cls, path):
+        """Load a plan from a TOML file (or JSON, by its ``.json`` suffix).
+
+        The file holds the fields at top level, or under a ``[plan]`` table; a ``preset = "..."``
+        key starts from that preset (:meth:`preset`) and the other keys override it. Errors
+        are :class:`PlanError` naming the file.
+        """
+        data = read_plan_file(path)
+        preset = data.pop("preset", None)
+        try:
+            if preset is not None:
+                if not isinstance(preset, str):
+                    raise PlanError(f"preset: must be a string, got {preset!r}")
+                return cls.preset(preset).with_overrides(**data)
+            return cls.from_dict(data)
+        except PlanError as exc:
+            raise PlanError(f"{path}: {exc}") from None
+
+    @classmethod
+    def preset(cls, name: str):
+        """The kind's named plan ``name`` (for ``preset = "..."`` in a plan file); kinds with
+        presets override this."""
+        raise PlanError(f"preset: {cls.study_kind or 'this'} study has no presets (got {name!r})")
+
+    @classmethod
     def from_json(cls, text: str):
         """The plan written by :meth:`to_json`."""
         return cls.from_dict(json.loads(text))
@@ -91,6 +118,27 @@ class StudyPlanBase(BaseModel):
         """SHA-256 of the canonical JSON of :meth:`numbers_spec` (hex)."""
         blob = json.dumps(self.numbers_spec(), sort_keys=True, separators=(",", ":"))
         return hashlib.sha256(blob.encode("utf-8")).hexdigest()
+
+
+def read_plan_file(path) -> dict[str, Any]:
+    """The fields of a plan file: TOML (JSON by a ``.json`` suffix), at top level or under a
+    ``[plan]`` table. Raises :class:`PlanError` naming the file."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        why = getattr(exc, "strerror", None) or exc
+        raise PlanError(f"cannot read plan file {path}: {why}") from None
+    try:
+        data = json.loads(text) if path.suffix.lower() == ".json" else tomllib.loads(text)
+    except (tomllib.TOMLDecodeError, json.JSONDecodeError) as exc:
+        what = "JSON" if path.suffix.lower() == ".json" else "TOML"
+        raise PlanError(f"{path}: not valid {what}: {exc}") from None
+    if not isinstance(data, dict):
+        raise PlanError(f"{path}: a plan must be a table of fields")
+    if "plan" in data and isinstance(data["plan"], dict) and len(data) == 1:
+        data = data["plan"]
+    return dict(data)
 
 
 def format_errors(exc: ValidationError, model: type[BaseModel]) -> str:

@@ -10,13 +10,8 @@ package registers the ``bbob`` study kind.
 
 from mawdo.experiments.bbob.execute import SuiteRow, execute_suite_task
 from mawdo.experiments.bbob.export import export_ioh
-from mawdo.experiments.bbob.plan import (
-    PRESET_HELP,
-    PRESETS,
-    SuitePlan,
-    parse_ids,
-    preset_plan,
-)
+from mawdo.experiments.bbob.keys import parse_ids
+from mawdo.experiments.bbob.plan import PRESET_HELP, PRESETS, SuitePlan, preset_plan
 from mawdo.experiments.bbob.report import write_suite_report
 from mawdo.experiments.protocol import StudyKind, register_kind
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import functools
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -58,7 +58,8 @@ class StoredRun:
 
 @dataclass(frozen=True)
 class StudyRuns:
-    """The runs of a store and its plan's axes."""
+    """The runs of a store and its plan's axes; ``setups`` says what runs under each
+    algorithm's name (``{"mawdo-r10": "mawdo (restart_every=10)"}``)."""
 
     suite: str
     algorithms: tuple[str, ...]
@@ -67,6 +68,7 @@ class StudyRuns:
     budget: float
     runs: list[StoredRun]
     failed: int
+    setups: dict[str, str] = field(default_factory=dict)
 
     @functools.cached_property
     def _index(self) -> dict[tuple[str, int, int], list[StoredRun]]:
@@ -155,6 +157,7 @@ def _load_one(store_path) -> StudyRuns:
         plan.budget,
         out,
         failed,
+        {a: plan.setup(a) for a in plan.algorithms},
     )
 
 
@@ -179,6 +182,14 @@ def _merge(parts: list[StudyRuns], paths: list) -> StudyRuns:
                     f"of one study; report them separately"
                 )
             seen[key] = path
+        for name, setup in part.setups.items():
+            others = {q.setups[name] for q in parts if name in q.setups} - {setup}
+            if others:
+                other = others.pop()
+                raise StoreError(
+                    f"{path} runs {name!r} as {setup}, another store as {other}: they are not "
+                    f"one study; report them separately (or give the variants their own labels)"
+                )
 
     def union(field: str) -> tuple:
         return tuple(dict.fromkeys(v for p in parts for v in getattr(p, field)))
@@ -191,6 +202,7 @@ def _merge(parts: list[StudyRuns], paths: list) -> StudyRuns:
         first.budget,
         [r for p in parts for r in p.runs],
         sum(p.failed for p in parts),
+        {k: v for p in parts for k, v in p.setups.items()},
     )
 
 

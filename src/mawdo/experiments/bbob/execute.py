@@ -92,7 +92,7 @@ def execute_suite_task(spec: dict[str, Any]) -> list[SuiteRow]:
     try:
         res, traces = run_problem(
             problem,
-            spec["algorithm"],
+            spec["optimizer"],  # a variant's label is the row's algorithm, not the optimizer
             runs=n,
             budget=spec["budget"],
             seed=np.random.SeedSequence(spec["seed_entropy"]),

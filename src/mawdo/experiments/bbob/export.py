@@ -49,7 +49,8 @@ def export_ioh(store_path, folder) -> list[Path]:
             for r in study.select(algo)
         ]
         if runs:
-            info = f"mawdo {algo}, budget {study.budget:g} x D evaluations"
+            setup = study.setups.get(algo, algo)
+            info = f"mawdo {setup}, budget {study.budget:g} x D evaluations"
             label = SUITE_LABEL.get(study.suite, study.suite)
             written += write_analyzer_logs(folder / algo, runs, algo, info, suite=label)
     return written

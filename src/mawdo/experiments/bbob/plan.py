@@ -15,15 +15,16 @@ worker; so a store's numbers depend on the plan's numbers spec only.
 from __future__ import annotations
 
 import difflib
-import re
 from collections.abc import Iterable
 from typing import Annotated, Any, ClassVar, Literal
 
-from pydantic import AfterValidator, Field, field_validator, model_validator
+from pydantic import Field, field_validator, model_validator
 
+from mawdo.experiments.bbob.keys import parse_key, problem_key
+from mawdo.experiments.bbob.variants import canonical_name, check_variants, describe_setup
 from mawdo.experiments.plans import PlanError, StudyPlanBase
 from mawdo.experiments.protocol import Task, missing_run_tasks
-from mawdo.optimizers import OPTIMIZERS, PAPER_ALGORITHMS, make_optimizer
+from mawdo.optimizers import PAPER_ALGORITHMS, make_optimizer
 from mawdo.streams import name_word
 from mawdo.suites import SUITES, evaluation_budget
 from mawdo.suites.base import format_dims, require
@@ -41,52 +42,7 @@ LIBRARY = {
 }
 
 
-def _check_algorithm(name: str) -> str:
-    return OPTIMIZERS[name].name
-
-
-AlgorithmName = Annotated[str, AfterValidator(_check_algorithm)]
 PositiveInt = Annotated[int, Field(strict=True, ge=1)]
-
-
-def problem_key(fid: int, iid: int, dim: int) -> str:
-    """The canonical name of one problem: ``"f03_i02_d20"`` (sorts by function, then instance)."""
-    return f"f{fid:02d}_i{iid:02d}_d{dim:02d}"
-
-
-def parse_key(key: str) -> tuple[int, int, int]:
-    """``"f03_i02_d20"`` -> ``(3, 2, 20)``."""
-    m = re.fullmatch(r"f(\d+)_i(\d+)_d(\d+)", key)
-    if m is None:
-        raise ValueError(f"{key!r} is not a problem key of the form f03_i02_d20")
-    return int(m[1]), int(m[2]), int(m[3])
-
-
-def parse_ids(text: str, what: str = "ids") -> list[int | str]:
-    """Command-line id lists: ``"1-24"``, ``"1,3,5-7"``; non-numeric items stay names.
-
-    Raises
-    ------
-    ValueError
-        An empty list or a reversed range, naming ``what``.
-    """
-    out: list[int | str] = []
-    for item in (t.strip() for t in str(text).split(",")):
-        if not item:
-            continue
-        m = re.fullmatch(r"(\d+)\s*-\s*(\d+)", item)
-        if m:
-            lo, hi = int(m[1]), int(m[2])
-            if lo > hi:
-                raise ValueError(f"{what}: range {item!r} runs backwards; write {hi}-{lo}")
-            out.extend(range(lo, hi + 1))
-        elif item.isdigit():
-            out.append(int(item))
-        else:
-            out.append(item)
-    if not out:
-        raise ValueError(f"{what}: give at least one (e.g. 1-24 or 1,3,5)")
-    return out
 
 
 class SuitePlan(StudyPlanBase):
@@ -98,8 +54,13 @@ class SuitePlan(StudyPlanBase):
         A label for reports (does not affect numbers).
     suite : str
         Registered suite: ``"bbob"`` (ioh), ``"cec2017"`` or ``"cec2022"`` (opfunu).
+    variants : dict of str to str
+        Labels of named variants mapped to registered optimizers (``{"mawdo-r10": "mawdo"}``):
+        each label listed in ``algorithms`` runs that optimizer with ``options[label]`` and is
+        stored and reported under the label (:mod:`.variants`).
     algorithms : sequence of str
-        Registered optimizers (``mawdo list``), e.g. ``mawdo``, ``wdo``, ``cmaes``, ``random``.
+        Registered optimizers (``mawdo list``), e.g. ``mawdo``, ``wdo``, ``cmaes``, ``random``,
+        and variant labels.
     functions : sequence of int or str
         Function ids of the suite (``3``, ``"f3"``) or its library's names (``"Rastrigin"``);
         stored as ids.
@@ -121,7 +82,7 @@ class SuitePlan(StudyPlanBase):
     seed : int
         Master seed, >= 0.
     options : dict of str to dict
-        Per-algorithm coefficients (``{"mawdo": {"groups": 4}}``).
+        Per-algorithm (or per-variant) coefficients (``{"mawdo": {"groups": 4}}``).
     batch_size : int
         Runs per task (one vectorised batch on one worker). Does not affect numbers.
     """
@@ -130,7 +91,8 @@ class SuitePlan(StudyPlanBase):
     kind: Literal["bbob"] = "bbob"
     name: str = "custom"
     suite: str = "bbob"
-    algorithms: Annotated[tuple[AlgorithmName, ...], Field(min_length=1)]
+    variants: dict[str, str] = Field(default_factory=dict)  # before algorithms: they name labels
+    algorithms: Annotated[tuple[str, ...], Field(min_length=1)]
     functions: Annotated[tuple[int | str, ...], Field(min_length=1)]
     instances: Annotated[tuple[int, ...], Field(min_length=1)] = (1, 2, 3, 4, 5)
     dims: Annotated[tuple[int, ...], Field(min_length=1)] = (5, 20)
@@ -166,7 +128,26 @@ class SuitePlan(StudyPlanBase):
             raise ValueError(str(exc)) from None
         return float(budget)
 
-    @field_validator("algorithms", "instances", "dims")
+    @field_validator("variants")
+    @classmethod
+    def _check_variants(cls, variants: dict[str, str]) -> dict[str, str]:
+        return check_variants(variants)
+
+    @field_validator("algorithms")
+    @classmethod
+    def _check_algorithms(cls, names: tuple, info) -> tuple[str, ...]:
+        if "variants" not in info.data:
+            return names  # the variants failed and are reported; their labels are unknown
+        variants = info.data["variants"]
+        out = []
+        for i, name in enumerate(names):
+            try:
+                out.append(canonical_name(name, variants))
+            except KeyError as exc:
+                raise ValueError(f"algorithms[{i}]: {exc.args[0]}") from None
+        return cls._no_duplicates(tuple(out), info)
+
+    @field_validator("instances", "dims")
     @classmethod
     def _no_duplicates(cls, values: tuple, info) -> tuple:
         first: dict[Any, int] = {}
@@ -211,31 +192,58 @@ class SuitePlan(StudyPlanBase):
                     f"dims: {self.suite} f{fid} is not defined in dimension "
                     f"{', '.join(map(str, bad))}; its dimensions are {format_dims(allowed)}"
                 )
-        self._check_options()
+        for label in self.variants:
+            if label not in self.algorithms:
+                raise ValueError(
+                    f"variants.{label}: not one of the plan's algorithms; list it in algorithms "
+                    f"(or drop the variant)"
+                )
         return self
 
-    def _check_options(self) -> None:
-        # Options are checked by building each optimizer once, so a typo fails at plan time.
-        for key, opts in self.options.items():
+    @field_validator("options")
+    @classmethod
+    def _check_options(cls, options: dict[str, dict[str, Any]], info) -> dict[str, dict]:
+        # Options are checked by building each optimizer once, so a typo fails at plan time;
+        # keys become canonical names, so an option is never silently ignored.
+        variants, algorithms = info.data.get("variants", {}), info.data.get("algorithms")
+        pop_size = info.data.get("pop_size")
+        out: dict[str, dict[str, Any]] = {}
+        for key, opts in options.items():
             try:
-                algo = OPTIMIZERS[key].name
+                name = canonical_name(key, variants)
             except KeyError as exc:
-                raise ValueError(f"options.{key}: {exc}") from None
-            if algo not in self.algorithms:
-                raise ValueError(f"options.{key}: {algo!r} is not one of the plan's algorithms")
+                raise ValueError(f"options.{key}: {exc.args[0]}") from None
+            if algorithms is not None and name not in algorithms:
+                raise ValueError(
+                    f"options.{key}: {name!r} is not one of the plan's algorithms "
+                    f"({', '.join(algorithms)})"
+                )
             if "pop_size" in opts:
                 raise ValueError(f"options.{key}.pop_size: use the plan's pop_size field")
-            extra = {} if self.pop_size is None else {"pop_size": self.pop_size}
+            extra = {} if pop_size is None else {"pop_size": pop_size}
             try:
-                make_optimizer(algo, **extra, **opts)
+                make_optimizer(variants.get(name, name), **extra, **opts)
             except (TypeError, ValueError) as exc:
                 raise ValueError(f"options.{key}: {exc}") from None
+            out[name] = {**out.get(name, {}), **opts}
+        return out
 
     def _adjust_overrides(self, data: dict[str, Any], changes: dict[str, Any]) -> dict[str, Any]:
-        if "algorithms" in changes and "options" not in changes:
+        if "algorithms" in changes:
             keep = {str(a).lower() for a in changes["algorithms"]}
-            data["options"] = {k: v for k, v in data["options"].items() if k in keep}
+            for field in ("options", "variants"):
+                if field not in changes:
+                    data[field] = {k: v for k, v in data[field].items() if k in keep}
         return data
+
+    @classmethod
+    def preset(cls, name: str) -> SuitePlan:
+        """The named preset (``preset = "bbob-quick"`` in a plan file)."""
+        return preset_plan(name)
+
+    def setup(self, algorithm: str) -> str:
+        """What runs under ``algorithm``: ``"mawdo (restart_every=10)"``."""
+        return describe_setup(algorithm, self.variants, self.options)
 
     # ----------------------------------------------------------------------- identity
     def numbers_spec(self) -> dict[str, Any]:
@@ -253,6 +261,8 @@ class SuitePlan(StudyPlanBase):
             "pop_size": self.pop_size,
             "seed": self.seed,
             "options": {k: self.options[k] for k in sorted(self.options)},
+            # only when used, so the plans (and stores) from before variants keep their hash
+            **({"variants": dict(sorted(self.variants.items()))} if self.variants else {}),
         }
 
     def check_libraries(self) -> None:
@@ -303,6 +313,7 @@ class SuitePlan(StudyPlanBase):
         return {
             "kind": self.kind,
             **task.key(),
+            "optimizer": self.variants.get(task.algorithm, task.algorithm),
             "suite": self.suite,
             "function_id": fid,
             "instance": iid,

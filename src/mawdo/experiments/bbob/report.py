@@ -101,6 +101,14 @@ def _names(store_path) -> str:
     return " + ".join(Path(p).name for p in paths)
 
 
+def _setup_lines(study: StudyRuns) -> list[str]:
+    """One line per algorithm whose name is a variant's label or that has options."""
+    shown = [(a, study.setups[a]) for a in study.algorithms if study.setups.get(a, a) != a]
+    if not shown:
+        return []
+    return ["Algorithms run with options:", "", *(f"- {a}: {s}" for a, s in shown), ""]
+
+
 def write_suite_report(
     store_path, out_dir, plots: bool = True, svg: bool = False, reference: str = "mawdo", **_
 ) -> Path:
@@ -142,6 +150,7 @@ def write_suite_report(
         f"{f', {study.failed} failed' if study.failed else ''} (from {_names(store_path)}). "
         "Precision is f - f_opt.",
         "",
+        *_setup_lines(study),
         *summary,
         "",
     ]

@@ -22,7 +22,6 @@ all algorithms face the same shifted optimum.
 from __future__ import annotations
 
 import difflib
-import tomllib
 from collections.abc import Iterable
 from pathlib import Path
 from typing import Annotated, Any, ClassVar, Literal
@@ -158,32 +157,13 @@ class ExperimentPlan(StudyPlanBase):
     # ----------------------------------------------------------------------- construction
     @classmethod
     def from_toml(cls, path: str | Path) -> ExperimentPlan:
-        """Load a plan from a TOML file.
+        """Load a plan from a TOML file (:meth:`StudyPlanBase.from_file`)."""
+        return cls.from_file(path)
 
-        The file holds the fields at top level, or under a ``[plan]`` table; a ``preset = "..."``
-        key starts from that preset and the other keys override it.
-        """
-        path = Path(path)
-        try:
-            text = path.read_text(encoding="utf-8")
-        except OSError as exc:
-            raise PlanError(f"cannot read plan file {path}: {exc.strerror or exc}") from None
-        try:
-            data = tomllib.loads(text)
-        except tomllib.TOMLDecodeError as exc:
-            raise PlanError(f"{path}: not valid TOML: {exc}") from None
-        if "plan" in data and isinstance(data["plan"], dict) and len(data) == 1:
-            data = data["plan"]
-        data = dict(data)
-        preset = data.pop("preset", None)
-        try:
-            if preset is not None:
-                if not isinstance(preset, str):
-                    raise PlanError(f"preset: must be a string, got {preset!r}")
-                return preset_plan(preset).with_overrides(**data)
-            return cls.from_dict(data)
-        except PlanError as exc:
-            raise PlanError(f"{path}: {exc}") from None
+    @classmethod
+    def preset(cls, name: str) -> ExperimentPlan:
+        """The named preset (``preset = "paper-table3"`` in a plan file)."""
+        return preset_plan(name)
 
     def _adjust_overrides(self, data: dict[str, Any], changes: dict[str, Any]) -> dict[str, Any]:
         if "algorithms" in changes and "options" not in changes:
