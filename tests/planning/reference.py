@@ -96,11 +96,23 @@ def hit_margins(scenario, paths: np.ndarray, mode: str, t0: float = 0.0) -> np.n
     return out.reshape(n, nseg, -1)
 
 
+def border_hits(scenario, paths: np.ndarray, clearance: float = 0.0) -> np.ndarray:
+    """Segments per candidate that leave the map shrunk by ``r + clearance`` (shapely: the
+    segment is not covered by that box; touching its edge is inside). Exact on both sides:
+    the kernel compares the very coordinates with the very box, so no tangency is ambiguous."""
+    reach = scenario.robot_radius + clearance
+    box = shapely.box(reach, reach, scenario.width - reach, scenario.height - reach)
+    n, npts, _ = paths.shape
+    lines = shapely.linestrings(np.stack([paths[:, :-1], paths[:, 1:]], axis=2).reshape(-1, 2, 2))
+    return (~shapely.covers(box, lines)).reshape(n, npts - 1).sum(axis=1)
+
+
 def reference_parts(scenario, X, start, mode: str, t0: float = 0.0):
-    """(length, n_collisions, turning, ambiguous) per candidate."""
+    """(length, n_collisions, turning, ambiguous) per candidate; the collisions count the
+    (segment, obstacle) pairs and the segments that leave the map (:func:`border_hits`)."""
     paths = paths_from(np.asarray(X, float), start, scenario.goal)
     length, turning = length_and_turning(paths)
     margin = hit_margins(scenario, paths, mode, t0)
-    ncol = np.sum(margin <= 0.0, axis=(1, 2))
+    ncol = np.sum(margin <= 0.0, axis=(1, 2)) + border_hits(scenario, paths)
     ambiguous = np.any(np.abs(margin) < AMBIGUOUS, axis=(1, 2))
     return length, ncol, turning, ambiguous

@@ -44,7 +44,8 @@ def test_occupancy_image(tmp_path):
     assert (sc.width, sc.height) == (60.0, 40.0)
     assert len(sc.obstacles) == 1 and sc.name == "map"
     assert sc.obstacles[0].shape.bounds() == (20.0, 25.0, 30.0, 35.0)
-    big = from_occupancy_image(path, start=(2, 2), goal=(118, 78), cell=2.0)
+    # the default robot (radius 4) keeps its disc in the map (issue 30)
+    big = from_occupancy_image(path, start=(4, 4), goal=(116, 76), cell=2.0)
     assert big.obstacles[0].shape.bounds() == (40.0, 50.0, 60.0, 70.0)
     with pytest.raises(ScenarioError, match="start: inside obstacles"):
         from_occupancy_image(path, start=(25, 30), goal=(58, 38))

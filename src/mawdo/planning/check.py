@@ -13,6 +13,11 @@ signed value; for a polygon, once the robot's centre is inside, it is ``-r`` min
 centre gets (measured on points ``DEPTH_STEP / 2`` apart; positive exactly when the centre
 enters the interior). A collision is a clearance ``< -tol`` (touching is allowed, as in the
 oracle; ``tol`` defaults to 1e-9 px so that rounding is not reported).
+
+The map's border is a wall: a step whose robot disc leaves the map ``[0, W] x [0, H]`` by more
+than ``tol`` collides with it (``CheckReport.border``). The disc's centre moves along a segment
+and the map is a convex box, so the step stays inside exactly when the discs at both ends do;
+how far it leaves is ``r`` minus the smallest distance of those ends' centres to the border.
 """
 
 from __future__ import annotations
@@ -40,7 +45,7 @@ class CheckReport:
     Attributes
     ----------
     ok : bool
-        No collision and (for trajectories) every position inside the map.
+        No collision and (for trajectories) the robot's whole disc inside the map.
     collisions : tuple of (int, int)
         ``(step, obstacle index)`` for each step/segment that collides with an obstacle.
     min_clearance : float
@@ -49,7 +54,13 @@ class CheckReport:
     clearance : numpy.ndarray, shape (n_steps, n_obstacles)
         Clearance per step (segment) and obstacle (pixels).
     out_of_map : tuple of int
-        Indices of positions outside the map box (trajectories only).
+        Indices of positions whose centre is outside the map box (trajectories only).
+    border : tuple of int
+        Steps (segments) whose robot disc leaves the map by more than ``tol``: collisions with
+        the map's border (trajectories only).
+    border_excess : float
+        How far the disc leaves the map at worst (pixels; <= 0: it stays inside, ``-inf``
+        without a map, as for :func:`check_static_path`).
     """
 
     ok: bool
@@ -57,6 +68,24 @@ class CheckReport:
     min_clearance: float
     clearance: np.ndarray
     out_of_map: tuple[int, ...] = ()
+    border: tuple[int, ...] = ()
+    border_excess: float = -np.inf
+
+    @property
+    def hits(self) -> int:
+        """Collisions with obstacles and with the map's border, ``(step, obstacle)`` pairs and
+        steps counted one each."""
+        return len(self.collisions) + len(self.border)
+
+    def describe(self) -> str:
+        """Why the check failed, in words (``"ok"`` when it passed), e.g. ``"2 collisions with
+        obstacles; route leaves the map by 1.5 px"``."""
+        parts = []
+        if self.collisions:
+            parts.append(f"{len(self.collisions)} collisions with obstacles")
+        if self.border:
+            parts.append(f"route leaves the map by {self.border_excess:.3g} px")
+        return "; ".join(parts) if parts else "ok"
 
 
 def _polygon_depth(geoms: np.ndarray, poly) -> np.ndarray:
@@ -98,13 +127,26 @@ def _shape_distance(shape, lines: np.ndarray) -> np.ndarray:
     return shapely.distance(lines, poly) - _polygon_depth(lines, poly)
 
 
-def _report(clearance: np.ndarray, tol: float, out_of_map=()) -> CheckReport:
+def _report(clearance: np.ndarray, tol: float, out_of_map=(), excess=None) -> CheckReport:
+    """The report; ``excess`` is how far each step's disc leaves the map (pixels), if any."""
     steps, obs = np.nonzero(clearance < -tol)
     collisions = tuple((int(s), int(o)) for s, o in zip(steps, obs, strict=True))
     min_c = float(clearance.min()) if clearance.size else np.inf
-    return CheckReport(
-        not collisions and not out_of_map, collisions, min_c, clearance, tuple(out_of_map)
-    )
+    border, worst = (), -np.inf
+    if excess is not None:
+        border = tuple(int(s) for s in np.nonzero(excess > tol)[0])
+        worst = float(excess.max())
+    ok = not collisions and not out_of_map and not border
+    return CheckReport(ok, collisions, min_c, clearance, tuple(out_of_map), border, worst)
+
+
+def _border_excess(p: np.ndarray, radius: float, width: float, height: float) -> np.ndarray:
+    """How far the robot disc leaves the map over each step ``p[s] -> p[s + 1]`` (pixels;
+    negative: its distance inside). A disc moving straight stays in the convex box exactly
+    when it does at both ends, so the worst end decides."""
+    inner = np.min(np.column_stack([p[:, 0], p[:, 1], width - p[:, 0], height - p[:, 1]]), axis=1)
+    out = radius - inner
+    return np.maximum(out[:-1], out[1:])
 
 
 def _as_points(path, what: str) -> np.ndarray:
@@ -136,11 +178,14 @@ def check_trajectory(
         Explicit, non-decreasing times of the positions (time steps), e.g. the vertices of a
         path followed at constant speed; overrides ``t0``.
 
+    The map's border counts as a wall (see the module docstring).
+
     Returns
     -------
     CheckReport
         ``collisions`` lists ``(step, obstacle)``: step ``s`` is the move from position ``s`` to
-        ``s + 1`` (step 0 for a single position).
+        ``s + 1`` (step 0 for a single position); ``border`` the steps whose robot disc leaves
+        the map (:meth:`CheckReport.describe` says by how much).
     """
     p = _as_points(positions, "positions")
     if times is None:
@@ -179,7 +224,7 @@ def check_trajectory(
             index.append(np.full(len(rel), s))
         lines = shapely.linestrings(np.concatenate(coords), indices=np.concatenate(index))
         clearance[:, o.index] = _shape_distance(o.shape, lines) - r
-    return _report(clearance, tol, [int(i) for i in outside])
+    return _report(clearance, tol, [int(i) for i in outside], _border_excess(p, r, W, H))
 
 
 def check_static_path(

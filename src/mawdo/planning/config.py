@@ -297,7 +297,8 @@ class _Drive:
         rep = check_trajectory(route, scenario, times=stamps)
         reached = reason == "goal reached"
         if reached and not rep.ok:
-            reason = f"goal reached but the route collides ({len(rep.collisions)} checker hits)"
+            reason = f"goal reached but the route collides ({rep.hits} checker hits: "
+            reason += f"{rep.describe()})"
         per_step = rep.clearance.min(axis=1) if rep.clearance.size else np.zeros(0)
         return PlanResult(
             trajectory=np.array(self.traj),

@@ -5,7 +5,8 @@
 * ``C1``: polyline length of ``start, w1..wm, goal`` (pixels, Eq. 26);
 * ``C2 = k n^4`` (Eq. 27), ``n`` the number of (segment, obstacle) pairs whose segment hits the
   obstacle inflated by the robot radius, *including a segment lying wholly inside it* (the
-  paper counts boundary crossings, which misses that case);
+  paper counts boundary crossings, which misses that case); the map's border is one more
+  obstacle: a segment whose robot disc (radius plus ``clearance``) leaves the map counts once;
 * ``C3 = sum |theta_i - pi|`` over interior vertices (radians, Eq. 28): the total turning angle;
   zero-length segments are skipped, so duplicated waypoints neither add nor hide turning.
 
@@ -157,7 +158,8 @@ class PathCost:
         Waypoints per candidate ``m``; the dimension is ``2 m`` (default 20 -> 40-D).
     clearance : float
         Margin (px, >= 0) added to the robot radius for the hit test of Eq. 27: a segment
-        coming within ``r + clearance`` of an obstacle counts as a collision (default 0).
+        coming within ``r + clearance`` of an obstacle, or with an end closer than that to the
+        map's border, counts as a collision (default 0).
     threads : int
         Threads a call may use (default 1: the calling thread only). Populations are split
         into chunks of rows of at least 16 candidates evaluated at once; the numbers are the
@@ -206,6 +208,10 @@ class PathCost:
         self._frozen = MotionTable.frozen(len(self.flat.thresh)).kernel_arrays(0.0)
         self._kernel = ThreadedKernel(threads)  # keeps the kernel's work space between calls
         self._no_offsets = np.zeros((len(self.flat.thresh), 2))
+        # the border, inflated like every obstacle: the centre must keep r + clearance from it
+        # (a map narrower than that leaves an empty box, where every segment hits)
+        reach = float(scenario.robot_radius) + self.clearance
+        self._box = (reach, reach, float(scenario.width) - reach, float(scenario.height) - reach)
 
     @property
     def threads(self) -> int:
@@ -260,7 +266,7 @@ class PathCost:
         length : numpy.ndarray, shape (n,)
             C1, polyline length (pixels, Eq. 26).
         n_collisions : numpy.ndarray of int64, shape (n,)
-            ``n`` of Eq. 27 (``C2 = k n^4``).
+            ``n`` of Eq. 27 (``C2 = k n^4``), segments leaving the map included.
         turning : numpy.ndarray, shape (n,)
             C3, total turning (radians, Eq. 28).
         """
@@ -337,6 +343,7 @@ class PathCost:
             snap,
             motion,
             (float(w.alpha), float(w.beta), float(w.lam), float(w.k)),
+            self._box,
             (out_cost, out_len, out_ncol, out_turn),
         )
         if single:

@@ -14,6 +14,9 @@ Minkowski sum of the shape and a disc of radius ``r``). Two representations are 
   collision-free, and it exceeds it by at most ``r (1 / cos(pi / n) - 1)`` pixels
   (0.019 px for ``r = 4``, ``n = 32``). The polygon's flat sides are aligned with the axes, so an
   axis-aligned box grows by exactly ``r`` on each side.
+
+The map's border is a wall too: grown by ``r`` it leaves the centre the map shrunk by ``r`` on
+every side (:func:`centre_box`).
 """
 
 from __future__ import annotations
@@ -30,6 +33,7 @@ from mawdo.planning.scenario import CircleObstacle, Obstacle, Scenario
 __all__ = [
     "CIRCLE_SEGMENTS",
     "FlatObstacles",
+    "centre_box",
     "MotionTable",
     "circumscribed_polygon",
     "inflate",
@@ -39,6 +43,18 @@ __all__ = [
 
 #: Sides of the regular polygon that replaces a disc (circles and round corners).
 CIRCLE_SEGMENTS = 32
+
+
+def centre_box(scenario: Scenario, margin: float) -> tuple[float, float, float, float]:
+    """Where the robot's centre may go: the map shrunk by ``margin`` (pixels, >= 0; the robot
+    radius, plus any clearance) on every side, as ``(xmin, ymin, xmax, ymax)``.
+
+    A map narrower than ``2 margin`` leaves the line (or point) through its middle, so the box
+    is never inverted.
+    """
+    mx = min(float(margin), 0.5 * float(scenario.width))
+    my = min(float(margin), 0.5 * float(scenario.height))
+    return (mx, my, float(scenario.width) - mx, float(scenario.height) - my)
 
 
 def circumscribed_polygon(center, radius: float, n: int = CIRCLE_SEGMENTS) -> shapely.Polygon:

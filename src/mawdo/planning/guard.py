@@ -7,10 +7,11 @@ piecewise-linear motion, hit distance ``r + clearance``). The fallback order is:
 1. the optimizer's best candidate, then the other members of a small *elite* of distinct
    candidates collected while the optimizer ran (:class:`Elite`), best first;
 2. waiting in place, if the robot's disc plus the margin stays clear over the interval (checked
-   by the independent checker, as the kernel measures time by distance travelled);
+   by the independent checker, as the kernel measures time by distance travelled), and keeps
+   the margin from the map's border;
 3. the least-bad evasive move: of 16 headings at full and half speed (and waiting), one whose
-   step keeps the margin and gets closest to the plan's next point, else the one with the largest
-   clearance.
+   step keeps the margin (from the obstacles and the map's border) and gets closest to the
+   plan's next point, else the one with the largest clearance.
 """
 
 from __future__ import annotations
@@ -148,10 +149,10 @@ class Guard:
         return int(ncol[0])
 
     def step_clearance(self, pos: np.ndarray, to: np.ndarray, t: float, dt: float) -> float:
-        """Smallest clearance (px, true radius) over a straight move ``pos -> to`` in ``dt``."""
+        """Smallest clearance (px, true radius) over a straight move ``pos -> to`` in ``dt``,
+        to the obstacles and to the map's border (negative where the disc leaves the map)."""
         rep = check_trajectory(np.vstack([pos, to]), self.scenario, times=np.array([t, t + dt]))
-        inside = np.all((to >= 0) & (to <= [self.scenario.width, self.scenario.height]))
-        return float(rep.min_clearance) if inside else -np.inf
+        return min(float(rep.min_clearance), -rep.border_excess)
 
     def evasive_move(self, pos: np.ndarray, target: np.ndarray, t: float, dt: float):
         """Best move over ``dt`` steps: ``(to, clearance, safe)`` (see the module docstring)."""

@@ -1,11 +1,11 @@
 """Topological guidance: the shortest route and alternatives in distinct homotopy classes.
 
-The static obstacles, inflated by robot radius + clearance (+ a hair of slack so that the cost
-kernel, which counts touching as a hit, sees the routes as free), give one tangent visibility
-graph per scenario (:mod:`mawdo.planning.visgraph`), built once with the goal as a node and
-cached with the shortest-path tree toward the goal. For a robot position the graph is re-rooted
-(the robot joins the nodes it sees, one Dijkstra). Every corner ``v`` then gives the route
-``robot -> v -> goal`` made of the two shortest-path trees; its class is told by its
+The static obstacles and the map's border, inflated by robot radius + clearance (+ a hair of
+slack so that the cost kernel, which counts touching as a hit, sees the routes as free), give
+one tangent visibility graph per scenario (:mod:`mawdo.planning.visgraph`), built once with the
+goal as a node and cached with the shortest-path tree toward the goal. For a robot position the
+graph is re-rooted (the robot joins the nodes it sees, one Dijkstra). Every corner ``v`` then
+gives the route ``robot -> v -> goal`` made of the two shortest-path trees; its class is told by its
 *winding vector*: for each obstacle component, the total angle the route sweeps around a point
 inside it (two routes with the same ends are in the same class iff every entry agrees, up to
 rounding). Taking routes by increasing length and keeping the first of each class gives the
@@ -19,7 +19,7 @@ import numpy as np
 import shapely
 from numba import njit
 
-from mawdo.planning.geometry import inflate
+from mawdo.planning.geometry import centre_box, inflate
 from mawdo.planning.scenario import Scenario
 from mawdo.planning.visgraph import VisGraph, build, trace
 
@@ -85,7 +85,9 @@ class Guide:
             inflate(scenario.obstacles[i].shape, rho, n=GUIDE_SEGMENTS)
             for i in scenario.static_indices
         ]
-        self.graph: VisGraph = build(obstacles, scenario.bounds, points=[scenario.goal])
+        # the map's border is inflated like the obstacles
+        box = centre_box(scenario, rho)
+        self.graph: VisGraph = build(obstacles, box, points=[scenario.goal])
         # a map without static obstacles has an empty union, whose one part has no point
         parts = [p for p in shapely.get_parts(self.graph.union) if not p.is_empty]
         refs = [p.representative_point() for p in parts]

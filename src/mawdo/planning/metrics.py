@@ -91,7 +91,7 @@ def run_metrics(result: PlanResult, l_star: float | None = None, snapshots: int 
         "gap": length / l_star if result.success else float("nan"),
         "smoothness_rad": float(turns.sum()),
         "max_turn_rad": float(turns.max()) if turns.size else 0.0,
-        "collisions": len(check.collisions),
+        "collisions": check.hits,  # the map's border included
         "min_clearance_px": float(check.min_clearance),
         "snapshot_gap_median": float(np.median(snap)) if snap.size else float("nan"),
         "snapshot_gap_max": float(np.max(snap)) if snap.size else float("nan"),

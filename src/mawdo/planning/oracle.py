@@ -13,7 +13,8 @@ along an edge or through a vertex without being rejected by rounding.
 
 For the robot disc, pass the obstacles inflated by the robot radius
 (:func:`mawdo.planning.geometry.inflate`, which contains the true inflated shape, so the result is
-collision-free and at most a hair longer than the true optimum); :func:`scenario_optimum` does that.
+collision-free and at most a hair longer than the true optimum) and the map shrunk by it
+(:func:`mawdo.planning.geometry.centre_box`); :func:`scenario_optimum` does that.
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from mawdo.planning.geometry import CIRCLE_SEGMENTS, inflated_obstacles
+from mawdo.planning.geometry import CIRCLE_SEGMENTS, centre_box, inflated_obstacles
 from mawdo.planning.scenario import Scenario
 from mawdo.planning.visgraph import MAX_NODES, build, trace
 
@@ -110,7 +111,8 @@ def scenario_optimum(
     n: int = CIRCLE_SEGMENTS,
     tol: float = DEFAULT_TOL,
 ) -> OracleResult:
-    """Optimum ``L*`` of a scenario, obstacles inflated by the robot radius (containing polygons).
+    """Optimum ``L*`` of a scenario, obstacles inflated by the robot radius (containing polygons)
+    and the robot's disc inside the map (its centre at least the radius from the border).
 
     Parameters
     ----------
@@ -131,4 +133,6 @@ def scenario_optimum(
     idx = scenario.static_indices if static_only else None
     obstacles = inflated_obstacles(scenario, t, indices=idx, n=n)
     s = scenario.start if start is None else start
-    return shortest_path(s, scenario.goal, obstacles, scenario.bounds, tol)
+    # the border is a wall like the obstacles: the centre keeps the radius from it
+    box = centre_box(scenario, scenario.robot_radius)
+    return shortest_path(s, scenario.goal, obstacles, box, tol)

@@ -1,7 +1,8 @@
 """World model for path planning: map, start and goal, robot, obstacles and their motion.
 
 A scenario is read from a dict (TOML or JSON file, schema version 1), validated field by field by
-pydantic and then checked as a whole (start and goal inside the map and clear of obstacles,
+pydantic and then checked as a whole (start and goal inside the map with the whole robot disc
+(its centre at least the radius from the border) and clear of obstacles,
 polygons simple, moving obstacles inside the map). Every problem is reported with the path of the
 offending field, e.g. ``obstacles[2].radius: must be > 0``, in one :class:`ScenarioError`.
 
@@ -424,6 +425,19 @@ def _offset_bounds(shape, width: float, height: float) -> tuple[np.ndarray, np.n
     return np.array([-xmin, -ymin]), np.array([width - xmax, height - ymax])
 
 
+def _border_message(x: float, y: float, W: float, H: float, r: float) -> str:
+    """Why a point is refused for the robot's centre: its disc leaves the map."""
+    if W < 2 * r or H < 2 * r:
+        return (
+            f"({x:g}, {y:g}): the robot disc (radius {r:g} px) does not fit in the "
+            f"{W:g} x {H:g} px map; use a smaller robot radius or a larger map"
+        )
+    return (
+        f"({x:g}, {y:g}) is closer than the robot radius {r:g} px to the map border (the disc "
+        f"would leave the map); allowed: [{r:g}, {W - r:g}] x [{r:g}, {H - r:g}]"
+    )
+
+
 def _semantic_errors(spec: ScenarioSpec) -> list[tuple[str, str]]:
     """Whole-scenario checks that single fields cannot express."""
     errors: list[tuple[str, str]] = []
@@ -432,6 +446,8 @@ def _semantic_errors(spec: ScenarioSpec) -> list[tuple[str, str]]:
         x, y = getattr(spec, name)
         if not (0.0 <= x <= W and 0.0 <= y <= H):
             errors.append((name, f"({x:g}, {y:g}) is outside the map [0, {W:g}] x [0, {H:g}]"))
+        elif not (r <= x <= W - r and r <= y <= H - r):  # the border is a wall, as an obstacle
+            errors.append((name, _border_message(x, y, W, H, r)))
     seen: dict[str, int] = {}
     for i, ob in enumerate(spec.obstacles):
         path = f"obstacles[{i}]"

@@ -209,8 +209,9 @@ def first_collision_time(result) -> float | None:
         return None
     ts = np.append(np.arange(0.0, times[-1], 0.5), times[-1])
     pts = np.column_stack([np.interp(ts, times, result.route[:, i]) for i in (0, 1)])
-    hits = check_trajectory(pts, result.scenario, times=ts).collisions
-    return float(ts[min(k for k, _ in hits)]) if hits else None
+    rep = check_trajectory(pts, result.scenario, times=ts)
+    steps = [k for k, _ in rep.collisions] + list(rep.border)
+    return float(ts[min(steps)]) if steps else None
 
 
 def _gallery_times(result) -> np.ndarray | None:

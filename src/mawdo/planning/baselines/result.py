@@ -33,7 +33,7 @@ class BaselineResult:
     collision_free : bool
         The independent checker (:func:`mawdo.planning.check.check_trajectory`) approves the
         route followed at the robot's speed from t = 0 against every obstacle, moving ones
-        included, and it stays in the map.
+        included, and the robot's disc stays in the map.
     static_collision_free : bool
         The checker approves the route against the static obstacles alone.
     min_clearance : float
@@ -97,8 +97,7 @@ def make_result(
     timed, static = judge(scenario, route)
     length = float(np.sum(np.hypot(*np.diff(route, axis=0).T)))
     if reason == "ok" and not timed.ok:
-        what = "leaves the map" if timed.out_of_map else f"{len(timed.collisions)} collisions"
-        reason = f"checker rejects the timed route: {what}"
+        reason = f"checker rejects the timed route: {timed.describe()}"
     return BaselineResult(
         name, True, route, length, seconds, False, timed.ok, static.ok, timed.min_clearance,
         checks, reason,

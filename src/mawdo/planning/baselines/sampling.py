@@ -1,8 +1,11 @@
 """OMPL baselines: RRT*, BIT* and PRM*, single-shot on the static obstacles under a time budget.
 
-The robot is a point in ``[0, width] x [0, height]`` (OMPL ``RealVectorStateSpace(2)``). A state
-is valid when it lies outside every static obstacle inflated by ``robot_radius + clearance``
-(containing polygons, :func:`mawdo.planning.geometry.inflate`; one prepared shapely union).
+The robot is a point in the map shrunk by ``robot_radius`` on every side (OMPL
+``RealVectorStateSpace(2)`` bounds; :func:`mawdo.planning.geometry.centre_box`), so its disc
+stays in the map: the box is convex, so a motion between two states in it never leaves it and
+needs no margin. A state is valid when it lies in that box and outside every static obstacle
+inflated by ``robot_radius + clearance`` (containing polygons,
+:func:`mawdo.planning.geometry.inflate`; one prepared shapely union).
 Motions are checked by OMPL's discrete motion validator at ``resolution`` pixels: every point of
 a motion is within ``resolution / 2`` of a checked state, so with ``clearance >= resolution / 2``
 (default ``clearance = resolution``) no accepted motion can come closer than ``robot_radius``
@@ -22,7 +25,7 @@ import numpy as np
 import shapely
 
 from mawdo.planning.baselines.result import BaselineResult, make_result
-from mawdo.planning.geometry import inflate
+from mawdo.planning.geometry import centre_box, inflate
 from mawdo.planning.scenario import Scenario
 
 __all__ = ["OMPL_PLANNERS", "ompl_available", "plan_ompl"]
@@ -74,8 +77,9 @@ class _Validity:
 
     GRID = 256
 
-    def __init__(self, blocked, width: float, height: float) -> None:
+    def __init__(self, blocked, width: float, height: float, box=None) -> None:
         self.blocked = blocked
+        self.box = (0.0, 0.0, float(width), float(height)) if box is None else box
         self.calls = 0
         self.cell = max(width, height) / self.GRID
         nx, ny = math.ceil(width / self.cell), math.ceil(height / self.cell)
@@ -89,6 +93,9 @@ class _Validity:
     def __call__(self, state) -> bool:
         self.calls += 1
         x, y = state[0], state[1]
+        xlo, ylo, xhi, yhi = self.box
+        if x < xlo or x > xhi or y < ylo or y > yhi:  # the robot's disc would leave the map
+            return False
         i = min(max(int(x / self.cell), 0), self.nx - 1)
         j = min(max(int(y / self.cell), 0), self.ny - 1)
         g = self.grid[j][i]
@@ -155,13 +162,14 @@ def plan_ompl(
     _check_options(planner, time_limit, resolution, clearance)
     space = base.RealVectorStateSpace(2)
     bounds = base.RealVectorBounds(2)
-    for axis, high in enumerate((scenario.width, scenario.height)):
-        bounds.setLow(axis, 0.0)
-        bounds.setHigh(axis, float(high))
+    box = centre_box(scenario, scenario.robot_radius)
+    for axis in (0, 1):
+        bounds.setLow(axis, box[axis])
+        bounds.setHigh(axis, box[axis + 2])
     space.setBounds(bounds)
     si = base.SpaceInformation(space)
     t0 = time.perf_counter()
-    validity = _Validity(_blocked(scenario, clearance), scenario.width, scenario.height)
+    validity = _Validity(_blocked(scenario, clearance), scenario.width, scenario.height, box)
     si.setStateValidityChecker(validity)
     # OMPL states the resolution as a fraction of the space's extent (the map diagonal)
     si.setStateValidityCheckingResolution(

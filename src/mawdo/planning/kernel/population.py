@@ -44,7 +44,7 @@ def scratch_size(n, npts, nk, spacetime):
 
 @njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
 def population_cost(
-    X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, out, scratch
+    X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, box, out, scratch
 ):
     """Cost of every candidate path; writes the arrays of ``out`` in place.
 
@@ -79,9 +79,15 @@ def population_cost(
         obstacle the piece that contains ``t0``. Used in spacetime mode.
     weights : tuple of float
         ``(alpha, beta, lam, k)`` of Eqs. 17 and 20.
+    box : tuple of float
+        ``(xlo, ylo, xhi, yhi)`` (pixels): where the robot's centre may go, the map shrunk by
+        the hit distance. A segment with an end strictly outside it hits the map's border
+        (a segment lies in a convex box iff both its ends do); that pair counts in ``n`` like a
+        (segment, obstacle) pair.
     out : tuple of arrays, each shape (n,)
         ``(cost, length, n_collisions, turning)``: C (Eq. 17), C1 in pixels (Eq. 19), the
-        number of hitting (segment, obstacle) pairs (int64, Eq. 20), C3 in radians (Eq. 21).
+        number of hitting (segment, obstacle) pairs, the border included (int64, Eq. 20), C3
+        in radians (Eq. 21).
     scratch : float64[:]
         Work space, kept by the caller from call to call: :func:`scratch_size` floats or more
         (a shorter one makes the kernel allocate its own).
@@ -89,6 +95,7 @@ def population_cost(
     is_circle, thresh, verts, nverts, bound, hull, nhull = obs
     kt, ko, kv, nk, k_start = motion
     alpha, beta, lam, k_coll = weights
+    xlo, ylo, xhi, yhi = box
     out_cost, out_len, out_ncol, out_turn = out
     n = X.shape[0]
     npts = X.shape[1] // 2 + 2
@@ -239,10 +246,16 @@ def population_cost(
                 _static_pass(
                     i, ox, oy, bn, npts, path, work, cls, obs, extra, a2, margin, hits, ncol
                 )
+        px, py = path[0], path[1]
         for b in range(bn):
             nc = ncol[b]
-            for p in range(b * npts, b * npts + nseg):
-                nc += hits[p]
+            # the border: a NaN end is never outside (its cost is NaN through the length)
+            q = b * npts
+            out_prev = px[q] < xlo or px[q] > xhi or py[q] < ylo or py[q] > yhi
+            for p in range(q, q + nseg):
+                out_next = px[p + 1] < xlo or px[p + 1] > xhi or py[p + 1] < ylo or py[p + 1] > yhi
+                nc += hits[p] + (1 if out_prev or out_next else 0)
+                out_prev = out_next
             c = c0 + b
             out_ncol[c] = nc
             x = float(nc)

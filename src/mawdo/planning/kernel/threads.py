@@ -32,7 +32,9 @@ _lock = threading.Lock()
 
 
 @njit(cache=True, parallel=True, nogil=True)
-def _chunked(bounds, X, start, goal, t0, speed, spacetime, obs, snap, motion, weights, out, buf):
+def _chunked(
+    bounds, X, start, goal, t0, speed, spacetime, obs, snap, motion, weights, box, out, buf
+):
     """:func:`population_cost` on rows ``bounds[j]:bounds[j + 1]`` for every ``j`` at once,
     chunk ``j`` working in row ``j`` of ``buf``."""
     cost, length, ncol, turn = out
@@ -41,8 +43,9 @@ def _chunked(bounds, X, start, goal, t0, speed, spacetime, obs, snap, motion, we
         hi = bounds[j + 1]
         part = (cost[lo:hi], length[lo:hi], ncol[lo:hi], turn[lo:hi])
         population_cost(
-            X[lo:hi], start, goal, t0, speed, spacetime, obs, snap, motion, weights, part, buf[j]
-        )
+            X[lo:hi], start, goal, t0, speed, spacetime, obs, snap, motion, weights, box, part,
+            buf[j],
+        )  # fmt: skip
 
 
 def chunk_bounds(n: int, threads: int) -> np.ndarray:
@@ -78,7 +81,7 @@ class ThreadedKernel:
             self._buf = np.empty((rows, cols))
         return self._buf
 
-    def __call__(self, X, start, goal, t0, speed, spacetime, obs, snap, motion, weights, out):
+    def __call__(self, X, start, goal, t0, speed, spacetime, obs, snap, motion, weights, box, out):
         """Fill ``out = (cost, length, n_collisions, turning)`` for the rows of ``X``; the
         arguments are those of :func:`population_cost` without the scratch buffer."""
         n, npts = X.shape[0], X.shape[1] // 2 + 2
@@ -87,7 +90,7 @@ class ThreadedKernel:
         bounds = self._split[1]
         k = bounds.size - 1
         buf = self._scratch(k, scratch_size(-(-n // k), npts, motion[3], spacetime))
-        args = (X, start, goal, t0, speed, spacetime, obs, snap, motion, weights, out)
+        args = (X, start, goal, t0, speed, spacetime, obs, snap, motion, weights, box, out)
         if k == 1:
             population_cost(*args, buf[0])
             return

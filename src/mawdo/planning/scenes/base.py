@@ -2,10 +2,10 @@
 
 A *family* draws scenario drafts (plain dicts in the scenario schema) from a random generator and
 its resolved parameters. :func:`generate_scene` turns a draft into a :class:`Scene` only after it
-validates as a scenario, its start and goal are free by ``robot_radius + clearance`` (and the robot
-disc lies inside the map), and the exact oracle finds a static route; the optimum's length is
-stored as ``l_star``. A draft that fails is redrawn from the next attempt's stream, at most
-``MAX_ATTEMPTS`` times, then the scene is rejected with every attempt's reason: an unsolvable
+validates as a scenario, its start and goal are free by ``robot_radius + clearance`` (from the
+obstacles and from the map's border), and the exact oracle finds a static route; the optimum's
+length is stored as ``l_star``. A draft that fails is redrawn from the next attempt's stream, at
+most ``MAX_ATTEMPTS`` times, then the scene is rejected with every attempt's reason: an unsolvable
 draw is never returned.
 
 Seeding: scene ``index`` of ``(family, seed)`` draws attempt ``a`` from the stream at spawn key
@@ -191,12 +191,12 @@ def draft(p: Mapping[str, Any], start, goal, obstacles: list[dict]) -> dict:
 
 def endpoint_problems(scenario: Scenario, clearance: float) -> list[str]:
     """Why start or goal is not free: closer than ``robot_radius + clearance`` to an obstacle
-    at t = 0, or the robot disc not inside the map (empty list: both free)."""
+    at t = 0 or to the map's border, a wall like the obstacles (empty list: both free)."""
     need = scenario.robot_radius + clearance
     out = []
     for name, p in (("start", scenario.start), ("goal", scenario.goal)):
-        if min(p[0], p[1], scenario.width - p[0], scenario.height - p[1]) < scenario.robot_radius:
-            out.append(f"{name} robot disc leaves the map")
+        if min(p[0], p[1], scenario.width - p[0], scenario.height - p[1]) < need:
+            out.append(f"{name} within robot radius + clearance of the map border")
         for ob in scenario.obstacles:
             if ob.shape.distance(p) <= need:
                 out.append(f"{name} within robot radius + clearance of an obstacle")
