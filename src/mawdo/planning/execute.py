@@ -89,6 +89,7 @@ class Run:
         self.stalled = False  # the last search found nothing cheaper than its warm start
         self.chosen_index = 0  # which candidate the guard accepted at the last replan
         self._reach = None  # the oracle's answer, when the guide found no route
+        self._per_pop = None  # seconds of one population's cost (estimate_seconds)
 
     # -- seeds ---------------------------------------------------------------------------------
 
@@ -269,11 +270,13 @@ class Run:
         one population's cost (measured now, after a warm-up call) times the iterations of the
         first plan and of a replan at every ``replan_every`` steps (held replans cost less)."""
         cfg = self.cfg
-        X = np.random.default_rng(0).uniform(*self.cost.bounds, (cfg.pop_size, self.cost.dim))
-        self.cost(X[:2], start=self.sc.start)  # compiles once per process
-        t0 = time.perf_counter()
-        self.cost(X, start=self.sc.start)
-        per_pop = time.perf_counter() - t0
+        if self._per_pop is None:  # measured once: estimates of one run stay comparable
+            X = np.random.default_rng(0).uniform(*self.cost.bounds, (cfg.pop_size, self.cost.dim))
+            self.cost(X[:2], start=self.sc.start)  # compiles once per process
+            t0 = time.perf_counter()
+            self.cost(X, start=self.sc.start)
+            self._per_pop = time.perf_counter() - t0
+        per_pop = self._per_pop
         first = cfg.first_iters * (cfg.first_pop_size or cfg.pop_size) / cfg.pop_size
         return per_pop * (first + cfg.replan_iters * steps / cfg.replan_every)
 
