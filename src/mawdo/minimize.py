@@ -7,6 +7,7 @@ same way. Arguments are checked before anything runs (:mod:`mawdo.validate`).
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Callable
 
 import numpy as np
@@ -15,10 +16,10 @@ from mawdo.blocks import block_sizes, join_results
 from mawdo.budget import CALLBACK, DEFAULT_MAX_ITER, Budget, RunLog
 from mawdo.optimizers.base import Optimizer, Space
 from mawdo.optimizers.registry import make_optimizer
-from mawdo.problem import Evaluator, Problem, as_bounds
+from mawdo.problem import Evaluator, Problem, as_bounds, box_scale, check_x0
 from mawdo.result import OptimizeResult
 from mawdo.streams import RunStreams, run_seed_sequences
-from mawdo.validate import ArgumentTypeError, check_bool, check_int, check_seed, real_array
+from mawdo.validate import ArgumentTypeError, check_bool, check_int, check_seed
 
 __all__ = ["DEFAULT_MAX_ITER", "make_problem", "minimize"]
 
@@ -159,8 +160,9 @@ def minimize(
         ``callback(result_so_far) -> bool``, called after every iteration with an
         :class:`OptimizeResult` snapshot; returning True stops all runs.
     x0 : array_like, optional
-        Warm start: ``(k, D)`` points (shared by all runs) or ``(R, k, D)``, ``k <= pop_size``,
-        placed in the initial population; the rest is drawn at random.
+        Warm start: ``(k, D)`` points (shared by all runs) or ``(runs, k, D)``,
+        ``k <= pop_size``, each inside the bounds (a point outside is an error, never clipped
+        silently), placed in the initial population; the rest is drawn at random.
     progress : bool
         Show a progress bar (rich).
     runs_per_block : int, optional
@@ -178,7 +180,7 @@ def minimize(
     OptimizeResult
         Per-run arrays ``x (R, D)``, ``fun (R,)``, ``nfev (R,)``, ``history (R, T)``.
     """
-    _check_driver_arguments(runs, seed, first_run, callback, progress, x0)
+    _check_driver_arguments(runs, seed, first_run, callback, progress)
     budget = Budget(max_iter, max_evals, target, max_time)
     whole = callback is not None or max_time is not None
     _check_blocks(runs_per_block, runs, whole)
@@ -186,9 +188,9 @@ def minimize(
         fun, bounds, lb=lb, ub=ub, dim=dim, vectorized=vectorized, shifted=shifted,
         shift_seed=shift_seed, preset=preset,
     )  # fmt: skip
+    x0 = check_x0(x0, runs, problem.lb, problem.ub)  # the batch's runs, before any block
     opt = make_optimizer(algorithm, **options)
-    # a per-run x0 of the wrong length must fail naming the batch's runs, not a block's
-    if whole or (x0 is not None and np.ndim(x0) == 3 and np.shape(x0)[0] != runs):
+    if whole:
         sizes = [runs]
     else:
         sizes = block_sizes(runs, runs_per_block, opt.params.pop_size, problem.dim)
@@ -214,9 +216,19 @@ class _Batch:
         self.problem, self.opt, self.seed = problem, opt, seed
         algo_streams, noise_streams = _streams(seed, runs, first_run)
         self.evaluator = Evaluator(problem, noise_streams, opt.name)
-        space = Space(problem.lb, problem.ub)
+        # a box wider than floats can span is searched divided by a power of two (exact)
+        self.scale = box_scale(problem.lb, problem.ub)
+        s = self.scale
+        space = Space(problem.lb / s, problem.ub / s)
+        x0 = None if x0 is None else x0 / s
         self.state = opt.init(space, algo_streams, budget.horizon(opt.params.pop_size), x0)
-        self.log = RunLog(budget, runs, space.from_unit(np.zeros(problem.dim)))
+        self.log = RunLog(budget, runs, self._to_box(space.from_unit(np.zeros(problem.dim))))
+
+    def _to_box(self, X: np.ndarray) -> np.ndarray:
+        """The optimizer's candidates in the problem's box (themselves unless it is scaled)."""
+        if self.scale == 1.0:
+            return X
+        return np.clip(X * self.scale, self.problem.lb, self.problem.ub)
 
     def snapshot(self, message: str) -> OptimizeResult:
         return _result(self.opt, self.problem, self.seed, self.log, self.evaluator.nfev, message)
@@ -228,9 +240,10 @@ class _Batch:
             it += 1
             X = opt.ask(self.state)
             limit = log.eval_limit(evaluator.nfev)
-            F = evaluator(X, it, log.active, limit)
+            Xb = self._to_box(X)
+            F = evaluator(Xb, it, log.active, limit)
             self.state = opt.tell(self.state, X, F)
-            log.record(it, X, F, evaluator.nfev)
+            log.record(it, Xb, F, evaluator.nfev)
             if bar is not None:
                 bar.advance(it, evaluator.nfev.max(), log.best_f.min())
             if log.finished(it, X.shape[1], limit):
@@ -254,15 +267,13 @@ def _check_blocks(runs_per_block, runs: int, whole: bool) -> None:
         )
 
 
-def _check_driver_arguments(runs, seed, first_run, callback, progress, x0) -> None:
+def _check_driver_arguments(runs, seed, first_run, callback, progress) -> None:
     check_int("runs", runs, 1)
     check_int("first_run", first_run, 0)
     check_seed(seed)
     check_bool("progress", progress)
     if callback is not None and not callable(callback):
         raise ArgumentTypeError(f"callback={callback!r} must be a callable or None")
-    if x0 is not None:
-        real_array("x0", x0)  # shape and finiteness are the optimizer's check (as_x0)
 
 
 def _streams(seed, runs: int, first_run: int) -> tuple[RunStreams, RunStreams]:
@@ -298,6 +309,7 @@ class _Bar:
     """A thin rich progress bar over iterations (or evaluations under an evaluation budget)."""
 
     def __init__(self, label: str, total: int, by_evals: bool, blocks: int = 1) -> None:
+        from rich.console import Console
         from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
         self.by_evals = by_evals
@@ -308,7 +320,11 @@ class _Bar:
             TextColumn("{task.completed}/{task.total}"),
             TextColumn("best {task.fields[best]}"),
             TimeRemainingColumn(),
+            # stderr, and only on a terminal: a bar that is not drawn must not leave blank
+            # lines on stdout, where the results go
+            console=Console(stderr=True),
             transient=True,
+            disable=not sys.stderr.isatty(),
         )
         self.task = self.progress.add_task(label, total=total * blocks, best="-")
         self.progress.start()

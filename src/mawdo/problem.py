@@ -321,3 +321,68 @@ class Evaluator:
             except Exception:
                 return r
         return None
+
+
+# A box wider than this (in any coordinate) is searched in coordinates divided by a power of two:
+# optimizers compute widths, centres and steps from ``ub - lb``, which overflows to inf for
+# bounds such as (-1e308, 1e308); 2**1000 (about 1e301) leaves room for their arithmetic.
+_WIDEST = 2.0**1000
+
+
+def box_scale(lb: np.ndarray, ub: np.ndarray) -> float:
+    """The power of two ``s`` (1.0 for every box narrower than about 1e301) such that the box
+    ``[lb / s, ub / s]`` has a finite width with room to spare.
+
+    Dividing and multiplying by a power of two is exact for normal floats, so the optimizer may
+    work on ``[lb / s, ub / s]`` and its candidates ``X`` map back to ``X * s`` in the box.
+    """
+    s = 1.0
+    with np.errstate(over="ignore"):  # the overflowing width is the question asked
+        while not np.all(ub / s - lb / s <= _WIDEST):
+            s *= 2.0
+    return s
+
+
+def check_x0(x0, runs: int, lb: np.ndarray, ub: np.ndarray) -> np.ndarray | None:
+    """Validate warm-start points: shape ``(k, D)`` (shared by every run) or ``(runs, k, D)``,
+    finite, and inside the box ``[lb, ub]`` (a point outside is an error, not silently clipped).
+
+    Parameters
+    ----------
+    x0 : array_like or None
+        The warm start given to :func:`mawdo.minimize`.
+    runs : int
+        Runs of the batch.
+    lb, ub : numpy.ndarray
+        The box, shape ``(D,)``.
+
+    Returns
+    -------
+    numpy.ndarray or None
+        ``x0`` as a float array (``None`` stays ``None``).
+    """
+    if x0 is None:
+        return None
+    x0 = real_array("x0", x0)
+    D = lb.shape[0]
+    shapes = f"(k, {D}) shared by every run or (runs, k, {D}) = ({runs}, k, {D}) per run"
+    if x0.ndim not in (2, 3) or x0.shape[-1] != D:
+        raise ValueError(f"x0 must have shape {shapes}; got shape {x0.shape}")
+    if x0.ndim == 3 and x0.shape[0] != runs:
+        raise ValueError(
+            f"x0 has shape {x0.shape}: {x0.shape[0]} per-run sets of points for runs={runs}; "
+            f"give shape {shapes}"
+        )
+    if not np.all(np.isfinite(x0)):
+        raise ValueError("x0 must be finite (no NaN or inf)")
+    outside = (x0 < lb) | (x0 > ub)
+    if outside.any():
+        idx = tuple(int(i) for i in np.argwhere(outside)[0])
+        j = idx[-1]
+        raise ValueError(
+            f"x0[{', '.join(map(str, idx))}] = {float(x0[idx])!r} lies outside the box: "
+            f"coordinate {j} must be in [{float(lb[j])!r}, {float(ub[j])!r}] "
+            f"({int(outside.sum())} values of x0 are outside); warm-start points must lie in "
+            "the bounds, use np.clip(x0, lb, ub) if clipping is what you mean"
+        )
+    return x0

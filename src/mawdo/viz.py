@@ -18,6 +18,31 @@ def _pyplot():
     return plt
 
 
+def log_floor(values) -> tuple[float, bool]:
+    """Where a log axis draws values <= 0, and whether any value needs it.
+
+    The floor is one decade under the smallest positive finite value of ``values`` (1.0 when
+    there is none): an error that is exactly 0 stays visible beside the others without
+    stretching the axis down to 1e-300.
+
+    Parameters
+    ----------
+    values : sequence of numpy.ndarray
+        The data drawn on one axis.
+
+    Returns
+    -------
+    floor : float
+    clipped : bool
+        True when some value is <= 0 and is drawn at the floor (say so on the figure).
+    """
+    pos = [v[(v > 0) & np.isfinite(v)] for v in values if v.size]
+    pos = [p for p in pos if p.size]
+    smallest = min(float(p.min()) for p in pos) if pos else 1.0
+    clipped = any(bool(np.any(v <= 0)) for v in values if v.size)
+    return smallest / 10.0, clipped
+
+
 def band(
     ax,
     curves: np.ndarray,
@@ -62,16 +87,21 @@ def plot_convergence(
     """
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 4.2), dpi=120)
-    log = True
+    curves = {}
     for label, res in results.items():
-        h = res.history
-        if error and res.f_star is not None:
-            h = h - res.f_star
-        elif np.nanmin(h) <= 0:
-            log = False
-        band(ax, h, label, log=log)
+        h = np.asarray(res.history, float)
+        curves[label] = h - res.f_star if error and res.f_star is not None else h
     any_res = next(iter(results.values()))
-    ylabel = "best-so-far error f - f*" if error and any_res.f_star is not None else "best f"
+    errors = error and any_res.f_star is not None
+    # errors are >= 0 and drawn on a log axis, exact zeros at a floor the label names; raw
+    # values that reach 0 or below are drawn on a linear axis
+    log = errors or all(np.nanmin(h) > 0 for h in curves.values())
+    floor, clipped = log_floor(list(curves.values())) if log else (None, False)
+    for label, h in curves.items():
+        band(ax, h, label, log=log, floor=floor)
+    ylabel = "best-so-far error f - f*" if errors else "best f"
+    if clipped:
+        ylabel += f" (0 drawn at {floor:.0e})"
     ax.set_xlabel("iteration")
     ax.set_ylabel(ylabel)
     ax.set_title(title or f"{any_res.problem}: median and IQR over {any_res.runs} runs")

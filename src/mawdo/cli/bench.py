@@ -165,7 +165,7 @@ def report_cmd(
     ),
 ) -> None:
     """Write tables (Markdown, LaTeX, CSV) and figures from a store, without recomputing."""
-    from mawdo.cli.errors import check_output_dir
+    from mawdo.cli.errors import check_output_dir, writing_into
     from mawdo.experiments import StoreError, write_report
 
     check_output_dir(out, "--out folder")
@@ -173,7 +173,8 @@ def report_cmd(
 
     suite = [is_suite_store(s) for s in stores]
     if all(suite):
-        return report_suite(stores, out, plots, svg, reference)
+        with writing_into(out):
+            return report_suite(stores, out, plots, svg, reference)
     if len(stores) > 1:
         missing = [str(s) for s in stores if not s.exists()]
         if missing:
@@ -185,7 +186,8 @@ def report_cmd(
             code=1,
         )
     try:
-        files = write_report(stores[0], out, plots=plots, svg=svg, reference=reference)
+        with writing_into(out):
+            files = write_report(stores[0], out, plots=plots, svg=svg, reference=reference)
     except (StoreError, ValueError) as exc:
         _fail(str(exc), code=1)
     typer.echo(f"wrote {len(files)} files to {out}/ (start with {out / 'report.md'})")

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import os
 import tempfile
+from contextlib import contextmanager
 from pathlib import Path
 
 import typer
@@ -79,6 +80,23 @@ class DefaultRunGroup(TyperGroup):
 
 
 IMAGE_SUFFIXES = (".png", ".svg", ".pdf")
+
+
+@contextmanager
+def writing_into(folder: Path, what: str = "report"):
+    """Name ``folder`` in an ``OSError`` raised while writing into it without a file name
+    (a full disk's ``[Errno 28]`` from ``write()`` or ``close()`` names no path)."""
+    try:
+        yield
+    except OSError as exc:
+        if exc.filename is not None:
+            raise
+        why = exc.strerror or str(exc) or type(exc).__name__
+        code = f" (errno {exc.errno})" if exc.errno else ""
+        raise OSError(
+            f"cannot write the {what} into {folder}: {why}{code}; free some space or choose "
+            "another --out folder"
+        ) from None
 
 
 def check_output_dir(path: Path, what: str = "output folder") -> Path:

@@ -56,13 +56,15 @@ def _parse_options(pairs: list[str]) -> dict:
 
 
 @app.command("list")
-def list_cmd(what: str = typer.Argument("all", help="algorithms, functions, scenarios or all")):
-    """Show the registered algorithms, benchmark functions and scenarios."""
+def list_cmd(
+    what: str = typer.Argument("all", help="algorithms, functions, scenarios, families or all"),
+):
+    """Show the registered algorithms, benchmark functions, scenarios and scene families."""
     from mawdo.functions import FUNCTIONS, PAPER_SUITE
     from mawdo.optimizers import OPTIMIZERS
 
-    if what not in ("all", "algorithms", "functions", "scenarios"):
-        _fail(f"unknown listing {what!r}; use algorithms, functions, scenarios or all")
+    if what not in ("all", "algorithms", "functions", "scenarios", "families"):
+        _fail(f"unknown listing {what!r}; use algorithms, functions, scenarios, families or all")
     if what in ("all", "algorithms"):
         t = Table(title="algorithms")
         for col in ("name", "label", "description", "reference"):
@@ -93,6 +95,47 @@ def list_cmd(what: str = typer.Argument("all", help="algorithms, functions, scen
         from mawdo.planning import SCENARIOS
 
         console.print("scenarios: " + ", ".join(SCENARIOS))
+    if what in ("all", "families"):
+        _list_families()
+
+
+def _list_families() -> None:
+    from mawdo.planning.scenes import FAMILIES
+
+    t = Table(title="scene families (mawdo plan bench --suite NAME,...)")
+    for col in ("name", "description", "parameters (--param NAME.KEY=VALUE)"):
+        t.add_column(col, overflow="fold")
+    for name, fam in FAMILIES.items():
+        t.add_row(name, fam.description, ", ".join(p.name for p in fam.params))
+    console.print(t)
+
+
+def _algorithms(text: str, options: dict) -> list[str]:
+    """The ``--algorithm`` list, each name once, with every algorithm's options checked before
+    the first one computes (an option one of them refuses would else end the command late)."""
+    from mawdo.optimizers import OPTIMIZERS, make_optimizer
+
+    names = [a.strip() for a in text.split(",") if a.strip()]
+    if not names:
+        _fail(f"--algorithm {text!r} names no algorithm; give e.g. -a mawdo or -a wdo,gwo")
+    seen: dict[str, str] = {}
+    for name in names:
+        try:
+            key = OPTIMIZERS[name].name
+        except KeyError as exc:
+            _fail(f"--algorithm: {exc}")
+        if key in seen:
+            _fail(
+                f"--algorithm lists {key!r} twice ({seen[key]!r} and {name!r}); each algorithm "
+                "is one row of the table: list it once"
+            )
+        seen[key] = name
+    for name in names:
+        try:
+            make_optimizer(name, **options)
+        except (ValueError, TypeError) as exc:
+            _fail(f"{name} (--pop, --option): {exc}")
+    return names
 
 
 @app.command()
@@ -102,7 +145,7 @@ def optimize(
         "mawdo", "--algorithm", "-a", help="one or more registered names, comma separated"
     ),
     runs: int = typer.Option(30, help="independent runs (one vectorised batch)"),
-    seed: int = typer.Option(0, help="master seed"),
+    seed: int = typer.Option(0, min=0, help="master seed (an integer >= 0)"),
     iters: int = typer.Option(500, help="iterations per run (initial population = 1)"),
     evals: int = typer.Option(None, help="exact evaluation budget per run instead of --iters"),
     pop: int = typer.Option(50, help="population size"),
@@ -117,8 +160,8 @@ def optimize(
     """Run one or more algorithms on a benchmark function and print Best/Ave/Std/nfev/time."""
     from mawdo import minimize
 
-    algos = [a.strip() for a in algorithm.split(",") if a.strip()]
     opts = _parse_options(option)
+    algos = _algorithms(algorithm, {"pop_size": pop, **opts})
     # outputs are checked before minutes of computing, not after
     if plot:
         check_output_file(plot, IMAGE_SUFFIXES, what="--plot")
@@ -189,7 +232,7 @@ def _print_table(function: str, results: dict) -> None:
 @app.command()
 def demo(
     out: Path = typer.Option(Path("out/demo"), help="output folder"),
-    seed: int = typer.Option(0, help="seed of the run"),
+    seed: int = typer.Option(0, min=0, help="seed of the run (an integer >= 0)"),
 ):
     """The main job: MAWDO plans through the moving obstacles of the `paper` scenario."""
     import time

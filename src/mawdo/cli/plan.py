@@ -35,6 +35,25 @@ def _scenario(name_or_path: str):
     return get_scenario(name_or_path)  # raises with close-name suggestions
 
 
+def _prepare(sc, algorithm, seed, preset, static, threads, max_steps):
+    """The run, set up and checked; a run that may take minutes says so (stderr) first."""
+    from mawdo.planning.planner import prepare
+
+    extra = {} if max_steps is None else {"max_steps": max_steps}
+    run = prepare(sc, algorithm, seed, preset, not static, threads=threads, **extra)
+    steps, rule = run.step_limit()
+    capped = rule > steps and max_steps is None
+    seconds = run.estimate_seconds(steps)
+    if capped or seconds > 60:
+        note = f"step limit: {steps:,} steps"
+        if capped:
+            note += f" (the automatic {rule:,} capped; --max-steps allows more)"
+        if seconds > 60:
+            note += f"; this run may take up to about {seconds / 60:.0f} min"
+        typer.echo(note, err=True)
+    return run
+
+
 class _StepBar:
     """A rich progress bar over the planner's steps (stderr), with the replan count."""
 
@@ -75,35 +94,35 @@ class _StepBar:
 def run_cmd(
     scenario: str = typer.Argument(..., help="built-in name (paper) or a .toml/.json file"),
     algorithm: str = typer.Option("mawdo", "--algorithm", "-a", help="registered optimizer"),
-    seed: int = typer.Option(0, help="seed of the run"),
+    seed: int = typer.Option(0, min=0, help="seed of the run (an integer >= 0)"),
     preset: str = typer.Option("realtime", help="planner preset: realtime, paper or quick"),
     static: bool = typer.Option(False, "--static", help="plan once on the map frozen at t=0"),
     out: Path = typer.Option(Path("out/plan"), help="output folder (metrics.json, figures)"),
     figures: bool = typer.Option(True, help="write the snapshot grid and the GIF"),
     progress: bool = typer.Option(True, help="show a progress bar (stderr)"),
     threads: int = typer.Option(1, min=1, help="threads for the population cost (same result)"),
+    max_steps: int = typer.Option(
+        None,
+        min=1,
+        max=1_000_000,  # mawdo.planning.scenario.MAX_RUN_STEPS (not imported: startup time)
+        help="step limit (default: 4 straight lines or 2 detours around the static obstacles, "
+        "at most 20000)",
+    ),
 ):
     """Plan and execute one run; print and save its metrics."""
     from mawdo.cli.errors import bad_input, check_output_dir
     from mawdo.experiments.planning import run_metrics_kept
-    from mawdo.planning.planner import plan
 
+    # every input is checked before --out is created (exit 2, as for the other commands)
     try:
-        sc = _scenario(scenario)  # a bad scenario fails before anything is created
+        sc = _scenario(scenario)
+        run = _prepare(sc, algorithm, seed, preset, static, threads, max_steps)
     except (KeyError, ValueError, FileNotFoundError) as exc:
         raise bad_input(exc) from None
     check_output_dir(out, "--out folder")
     bar = _StepBar(progress, f"{algorithm} on {sc.name}")
     try:
-        res = plan(
-            sc,
-            algorithm=algorithm,
-            seed=seed,
-            config=preset,
-            dynamic=not static,
-            progress=bar,
-            threads=threads,
-        )
+        res = run.execute(bar)
     finally:
         bar.close()
     m, error = run_metrics_kept(res)
@@ -174,11 +193,12 @@ def report_cmd(
     gif: bool = typer.Option(True, help="write the animated GIF"),
 ):
     """Tables and figures of a planning study, read from its store (nothing is recomputed)."""
-    from mawdo.cli.errors import check_output_dir
+    from mawdo.cli.errors import check_output_dir, writing_into
     from mawdo.experiments.planning import write_study_report
 
     check_output_dir(out, "--out folder")
-    path = write_study_report(store, out, gif=gif)
+    with writing_into(out):
+        path = write_study_report(store, out, gif=gif)
     console.print(f"report: {path}")
 
 

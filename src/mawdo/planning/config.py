@@ -8,7 +8,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from mawdo.planning.cost import CostWeights
-from mawdo.planning.scenario import Scenario, get_scenario
+from mawdo.planning.scenario import MAX_RUN_STEPS, Scenario, get_scenario
 from mawdo.validate import check_int
 
 
@@ -38,7 +38,10 @@ class PlannerConfig:
     n_waypoints : int
         Waypoints per candidate (20 -> 40-D).
     max_steps : int or None
-        Step limit; default ``4 x straight-line length / v``.
+        Step limit, in [1, 1 000 000] (:data:`~mawdo.planning.scenario.MAX_RUN_STEPS`).
+        Default (None): ``max(4 x straight line, 2 x static optimum) / v + 10``, at most
+        :data:`AUTO_STEP_CAP` (20 000) so that a slow robot on a large map cannot set a run of
+        days; give ``max_steps`` (CLI ``--max-steps``) to allow more (:func:`step_limit`).
     seed_fraction : float
         Share of the first plan's population seeded with path-like candidates (the straight line
         and routes through random via points), in [0, 1]; the rest is uniform in the map.
@@ -128,7 +131,9 @@ class PlannerConfig:
     threads: int = 1
 
     def __post_init__(self) -> None:
-        for name in ("pop_size", "first_iters", "replan_iters", "replan_every", "n_waypoints"):
+        # every optimizer needs two candidates; checked first, so pop_size=1 is named for itself
+        check_int("PlannerConfig.pop_size", self.pop_size, 2)
+        for name in ("first_iters", "replan_iters", "replan_every", "n_waypoints"):
             v = getattr(self, name)
             if not isinstance(v, int | np.integer) or v < 1:
                 raise ValueError(f"PlannerConfig.{name}={v!r} must be a positive integer")
@@ -141,9 +146,12 @@ class PlannerConfig:
                 f"PlannerConfig.seed_fraction={self.seed_fraction!r} must be in [0, 1]"
             )
         if self.warm_copies + 1 > self.pop_size:
-            raise ValueError("PlannerConfig.warm_copies + 1 must not exceed pop_size")
-        if self.max_steps is not None and self.max_steps < 1:
-            raise ValueError(f"PlannerConfig.max_steps={self.max_steps!r} must be >= 1")
+            raise ValueError(
+                f"PlannerConfig.warm_copies={self.warm_copies!r} + 1 must not exceed "
+                f"pop_size={self.pop_size!r}: lower warm_copies or raise pop_size"
+            )
+        if self.max_steps is not None:
+            check_int("PlannerConfig.max_steps", self.max_steps, 1, MAX_RUN_STEPS)
         if not (np.isfinite(self.clearance) and self.clearance >= 0):
             raise ValueError(f"PlannerConfig.clearance={self.clearance!r} must be >= 0 px")
         for name in ("elite_size", "give_up_steps", "max_waypoints"):
@@ -325,4 +333,50 @@ def _config(config, overrides) -> PlannerConfig:
         if config not in PRESETS:
             raise ValueError(f"unknown planner preset {config!r}; choose one of {list(PRESETS)}")
         config = PRESETS[config]
-    return replace(config, **overrides) if overrides else config
+    return with_settings(config, overrides) if overrides else config
+
+
+def with_settings(config: PlannerConfig, settings: dict) -> PlannerConfig:
+    """``config`` with some fields changed; an unknown name is a ``ValueError`` naming it,
+    the closest setting and every setting (not ``__init__``'s keyword-argument error)."""
+    import difflib
+    from dataclasses import fields
+
+    names = [f.name for f in fields(PlannerConfig)]
+    for key in settings:
+        if key not in names:
+            close = difflib.get_close_matches(str(key), names, n=1)
+            hint = f" Did you mean {close[0]!r}?" if close else ""
+            raise ValueError(f"unknown planner setting {key!r}.{hint} Settings: {', '.join(names)}")
+    return replace(config, **settings)
+
+
+#: Most steps the automatic step limit may set (see ``PlannerConfig.max_steps``).
+AUTO_STEP_CAP = 20_000
+
+
+def step_limit(max_steps: int | None, straight: float, reach: float, speed: float):
+    """The step limit of a run and the automatic rule's value.
+
+    Parameters
+    ----------
+    max_steps : int or None
+        ``PlannerConfig.max_steps``: the limit when given.
+    straight, reach : float
+        Straight start-goal distance and the length of a route around the static obstacles
+        (pixels); long detours (mazes) need more than 4 straight lines, hence 2 x ``reach``.
+    speed : float
+        Robot speed (pixels per step), > 0.
+
+    Returns
+    -------
+    limit : int
+        ``max_steps``, else ``ceil(max(4 straight, 2 reach) / speed) + 10`` capped at
+        :data:`AUTO_STEP_CAP`.
+    rule : int
+        The uncapped automatic value (above ``limit`` when the cap applied).
+    """
+    rule = int(np.ceil(max(4.0 * straight, 2.0 * reach) / speed)) + 10
+    if max_steps is not None:
+        return int(max_steps), rule
+    return min(rule, AUTO_STEP_CAP), rule

@@ -14,7 +14,7 @@ import weakref
 
 import numpy as np
 
-from mawdo.planning.config import PlannerConfig, PlanResult, Replan, _Drive
+from mawdo.planning.config import PlannerConfig, PlanResult, Replan, _Drive, step_limit
 from mawdo.planning.cost import PathCost, assemble_paths
 from mawdo.planning.guard import Elite, Guard
 from mawdo.planning.guide import Guide
@@ -88,6 +88,8 @@ class Run:
         self.counts = {"waits": 0, "evasions": 0, "fallbacks": 0, "holds": 0}
         self.stalled = False  # the last search found nothing cheaper than its warm start
         self.chosen_index = 0  # which candidate the guard accepted at the last replan
+        self._reach = None  # the oracle's answer, when the guide found no route
+        self._per_pop = None  # seconds of one population's cost (estimate_seconds)
 
     # -- seeds ---------------------------------------------------------------------------------
 
@@ -111,7 +113,9 @@ class Run:
             x0 = np.vstack([guide, line, via])
         else:
             x0 = np.vstack([_seeds(remainder, self.m, cfg, rng, lb, ub), guide])
-        return x0[:pop]
+        # the straight line to a goal on the map's edge may pass it by an ulp; minimize
+        # refuses warm starts outside the box
+        return np.clip(x0[:pop], lb, ub)
 
     # -- one optimisation ----------------------------------------------------------------------
 
@@ -210,13 +214,16 @@ class Run:
         reach = self._reachable()
         if isinstance(reach, str):
             return self._finish(_Drive(sc.start.copy()), f"{NO_ROUTE}: static obstacles: {reach}")
-        # long detours (mazes) need more than 4 straight lines: allow twice the static optimum
-        budget = max(4 * sc.straight_line_length(), 2 * reach)
-        max_steps = cfg.max_steps or int(np.ceil(budget / v)) + 10
+        max_steps, rule = self.step_limit()
         pos = sc.start.copy()
         drive = _Drive(pos)
         remainder, stuck, force = None, 0, False
         reason = "step limit reached before the goal"
+        if rule > max_steps and cfg.max_steps is None:
+            reason += (
+                f" (the automatic limit of {rule} steps was capped at {max_steps}: "
+                "set max_steps, CLI --max-steps, to allow more)"
+            )
         for step in range(max_steps + 1):
             if progress is not None:
                 progress(step, max_steps, len(self.replans))
@@ -249,6 +256,29 @@ class Run:
             pos, remainder, passed, frac = advance(remainder, v)
             drive.move(step, pos, passed, frac)
         return self._finish(drive, reason)
+
+    def step_limit(self) -> tuple[int, int]:
+        """The run's step limit and the uncapped automatic one
+        (:func:`~mawdo.planning.config.step_limit`)."""
+        reach = self._reachable()
+        reach = 0.0 if isinstance(reach, str) else reach
+        sc = self.sc
+        return step_limit(self.cfg.max_steps, sc.straight_line_length(), reach, sc.robot_speed)
+
+    def estimate_seconds(self, steps: int) -> float:
+        """An upper estimate of the run's wall time (s) if it uses ``steps`` steps: the time of
+        one population's cost (measured now, after a warm-up call) times the iterations of the
+        first plan and of a replan at every ``replan_every`` steps (held replans cost less)."""
+        cfg = self.cfg
+        if self._per_pop is None:  # measured once: estimates of one run stay comparable
+            X = np.random.default_rng(0).uniform(*self.cost.bounds, (cfg.pop_size, self.cost.dim))
+            self.cost(X[:2], start=self.sc.start)  # compiles once per process
+            t0 = time.perf_counter()
+            self.cost(X, start=self.sc.start)
+            self._per_pop = time.perf_counter() - t0
+        per_pop = self._per_pop
+        first = cfg.first_iters * (cfg.first_pop_size or cfg.pop_size) / cfg.pop_size
+        return per_pop * (first + cfg.replan_iters * steps / cfg.replan_every)
 
     def _holds(self, remainder, force: bool, step: int) -> bool:
         """Keep the plan without optimising: it runs straight to the goal
@@ -296,10 +326,12 @@ class Run:
         """
         if self.routes:
             return float(np.hypot(*np.diff(self.routes[0], axis=0).T).sum())
-        from mawdo.planning.oracle import scenario_optimum
+        if self._reach is None:
+            from mawdo.planning.oracle import scenario_optimum
 
-        opt = scenario_optimum(self.sc, static_only=True)
-        return opt.length if opt.reachable else opt.reason
+            opt = scenario_optimum(self.sc, static_only=True)
+            self._reach = opt.length if opt.reachable else opt.reason
+        return self._reach
 
     def _fallback(self, drive, pos, step: int, cands):
         """No candidate is safe: wait if that is safe, else the least-bad evasive move."""

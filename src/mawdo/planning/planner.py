@@ -28,6 +28,7 @@ from mawdo.planning.config import (  # noqa: F401  (public names re-exported)
     _config,
     _Drive,
     _resolve,
+    step_limit,
 )
 from mawdo.planning.execute import Run
 from mawdo.planning.path import advance, polyline_length
@@ -77,9 +78,31 @@ def plan(
     under the paper's cost, a polish of its best (``polish_rounds``), then the guard
     (:mod:`mawdo.planning.guard`) before every move.
     """
+    return prepare(scenario, algorithm, seed, config, dynamic, **overrides).execute(progress)
+
+
+def prepare(
+    scenario, algorithm: str = "mawdo", seed: int = 0, config=None, dynamic: bool = True,
+    **overrides,
+) -> Run:  # fmt: skip
+    """Check the arguments of :func:`plan` and set the run up (guide, cost) without running:
+    ``run.step_limit()`` and ``run.estimate_seconds(steps)`` tell what it will cost, and
+    ``run.execute(progress)`` runs it.
+
+    Raises
+    ------
+    ValueError
+        An unknown algorithm, preset or setting, a setting out of its range, a bad seed, or a
+        map the guide cannot handle (too many obstacle corners).
+    """
+    from mawdo.optimizers import OPTIMIZERS
+    from mawdo.validate import check_seed
+
     sc = _resolve(scenario)
+    OPTIMIZERS[algorithm]  # an unknown name fails here, listing the known ones
+    check_seed(seed)
     cfg = _config(config, overrides)
-    return Run(sc, algorithm, seed, cfg, dynamic).execute(progress)
+    return Run(sc, algorithm, seed, cfg, dynamic)
 
 
 def executed_length(result: PlanResult) -> float:
@@ -101,7 +124,7 @@ def follow_oracle(scenario, max_steps: int | None = None) -> PlanResult:
 
     sc = _resolve(scenario)
     v = sc.robot_speed
-    max_steps = max_steps or int(np.ceil(4 * sc.straight_line_length() / v)) + 10
+    max_steps = step_limit(max_steps, sc.straight_line_length(), 0.0, v)[0]
     pos = sc.start.copy()
     drive = _Drive(pos)
     replans: list[Replan] = []

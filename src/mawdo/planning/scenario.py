@@ -41,7 +41,6 @@ it instead) and ``{ model = "bounded_random_walk", step = 1.5, hold = 5 }`` (spe
 
 from __future__ import annotations
 
-import json
 import math
 import tomllib
 from collections.abc import Callable
@@ -62,6 +61,7 @@ from pydantic import (
 )
 
 from mawdo.planning.motion import BoundedRandomWalk, ConstantVelocity, Motion, Patrol, Static
+from mawdo.planning.scenario_text import ScenarioTextError, parse_scenario_text
 from mawdo.registry import Registry
 
 __all__ = [
@@ -81,6 +81,11 @@ SCHEMA_VERSION = 1
 # Coordinates are bounded so that geometry stays far from float overflow (pixels).
 MAX_COORD = 1e6
 MAX_MAP_SIZE = 1e5
+# Most time steps any run may take: a robot too slow to cross its map's diagonal in this many
+# steps is refused (robot.speed = 1e-6 once set a step limit of 9e8, days of computing).
+MAX_RUN_STEPS = 1_000_000
+# Start and goal closer than this (px) are one point: there is no route to plan or measure.
+SAME_POINT = 1e-9
 
 Coord = Annotated[float, Field(ge=-MAX_COORD, le=MAX_COORD)]
 Point = tuple[Coord, Coord]
@@ -440,8 +445,8 @@ def _border_message(x: float, y: float, W: float, H: float, r: float) -> str:
 
 def _semantic_errors(spec: ScenarioSpec) -> list[tuple[str, str]]:
     """Whole-scenario checks that single fields cannot express."""
-    errors: list[tuple[str, str]] = []
     W, H, r = spec.width, spec.height, spec.robot.radius
+    errors = _trip_errors(spec)
     for name in ("start", "goal"):
         x, y = getattr(spec, name)
         if not (0.0 <= x <= W and 0.0 <= y <= H):
@@ -480,6 +485,29 @@ def _semantic_errors(spec: ScenarioSpec) -> list[tuple[str, str]]:
             if ob.distance(getattr(spec, name)) <= r:
                 who = f"obstacles[{i}]" + (f" ({ob.id!r})" if ob.id else "")
                 errors.append((name, f"inside {who} inflated by the robot radius {r:g} px at t=0"))
+    return errors
+
+
+def _trip_errors(spec: ScenarioSpec) -> list[tuple[str, str]]:
+    """A goal away from the start, and a robot fast enough to cross the map in a bounded
+    number of steps."""
+    errors = []
+    if math.dist(spec.start, spec.goal) <= SAME_POINT:
+        x, y = spec.goal
+        errors.append(
+            ("goal", f"({x:g}, {y:g}) is the start: a run needs a goal away from the start")
+        )
+    diagonal, v = math.hypot(spec.width, spec.height), spec.robot.speed
+    if diagonal / v > MAX_RUN_STEPS:
+        errors.append(
+            (
+                "robot.speed",
+                f"{v:g} px per step is too slow for a {spec.width:g} x {spec.height:g} map: "
+                f"crossing its diagonal ({diagonal:.4g} px) would take {diagonal / v:.3g} steps, "
+                f"more than the {MAX_RUN_STEPS:,} a run may have; give a speed in "
+                f"[{diagonal / MAX_RUN_STEPS:.3g}, {MAX_MAP_SIZE:g}] px per step",
+            )
+        )
     return errors
 
 
@@ -560,12 +588,13 @@ def load_scenario(path: str | Path) -> Scenario:
     except OSError as exc:
         raise ScenarioError([("", f"cannot read file: {exc}")], str(path)) from None
     try:
-        text = raw.decode("utf-8")
-        data = tomllib.loads(text) if suffix == ".toml" else json.loads(text)
-    except (UnicodeDecodeError, tomllib.TOMLDecodeError, json.JSONDecodeError) as exc:
+        data = parse_scenario_text(raw.decode("utf-8"), suffix[1:])
+    except UnicodeDecodeError as exc:
         raise ScenarioError(
             [("", f"cannot parse {suffix[1:].upper()}: {exc}")], str(path)
         ) from None
+    except ScenarioTextError as exc:
+        raise ScenarioError([("", str(exc))], str(path)) from None
     return scenario_from_dict(data, source=str(path))
 
 

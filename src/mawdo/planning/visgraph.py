@@ -358,8 +358,9 @@ def build(obstacles, bounds, points=(), tol: float = 1e-7, max_nodes: int = MAX_
     if len(corners) > max_nodes:
         raise ValueError(
             f"visibility graph: {len(corners)} obstacle corners exceed the limit of {max_nodes} "
-            "(the build is quadratic in corners); merge or simplify the obstacles "
-            "(e.g. shapely simplify, fewer circle segments) or pass a larger max_nodes"
+            "(the build is quadratic in corners): use fewer obstacles, or fewer vertices "
+            "(merge touching obstacles, simplify polygons); from Python, "
+            "mawdo.planning.visgraph.build and oracle.shortest_path take a larger max_nodes"
         )
     blocked = union.buffer(-tol, join_style="mitre") if not union.is_empty else union
     shapely.prepare(blocked)

@@ -168,15 +168,18 @@ def _from_baseline(scenario, result, l_star: float) -> dict[str, Any]:
 
 def _plan_one(spec: dict[str, Any], scene, seed: int) -> tuple[dict[str, Any], bytes | None]:
     """Run the task's planner on ``scene``; returns its metrics and, if failed, its trace."""
-    from mawdo.planning.planner import follow_oracle, plan, result_to_bytes
+    from mawdo.planning.planner import follow_oracle, plan, result_to_bytes, step_limit
 
     name, sc = spec["algorithm"], scene.scenario
     if name == ORACLE:
         # the step limit our planner gets (planning.execute): follow_oracle's own default
         # (4 straight lines) cuts long detours such as mazes short
-        v = sc.robot_speed
-        budget = max(4 * sc.straight_line_length(), 2 * scene.l_star)
-        steps = spec["overrides"].get("max_steps") or int(np.ceil(budget / v)) + 10
+        steps, _ = step_limit(
+            spec["overrides"].get("max_steps"),
+            sc.straight_line_length(),
+            scene.l_star,
+            sc.robot_speed,
+        )
         res = follow_oracle(sc, max_steps=steps)
         m = _from_plan_result(res, scene.l_star)
     elif spec["is_baseline"]:

@@ -28,6 +28,7 @@ from mawdo.experiments.benchmark.data import finals as read_finals
 from mawdo.experiments.benchmark.labels import function_label, label
 from mawdo.experiments.store import Store
 from mawdo.viz import band
+from mawdo.viz import log_floor as _floor
 
 NCOLS = 4
 DPI = 110
@@ -42,16 +43,6 @@ def _grid(n: int) -> tuple[Figure, list]:
     for ax in axes[n:]:
         ax.set_visible(False)
     return fig, axes[:n]
-
-
-def _floor(values: Sequence[np.ndarray]) -> tuple[float, bool]:
-    """Floor for a log axis and whether any value needs it."""
-    pos = [v[(v > 0) & np.isfinite(v)] for v in values if v.size]
-    pos = [p for p in pos if p.size]
-    smallest = min(float(p.min()) for p in pos) if pos else 1.0
-    floor = smallest / 10.0
-    clipped = any(bool(np.any(v <= 0)) for v in values if v.size)
-    return floor, clipped
 
 
 def _save(fig: Figure, stem: Path, formats: Sequence[str]) -> list[Path]:

@@ -178,14 +178,13 @@ class StudyPlan(StudyPlanBase):
     @field_validator("overrides")
     @classmethod
     def _over(cls, overrides):
-        from dataclasses import replace
+        from mawdo.planning.config import PRESETS, with_settings
 
-        from mawdo.planning.planner import PRESETS
-
+        # PlanError puts "overrides: " in front of the message
         try:
-            replace(PRESETS["study"], **overrides)
-        except (TypeError, ValueError) as exc:
-            raise ValueError(f"overrides: {exc}") from None
+            with_settings(PRESETS["study"], overrides)
+        except TypeError as exc:  # a value of the wrong type met a comparison
+            raise ValueError(str(exc)) from None
         return dict(overrides)
 
     # ---------------------------------------------------------------- identity
