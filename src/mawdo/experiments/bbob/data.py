@@ -58,7 +58,8 @@ class StoredRun:
 
 @dataclass(frozen=True)
 class StudyRuns:
-    """The runs of a store and its plan's axes."""
+    """The runs of a store and its plan's axes; ``versions``: the mawdo versions that made the
+    store(s), which a report names (a report reads a store of any version of this schema)."""
 
     suite: str
     algorithms: tuple[str, ...]
@@ -67,6 +68,7 @@ class StudyRuns:
     budget: float
     runs: list[StoredRun]
     failed: int
+    versions: tuple[str, ...] = ()
 
     @functools.cached_property
     def _index(self) -> dict[tuple[str, int, int], list[StoredRun]]:
@@ -155,6 +157,7 @@ def _load_one(store_path) -> StudyRuns:
         plan.budget,
         out,
         failed,
+        (str(store.meta.get("library_version", "unknown")),),
     )
 
 
@@ -191,6 +194,7 @@ def _merge(parts: list[StudyRuns], paths: list) -> StudyRuns:
         first.budget,
         [r for p in parts for r in p.runs],
         sum(p.failed for p in parts),
+        union("versions"),
     )
 
 
