@@ -6,7 +6,7 @@ STAMP  := $(VENV)/.installed
 DEVSTAMP := $(VENV)/.installed-dev
 export MPLBACKEND ?= Agg
 
-.PHONY: demo test test-all bench lint clean
+.PHONY: demo readme-img test test-all bench lint clean
 
 $(PY):
 	$(PYTHON) -m venv $(VENV)
@@ -22,6 +22,13 @@ $(DEVSTAMP): pyproject.toml | $(PY)
 
 demo: $(STAMP)
 	$(VENV)/bin/mawdo demo --out out/demo
+
+# The README image is the demo's own figure (mawdo.planning.demo.write_figure), copied; it
+# stores its title and caption as PNG text, which tests/planning/test_demo.py checks.
+readme-img: demo
+	cp out/demo/snapshots_mawdo.png docs/img/snapshots_mawdo.png
+	@$(PY) -c "from mawdo.planning.demo import figure_text as t; \
+	print('README caption:', t('docs/img/snapshots_mawdo.png')['Description'])"
 
 # CI (CI=true) runs the fast tier; `make test-all` adds the slow convergence and study tests.
 test: $(DEVSTAMP)

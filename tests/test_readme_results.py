@@ -4,14 +4,21 @@ The reports write their claims as sentences computed from the store (``summary.m
 quotes them, so a regenerated report that changes a number fails here until the README follows.
 """
 
+import hashlib
 import lzma
+import re
 import shutil
+import sqlite3
+import subprocess
+import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 SUMMARIES = sorted((ROOT / "docs" / "results").glob("**/summary.md"))
+BBOB = ROOT / "docs" / "results" / "bbob"
 
 
 def unpack(packed: Path, folder: Path) -> Path:
@@ -31,15 +38,137 @@ def test_readme_quotes_the_generated_sentences(summary):
     assert not missing, f"README does not quote {summary}: {missing}"
 
 
-def test_bbob_sentences_are_those_of_the_committed_store(tmp_path):
+@pytest.fixture(scope="module")
+def bbob_stores(tmp_path_factory) -> list[Path]:
+    """The committed BBOB stores (xz, one per dimension), unpacked."""
+    folder = tmp_path_factory.mktemp("bbob")
+    return [unpack(BBOB / f"store-d{d}.db.xz", folder) for d in (5, 20)]
+
+
+def test_bbob_sentences_are_those_of_the_committed_store(bbob_stores):
     """The committed BBOB stores (xz, one per dimension) give exactly the committed sentences."""
     from mawdo.experiments.bbob.data import load_runs
     from mawdo.experiments.bbob.summary import headline
 
-    folder = ROOT / "docs" / "results" / "bbob"
-    dbs = [unpack(folder / f"store-d{d}.db.xz", tmp_path) for d in (5, 20)]
-    summary = (folder / "summary.md").read_text(encoding="utf-8")
-    assert headline(load_runs(dbs)) == summary.splitlines()
+    summary = (BBOB / "summary.md").read_text(encoding="utf-8")
+    assert headline(load_runs(bbob_stores)) == summary.splitlines()
+
+
+def expand(listing: str) -> set[int]:
+    """``"f1-f3, f7"`` -> ``{1, 2, 3, 7}``; ``"none"`` -> ``set()``."""
+    out: set[int] = set()
+    for part in listing.split(", "):
+        if part != "none":
+            a, _, b = part.partition("-")
+            out |= set(range(int(a[1:]), int((b or a)[1:]) + 1))
+    return out
+
+
+def test_readme_names_every_win_and_loss_against_random_search(bbob_stores):
+    """Issue 28: "median final precision is lower on 19 of 24" read as worse and hid the five
+    D = 5 functions where MAWDO's median error is above uniform random search's. Recomputed
+    here from the raw rows with sqlite3 and numpy."""
+    final: dict[tuple[str, int, int], list[float]] = {}
+    for db in bbob_stores:
+        conn = sqlite3.connect(db)
+        rows = conn.execute(
+            "SELECT algorithm, function_id, dim, f_star, best_so_far FROM runs "
+            "WHERE error_text IS NULL AND algorithm IN ('mawdo', 'random')"
+        ).fetchall()
+        conn.close()
+        for algo, fid, dim, f_star, best in rows:
+            error = np.frombuffer(best, "<f8")[-1] - f_star
+            final.setdefault((algo, fid, dim), []).append(max(error, 1e-8))
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    claims = re.findall(
+        r"D = (\d+): median final error f - f_opt over instances and runs \(lower is better\), "
+        r"mawdo against random: better on (\d+) of 24 functions \(([^)]*)\), worse on (\d+) "
+        r"\(([^)]*)\), equal on (\d+)",
+        readme,
+    )
+    assert [int(c[0]) for c in claims] == [5, 20]
+    for dim, n_better, better, n_worse, worse, n_equal in claims:
+        med = {
+            (a, f): np.median(final[(a, f, int(dim))])
+            for a in ("mawdo", "random")
+            for f in range(1, 25)
+        }
+        truly_better = {f for f in range(1, 25) if med["mawdo", f] < med["random", f]}
+        truly_worse = {f for f in range(1, 25) if med["mawdo", f] > med["random", f]}
+        assert expand(better) == truly_better and int(n_better) == len(truly_better)
+        assert expand(worse) == truly_worse and int(n_worse) == len(truly_worse)
+        assert int(n_equal) == 24 - len(truly_better) - len(truly_worse)
+    assert "precision is lower than" not in readme
+
+
+def stored_version(db: Path) -> str:
+    conn = sqlite3.connect(db)
+    try:
+        return conn.execute("SELECT library_version FROM meta").fetchone()[0]
+    finally:
+        conn.close()
+
+
+def test_docs_say_which_mawdo_made_the_committed_stores(bbob_stores):
+    """docs/bbob.md says resuming them is refused because of the version that made them."""
+    docs = (BBOB.parents[2] / "docs" / "bbob.md").read_text(encoding="utf-8")
+    said = re.findall(r"made by mawdo (\d+\.\d+\.\d+)", docs)
+    assert said and set(said) == {stored_version(db) for db in bbob_stores}
+    assert "nothing left to compute" not in docs
+    report = (BBOB / "report.md").read_text(encoding="utf-8")
+    assert f"made by mawdo {said[0]})" in report
+
+
+def plain(text: str) -> str:
+    """A CLI message without the frame and line breaks a terminal renderer may add."""
+    return " ".join(re.sub(r"[│╭╮╰╯─]", " ", text).split())
+
+
+def test_resuming_a_committed_store_is_refused_and_keeps_its_runs(bbob_stores, tmp_path):
+    db = shutil.copy(bbob_stores[0], tmp_path / "store-d5.db")
+    before = hashlib.sha256(Path(db).read_bytes()).hexdigest()
+    cmd = ["run", "--preset", "bbob-full", "--dims", "5", "--out", str(db)]
+    done = subprocess.run(
+        [sys.executable, "-m", "mawdo.cli", "bench", *cmd], capture_output=True, text=True
+    )
+    assert done.returncode == 1
+    err = plain(done.stderr)
+    assert f"belongs to mawdo {stored_version(Path(db))}" in err
+    assert "Reports and exports read it as it is (read-only)" in err
+    assert "Traceback" not in done.stderr
+    assert hashlib.sha256(Path(db).read_bytes()).hexdigest() == before
+
+
+@pytest.mark.slow
+def test_the_committed_stores_report_through_the_command(bbob_stores, tmp_path):
+    """docs/bbob.md: `mawdo bench report store-d5.db store-d20.db` rewrites the folder, and
+    `mawdo bench export` writes IOHanalyzer logs, from stores made by an older mawdo."""
+    out = tmp_path / "report"
+    done = subprocess.run(
+        [sys.executable, "-m", "mawdo.cli", "bench", "report", *map(str, bbob_stores)]
+        + ["--out", str(out), "--no-plots"],
+        capture_output=True,
+        text=True,
+    )
+    assert done.returncode == 0, done.stderr
+    for name in ("summary.md", "friedman.csv", "art_d5.csv", "fixed_budget_d20.csv"):
+        assert (out / name).read_text() == (BBOB / name).read_text(), name
+
+    def text(path: Path) -> list[str]:  # the committed report also links its figures
+        return [s for s in path.read_text().splitlines() if s and not s.startswith("![")]
+
+    assert text(out / "report.md") == text(BBOB / "report.md")
+    logs = tmp_path / "ioh"
+    cli = [sys.executable, "-m", "mawdo.cli", "bench", "export", "--format", "ioh"]
+    done = subprocess.run([*cli, str(bbob_stores[0]), str(logs)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    conn = sqlite3.connect(bbob_stores[0])
+    pairs = conn.execute("SELECT DISTINCT algorithm, function_id FROM runs").fetchall()
+    conn.close()
+    written = {
+        (p.parent.name, int(p.stem.split("_f")[1].split("_")[0])) for p in logs.glob("*/*.json")
+    }
+    assert written == set(pairs)
 
 
 def test_arena_sentences_are_those_of_the_committed_store(tmp_path):

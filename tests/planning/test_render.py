@@ -196,3 +196,25 @@ def test_a_failing_write_names_the_path(tmp_path, monkeypatch):
     with pytest.raises(OSError, match="Permission denied") as info:
         render.plot_metric_boxes({"a": [1.0, 2.0]}, target, "m")
     assert str(target) in str(info.value)
+
+
+def test_grid_says_obstacles_are_drawn_at_t_while_the_lines_span_all_times(runs):
+    """Issue 28: the red plan at t = 0 seemed to cross obstacles drawn where they are at t = 0."""
+    fig = render.snapshot_figure(runs, times=[0, 10], rows=1, cols=2)
+    legend_block = fig.subfigs[-1]
+    notes = [t.get_text() for t in legend_block.texts]
+    assert notes == [render.TIME_NOTE]
+    for words in (
+        "obstacles where they are at its time t",
+        "all times",
+        "plan the times from t on",
+    ):
+        assert words in render.TIME_NOTE
+    # the note sits inside the figure, below the legend
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    note = legend_block.texts[0].get_window_extent(renderer)
+    legend = legend_block.legends[0].get_window_extent(renderer)
+    page = fig.bbox
+    assert note.x0 >= page.x0 and note.x1 <= page.x1 and note.y0 >= page.y0
+    assert note.y1 <= legend.y0 + 1

@@ -237,44 +237,31 @@ def demo(
     """The main job: MAWDO plans through the moving obstacles of the `paper` scenario."""
     import time
 
+    from mawdo.planning import demo as job
     from mawdo.planning import get_scenario, render
-    from mawdo.planning.metrics import run_metrics
-    from mawdo.planning.planner import plan
 
     t0 = time.perf_counter()
     check_output_dir(out, "--out folder")
-    sc = get_scenario("paper")
+    sc = get_scenario(job.SCENARIO)
     console.print(
         f"[bold]mawdo demo[/]: MAWDO on the '{sc.name}' scenario ({sc.width:g} x "
         f"{sc.height:g} px, {len(sc.static_indices)} static and "
-        f"{len(sc.moving_indices)} moving obstacles), real-time replanning every step"
+        f"{len(sc.moving_indices)} moving obstacles), real-time receding-horizon replanning"
     )
-    res = plan(sc, algorithm="mawdo", seed=seed, config="realtime")
-    m = run_metrics(res)
+    run = job.run_demo(seed)
     t = Table(title="MAWDO on the paper scenario (one run)")
     t.add_column("metric")
     t.add_column("value", justify="right")
-    rows = [
-        ("reached the goal", "yes" if m["success"] else f"no ({m['reason']})"),
-        ("collision-free (independent check)", "yes" if m["collision_free"] else "NO"),
-        ("executed length (px)", f"{m['length_px']:.1f}"),
-        ("static optimum L* (px)", f"{m['l_star_px']:.1f}"),
-        ("optimality gap L / L*", f"{m['gap']:.3f}"),
-        ("smoothness: total turning (rad)", f"{m['smoothness_rad']:.2f}"),
-        ("minimum clearance (px)", f"{m['min_clearance_px']:.2f}"),
-        ("replan latency p50 / p95 (ms)", f"{m['latency_p50_ms']:.1f} / {m['latency_p95_ms']:.1f}"),
-        ("steps", str(m["steps"])),
-        ("steps on a kept plan (no replan)", str(m["holds"])),
-    ]
-    for k, v in rows:
+    for k, v in run.rows():
         t.add_row(k, v)
     console.print(t)
-    (out / "metrics.json").write_text(json.dumps(m, indent=1))
+    console.print(run.caption + ".")
+    (out / "metrics.json").write_text(json.dumps(run.metrics, indent=1))
     (out / "metrics.md").write_text(
-        "| metric | value |\n|---|---|\n" + "".join(f"| {k} | {v} |\n" for k, v in rows)
+        "| metric | value |\n|---|---|\n" + "".join(f"| {k} | {v} |\n" for k, v in run.rows())
     )
-    grid = render.snapshot_grid({"MAWDO": res}, out / "snapshots.png", metrics={"MAWDO": m})
-    gif = render.animate(res, out / "mawdo_paper.gif", every=2)
+    grid = job.write_figure(run, out / job.FIGURE)
+    gif = render.animate(run.result, out / "mawdo_paper.gif", every=2)
     console.print(f"snapshot grid : {grid}")
     console.print(f"animation     : {gif}")
     console.print(f"metrics       : {out / 'metrics.md'}, {out / 'metrics.json'}")

@@ -398,7 +398,8 @@ def _refusal(conn: sqlite3.Connection, path: Path, meta: dict, problem: str) -> 
     n = conn.execute("SELECT COUNT(*) FROM runs").fetchone()[0]
     return (
         f"results store {path} belongs to {problem}. Refusing to mix results: use another "
-        f"--out file, or --force (force=True) to discard its {n} stored runs and start over."
+        f"--out file, or --force (force=True) to discard its {n} stored runs and start over. "
+        f"Reports and exports read it as it is (read-only)."
     )
 
 

@@ -2,9 +2,14 @@
 
 from __future__ import annotations
 
+import shutil
+import sqlite3
+from pathlib import Path
+
 import numpy as np
 import pytest
 
+import mawdo
 from mawdo.experiments import StoreError, run_plan
 from mawdo.experiments.bbob import write_suite_report
 from mawdo.experiments.bbob.data import load_runs
@@ -45,7 +50,20 @@ def test_merged_report_tables_equal_the_single_store_report(tiny_store, per_dim,
     write_suite_report(per_dim, tmp_path / "two", plots=False)
     for name in ("art_d2.csv", "art_d3.csv", "fixed_budget_d3.csv", "friedman.csv"):
         assert (tmp_path / "one" / name).read_text() == (tmp_path / "two" / name).read_text()
-    assert "(from d3.db + d2.db)" in (tmp_path / "two" / "report.md").read_text()
+    made = f"(from d3.db + d2.db, made by mawdo {mawdo.__version__})"
+    assert made in (tmp_path / "two" / "report.md").read_text()
+
+
+def test_a_report_names_every_version_that_made_its_stores(per_dim, tmp_path):
+    """A report reads stores of older versions (read-only) and says which made them."""
+    old = Path(shutil.copy(per_dim[1], tmp_path / "d2-old.db"))
+    conn = sqlite3.connect(old)
+    with conn:
+        conn.execute("UPDATE meta SET library_version = '0.2.0'")
+    conn.close()
+    write_suite_report([per_dim[0], old], tmp_path / "mixed", plots=False)
+    made = f"(from d3.db + d2-old.db, made by mawdo {mawdo.__version__} and 0.2.0)"
+    assert made in (tmp_path / "mixed" / "report.md").read_text()
 
 
 def test_a_store_given_twice_is_refused(per_dim):

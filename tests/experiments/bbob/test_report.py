@@ -144,3 +144,37 @@ def test_report_figures(tiny_store, tmp_path):
             assert (tmp_path / f"{stem}.png").stat().st_size > 20_000  # drawn, not blank
     text = (tmp_path / "report.md").read_text()
     assert "Friedman" in text and "![ecdf_d2](ecdf_d2.png)" in text
+
+
+def _line_look(line) -> tuple:
+    """What tells a curve apart: its colour, its dash pattern (offset and on/off lengths, in
+    points at its width) and its marker."""
+    from matplotlib.colors import to_hex
+
+    return to_hex(line.get_color()), str(line._unscaled_dash_pattern), line.get_marker()
+
+
+def test_every_algorithm_differs_in_colour_dash_and_marker(tiny_store, tmp_path, monkeypatch):
+    """Issue 28: the ECDFs of MAWDO, AWDO and random overlapped in look-alike colours."""
+    from mawdo.experiments.bbob import plots
+
+    drawn = []
+    monkeypatch.setattr(plots, "_save", lambda fig, path, svg: drawn.append(fig) or [path])
+    eight = ("gwo", "woa", "wdo", "awdo", "mewdo", "mawdo", "cmaes", "random")  # the study's
+    looks = plots.styles(eight + ("a", "b"))
+    for key in ("color", "ls", "marker"):
+        values = [repr(v[key]) for v in looks.values()]
+        assert len(set(values)) == 10, f"two of 10 algorithms share a {key}: {values}"
+    study = load_runs(tiny_store)
+    plots.plot_ecdfs(study, TINY["dims"][0], tmp_path)
+    plots.plot_convergence(study, TINY["dims"][0], tmp_path)
+    for fig in drawn:
+        for ax in fig.axes:
+            if not ax.get_visible() or not ax.lines:
+                continue
+            seen = {line.get_label(): _line_look(line) for line in ax.lines}
+            assert set(seen) == set(TINY["algorithms"])
+            for part in range(3):  # colour, dash, marker: each differs between any two
+                assert len({look[part] for look in seen.values()}) == len(seen)
+            solid = [a for a, look in seen.items() if look[1] == str((0, None))]
+            assert len(solid) <= 1  # at most one plain solid line

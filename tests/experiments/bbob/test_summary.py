@@ -5,8 +5,10 @@ from __future__ import annotations
 import re
 
 import numpy as np
+import pytest
 
 from mawdo.experiments.bbob import write_suite_report
+from mawdo.experiments.bbob.summary import function_list
 
 from .conftest import TINY
 from .test_report import raw_runs, runtime
@@ -45,22 +47,43 @@ def test_headline_numbers_are_the_stores(tiny_store, tmp_path):
         assert set(shares) == set(TINY["algorithms"])
         for algo, pct in shares.items():
             assert int(pct) == round(100 * ecdf_share(runs, algo, dim))
-        w = t = lo = 0
+        better, equal, worse = [], [], []
         for fid in TINY["functions"]:
             a, b = median_final(runs, "mawdo", fid, dim), median_final(runs, "random", fid, dim)
-            w, t, lo = w + (a < b), t + (a == b), lo + (a > b)
+            (better if a < b else worse if a > b else equal).append(f"f{fid}")
         solved = sum(
             r["best"][-1] - r["f_star"] <= 1e-8
             for r in runs
             if r["algo"] == "mawdo" and r["dim"] == dim
         )
         n = sum(r["algo"] == "mawdo" and r["dim"] == dim for r in runs)
+        # TINY's functions (1, 12, 21) are never neighbours: each side is listed one by one
         expect = (
-            f"- D = {dim}: mawdo's median final precision is lower than random's on {w} of "
-            f"{len(TINY['functions'])} functions ({t} equal, {lo} higher); {solved} of its {n} "
-            "runs reach 1e-8."
+            f"- D = {dim}: median final error f - f_opt over instances and runs (lower is "
+            f"better), mawdo against random: better on {len(better)} of "
+            f"{len(TINY['functions'])} functions ({', '.join(better) or 'none'}), worse on "
+            f"{len(worse)} ({', '.join(worse) or 'none'}), equal on {len(equal)}; {solved} of "
+            f"mawdo's {n} runs reach f - f_opt <= 1e-8."
         )
         assert expect in text
+
+
+@pytest.mark.parametrize(
+    "fids, text",
+    [
+        ((), "none"),
+        ((7,), "f7"),
+        ((1, 2), "f1, f2"),
+        ((3, 1, 2), "f1-f3"),
+        (
+            (1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 12, 13, 14, 15, 17, 18, 19, 20, 23),
+            "f1-f10, f12-f15, f17-f20, f23",
+        ),
+        ((11, 16, 21, 22, 24), "f11, f16, f21, f22, f24"),
+    ],
+)
+def test_function_lists_name_every_function_once(fids, text):
+    assert function_list(fids) == text
 
 
 def test_no_headline_without_the_reference(tiny_store, tmp_path):

@@ -59,7 +59,9 @@ class StoredRun:
 @dataclass(frozen=True)
 class StudyRuns:
     """The runs of a store and its plan's axes; ``setups`` says what runs under each
-    algorithm's name (``{"mawdo-r10": "mawdo (restart_every=10)"}``)."""
+    algorithm's name (``{"mawdo-r10": "mawdo (restart_every=10)"}``); ``versions``: the mawdo
+    versions that made the store(s), which a report names (a report reads a store of any
+    version of this schema)."""
 
     suite: str
     algorithms: tuple[str, ...]
@@ -69,6 +71,7 @@ class StudyRuns:
     runs: list[StoredRun]
     failed: int
     setups: dict[str, str] = field(default_factory=dict)
+    versions: tuple[str, ...] = ()
 
     @functools.cached_property
     def _index(self) -> dict[tuple[str, int, int], list[StoredRun]]:
@@ -158,6 +161,7 @@ def _load_one(store_path) -> StudyRuns:
         out,
         failed,
         {a: plan.setup(a) for a in plan.algorithms},
+        (str(store.meta.get("library_version", "unknown")),),
     )
 
 
@@ -203,6 +207,7 @@ def _merge(parts: list[StudyRuns], paths: list) -> StudyRuns:
         [r for p in parts for r in p.runs],
         sum(p.failed for p in parts),
         {k: v for p in parts for k, v in p.setups.items()},
+        union("versions"),
     )
 
 

@@ -17,6 +17,7 @@ from matplotlib.ticker import NullFormatter
 
 from mawdo.experiments.bbob.data import StudyRuns, precision_at
 from mawdo.experiments.bbob.measures import ecdf_curves, groups
+from mawdo.experiments.bbob.summary import function_list
 
 DPI = 110
 PRECISION_FLOOR = 1e-9
@@ -34,11 +35,51 @@ def _figure(n: int, ncols: int, w: float = 4.0, h: float = 3.0, layout="constrai
     return fig, axes[:n]
 
 
-def _colors(algorithms) -> dict[str, tuple]:
+#: Dash patterns beside the colours: any two of up to 10 algorithms differ in colour, dash
+#: pattern and marker, so curves that overlap (or print in grey) stay apart.
+_DASHES = (
+    "-",
+    (0, (5, 2)),
+    (0, (1, 1.5)),
+    (0, (6, 2, 1, 2)),
+    (0, (2, 2)),
+    (0, (8, 2, 1, 2, 1, 2)),
+    (0, (10, 3)),
+    (0, (3, 1, 1, 1)),
+    (0, (1, 3)),
+    (0, (4, 1, 4, 1, 1, 1)),
+)
+_MARKERS = ("o", "s", "^", "v", "D", "x", "+", "*", "P", "<")
+
+
+def styles(algorithms) -> dict[str, dict]:
+    """Matplotlib line keywords per algorithm: a tab10 colour, a dash pattern and a marker.
+
+    Parameters
+    ----------
+    algorithms : sequence of str
+        In the study's order; the i-th gets colour, dash pattern and marker ``i % 10``, so any
+        two of the first 10 differ in all three.
+
+    Returns
+    -------
+    dict
+        ``{algorithm: {"color", "ls", "marker"}}``; markers are drawn sparsely by the callers.
+    """
     from matplotlib import colormaps
 
     cmap = colormaps["tab10"]
-    return {a: cmap(i % 10) for i, a in enumerate(algorithms)}
+    return {
+        a: {"color": cmap(i % 10), "ls": _DASHES[i % 10], "marker": _MARKERS[i % 10]}
+        for i, a in enumerate(algorithms)
+    }
+
+
+def _marks(i: int, curves: int, points: int, count: int) -> tuple[int, int]:
+    """``markevery`` of curve ``i`` of ``curves`` with ``points`` points: about ``count``
+    markers, shifted from curve to curve so that overlapping curves show every marker."""
+    step = max(points // count, 1)
+    return (i * step // max(curves, 1), step)
 
 
 def _save(fig: Figure, path: Path, svg: bool) -> list[Path]:
@@ -50,29 +91,30 @@ def _save(fig: Figure, path: Path, svg: bool) -> list[Path]:
     return out
 
 
-def _ids(fids) -> str:
-    """``(1, 2, 3, 4, 5)`` -> ``"f1-f5"``; otherwise ``"f1, f8, f15"``."""
-    fids = tuple(fids)
-    if len(fids) > 2 and fids == tuple(range(fids[0], fids[-1] + 1)):
-        return f"f{fids[0]}-f{fids[-1]}"
-    return ", ".join(f"f{f}" for f in fids)
-
-
 def plot_ecdfs(study: StudyRuns, dim: int, out_dir: Path, svg: bool = False) -> list[Path]:
     """One panel per function group (the first: all functions): fraction of (function, run,
     target) triples solved against evaluations / D, log x, 51 targets ``1e2 .. 1e-8``."""
     grp = groups(study)
     x = np.logspace(0, math.log10(study.budget), 200)
     fig, axes = _figure(len(grp), 3)
-    colors = _colors(study.algorithms)
+    look = styles(study.algorithms)
     for ax, (name, fids) in zip(axes, grp.items(), strict=True):
-        for algo, y in ecdf_curves(study, dim, fids, x).items():
-            ax.step(x, y, where="post", color=colors[algo], label=algo, lw=1.6)
+        for i, (algo, y) in enumerate(ecdf_curves(study, dim, fids, x).items()):
+            ax.step(
+                x,
+                y,
+                where="post",
+                label=algo,
+                lw=1.6,
+                ms=4,
+                markevery=_marks(i, len(look), x.size, 8),
+                **look[algo],
+            )
         ax.set_xscale("log")
         ax.set_ylim(-0.02, 1.02)
         ax.set_xlim(1, study.budget)
         ax.grid(True, alpha=0.3)
-        ax.set_title(f"{name} ({_ids(fids)})", fontsize=9)
+        ax.set_title(f"{name} ({function_list(fids)})", fontsize=9)
         ax.set_xlabel("evaluations / D")
         ax.set_ylabel("fraction of (function, run, target)")
     axes[0].legend(fontsize=8, loc="upper left")
@@ -98,18 +140,19 @@ def plot_convergence(study: StudyRuns, dim: int, out_dir: Path, svg: bool = Fals
         wspace=0.3,
         hspace=0.45,
     )
-    colors = _colors(study.algorithms)
+    look = styles(study.algorithms)
     for ax, fid in zip(axes, study.functions, strict=True):
         name = ""
-        for algo in study.algorithms:
+        for i, algo in enumerate(study.algorithms):
             runs = study.select(algo, fid, dim)
             if not runs:
                 continue
             name = runs[0].function_name
             p = np.maximum(precision_at(runs, budgets), PRECISION_FLOOR)
             lo, med, hi = np.percentile(p, [25, 50, 75], axis=0)
-            ax.plot(budgets / dim, med, color=colors[algo], label=algo, lw=1.3)
-            ax.fill_between(budgets / dim, lo, hi, color=colors[algo], alpha=0.15, lw=0)
+            marks = _marks(i, len(look), budgets.size, 6)
+            ax.plot(budgets / dim, med, label=algo, lw=1.3, ms=3, markevery=marks, **look[algo])
+            ax.fill_between(budgets / dim, lo, hi, color=look[algo]["color"], alpha=0.15, lw=0)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.yaxis.set_minor_formatter(NullFormatter())  # decade labels only: panels are small

@@ -147,8 +147,9 @@ def write_suite_report(
         "",
         f"Functions {', '.join(f'f{f}' for f in study.functions)}; D {study.dims}; budget "
         f"{study.budget:g} x D evaluations; {len(study.runs)} runs stored"
-        f"{f', {study.failed} failed' if study.failed else ''} (from {_names(store_path)}). "
-        "Precision is f - f_opt.",
+        f"{f', {study.failed} failed' if study.failed else ''} (from {_names(store_path)}, "
+        f"made by mawdo {' and '.join(study.versions)}). Precision is the error f - f_opt "
+        "(lower is better).",
         "",
         *_setup_lines(study),
         *summary,

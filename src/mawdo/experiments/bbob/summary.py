@@ -5,9 +5,10 @@ quote), so every claim about where an algorithm stands on BBOB is a number of th
 
 * the runtime-ECDF value at the full budget: the fraction of (function, run, target) triples
   solved, over COCO's 51 targets ``1e2 .. 1e-8``, each function weighing the same;
-* the Friedman mean rank of the median final precision over (function, instance) blocks;
-* per function, whether the reference algorithm's median final precision (over instances and
-  runs) is below, equal to or above uniform random search's, and problems solved to ``1e-8``.
+* the Friedman mean rank of the median final error over (function, instance) blocks;
+* per function, whether the reference algorithm's median final error ``f - f_opt`` (over
+  instances and runs; lower is better) is below (better), equal to or above (worse) uniform
+  random search's, naming the functions of each side, and the runs solved to ``1e-8``.
 """
 
 from __future__ import annotations
@@ -25,20 +26,39 @@ def final_ecdf(study: StudyRuns, dim: int) -> dict[str, float]:
 
 
 def median_final(study: StudyRuns, algorithm: str, fid: int, dim: int) -> float:
-    """Median over instances and runs of the final precision, floored at ``RANK_FLOOR``."""
+    """Median over instances and runs of the final error ``f - f_opt``, floored at
+    ``RANK_FLOOR``."""
     fin = [max(float(r.precision[-1]), RANK_FLOOR) for r in study.select(algorithm, fid, dim)]
     return float(np.median(fin)) if fin else float("nan")
 
 
-def versus(study: StudyRuns, ref: str, other: str, dim: int) -> tuple[int, int, int]:
-    """Functions where ``ref``'s median final precision is below / equal to / above ``other``'s."""
-    wins = ties = losses = 0
+def versus(
+    study: StudyRuns, ref: str, other: str, dim: int
+) -> tuple[tuple[int, ...], tuple[int, ...], tuple[int, ...]]:
+    """Function ids where ``ref``'s median final error ``f - f_opt`` is below (better), equal
+    to, or above (worse than) ``other``'s; functions either has no run on are left out."""
+    better, equal, worse = [], [], []
     for fid in study.functions:
         a, b = median_final(study, ref, fid, dim), median_final(study, other, fid, dim)
         if np.isnan(a) or np.isnan(b):
             continue
-        wins, ties, losses = wins + (a < b), ties + (a == b), losses + (a > b)
-    return wins, ties, losses
+        (better if a < b else worse if a > b else equal).append(fid)
+    return tuple(better), tuple(equal), tuple(worse)
+
+
+def function_list(fids) -> str:
+    """``(1, 2, 3, 5, 7, 8)`` -> ``"f1-f3, f5, f7, f8"`` (runs of 3 or more as ranges); ``"none"``
+    when empty."""
+    parts, fids = [], sorted(fids)
+    i = 0
+    while i < len(fids):
+        j = i
+        while j + 1 < len(fids) and fids[j + 1] == fids[j] + 1:
+            j += 1
+        run = fids[i : j + 1]
+        parts += [f"f{run[0]}-f{run[-1]}"] if len(run) >= 3 else [f"f{f}" for f in run]
+        i = j + 1
+    return ", ".join(parts) or "none"
 
 
 def _solved(study: StudyRuns, algorithm: str, dim: int) -> tuple[int, int]:
@@ -79,16 +99,24 @@ def headline(study: StudyRuns, reference: str = "mawdo", baseline: str = "random
         ranks = dict(zip(study.algorithms, fr.mean_ranks, strict=True))
         place = 1 + sum(1 for a in ranks if ranks[a] < ranks[reference])
         lines.append(
-            f"- D = {dim}: {reference} has Friedman mean rank {ranks[reference]:.2f} over "
-            f"{fr.n_functions} (function, instance) blocks, place {place} of {len(ranks)}"
-            f" (best: {min(ranks, key=ranks.get)} {min(ranks.values()):.2f})."
+            f"- D = {dim}: {reference} has Friedman mean rank {ranks[reference]:.2f} (1 = best) "
+            f"of the median final error over {fr.n_functions} (function, instance) blocks, "
+            f"place {place} of {len(ranks)} (best: {min(ranks, key=ranks.get)} "
+            f"{min(ranks.values()):.2f})."
         )
         if baseline in study.algorithms and baseline != reference:
-            w, t, lo = versus(study, reference, baseline, dim)
-            hit, n = _solved(study, reference, dim)
-            lines.append(
-                f"- D = {dim}: {reference}'s median final precision is lower than {baseline}'s on "
-                f"{w} of {w + t + lo} functions ({t} equal, {lo} higher); {hit} of its {n} runs "
-                f"reach 1e-8."
-            )
+            lines.append(_against(study, reference, baseline, dim))
     return lines
+
+
+def _against(study: StudyRuns, reference: str, baseline: str, dim: int) -> str:
+    """The sentence on ``reference`` against ``baseline``, its wins and its losses by name."""
+    better, equal, worse = versus(study, reference, baseline, dim)
+    hit, n = _solved(study, reference, dim)
+    total = len(better) + len(equal) + len(worse)
+    return (
+        f"- D = {dim}: median final error f - f_opt over instances and runs (lower is better), "
+        f"{reference} against {baseline}: better on {len(better)} of {total} functions "
+        f"({function_list(better)}), worse on {len(worse)} ({function_list(worse)}), equal on "
+        f"{len(equal)}; {hit} of {reference}'s {n} runs reach f - f_opt <= 1e-8."
+    )

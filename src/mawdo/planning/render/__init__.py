@@ -29,6 +29,7 @@ from mawdo.planning.render.plots import (
     plot_metric_boxes,
 )
 from mawdo.planning.render.snapshots import (
+    TIME_NOTE,
     _all_subfigures,
     _default_times,
     _headline,

@@ -22,6 +22,14 @@ from mawdo.planning.render.style import (
 )
 from mawdo.planning.render.world import _draw_world, _legend_handles
 
+#: Printed under the legend of every snapshot grid. A panel freezes the obstacles at its time
+#: while the lines span other times, so a plan drawn across an obstacle is not a collision.
+TIME_NOTE = (
+    "Each panel draws the obstacles where they are at its time t, while the lines cover all "
+    "times: the executed path the times up to t, the current plan the times from t on, and the "
+    "optimum avoids the static obstacles only."
+)
+
 
 def _headline(label: str, result: PlanResult, metrics: dict | None) -> str:
     parts = [f"{label}  (seed {result.seed})"]
@@ -81,7 +89,7 @@ def snapshot_figure(
     metrics = dict(metrics or {})
 
     block_h = rows * PANEL_IN + 0.75  # title row and x labels
-    legend_h = 0.75
+    legend_h = 1.0  # the legend and the time note under it
     width = cols * PANEL_IN + 0.5
     fig = _new_figure((width, len(items) * block_h + legend_h), dpi)
     fig.get_layout_engine().set(w_pad=0.03, h_pad=0.05, hspace=0.02, wspace=0.02)
@@ -114,13 +122,16 @@ def snapshot_figure(
     handles = _legend_handles(r0)
     subfigs[-1].legend(
         handles=handles,
-        loc="center",
+        loc="upper center",
         ncols=min(len(handles), 5),
         fontsize=9,
         frameon=False,
         handlelength=2.4,
         columnspacing=1.6,
     )
+    # wrap: a grid of one or two columns is narrower than the note
+    note = dict(ha="center", va="bottom", fontsize=8.5, style="italic", wrap=True)
+    subfigs[-1].text(0.5, 0.04, TIME_NOTE, **note)
     return fig
 
 
@@ -133,13 +144,15 @@ def snapshot_grid(
     optimum: bool = True,
     metrics: Mapping[str, Mapping] | None = None,
     dpi: int = GRID_DPI,
+    metadata: Mapping[str, str] | None = None,
 ) -> Path:
     """Per algorithm a ``rows x cols`` grid of snapshots of its run over time (paper Fig. 2).
 
     Each panel shows the map at time ``t``: static obstacles (goldenrod), moving obstacles (dark)
     with their outline inflated by the robot radius and their recent track, the executed path up
     to ``t``, the plan active at ``t`` (position -> waypoints -> goal), the static optimum path,
-    start, goal and the robot disc (to scale).
+    start, goal and the robot disc (to scale). A note under the legend (:data:`TIME_NOTE`) says
+    that the obstacles are drawn at ``t`` while the lines span other times.
 
     Parameters
     ----------
@@ -160,6 +173,10 @@ def snapshot_grid(
         :func:`mawdo.planning.metrics.run_metrics`.
     dpi : int
         Resolution; the image is ``figure size x dpi`` pixels (about 1600 px wide for 4 columns).
+    metadata : dict str -> str, optional
+        Text stored in the file (PNG tEXt chunks, e.g. ``{"Title": ...}``, readable with
+        Pillow's ``Image.open(path).text``); the keys each format accepts are matplotlib's
+        ``savefig(metadata=...)``.
 
     Returns
     -------
@@ -177,7 +194,7 @@ def snapshot_grid(
     fig = snapshot_figure(
         results, times=times, rows=rows, cols=cols, optimum=optimum, metrics=metrics, dpi=dpi
     )
-    return _save(fig, out)
+    return _save(fig, out, metadata=dict(metadata)) if metadata else _save(fig, out)
 
 
 # --------------------------------------------------------------------------------------------
