@@ -141,7 +141,7 @@ def test_warm_start_points_are_evaluated_first(algo):
         seen.append(X.copy())
         return shifted_sphere(X)
 
-    x0 = np.stack([CENTRE, LB, UB + 7.0])  # the optimum, a corner, a point outside (clipped)
+    x0 = np.stack([CENTRE, LB, UB])  # the optimum and two corners
     res = run(algo, fun=f, x0=x0, max_iter=3)
     first = seen[0].reshape(3, -1, 4)
     for r in range(3):
@@ -149,5 +149,7 @@ def test_warm_start_points_are_evaluated_first(algo):
     assert np.all(res.fun < 1e-20)  # the optimum was handed in (up to [-1,1] round-off), kept
     with pytest.raises(ValueError, match="x0 must have shape"):
         run(algo, x0=np.zeros((2, 3)))
+    with pytest.raises(ValueError, match=r"x0\[2, 0\] = 12.0 lies outside the box"):
+        run(algo, x0=np.stack([CENTRE, LB, UB + 7.0]))  # never clipped without a word
     with pytest.raises(ValueError, match="x0 has 13 points but pop_size is 12"):
-        run(algo, x0=np.zeros((13, 4)))
+        run(algo, x0=np.tile(CENTRE, (13, 1)))
