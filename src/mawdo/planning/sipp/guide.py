@@ -24,7 +24,7 @@ from mawdo.planning.guide import GUIDE_SEGMENTS, SLACK
 from mawdo.planning.scenario import Scenario
 from mawdo.planning.sipp.intervals import Movers, safe_intervals
 from mawdo.planning.sipp.search import search
-from mawdo.planning.visgraph import VisGraph, build
+from mawdo.planning.visgraph import VisGraph, _from_point, build
 
 __all__ = ["SafeIntervalGuide", "TimedRoute"]
 
@@ -57,6 +57,32 @@ class TimedRoute:
         """Total time spent waiting (time steps)."""
         same = np.all(self.points[1:] == self.points[:-1], axis=1)
         return float(np.sum(np.diff(self.times)[same]))
+
+
+def _free_point_edges(graph: VisGraph, n_free: int):
+    """The graph's edges plus every visible pair of a free point (start, goal, spot) and any
+    node, tangent at the corner or not, as CSR ``(indptr, indices, weights)``.
+
+    The tangent graph keeps every shortest path, but a timed route may reach a corner, wait
+    there and then head straight for the goal or a spot; without these edges it would have to
+    go on to another corner first.
+    """
+    g = graph
+    n = len(g.nodes)
+    src = [np.repeat(np.arange(n), np.diff(g.indptr))]
+    dst = [g.indices]
+    plain = np.zeros(n, np.bool_)  # no node is a corner: visibility alone decides
+    for i in range(n_free):
+        seen = _from_point(g.nodes[i], g.nodes, g.prev, g.nxt, plain, g.edges, g.ring_ptr,
+                           g.ring_box, g.eps2)  # fmt: skip
+        seen = seen[seen != i]
+        src += [np.full(len(seen), i), seen]
+        dst += [seen, np.full(len(seen), i)]
+    pairs = np.unique(np.column_stack([np.concatenate(src), np.concatenate(dst)]), axis=0)
+    indptr = np.zeros(n + 1, np.int64)
+    np.add.at(indptr, pairs[:, 0] + 1, 1)
+    w = np.hypot(*(g.nodes[pairs[:, 1]] - g.nodes[pairs[:, 0]]).T)
+    return np.cumsum(indptr), np.ascontiguousarray(pairs[:, 1], dtype=np.int64), w
 
 
 def _check_point(graph: VisGraph, p, name: str, scenario: Scenario) -> np.ndarray:
@@ -126,6 +152,7 @@ class SafeIntervalGuide:
         names = ["start", "goal"] + [f"spots[{j}]" for j in range(len(pts) - 2)]
         for p, name in zip(pts, names, strict=True):
             _check_point(self.graph, p, name, scenario)
+        self.indptr, self.indices, self.weights = _free_point_edges(self.graph, len(pts))
         if horizon is None:
             dist, _ = self.graph.dijkstra([0], [0.0])
             reach = dist[1] if np.isfinite(dist[1]) else math.hypot(scenario.width, scenario.height)
@@ -148,9 +175,8 @@ class SafeIntervalGuide:
         return np.column_stack([self.lo[a:b], self.hi[a:b]])
 
     def _search(self, banned: np.ndarray):
-        g = self.graph
         return search(
-            g.nodes, g.indptr, g.indices, g.weights, float(self.scenario.robot_speed), 0, 1,
+            self.nodes, self.indptr, self.indices, self.weights, float(self.scenario.robot_speed), 0, 1,
             self.t0, self.t_end, self.ptr, self.lo, self.hi, banned, self._mv,
         )  # fmt: skip
 
