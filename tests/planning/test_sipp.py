@@ -260,7 +260,7 @@ def test_earliest_arrival_matches_time_grid_search(seed):
         for e in range(guide.indptr[u], guide.indptr[u + 1])
     ]
     h = 0.25
-    grid = grid_earliest_arrival(sc, guide.nodes, edges, 0, 1, h, int(150 / h), CLEAR)
+    grid = grid_earliest_arrival(sc, guide.nodes, edges, guide.start, 0, h, int(150 / h), CLEAR)
     assert np.isfinite(grid)
     (route,) = routes
     assert _clean(route, sc)

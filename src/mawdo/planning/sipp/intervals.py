@@ -44,12 +44,14 @@ _WALKER_MODES = ("reachable", "known")
 class Movers:
     """Moving obstacles over ``[t0, t_end]`` as flat arrays (see the module docstring).
 
-    ``kind[m]`` is 0 for pieces (rows ``pptr[m]:pptr[m + 1]`` of ``pt0, pt1`` (times), ``po``
+    ``box[m]`` is the inflated shape's bounding box at offset zero (pixels). ``kind[m]`` is 0
+    for pieces (rows ``pptr[m]:pptr[m + 1]`` of ``pt0, pt1`` (times), ``po``
     (offset at ``pt0``, pixels) and ``pv`` (velocity, px per step)), 1 for a reachable set
     (shape at offset ``base[m]`` growing at ``vmax[m]`` px per step from ``t_base``).
     """
 
     kind: np.ndarray
+    box: np.ndarray
     circle: np.ndarray
     center: np.ndarray
     thr: np.ndarray
@@ -66,29 +68,45 @@ class Movers:
 
     @classmethod
     def from_scenario(
-        cls, scenario: Scenario, margin: float, t0: float, t_end: float, walkers: str
+        cls,
+        scenario: Scenario,
+        margin: float,
+        t0: float,
+        t_end: float,
+        walkers: str,
+        knots=None,
+        flat: FlatObstacles | None = None,
     ) -> Movers:
         """Tables of the scenario's moving obstacles, hit distance grown by ``margin`` px.
 
         ``walkers`` is ``"reachable"`` (random walkers as growing reachable sets) or
         ``"known"`` (their seeded walk, as the cost kernel and the checker see it).
+        ``knots(j, t0, t_end)`` may stand in for the ``j``-th moving obstacle's
+        :meth:`~mawdo.planning.motion.Motion.knots` (pieces covering the interval; a cache),
+        ``flat`` for their :class:`FlatObstacles`.
         """
         if walkers not in _WALKER_MODES:
             raise ValueError(f"walkers must be one of {_WALKER_MODES}, got {walkers!r}")
         moving = tuple(scenario.obstacles[i] for i in scenario.moving_indices)
-        flat = FlatObstacles.from_obstacles(moving, scenario.robot_radius + margin)
+        if flat is None:
+            flat = FlatObstacles.from_obstacles(moving, scenario.robot_radius + margin)
         n = len(moving)
         kind = np.zeros(n, np.int64)
         vmax = np.zeros(n)
         base = np.zeros((n, 2))
         pieces = []
         for m, o in enumerate(moving):
-            base[m] = o.offset(float(t0))
             if walkers == "reachable" and isinstance(o.motion, BoundedRandomWalk):
                 kind[m], vmax[m] = 1, o.motion.step
+                base[m] = o.offset(float(t0))
                 pieces.append((np.zeros(0), np.zeros((0, 2))))
             else:
-                pieces.append(o.knots(t0, t_end))
+                pieces.append(o.knots(t0, t_end) if knots is None else knots(m, t0, t_end))
+        return cls._from_pieces(kind, flat, vmax, base, float(t0), pieces)
+
+    @classmethod
+    def _from_pieces(cls, kind, flat, vmax, base, t_base, pieces) -> Movers:
+        n = len(kind)
         pptr = np.zeros(n + 1, np.int64)
         pptr[1:] = np.cumsum([max(len(t) - 1, 0) for t, _ in pieces])
         pt0, pt1 = np.zeros(pptr[-1]), np.zeros(pptr[-1])
@@ -98,16 +116,17 @@ class Movers:
             if b > a:
                 pt0[a:b], pt1[a:b], po[a:b] = t[:-1], t[1:], off[:-1]
                 pv[a:b] = np.diff(off, axis=0) / np.diff(t)[:, None]
+        box = np.ascontiguousarray(flat.bound[:, :4])
         center = np.ascontiguousarray(flat.bound[:, 4:6])
         return cls(
-            kind, flat.is_circle, center, flat.thresh, flat.verts, flat.nverts, vmax, base,
-            float(t0), pptr, pt0, pt1, po, pv,
+            kind, box, flat.is_circle, center, flat.thresh, flat.verts, flat.nverts, vmax, base,
+            t_base, pptr, pt0, pt1, po, pv,
         )  # fmt: skip
 
     def arrays(self) -> tuple:
         """The fields in order, as the compiled functions take them."""
         return (
-            self.kind, self.circle, self.center, self.thr, self.verts, self.nverts, self.vmax,
+            self.kind, self.box, self.circle, self.center, self.thr, self.verts, self.nverts, self.vmax,
             self.base, self.t_base, self.pptr, self.pt0, self.pt1, self.po, self.pv,
         )  # fmt: skip
 
@@ -167,7 +186,7 @@ def _polygon_piece(d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, i, nv, thr, buf, 
 @njit(cache=True)
 def _mover_forbidden(ux, uy, ex, ey, T, lo, hi, m, mv, buf, n):
     """Append mover ``m``'s forbidden departures within ``[lo, hi]`` to ``buf``."""
-    kind, circle, center, thr, verts, nverts, vmax, base, t_base, pptr, pt0, pt1, po, pv = mv
+    kind, box, circle, center, thr, verts, nverts, vmax, base, t_base, pptr, pt0, pt1, po, pv = mv
     if kind[m] == 1:
         tc = cone_start(
             ux, uy, ex, ey, T, circle[m], center[m, 0], center[m, 1], thr[m], verts, m,
@@ -178,11 +197,24 @@ def _mover_forbidden(ux, uy, ex, ey, T, lo, hi, m, mv, buf, n):
         return buf, n
     a, b = pptr[m], pptr[m + 1]
     k = a + np.searchsorted(pt1[a:b], lo)
+    # the move's bounding box: a piece whose swept box misses it cannot collide
+    rx0, rx1 = min(ux, ux + T * ex), max(ux, ux + T * ex)
+    ry0, ry1 = min(uy, uy + T * ey), max(uy, uy + T * ey)
     while k < b and pt0[k] <= hi + T:
         ta, tb = pt0[k], pt1[k]
         wx, wy = pv[k, 0], pv[k, 1]
-        d0x = ux - po[k, 0] + wx * ta
-        d0y = uy - po[k, 1] + wy * ta
+        k += 1
+        ox0, ox1 = po[k - 1, 0], po[k - 1, 0] + wx * (tb - ta)
+        oy0, oy1 = po[k - 1, 1], po[k - 1, 1] + wy * (tb - ta)
+        if (
+            box[m, 0] + min(ox0, ox1) > rx1
+            or box[m, 2] + max(ox0, ox1) < rx0
+            or box[m, 1] + min(oy0, oy1) > ry1
+            or box[m, 3] + max(oy0, oy1) < ry0
+        ):
+            continue
+        d0x = ux - ox0 + wx * ta
+        d0y = uy - oy0 + wy * ta
         if circle[m]:
             dx, dy = d0x - center[m, 0], d0y - center[m, 1]
             f0, f1 = disc_range(dx, dy, ex, ey, wx, wy, T, ta, tb, thr[m])
@@ -192,7 +224,6 @@ def _mover_forbidden(ux, uy, ex, ey, T, lo, hi, m, mv, buf, n):
             buf, n = _polygon_piece(
                 d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, m, nverts[m], thr[m], buf, n
             )
-        k += 1
     return buf, n
 
 
@@ -238,7 +269,7 @@ def earliest_free(F, x):
 def segment_free(ux, uy, vx, vy, ta, tb, mv):
     """True iff the robot moving from ``u`` at ``ta`` to ``v`` at ``tb`` (straight, uniform;
     ``u == v`` is a wait) keeps clear of every mover (touching is a hit)."""
-    kind, circle, center, thr, verts, nverts, vmax, base, t_base, pptr, pt0, pt1, po, pv = mv
+    kind, _, circle, center, thr, verts, nverts, vmax, base, t_base, pptr, pt0, pt1, po, pv = mv
     dur = tb - ta
     ex = (vx - ux) / dur if dur > 0.0 else 0.0
     ey = (vy - uy) / dur if dur > 0.0 else 0.0

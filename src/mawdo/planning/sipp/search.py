@@ -3,14 +3,16 @@
 A state is one safe interval of one graph vertex (its global index in the interval arrays);
 its value is the earliest arrival in it. Expanding a state reached at ``a`` tries every graph
 edge ``u -> v`` (driven straight at full speed, duration ``T``): the departures that collide
-are :func:`~mawdo.planning.sipp.intervals.forbidden` over ``[a, end of u's interval]`` (the
+are :func:`~mawdo.planning.sipp.intervals.forbidden` within ``[a, end of u's interval]`` (the
 robot may wait in its interval), and for each safe interval ``J`` of ``v`` the earliest free
-departure that arrives no earlier than ``J`` opens gives the arrival in ``J``. Every accepted
+departure that arrives no earlier than ``J`` opens gives the arrival in ``J`` (the forbidden
+sets are computed over windows that grow from there until a free departure is found). Every accepted
 departure is re-checked by :func:`~mawdo.planning.sipp.intervals.segment_free` (the wait at
 ``u``, then the move); one the exact intervals allow but the re-check refuses (rounding at a
 touching contact) is pushed on by ``10 EPS`` a few times, then dropped. The heuristic, the
-straight-line time to the goal, never exceeds a move's duration plus its wait, so it is
-consistent and the first goal state popped has the earliest arrival on this graph.
+static shortest time to the goal over the same graph, never exceeds a move's duration plus
+its wait plus the heuristic where it arrives, so it is consistent and the first goal state
+popped has the earliest arrival on this graph.
 """
 
 from __future__ import annotations
@@ -26,20 +28,35 @@ from mawdo.planning.sipp.intervals import EPS, earliest_free, forbidden, segment
 __all__ = ["search"]
 
 _RETRIES = 3
+#: First window of departures examined per edge and target interval (time steps).
+_WINDOW = 8.0
 
 
 @njit(cache=True)
-def _depart(ux, uy, vx, vy, a, T, F, x, top, J_hi, mv):
-    """Earliest checked departure ``>= x`` (``inf`` if none arrives before ``J_hi``)."""
-    tau = earliest_free(F, x)
-    for _ in range(_RETRIES):
-        if tau > top or tau + T >= J_hi:
+def _depart(ux, uy, vx, vy, a, T, x, top, J_hi, mv):
+    """Earliest checked departure ``>= x`` and ``<= top`` whose arrival precedes ``J_hi``
+    (``inf`` if none). The forbidden departures are computed over windows growing from ``x``
+    (the answer is usually at or just after it), each exact over its span."""
+    ex, ey = (vx - ux) / T, (vy - uy) / T
+    lo, span, tries = x, _WINDOW, 0
+    while lo <= top and lo + T < J_hi:
+        hi = min(top, lo + span)
+        tau = earliest_free(forbidden(ux, uy, ex, ey, T, lo, hi, mv), lo)
+        if tau > hi:  # forbidden up to the window's end: look further
+            lo, span = hi, 2.0 * span
+            if hi == top:
+                return math.inf
+            continue
+        if tau + T >= J_hi:
             return math.inf
         if segment_free(ux, uy, ux, uy, a, tau, mv) and segment_free(
             ux, uy, vx, vy, tau, tau + T, mv
         ):
             return tau
-        tau = earliest_free(F, tau + 10.0 * EPS)
+        tries += 1  # refused at a touching contact (rounding): push on a little
+        if tries == _RETRIES:
+            return math.inf
+        lo = tau + 10.0 * EPS
     return math.inf
 
 
@@ -53,13 +70,17 @@ def _start_state(ptr, lo, hi, start, t0, pos, mv):
 
 
 @njit(cache=True)
-def search(nodes, indptr, indices, weights, speed, start, goal, t0, t_end, ptr, lo, hi, banned, mv):
+def search(
+    nodes, indptr, indices, weights, to_goal, speed, start, goal, t0, t_end, ptr, lo, hi, banned, mv
+):
     """Earliest arrival at ``goal`` from ``start`` at ``t0`` over (vertex, interval) states.
 
     Parameters
     ----------
     nodes : numpy.ndarray, shape (n, 2)
         Vertices (pixels); ``indptr, indices, weights`` their graph (CSR, edge lengths in px).
+    to_goal : numpy.ndarray, shape (n,)
+        Static distance to the goal over the graph (px; ``inf``: cut off): the heuristic.
     speed : float
         Robot speed (px per time step), > 0.
     start, goal : int
@@ -91,9 +112,8 @@ def search(nodes, indptr, indices, weights, speed, start, goal, t0, t_end, ptr, 
     s0 = _start_state(ptr, lo, hi, start, t0, nodes[start], mv)
     if s0 < 0:
         return -2, arrival, parent, depart
-    gx, gy = nodes[goal, 0], nodes[goal, 1]
     arrival[s0] = t0
-    heap = [(t0 + math.hypot(nodes[start, 0] - gx, nodes[start, 1] - gy) / speed, t0, s0)]
+    heap = [(t0 + to_goal[start] / speed, t0, s0)]
     while heap:
         _, a, sid = heapq.heappop(heap)
         if closed[sid]:
@@ -107,20 +127,18 @@ def search(nodes, indptr, indices, weights, speed, start, goal, t0, t_end, ptr, 
             v = indices[e]
             T = weights[e] / speed
             top = min(hi[sid], t_end - T)
-            if top < a or T <= 0.0:
+            if top < a or T <= 0.0 or not to_goal[v] < math.inf:
                 continue
             vx, vy = nodes[v, 0], nodes[v, 1]
-            F = forbidden(ux, uy, (vx - ux) / T, (vy - uy) / T, T, a, top, mv)
             for J in range(ptr[v], ptr[v + 1]):
                 if hi[J] <= a + T or closed[J] or banned[J]:
                     continue
                 if lo[J] >= top + T:
                     break
-                tau = _depart(ux, uy, vx, vy, a, T, F, max(a, lo[J] - T), top, hi[J], mv)
+                tau = _depart(ux, uy, vx, vy, a, T, max(a, lo[J] - T), top, hi[J], mv)
                 if tau + T < arrival[J]:
                     arrival[J] = tau + T
                     parent[J] = sid
                     depart[J] = tau
-                    h = math.hypot(vx - gx, vy - gy) / speed
-                    heapq.heappush(heap, (tau + T + h, tau + T, J))
+                    heapq.heappush(heap, (tau + T + to_goal[v] / speed, tau + T, J))
     return -1, arrival, parent, depart
