@@ -1,7 +1,8 @@
 """The safe-interval guide (issue 27, item 1): build + query time on a 366 x 366 map with 30
 static polygons and 10 movers (5 constant-velocity circles, 3 patrolling circles, 2 random
-walkers seen as reachable sets). Target: median build + query <= 10 ms (one core), where the build is what a (re)plan redoes
-(start, movers, safe intervals) and the map's roadmap, built once per map, is timed apart.
+walkers seen as reachable sets). Target: median build + query <= 10 ms (one core), where the
+build is what a (re)plan redoes (start, movers, safe intervals) and the map's roadmap, built
+once per map, is timed apart.
 ``python -m benchmarks sipp``.
 """
 

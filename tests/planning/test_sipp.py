@@ -15,6 +15,7 @@ from mawdo.planning.motion import Motion
 from mawdo.planning.scenario import Scenario
 from mawdo.planning.sipp import SafeIntervalGuide
 from mawdo.planning.sipp.intervals import Movers, forbidden, segment_free
+from tests.planning import maps
 from tests.planning.sipp_reference import grid_earliest_arrival
 
 CLEAR = 0.5  # the guide's default clearance (px)
@@ -62,7 +63,9 @@ def _random_movers(rng, walk=False):
             obs.append({"shape": "circle", "center": list(c), "radius": 6.0, "motion": motion})
         else:  # an L: a non-convex polygon
             v = [[0, 0], [16, 0], [16, 6], [6, 6], [6, 14], [0, 14]]
-            obs.append({"shape": "polygon", "vertices": (np.array(v) + c).tolist(), "motion": motion})
+            obs.append(
+                {"shape": "polygon", "vertices": (np.array(v) + c).tolist(), "motion": motion}
+            )
     return _scene(120, 120, (2, 2), (118, 118), obs, radius=2.0, speed=2.0, seed=3)
 
 
@@ -118,6 +121,40 @@ def test_reachable_set_departures_against_shapely():
         assert first - lip * (s[1] - s[0]) - 1e-9 <= F[0, 0] <= first + 1e-9
 
 
+def test_safe_intervals_by_hand():
+    """A circle (radius 6, 2 px per step from x = 20) and a 40 x 40 square (1 px per step from
+    x = 10..50) pass over the spot (100, 50); hit distance 4 + 0.5 beyond the shapes. Circle:
+    |20 + 2 t - 100| <= 10.5, t in [34.75, 45.25]. Square: its right side reaches 100 - 4.5 at
+    t = 45.5 and its left side leaves 100 + 4.5 at t = 94.5; between, the spot is deep inside
+    (up to 20 px from every side), which only the inside test of the polygon catches."""
+    circle = {"shape": "circle", "center": [20, 50], "radius": 6.0, "motion": {"velocity": [2, 0]}}
+    square = _box(10, 30, 50, 70, motion={"velocity": [1.0, 0.0]})
+    for mover, unsafe in ((circle, (34.75, 45.25)), (square, (45.5, 94.5))):
+        sc = _scene(300, 100, (5, 5), (295, 95), [mover])
+        guide = SafeIntervalGuide(sc, spots=[(100, 50)], horizon=120.0)
+        iv = guide.intervals(1)  # the goal is node 0, the first spot node 1
+        np.testing.assert_allclose(iv, [[0.0, unsafe[0]], [unsafe[1], 120.0]], atol=1e-9)
+
+
+def test_bad_input_is_refused_with_the_fix():
+    sc = _corridor(bay=True)
+    with pytest.raises(ValueError, match="start .* inside an inflated static obstacle"):
+        SafeIntervalGuide(sc, start=(20, 20))
+    with pytest.raises(ValueError, match="spots\\[0\\]"):
+        SafeIntervalGuide(sc, spots=[(145, 95)])
+    with pytest.raises(ValueError, match="walkers must be one of"):
+        SafeIntervalGuide(sc, walkers="guess")
+    with pytest.raises(ValueError, match="horizon must be finite and > 0"):
+        SafeIntervalGuide(sc, horizon=0.0)
+    with pytest.raises(ValueError, match="t0 must be finite and >= 0"):
+        SafeIntervalGuide(sc, t0=-1.0)
+    with pytest.raises(ValueError, match="k must be an integer >= 1"):
+        SafeIntervalGuide(sc).routes(k=0)
+    # the mover reaches the start (x = 20) at t = 170: a start inside it cannot leave safely
+    with pytest.raises(ValueError, match="start is inside a moving obstacle"):
+        SafeIntervalGuide(sc, t0=170.0).routes()
+
+
 # ---------------------------------------------------------------------------------------------
 # scenes where only timing works
 
@@ -145,7 +182,9 @@ def test_corridor_only_waiting_in_the_bay_succeeds():
     # it waits inside the bay (above the corridor's inflated wall) while the mover passes
     waits = [
         (p, t0, t1)
-        for p, q, t0, t1 in zip(route.points, route.points[1:], route.times, route.times[1:])
+        for p, q, t0, t1 in zip(
+            route.points[:-1], route.points[1:], route.times[:-1], route.times[1:], strict=True
+        )
         if np.all(p == q) and t1 > t0
     ]
     in_bay = [(t0, t1) for p, t0, t1 in waits if p[1] > 60 + 4 + CLEAR]
@@ -248,22 +287,42 @@ def _small_scene(seed):
     return _scene(100, 100, (6, 6), (94, 94), obs, radius=2.0, speed=2.0)
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("seed", range(4))
-def test_earliest_arrival_matches_time_grid_search(seed):
-    sc = _small_scene(seed)
-    guide = SafeIntervalGuide(sc, horizon=150.0)
-    routes = guide.routes(k=1)
+def _against_grid(sc, h, horizon=None):
+    """SIPP's route and the grid search's earliest arrival on the same graph; the grid runs
+    to one step per departure past SIPP's arrival (an earlier grid arrival would be found)."""
+    guide = SafeIntervalGuide(sc, horizon=horizon)
+    (route,) = guide.routes(k=1)
     edges = [
         (u, int(guide.indices[e]), float(guide.weights[e]))
         for u in range(len(guide.nodes))
         for e in range(guide.indptr[u], guide.indptr[u + 1])
     ]
-    h = 0.25
-    grid = grid_earliest_arrival(sc, guide.nodes, edges, guide.start, 0, h, int(150 / h), CLEAR)
-    assert np.isfinite(grid)
-    (route,) = routes
+    K = int(np.ceil((route.arrival + h * len(route.states)) / h)) + 1
+    grid = grid_earliest_arrival(sc, guide.nodes, edges, guide.start, 0, h, K, CLEAR)
+    return route, grid
+
+
+def _assert_same_within_grid(route, grid, sc, h):
     assert _clean(route, sc)
-    # continuous waiting can only help; the grid loses less than one step per departure
+    # continuous waiting can only help; following SIPP's route on the grid delays each
+    # departure by less than one step
     assert route.arrival <= grid + 1e-6
-    assert grid - route.arrival <= h * len(route.states)
+    assert grid - route.arrival <= h * (len(route.states) - 1)
+
+
+def test_waiting_pocket_matches_time_grid_search():
+    """The pocket (tests/planning/maps.py): a door box leaves slowly; SIPP waits, and the
+    brute-force grid search (shapely checker on every wait and move) agrees within a step."""
+    sc = maps.waiting_pocket()
+    route, grid = _against_grid(sc, 0.5)
+    assert route.waiting > 0.0
+    _assert_same_within_grid(route, grid, sc, 0.5)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", range(4))
+def test_earliest_arrival_matches_time_grid_search(seed):
+    """Small random scenes (2 boxes, 3 bouncing circles): about 30 s each on a shared core."""
+    sc = _small_scene(seed)
+    route, grid = _against_grid(sc, 0.25, horizon=150.0)
+    _assert_same_within_grid(route, grid, sc, 0.25)

@@ -203,7 +203,16 @@ def cone_start(ux, uy, ex, ey, T, circle, cx, cy, thr, verts, i, nv, ox, oy, vma
         best = min(
             best,
             _edge_min(
-                px, py, ex, ey, T, vmax, verts[i, k, 0], verts[i, k, 1], verts[i, kk, 0], verts[i, kk, 1]
+                px,
+                py,
+                ex,
+                ey,
+                T,
+                vmax,
+                verts[i, k, 0],
+                verts[i, k, 1],
+                verts[i, kk, 0],
+                verts[i, kk, 1],
             ),
         )
     if _point_in_polygon(px + T * ex, py + T * ey, verts, i, nv):

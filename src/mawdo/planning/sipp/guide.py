@@ -99,8 +99,8 @@ class SafeIntervalGuide:
         self.scenario, self.t0 = scenario, float(t0)
         self.roadmap = Roadmap.of(scenario, clearance, spots)
         start = scenario.start if start is None else start
-        self.nodes, self.indptr, self.indices, self.weights, self.to_goal = (
-            self.roadmap.with_start(start)
+        self.nodes, self.indptr, self.indices, self.weights, self.to_goal = self.roadmap.with_start(
+            start
         )
         self.start = len(self.nodes) - 1
         if horizon is None:
@@ -128,7 +128,8 @@ class SafeIntervalGuide:
     def _search(self, banned: np.ndarray):
         return search(
             self.nodes, self.indptr, self.indices, self.weights, self.to_goal,
-            float(self.scenario.robot_speed), self.start, 0, self.t0, self.t_end, self.ptr, self.lo, self.hi, banned, self._mv,
+            float(self.scenario.robot_speed), self.start, 0, self.t0, self.t_end, self.ptr,
+            self.lo, self.hi, banned, self._mv,
         )  # fmt: skip
 
     def _route(self, goal_state, arrival, parent, depart) -> TimedRoute:

@@ -126,8 +126,8 @@ class Movers:
     def arrays(self) -> tuple:
         """The fields in order, as the compiled functions take them."""
         return (
-            self.kind, self.box, self.circle, self.center, self.thr, self.verts, self.nverts, self.vmax,
-            self.base, self.t_base, self.pptr, self.pt0, self.pt1, self.po, self.pv,
+            self.kind, self.box, self.circle, self.center, self.thr, self.verts, self.nverts,
+            self.vmax, self.base, self.t_base, self.pptr, self.pt0, self.pt1, self.po, self.pv,
         )  # fmt: skip
 
 

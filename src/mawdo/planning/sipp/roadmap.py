@@ -92,9 +92,11 @@ class Roadmap:
             seen = seen[seen != i]
             src += [np.full(len(seen), i), seen]
             dst += [seen, np.full(len(seen), i)]
-        self.pairs = np.unique(np.column_stack([np.concatenate(src), np.concatenate(dst)]), axis=0)
-        indptr, indices, weights = _csr(self.pairs, self.nodes)
-        self.to_goal = _dijkstra(indptr, indices, weights, np.zeros(1, np.int64), np.zeros(1))[0]
+        pairs = np.unique(np.column_stack([np.concatenate(src), np.concatenate(dst)]), axis=0)
+        self.indptr, self.indices, self.weights = _csr(pairs, self.nodes)
+        self.to_goal = _dijkstra(
+            self.indptr, self.indices, self.weights, np.zeros(1, np.int64), np.zeros(1)
+        )[0]
         moving = tuple(scenario.obstacles[i] for i in scenario.moving_indices)
         self.flat = FlatObstacles.from_obstacles(moving, scenario.robot_radius + clearance)
         self._moving = moving
@@ -121,22 +123,24 @@ class Roadmap:
         g = self.graph
         plain = np.zeros(len(g.nodes), np.bool_)  # no corner rule: visibility alone decides
         p = np.ascontiguousarray(p, dtype=float)
-        return _from_point(p, g.nodes, g.prev, g.nxt, plain, g.edges, g.ring_ptr, g.ring_box, g.eps2)
+        return _from_point(
+            p, g.nodes, g.prev, g.nxt, plain, g.edges, g.ring_ptr, g.ring_box, g.eps2
+        )
 
     def with_start(self, start) -> tuple:
-        """The graph with ``start`` appended as the last node: ``(nodes, indptr, indices,
-        weights, to_goal)``; the start's heuristic is its straight distance plus the rest."""
+        """The graph with ``start`` appended as the last node, joined to every node it sees
+        by edges *out* of it (nothing leads back to it: a route that returns to its start to
+        wait there could have waited there first): ``(nodes, indptr, indices, weights,
+        to_goal)``; the start's heuristic is its shortest static distance to the goal."""
         start = _free_point(start, "start", self.graph, self.scenario)
-        n = len(self.nodes)
         seen = self.sees(start)
         nodes = np.vstack([self.nodes, start])
-        add = np.concatenate([np.column_stack([seen, np.full(len(seen), n)]),
-                              np.column_stack([np.full(len(seen), n), seen])])  # fmt: skip
-        pairs = np.concatenate([self.pairs, add])
-        pairs = pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]
-        d = np.hypot(*(self.nodes[seen] - start).T) + self.to_goal[seen]
-        to_goal = np.append(self.to_goal, d.min() if len(d) else np.inf)
-        return (nodes, *_csr(pairs, nodes), to_goal)
+        w = np.hypot(*(self.nodes[seen] - start).T)
+        indptr = np.append(self.indptr, self.indptr[-1] + len(seen))
+        indices = np.concatenate([self.indices, seen])
+        weights = np.concatenate([self.weights, w])
+        to_goal = np.append(self.to_goal, np.min(w + self.to_goal[seen]) if len(seen) else np.inf)
+        return nodes, indptr, indices, weights, to_goal
 
     def _pieces(self, m: int, t0: float, t_end: float):
         """Knots of moving obstacle ``m`` covering ``[t0, t_end]`` (from a cached window)."""
