@@ -136,6 +136,21 @@ def test_safe_intervals_by_hand():
         np.testing.assert_allclose(iv, [[0.0, unsafe[0]], [unsafe[1], 120.0]], atol=1e-9)
 
 
+def test_without_movers_it_is_the_static_shortest_route():
+    """No mover: no wait, the arrival is the route's length over the speed, and the route is
+    the static optimum up to the guide's coarser inflation (octagons + 0.05 px vs 32-gons)."""
+    from mawdo.planning.oracle import scenario_optimum
+
+    sc = maps.u_trap(3)
+    (route,) = SafeIntervalGuide(sc, clearance=0.0).routes(k=1)
+    length = np.sum(np.hypot(*np.diff(route.points, axis=0).T))
+    assert route.waiting == 0.0
+    assert route.arrival == pytest.approx(length / sc.robot_speed, rel=1e-12)
+    best = scenario_optimum(sc).length
+    assert best - 1e-6 <= length <= 1.01 * best
+    assert _clean(route, sc, margin=0.0)
+
+
 def test_bad_input_is_refused_with_the_fix():
     sc = _corridor(bay=True)
     with pytest.raises(ValueError, match="start .* inside an inflated static obstacle"):

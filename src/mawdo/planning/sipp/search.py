@@ -114,6 +114,7 @@ def search(
         return -2, arrival, parent, depart
     arrival[s0] = t0
     heap = [(t0 + to_goal[start] / speed, t0, s0)]
+    state = (arrival, parent, depart, closed, banned)
     while heap:
         _, a, sid = heapq.heappop(heap)
         if closed[sid]:
@@ -129,16 +130,25 @@ def search(
             top = min(hi[sid], t_end - T)
             if top < a or T <= 0.0 or not to_goal[v] < math.inf:
                 continue
-            vx, vy = nodes[v, 0], nodes[v, 1]
-            for J in range(ptr[v], ptr[v + 1]):
-                if hi[J] <= a + T or closed[J] or banned[J]:
-                    continue
-                if lo[J] >= top + T:
-                    break
-                tau = _depart(ux, uy, vx, vy, a, T, max(a, lo[J] - T), top, hi[J], mv)
-                if tau + T < arrival[J]:
-                    arrival[J] = tau + T
-                    parent[J] = sid
-                    depart[J] = tau
-                    heapq.heappush(heap, (tau + T + to_goal[v] / speed, tau + T, J))
+            hv = to_goal[v] / speed
+            _relax(
+                ux, uy, nodes[v], ptr[v], ptr[v + 1], sid, a, T, top, hv, lo, hi, state, heap, mv
+            )
     return -1, arrival, parent, depart
+
+
+@njit(cache=True)
+def _relax(ux, uy, pv, j0, j1, sid, a, T, top, hv, lo, hi, state, heap, mv):
+    """Arrivals in the safe intervals ``j0:j1`` of vertex ``pv`` by the move from ``u``."""
+    arrival, parent, depart, closed, banned = state
+    for J in range(j0, j1):
+        if hi[J] <= a + T or closed[J] or banned[J]:
+            continue
+        if lo[J] >= top + T:
+            break
+        tau = _depart(ux, uy, pv[0], pv[1], a, T, max(a, lo[J] - T), top, hi[J], mv)
+        if tau + T < arrival[J]:
+            arrival[J] = tau + T
+            parent[J] = sid
+            depart[J] = tau
+            heapq.heappush(heap, (tau + T + hv, tau + T, J))
