@@ -151,6 +151,19 @@ def test_without_movers_it_is_the_static_shortest_route():
     assert _clean(route, sc, margin=0.0)
 
 
+def test_alternatives_are_time_diverse_and_clean():
+    """k = 3: the earliest route first, then alternatives that share no (vertex, interval)
+    state inside them with the routes before, each passing the checker."""
+    sc = _small_scene(0)
+    routes = SafeIntervalGuide(sc, horizon=150.0).routes(k=3)
+    assert len(routes) == 3
+    arrivals = [r.arrival for r in routes]
+    assert arrivals == sorted(arrivals) and arrivals[0] < arrivals[-1]
+    inner = [set(r.states[1:-1]) for r in routes]
+    assert all(not (inner[i] & inner[j]) for i in range(3) for j in range(i))
+    assert all(_clean(r, sc) for r in routes)
+
+
 def test_bad_input_is_refused_with_the_fix():
     sc = _corridor(bay=True)
     with pytest.raises(ValueError, match="start .* inside an inflated static obstacle"):
