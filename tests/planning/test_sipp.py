@@ -164,6 +164,17 @@ def test_alternatives_are_time_diverse_and_clean():
     assert all(_clean(r, sc) for r in routes)
 
 
+def test_start_on_the_goal_or_a_corner():
+    """A start on the goal arrives at once; a start on a corner goes on from it."""
+    sc = _door_scene()
+    guide = SafeIntervalGuide(sc, start=sc.goal, t0=3.0)
+    (route,) = guide.routes(k=1)
+    assert route.arrival == 3.0
+    corner = guide.nodes[5]
+    (route,) = SafeIntervalGuide(sc, start=corner).routes(k=1)
+    assert _clean(route, sc) and route.arrival > 0.0
+
+
 def test_bad_input_is_refused_with_the_fix():
     sc = _corridor(bay=True)
     with pytest.raises(ValueError, match="start .* inside an inflated static obstacle"):

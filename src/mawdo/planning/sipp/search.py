@@ -37,7 +37,8 @@ def _depart(ux, uy, vx, vy, a, T, x, top, J_hi, mv):
     """Earliest checked departure ``>= x`` and ``<= top`` whose arrival precedes ``J_hi``
     (``inf`` if none). The forbidden departures are computed over windows growing from ``x``
     (the answer is usually at or just after it), each exact over its span."""
-    ex, ey = (vx - ux) / T, (vy - uy) / T
+    # a zero-length edge (the start on a vertex) is a move of no duration
+    ex, ey = ((vx - ux) / T, (vy - uy) / T) if T > 0.0 else (0.0, 0.0)
     lo, span, tries = x, _WINDOW, 0
     while lo <= top and lo + T < J_hi:
         hi = min(top, lo + span)
@@ -128,7 +129,7 @@ def search(
             v = indices[e]
             T = weights[e] / speed
             top = min(hi[sid], t_end - T)
-            if top < a or T <= 0.0 or not to_goal[v] < math.inf:
+            if top < a or not to_goal[v] < math.inf:
                 continue
             hv = to_goal[v] / speed
             _relax(
