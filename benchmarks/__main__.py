@@ -19,6 +19,7 @@ SUITES = [
     "bench_arena",
     "bench_bbob",
     "bench_sipp",
+    "bench_startup",
 ]
 
 

@@ -1,14 +1,22 @@
-"""Stale Numba caches are dropped when any source of the package changes, and only then."""
+"""Stale Numba caches are dropped when a source the kernels depend on changes, and only then."""
 
-from mawdo.jitcache import STAMP, drop_stale_caches, sources_digest
+import os
+
+from mawdo.jitcache import PACKAGE, STAMP, drop_stale_caches, kernel_sources, sources_digest
 
 
 def _package(tmp_path):
     pkg = tmp_path / "pkg"
     (pkg / "sub" / "__pycache__").mkdir(parents=True)
     (pkg / "__pycache__").mkdir()
-    (pkg / "kernel.py").write_text("def f():\n    return helper()\n")
+    (pkg / "kernel.py").write_text(
+        "from numba import njit\n\nfrom pkg.sub.middle import helper\n\n"
+        "@njit\ndef f():\n    return helper()\n"
+    )
+    (pkg / "sub" / "__init__.py").write_text("")
+    (pkg / "sub" / "middle.py").write_text("from pkg.sub import helper as h\nhelper = h.helper\n")
     (pkg / "sub" / "helper.py").write_text("def helper():\n    return 1\n")
+    (pkg / "cli.py").write_text("from pkg import kernel\n\nprint(kernel.f())\n")
     return pkg
 
 
@@ -35,12 +43,41 @@ def test_caches_go_when_a_helper_in_another_file_changes(tmp_path):
     assert not any(f.exists() for f in files)
 
 
+def test_caches_stay_when_a_module_no_kernel_imports_changes(tmp_path):
+    pkg = _package(tmp_path)
+    assert kernel_sources(pkg) == sorted(
+        [pkg / "kernel.py", pkg / "sub" / "__init__.py", pkg / "sub" / "middle.py"]
+        + [pkg / "sub" / "helper.py"]
+    )
+    drop_stale_caches(pkg)
+    files, _ = _cache(pkg)
+    (pkg / "cli.py").write_text("from pkg import kernel\n\nprint(2 * kernel.f())\n")
+    (pkg / "report.py").write_text("import numpy\n")  # a new module, not a kernel's
+    assert drop_stale_caches(pkg) == 0
+    assert all(f.exists() for f in files)
+    # the same sizes and times as last checked: the sources are not even read again
+    (pkg / "sub" / "helper.py").write_text("def helper():\n    return 3\n")
+    st = (pkg / "sub" / "helper.py").stat()
+    assert drop_stale_caches(pkg) == 2
+    files, _ = _cache(pkg)
+    os.utime(pkg / "sub" / "helper.py", ns=(st.st_atime_ns, st.st_mtime_ns + 10**9))
+    assert drop_stale_caches(pkg) == 0  # touched, same contents: the caches stay
+
+
+def test_mawdo_kernels_sources_leave_out_the_commands_and_figures():
+    names = {str(p.relative_to(PACKAGE)) for p in kernel_sources()}
+    assert "planning/kernel/moving.py" in names and "optimizers/wind_kernel.py" in names
+    assert "planning/kernel/constants.py" in names  # no Numba in it, but kernels read it
+    assert not any(n.startswith(("cli/", "planning/render/", "experiments/")) for n in names)
+
+
 def test_the_digest_sees_renames_and_new_files(tmp_path):
     pkg = _package(tmp_path)
     d0 = sources_digest(pkg)
     (pkg / "sub" / "helper.py").rename(pkg / "sub" / "helper2.py")
+    (pkg / "sub" / "middle.py").write_text("from pkg.sub import helper2 as h\nhelper = h.helper\n")
     d1 = sources_digest(pkg)
-    (pkg / "new.py").write_text("")
+    (pkg / "new.py").write_text("from numba import njit\n")
     assert len({d0, d1, sources_digest(pkg)}) == 3
 
 

@@ -1,29 +1,91 @@
-"""Drop Numba's on-disk kernel caches when any source of the package changed.
+"""Drop Numba's on-disk kernel caches when a source the kernels depend on changed.
 
 Numba's ``cache=True`` keys a cached kernel by the modification time and size of the one file
 that defines it. Our kernels call (and inline) helpers from other files, so editing a helper, or
 upgrading mawdo over an old install, can leave a caller's cache in place that still contains the
 old helper: the kernel would silently compute with stale code. This module keeps one stamp, a
-SHA-256 of every ``.py`` file of the package, beside the caches; when the stamp differs, every
-cached kernel of the package (``*.nbi``, ``*.nbc``) is deleted before any kernel is loaded, so
-each is compiled again from the current sources. Cost: hashing the sources once per process
-(a few milliseconds).
+SHA-256 of the kernels' sources, beside the caches; when the stamp differs, every cached kernel
+of the package (``*.nbi``, ``*.nbc``) is deleted before any kernel is loaded, so each is compiled
+again from the current sources. Cost: a ``stat`` of each source file per process (about a
+millisecond); the sources are read and parsed only when one of them changed (a few hundred ms).
+
+The kernels' sources (:func:`kernel_sources`) are every module that uses Numba and every module
+of the package those import, directly or not: all a compiled function can call, inline or
+capture as a global constant. Editing any other module (the commands, figures, study harness)
+keeps the caches, which spares the minute or two a full compile takes.
 """
 
 from __future__ import annotations
 
+import ast
 import hashlib
 import os
 from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent
 STAMP = "mawdo-sources.sha256"
+#: The files' sizes and times when the stamp was last checked, with the stamp: while they are
+#: unchanged, a process skips reading the sources.
+STAT_STAMP = "mawdo-sources.stat"
+
+
+def _imported_files(path: Path, root: Path) -> set[Path]:
+    """Files under ``root`` (the package ``root.name``) that the module at ``path`` imports."""
+    pkg = root.name
+    names: set[str] = set()
+    for node in ast.walk(ast.parse(path.read_bytes())):
+        if isinstance(node, ast.Import):
+            names.update(a.name for a in node.names)
+        elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            names.add(node.module)
+            names.update(f"{node.module}.{a.name}" for a in node.names)  # submodules
+    found = set()
+    for name in names:
+        parts = name.split(".")
+        if parts[0] != pkg:
+            continue
+        for k in range(2, len(parts) + 1):  # a module also runs its packages' __init__
+            base = root.joinpath(*parts[1:k])
+            for f in (base.with_suffix(".py"), base / "__init__.py"):
+                if f.is_file():
+                    found.add(f)
+    return found
+
+
+def _defines_kernels(path: Path) -> bool:
+    text = path.read_bytes()
+    if b"numba" not in text:
+        return False
+    for node in ast.parse(text).body:
+        if isinstance(node, ast.Import) and any(
+            a.name.split(".")[0] == "numba" for a in node.names
+        ):
+            return True
+        if isinstance(node, ast.ImportFrom) and (node.module or "").split(".")[0] == "numba":
+            return True
+    return False
+
+
+def kernel_sources(root: Path = PACKAGE) -> list[Path]:
+    """The ``.py`` files under ``root`` a compiled kernel can depend on, sorted.
+
+    Those that import Numba at their top level (where kernels are defined), and every module
+    of the package they import, transitively.
+    """
+    todo = [p for p in root.rglob("*.py") if _defines_kernels(p)]
+    seen: set[Path] = set()
+    while todo:
+        path = todo.pop()
+        if path not in seen:
+            seen.add(path)
+            todo.extend(_imported_files(path, root) - seen)
+    return sorted(seen)
 
 
 def sources_digest(root: Path = PACKAGE) -> str:
-    """SHA-256 (hex) of the relative paths and contents of every ``.py`` file under ``root``."""
+    """SHA-256 (hex) of the relative paths and contents of :func:`kernel_sources`."""
     h = hashlib.sha256()
-    for path in sorted(root.rglob("*.py")):
+    for path in kernel_sources(root):
         h.update(str(path.relative_to(root)).encode())
         h.update(path.read_bytes())
     return h.hexdigest()
@@ -45,7 +107,8 @@ def cache_dirs(root: Path = PACKAGE) -> list[Path]:
 
 
 def drop_stale_caches(root: Path = PACKAGE) -> int:
-    """Delete every cached kernel under ``root`` if its sources changed since the last stamp.
+    """Delete every cached kernel under ``root`` if the kernels' sources changed since the last
+    stamp.
 
     Parameters
     ----------
@@ -57,27 +120,52 @@ def drop_stale_caches(root: Path = PACKAGE) -> int:
     int
         Number of cache files deleted (0 when the stamp matched or nothing was cached).
     """
-    digest = sources_digest(root)
     stamp_dir = root / "__pycache__"
     stamp = stamp_dir / STAMP
     try:
-        if stamp.read_text().strip() == digest:
-            return 0
+        stamped = stamp.read_text().strip()
     except OSError:
-        pass  # no stamp yet: treat every cache as stale
+        stamped = None  # no stamp yet: treat every cache as stale
+    # fast path: no source file changed (path, size, mtime) since the stamp was checked
+    files = _stat_signature(root)
+    if stamped and _read(stamp_dir / STAT_STAMP) == f"{files} {stamped}":
+        return 0
+    digest = sources_digest(root)
     removed = 0
-    for d in cache_dirs(root):
-        for f in (*d.glob("*.nbi"), *d.glob("*.nbc")):
-            try:
-                f.unlink()
-                removed += 1
-            except OSError:
-                pass  # another process removed it first, or a read-only install
+    if stamped != digest:
+        for d in cache_dirs(root):
+            for f in (*d.glob("*.nbi"), *d.glob("*.nbc")):
+                try:
+                    f.unlink()
+                    removed += 1
+                except OSError:
+                    pass  # another process removed it first, or a read-only install
+        _write(stamp, digest)
+    _write(stamp_dir / STAT_STAMP, f"{files} {digest}")
+    return removed
+
+
+def _stat_signature(root: Path) -> str:
+    """SHA-256 of every ``.py`` file's relative path, size and modification time."""
+    h = hashlib.sha256()
+    for path in sorted(root.rglob("*.py")):
+        st = path.stat()
+        h.update(f"{path.relative_to(root)} {st.st_size} {st.st_mtime_ns}\n".encode())
+    return h.hexdigest()
+
+
+def _read(path: Path) -> str | None:
     try:
-        stamp_dir.mkdir(exist_ok=True)
-        tmp = stamp.with_suffix(f".{os.getpid()}.tmp")
-        tmp.write_text(digest)
-        os.replace(tmp, stamp)  # atomic: concurrent workers never read half a stamp
+        return path.read_text().strip()
+    except OSError:
+        return None
+
+
+def _write(path: Path, text: str) -> None:
+    try:
+        path.parent.mkdir(exist_ok=True)
+        tmp = path.with_suffix(f".{os.getpid()}.tmp")
+        tmp.write_text(text)
+        os.replace(tmp, path)  # atomic: concurrent workers never read half a stamp
     except OSError:
         pass  # read-only install: Numba then caches elsewhere or not at all
-    return removed

@@ -8,6 +8,7 @@ stored, so an interrupted reproduction picks up where it stopped.
 
 from __future__ import annotations
 
+from contextlib import nullcontext
 from pathlib import Path
 
 from mawdo.experiments import run_plan
@@ -30,6 +31,7 @@ def reproduce(
     say=print,
     bench_overrides: dict | None = None,
     study: str | None = None,
+    step=None,
 ) -> Path:
     """Run the benchmark, ablation and planning studies and write ``OUT/report.md``.
 
@@ -46,7 +48,11 @@ def reproduce(
         Plan fields to change in the three benchmark plans (beyond ``quick``'s).
     study : str, optional
         Study preset to run instead of the default one.
+    step : callable, optional
+        ``step(message)`` returns a context manager that shows what a step is doing while it
+        runs (the command's progress lines); each report (tens of seconds of figures) is one.
     """
+    step = step or (lambda message: nullcontext())
     out = Path(out)
     stores = out / "results"
     parts, plans = [], []
@@ -66,7 +72,8 @@ def reproduce(
         say(f"  {summary}")
         if summary.interrupted:
             raise KeyboardInterrupt
-        write_report(db, out / preset)
+        with step(f"writing the report of {preset} (tables, convergence and box plots)"):
+            write_report(db, out / preset)
         parts.append((title, out / preset / "report.md"))
         plans.append(plan)
     study = study_preset(study or (QUICK_STUDY if quick else "paper-table6"))
@@ -76,7 +83,9 @@ def reproduce(
     say(f"  {summary}")
     if summary.interrupted:
         raise KeyboardInterrupt
-    parts.append(("Path planning (paper Table 6)", write_study_report(db, out / "paper-table6")))
+    with step(f"writing the report of {study.name} (tables and figures of the routes)"):
+        report = write_study_report(db, out / "paper-table6")
+    parts.append(("Path planning (paper Table 6)", report))
     return _gather(out, parts, _preamble(plans, study, quick))
 
 

@@ -277,13 +277,23 @@ def reproduce(
     progress: bool = typer.Option(True, help="show progress bars"),
 ):
     """Reproduce the paper: benchmark, shifted suite, ablation and planning study, one report."""
+    from functools import partial
+
+    from mawdo.cli.progress import notice_compiles, step
     from mawdo.reproduce import reproduce as run
 
     check_output_dir(out, "--out folder")
     try:
-        path = run(
-            out, quick=quick, workers=workers, dask=dask, progress=progress, say=console.print
-        )
+        with notice_compiles(progress):  # runs with --workers 1 and the reports compile here
+            path = run(
+                out,
+                quick=quick,
+                workers=workers,
+                dask=dask,
+                progress=progress,
+                say=console.print,
+                step=partial(step, enabled=progress),
+            )
     except KeyboardInterrupt:
         console.print("interrupted: run the same command again to resume")
         raise typer.Exit(130) from None

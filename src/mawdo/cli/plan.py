@@ -14,6 +14,7 @@ import typer
 from rich.console import Console
 
 from mawdo.cli.errors import DefaultRunGroup
+from mawdo.cli.progress import ERR, notice_compiles, step
 
 console = Console(width=None if sys.stdout.isatty() else 140)
 
@@ -75,7 +76,7 @@ class _StepBar:
             MofNCompleteColumn(),
             TextColumn("steps, {task.fields[replans]} replans"),
             TimeElapsedColumn(),
-            console=Console(stderr=True),
+            console=ERR,
             transient=True,
         )
         self.task = self.progress.add_task(label, total=None, replans=0)
@@ -122,7 +123,8 @@ def run_cmd(
     check_output_dir(out, "--out folder")
     bar = _StepBar(progress, f"{algorithm} on {sc.name}")
     try:
-        res = run.execute(bar)
+        with notice_compiles(progress):
+            res = run.execute(bar)
     finally:
         bar.close()
     m, error = run_metrics_kept(res)
@@ -144,8 +146,13 @@ def run_cmd(
             from mawdo.planning import render
         except ImportError:
             return
-        console.print(f"snapshot grid: {render.snapshot_grid([res], out / 'snapshots.png')}")
-        console.print(f"animation: {render.animate(res, out / 'run.gif')}")
+        with step("drawing the snapshot grid", progress):
+            grid = render.snapshot_grid([res], out / "snapshots.png")
+        console.print(f"snapshot grid: {grid}")
+        frames = len(render.animation_times(res))
+        with step(f"writing the GIF ({frames} frames)", progress):
+            gif = render.animate(res, out / "run.gif")
+        console.print(f"animation: {gif}")
 
 
 @plan_app.command("study")

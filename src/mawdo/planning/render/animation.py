@@ -1,4 +1,12 @@
-"""An animated GIF of one planning run (Pillow, no ffmpeg)."""
+"""An animated GIF of one planning run (Pillow, no ffmpeg).
+
+Fast by blitting: the figure (legend, axes, ticks, labels) is rendered once as a background;
+each frame restores it, moves the map's artists to the frame's time (:func:`_world_state`, the
+same one that draws the snapshot panels) and draws only them and the panel title. Redrawing the
+whole figure per frame cost about 0.14 s of CPU a frame, mostly in the legend's and the ticks'
+text layout; blitting costs a few milliseconds. The frames share one palette, so Pillow maps
+them to it instead of quantizing each frame on its own.
+"""
 
 from __future__ import annotations
 
@@ -9,12 +17,22 @@ import numpy as np
 from mawdo.planning.planner import PlanResult
 from mawdo.planning.render.style import (
     _display,
+    _fmt_time,
     _new_figure,
     _optimum_path,
     _output_path,
     _route,
 )
-from mawdo.planning.render.world import _draw_world, _legend_handles
+from mawdo.planning.render.world import (
+    _add_layer,
+    _draw_world,
+    _legend_handles,
+    _set_layer,
+    _world_state,
+)
+
+#: Colours of the shared palette taken exactly as drawn (the rest of the 256 by median cut).
+_EXACT_COLOURS = 96
 
 
 def animation_times(result: PlanResult, every: int = 1, max_frames: int = 200) -> np.ndarray:
@@ -70,8 +88,6 @@ def animate(
     Path
         The written GIF.
     """
-    from matplotlib.animation import PillowWriter
-
     if not isinstance(result, PlanResult):
         raise TypeError(f"animate needs a PlanResult, got {type(result).__name__}")
     if not (isinstance(fps, int | np.integer | float) and fps > 0):
@@ -95,27 +111,118 @@ def animate(
         columnspacing=1.0,
     )
 
-    def frame(i):
-        _draw_world(ax, sc, float(ts[i]), result=result, optimum=opt, clear=False)
-
-    frame(0)
+    frame0 = _world_state(sc, float(ts[0]), result, opt)
+    _draw_world(ax, sc, float(ts[0]), result=result, optimum=opt)
     ax.set_xlabel("x (px)", fontsize=7)
     ax.set_ylabel("y (px)", fontsize=7)
     fig.draw_without_rendering()  # fix the constrained layout once; frames keep it
     fig.set_layout_engine("none")
-    # PillowWriter driven frame by frame: FuncAnimation.save would draw every frame twice
-    # (once for the writer, once more in its post-draw hook) for the same GIF.
-    writer = PillowWriter(fps=fps)
-    try:
-        with writer.saving(fig, out, dpi):
-            for i in range(len(ts)):
-                if i:
-                    frame(i)
-                writer.grab_frame()
-    except OSError as exc:
-        raise OSError(f"cannot write {str(out)!r}: {exc.strerror or exc}") from exc
+    frames = _Frames(fig, ax, sc, frame0)
+    images = [frames.grab(_world_state(sc, float(t), result, opt), t) for t in ts]
+    _write_gif(images, out, fps)
     return out
 
 
-# --------------------------------------------------------------------------------------------
-# statistics across runs
+class _Frames:
+    """Frames of one map panel by blitting (see the module docstring)."""
+
+    def __init__(self, fig, ax, scenario, state: dict) -> None:
+        self.fig, self.ax, self.scenario = fig, ax, scenario
+        self.layers = {}  # gid -> its artists
+        for a in [*ax.lines, *ax.patches]:
+            self.layers.setdefault(a.get_gid(), []).append(a)
+        for gid, data in state.items():  # layers absent at the first time: empty artists
+            if gid not in self.layers:
+                self.layers[gid] = _add_layer(ax, scenario, gid, data)
+        self.gids = list(state)
+        for a in self._artists():
+            a.set_animated(True)
+        ax.title.set_animated(True)
+        fig.canvas.draw()
+        self.background = fig.canvas.copy_from_bbox(fig.bbox)
+
+    def _artists(self) -> list:
+        # the order of a fresh panel: by zorder, ties in the order _draw_world adds them
+        arts = [a for gid in self.gids for a in self.layers[gid]]
+        return sorted(arts, key=lambda a: a.get_zorder())  # (a stable sort)
+
+    def grab(self, state: dict, t: float):
+        """The frame at time ``t`` (state from :func:`_world_state`) as an RGB image."""
+        from PIL import Image
+
+        for gid in self.gids:
+            data = state.get(gid)
+            arts = self.layers[gid]
+            if not _set_layer(arts, gid, data):
+                for a in arts:
+                    a.remove()
+                arts[:] = _add_layer(self.ax, self.scenario, gid, data)
+                for a in arts:
+                    a.set_animated(True)
+            for a in arts:
+                a.set_visible(data is not None)
+        self.ax.title.set_text(f"t = {_fmt_time(float(t))}")
+        canvas = self.fig.canvas
+        canvas.restore_region(self.background)
+        for a in [*self._artists(), self.ax.title]:
+            self.ax.draw_artist(a)
+        rgba = np.asarray(canvas.buffer_rgba())
+        return Image.fromarray(np.ascontiguousarray(rgba[..., :3]))
+
+
+def _packed(rgb: np.ndarray) -> np.ndarray:
+    """RGB pixels as one integer each, ``0xRRGGBB``."""
+    px = rgb.reshape(-1, 3).astype(np.uint32)
+    return (px[:, 0] << 16) | (px[:, 1] << 8) | px[:, 2]
+
+
+class _Palette:
+    """One palette for every frame, from the first, middle and last frame: their most frequent
+    colours exactly (background, fills and lines stay pure), the anti-aliased rest by median
+    cut. Pillow maps a pixel to a palette through a coarse colour cache (white could become
+    252 grey), so pixels of an exact colour are set to its entry afterwards."""
+
+    def __init__(self, images: list) -> None:
+        from PIL import Image
+
+        picks = [np.asarray(images[k]) for k in (0, len(images) // 2, -1)]
+        colours, counts = np.unique(_packed(np.concatenate(picks)), return_counts=True)
+        top = colours[np.argsort(-counts, kind="stable")[:_EXACT_COLOURS]]
+        self.exact = np.sort(top)  # entry k of the palette is colour self.exact[k]
+        exact_rgb = np.stack([self.exact >> 16, (self.exact >> 8) & 255, self.exact & 255], 1)
+        n_cut = 256 - len(self.exact)
+        cut = Image.fromarray(np.concatenate(picks)).quantize(n_cut, Image.Quantize.MEDIANCUT)
+        rest = np.asarray(cut.getpalette()[: 3 * n_cut]).reshape(-1, 3)
+        self.rgb = np.concatenate([exact_rgb, rest]).astype(np.uint8).ravel().tolist()
+        self.image = Image.new("P", (1, 1))
+        self.image.putpalette(self.rgb)
+
+    def __call__(self, im):
+        """An RGB frame as a palette image on this palette."""
+        from PIL import Image
+
+        index = np.array(im.quantize(palette=self.image, dither=Image.Dither.NONE))
+        packed = _packed(np.asarray(im))
+        at = np.minimum(np.searchsorted(self.exact, packed), len(self.exact) - 1)
+        hit = self.exact[at] == packed
+        index.reshape(-1)[hit] = at[hit]
+        out = Image.fromarray(index, "P")
+        out.putpalette(self.rgb)
+        return out
+
+
+def _write_gif(images: list, out: Path, fps) -> None:
+    """Write RGB frames as one looping GIF on a shared palette, each shown ``1 / fps`` s."""
+    palette = _Palette(images)
+    frames = [palette(im) for im in images]
+    try:
+        frames[0].save(
+            out,
+            save_all=True,
+            append_images=frames[1:],
+            duration=round(1000 / fps),
+            loop=0,
+            optimize=False,
+        )
+    except OSError as exc:
+        raise OSError(f"cannot write {str(out)!r}: {exc.strerror or exc}") from exc

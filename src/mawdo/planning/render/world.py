@@ -20,6 +20,9 @@ from mawdo.planning.render.style import (
 )
 from mawdo.planning.scenario import Scenario
 
+# drawing order of the line layers (obstacles: 2 static, 3 moving; robot 8)
+_ZORDER = {"track": 1.5, "optimum": 4, "plan": 5, "trail": 6, "start": 7, "goal": 7}
+
 
 def _draw_world(
     ax,
@@ -33,10 +36,6 @@ def _draw_world(
     clear: bool = True,
 ) -> None:
     """Draw the world at time ``t`` on ``ax``, and a run's state at ``t`` if ``result`` is given.
-
-    Long by design: one panel's layers in drawing order, each a short block.
-
-    Long because each layer of the panel is a few plotting calls in drawing order.
 
     Parameters
     ----------
@@ -66,57 +65,111 @@ def _draw_world(
     ``"start"``, ``"goal"``, ``"static:<id>"``, ``"moving:<id>"``, ``"inflated:<id>"``,
     ``"track:<id>"``): SVG output names its elements, and tests can find them.
     """
-    from matplotlib.patches import Circle, Polygon
-
-    s = _STYLE
     if clear:
         ax.clear()
     else:
         for artist in [*ax.lines, *ax.patches]:
             artist.remove()
-    offsets = np.asarray(scenario.offsets(float(t)))
-    inflated = inflated_obstacles(scenario, float(t))
-    for ob, off, grown in zip(scenario.obstacles, offsets, inflated, strict=True):
-        style = s["static"] if ob.is_static else s["moving"]
-        z = 2 if ob.is_static else 3
-        gid = f"{'static' if ob.is_static else 'moving'}:{ob.id}"
-        if ob.is_circle:
-            centre = np.asarray(ob.shape.center, float) + off
-            ax.add_patch(Circle(centre, ob.shape.radius, zorder=z, gid=gid, **style))
-        else:
-            verts = np.asarray(ob.shape.vertices, float) + off
-            ax.add_patch(Polygon(verts, closed=True, zorder=z, gid=gid, **style))
-        if scenario.robot_radius > 0:
-            for ring in _rings(grown):
-                ax.plot(ring[:, 0], ring[:, 1], zorder=z, gid=f"inflated:{ob.id}", **s["inflated"])
-        if not ob.is_static and track > 0 and t > 0:
-            ts = np.linspace(max(0.0, t - track), t, max(2, int(2 * min(track, t)) + 1))
-            pts = _reference_point(ob) + ob.offset(ts)
-            ax.plot(pts[:, 0], pts[:, 1], zorder=1.5, gid=f"track:{ob.id}", **s["track"])
-    if optimum is not None:
-        ax.plot(optimum[:, 0], optimum[:, 1], zorder=4, gid="optimum", **s["optimum"])
-    ax.plot(*scenario.start, zorder=7, gid="start", **s["start"])
-    ax.plot(*scenario.goal, zorder=7, gid="goal", **s["goal"])
-    if result is not None:
-        route, times = _route(result)
-        active = _active_replan(result, t)
-        finished = result.success and t >= times[-1] - 1e-9
-        if active is not None and not finished:
-            plan = np.vstack([active.position, active.waypoints, scenario.goal])
-            ax.plot(plan[:, 0], plan[:, 1], zorder=5, gid="plan", **s["plan"])
-        trail = _trail_until(route, times, t)
-        ax.plot(trail[:, 0], trail[:, 1], zorder=6, gid="trail", **s["trail"])
-        pos = trail[-1]
-        r = max(scenario.robot_radius, 0.0)
-        if r > 0:
-            ax.add_patch(Circle(pos, r, zorder=8, gid="robot", **s["robot"]))
-        else:
-            ax.plot(*pos, "o", ms=3, color=s["robot"]["edgecolor"], zorder=8, gid="robot")
+    for gid, data in _world_state(scenario, t, result, optimum, track).items():
+        if data is not None:
+            _add_layer(ax, scenario, gid, data)
     ax.set_xlim(0.0, scenario.width)
     ax.set_ylim(0.0, scenario.height)
     ax.set_aspect("equal", adjustable="box")
     ax.tick_params(labelsize=small - 1, length=2, pad=1.5)
     ax.set_title(f"t = {_fmt_time(t)}" if title is None else title, fontsize=small + 1, pad=3)
+
+
+def _world_state(
+    scenario: Scenario,
+    t: float,
+    result: PlanResult | None = None,
+    optimum: np.ndarray | None = None,
+    track: float = TRACK_STEPS,
+) -> dict:
+    """What a panel shows at time ``t``, by ``gid`` in drawing order (pixels).
+
+    ``"static:<id>"`` / ``"moving:<id>"``: the shape where it is (a circle's centre, a polygon's
+    vertices); ``"inflated:<id>"``: its inflated outline (list of rings, empty without a robot
+    radius); ``"track:<id>"``: the moving obstacle's past track; ``"optimum"``, ``"start"``,
+    ``"goal"``; with a run, ``"plan"`` (position -> waypoints -> goal), ``"trail"`` and
+    ``"robot"`` (its position). An entry is ``None`` where nothing is drawn at ``t`` (no track
+    at t = 0, no plan once the goal is reached): the animation keeps its artist, empty.
+    """
+    state: dict = {}
+    offsets = np.asarray(scenario.offsets(float(t)))
+    inflated = inflated_obstacles(scenario, float(t))
+    for ob, off, grown in zip(scenario.obstacles, offsets, inflated, strict=True):
+        kind = "static" if ob.is_static else "moving"
+        if ob.is_circle:
+            state[f"{kind}:{ob.id}"] = np.asarray(ob.shape.center, float) + off
+        else:
+            state[f"{kind}:{ob.id}"] = np.asarray(ob.shape.vertices, float) + off
+        state[f"inflated:{ob.id}"] = _rings(grown) if scenario.robot_radius > 0 else []
+        if not ob.is_static and track > 0:
+            state[f"track:{ob.id}"] = None
+            if t > 0:
+                ts = np.linspace(max(0.0, t - track), t, max(2, int(2 * min(track, t)) + 1))
+                state[f"track:{ob.id}"] = _reference_point(ob) + ob.offset(ts)
+    if optimum is not None:
+        state["optimum"] = optimum
+    state["start"] = np.asarray(scenario.start, float)
+    state["goal"] = np.asarray(scenario.goal, float)
+    if result is not None:
+        route, times = _route(result)
+        active = _active_replan(result, t)
+        finished = result.success and t >= times[-1] - 1e-9
+        state["plan"] = None
+        if active is not None and not finished:
+            state["plan"] = np.vstack([active.position, active.waypoints, scenario.goal])
+        trail = _trail_until(route, times, t)
+        state["trail"] = trail
+        state["robot"] = trail[-1]
+    return state
+
+
+def _add_layer(ax, scenario: Scenario, gid: str, data) -> list:
+    """Draw one entry of :func:`_world_state` on ``ax`` in its style; returns its artists."""
+    from matplotlib.patches import Circle, Polygon
+
+    s = _STYLE
+    kind, _, oid = gid.partition(":")
+    if kind in ("static", "moving"):
+        ob = next(o for o in scenario.obstacles if str(o.id) == oid)
+        z = 2 if ob.is_static else 3
+        if ob.is_circle:
+            return [ax.add_patch(Circle(data, ob.shape.radius, zorder=z, gid=gid, **s[kind]))]
+        return [ax.add_patch(Polygon(data, closed=True, zorder=z, gid=gid, **s[kind]))]
+    if kind == "inflated":
+        z = 2 if next(o for o in scenario.obstacles if str(o.id) == oid).is_static else 3
+        return [ax.plot(r[:, 0], r[:, 1], zorder=z, gid=gid, **s["inflated"])[0] for r in data]
+    if kind == "robot" and scenario.robot_radius > 0:
+        return [ax.add_patch(Circle(data, scenario.robot_radius, zorder=8, gid=gid, **s["robot"]))]
+    if kind == "robot":
+        return ax.plot(*data, "o", ms=3, color=s["robot"]["edgecolor"], zorder=8, gid=gid)
+    xy = np.empty((0, 2)) if data is None else np.atleast_2d(data)
+    return ax.plot(xy[:, 0], xy[:, 1], zorder=_ZORDER[kind], gid=gid, **s[kind])
+
+
+def _set_layer(artists: list, gid: str, data) -> bool:
+    """Move the artists :func:`_add_layer` made to ``data``; False if they cannot follow it (a
+    ring more or less), so the caller draws them anew."""
+    kind = gid.partition(":")[0]
+    if kind == "inflated":
+        if len(data) != len(artists):
+            return False
+        for a, ring in zip(artists, data, strict=True):
+            a.set_data(ring[:, 0], ring[:, 1])
+        return True
+    (a,) = artists
+    if hasattr(a, "set_center"):
+        a.set_center(data)
+    elif hasattr(a, "set_xy"):
+        a.set_xy(data)
+    else:
+        xy = np.empty((0, 2)) if data is None else np.atleast_2d(data)
+        a.set_data(xy[:, 0], xy[:, 1])
+    return True
 
 
 def _legend_handles(robot_radius: float) -> list:

@@ -1,0 +1,83 @@
+"""Long steps of a command say what they are doing on stderr (issue 28, item 2): compiling the
+kernels, drawing the snapshot grid, writing the GIF. What is asserted is the messages, not
+timings (those are in ``python -m benchmarks startup``)."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from numba import njit
+
+from mawdo.cli.progress import notice_compiles, step
+
+ENV = {**os.environ, "MPLBACKEND": "Agg", "COLUMNS": "200"}
+
+
+def mawdo(*args: str, env=None, timeout: float = 600) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [sys.executable, "-m", "mawdo.cli", *args],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        env=env or ENV,
+    )
+
+
+def test_a_compile_is_announced_once_with_its_total_time(capsys):
+    @njit(cache=False)
+    def twice(x):
+        return 2 * x
+
+    @njit(cache=False)
+    def calls(x):
+        return twice(x) + 1
+
+    with notice_compiles():
+        assert calls(3) == 7  # compiles calls, and twice inside it
+        assert calls(4.5) == 10.0  # a second signature: compiled, not announced again
+    err = capsys.readouterr().err
+    assert err.count("compiling kernels (first run only") == 1
+    assert err.count("kernels compiled in") == 1
+    with notice_compiles():
+        assert calls(5) == 11  # nothing left to compile: nothing said
+    assert capsys.readouterr().err == ""
+
+
+def test_a_step_names_itself_and_says_when_it_is_done(capsys):
+    with step("writing the thing"):
+        pass
+    lines = capsys.readouterr().err.splitlines()
+    assert lines[0] == "writing the thing ..."
+    assert lines[1].startswith("writing the thing: done in ") and lines[1].endswith(" s")
+    with step("quiet", enabled=False):
+        pass
+    assert capsys.readouterr().err == ""
+
+
+def test_plan_says_when_it_draws_the_grid_and_writes_the_gif(tmp_path):
+    out = tmp_path / "run"
+    r = mawdo("plan", "paper", "--preset", "quick", "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    assert "drawing the snapshot grid ..." in r.stderr
+    assert "writing the GIF (" in r.stderr and "frames) ..." in r.stderr
+    assert "writing the GIF" not in r.stdout  # results on stdout, progress on stderr
+    assert (out / "run.gif").is_file() and (out / "snapshots.png").is_file()
+    quiet = mawdo("plan", "paper", "--preset", "quick", "--no-progress", "--out", str(out))
+    assert quiet.returncode == 0 and "writing the GIF" not in quiet.stderr
+
+
+@pytest.mark.slow
+def test_a_first_plan_on_an_empty_numba_cache_says_it_compiles(tmp_path):
+    env = {**ENV, "NUMBA_CACHE_DIR": str(tmp_path / "numba")}
+    args = ("plan", "paper", "--preset", "quick", "--no-figures", "--out", str(tmp_path))
+    r = mawdo(*args, env=env)
+    assert r.returncode == 0, r.stderr
+    assert "compiling kernels (first run only" in r.stderr
+    assert "kernels compiled in" in r.stderr
+    again = mawdo(*args, env=env)
+    assert again.returncode == 0 and "compiling kernels" not in again.stderr
+    assert np.isfinite(float(again.stdout.split("length_px:")[1].split()[0]))
