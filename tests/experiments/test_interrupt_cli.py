@@ -40,20 +40,20 @@ VALUES = (
 ENV = {**os.environ, "PYTHONPATH": SRC, "PYTHONUNBUFFERED": "1"}
 
 
-def _cmd(db: Path) -> list[str]:
-    return [sys.executable, "-m", "mawdo.cli", *ARGS, "--out", str(db)]
+def _cmd(db: Path, *extra: str) -> list[str]:
+    return [sys.executable, "-m", "mawdo.cli", *ARGS, "--out", str(db), *extra]
 
 
 def _run(db: Path) -> subprocess.CompletedProcess:
     return subprocess.run(_cmd(db), capture_output=True, text=True, env=ENV, timeout=600)
 
 
-def _start(db: Path) -> subprocess.Popen:
+def _start(db: Path, *extra: str) -> subprocess.Popen:
     def child() -> None:
         signal.signal(signal.SIGINT, signal.SIG_DFL)
 
     return subprocess.Popen(
-        _cmd(db),
+        _cmd(db, *extra),
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
@@ -81,10 +81,10 @@ def _rows(db: Path) -> int:
     return got[0][0] if got else 0
 
 
-def _interrupt(db: Path, after_rows: int, delay: float) -> tuple[int, str]:
+def _interrupt(db: Path, after_rows: int, delay: float, *extra: str) -> tuple[int, str]:
     """Start the command, wait until it has stored more than ``after_rows`` runs (so it is
     computing the next one), wait ``delay`` s more, Ctrl-C; its exit code and stderr."""
-    proc = _start(db)
+    proc = _start(db, *extra)
     t0 = time.monotonic()
     while _rows(db) <= after_rows and proc.poll() is None and time.monotonic() - t0 < 300:
         time.sleep(0.05)
@@ -132,3 +132,16 @@ def test_ctrl_c_before_the_first_run_exits_130_without_a_traceback(tmp_path):
         assert proc.returncode == 130, err
         assert "Traceback" not in err and "Aborted" not in err, err
         assert _query(tmp_path / "early.db", "SELECT COUNT(*) FROM runs") in ([], [(0,)])
+
+
+@pytest.mark.slow
+def test_ctrl_c_to_a_pool_and_its_workers(tmp_path):
+    """The whole group gets SIGINT: the pool workers ignore it, the parent stops them; nothing
+    they were computing is stored, and nobody prints a traceback."""
+    db = tmp_path / "pool.db"
+    rc, err = _interrupt(db, 0, 0.3, "--workers", "2")
+    assert rc == 130 and "Traceback" not in err and "run the same command again" in err, err
+    assert _query(db, "SELECT COUNT(*) FROM runs WHERE error_text IS NOT NULL") == [(0,)]
+    stored = _rows(db)
+    resumed = _run(db)
+    assert resumed.returncode == 0 and f"{stored} already stored" in resumed.stdout
