@@ -230,14 +230,7 @@ class Store:
                 ),
             )
             task_id = cur.lastrowid
-            # A recomputed failure (run_plan's retry_failed) replaces its error row here, in
-            # the transaction of its new row: a crash in between loses neither. Rows without
-            # an error are results and are never replaced (their insert would be refused).
-            self.conn.execute(
-                "DELETE FROM runs WHERE algorithm = ? AND problem = ? AND run >= ? AND run < ? "
-                "AND error_text IS NOT NULL",
-                (t["algorithm"], t["problem"], t["first_run"], t["first_run"] + t["n_runs"]),
-            )
+            self._drop_errors(t)
             head = (self.plan.plan_hash, t["algorithm"], t["problem"])
             values = [
                 (
@@ -254,6 +247,16 @@ class Store:
                 values,
             )
         return int(task_id)
+
+    def _drop_errors(self, t: dict[str, Any]) -> None:
+        # A recomputed failure (run_plan's retry_failed) replaces its error row here, in the
+        # transaction of its new row: a crash in between loses neither. Rows without an error
+        # are results and are never replaced (their insert would be refused).
+        self.conn.execute(
+            "DELETE FROM runs WHERE algorithm = ? AND problem = ? AND run >= ? AND run < ? "
+            "AND error_text IS NOT NULL",
+            (t["algorithm"], t["problem"], t["first_run"], t["first_run"] + t["n_runs"]),
+        )
 
     # ------------------------------------------------------------------ reading
     def done_keys(self, failed: bool = True) -> set[tuple[str, str, int]]:
