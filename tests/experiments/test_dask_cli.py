@@ -86,7 +86,9 @@ def test_plan_bench_on_a_scheduler_file_matches_in_process(cluster_file, tmp_pat
 
 def test_scheduler_file_errors_name_the_fix(tmp_path):
     missing = str(tmp_path / "no.json")
-    r = _cli("reproduce", "--out", str(tmp_path / "r"), "--scheduler-file", missing)
+    r = _cli(
+        "reproduce", "--out", str(tmp_path / "r"), "--scheduler-file", missing, "--retry-failed"
+    )
     # the default of two local workers gives way to the cluster: the missing file is the error
     assert r.returncode == 1 and "no Dask scheduler file at" in r.stderr, r.stderr
     assert "dask scheduler --scheduler-file" in r.stderr and "Traceback" not in r.stderr
@@ -94,7 +96,7 @@ def test_scheduler_file_errors_name_the_fix(tmp_path):
              "--workers", "3")  # fmt: skip
     assert r.returncode == 1 and "not both" in r.stderr, r.stderr
     r = _cli("plan", "study", "--out", str(tmp_path / "s.db"), "--dask", "tcp://127.0.0.1:1",
-             "--scheduler-file", str(tmp_path / "no.json"))  # fmt: skip
+             "--scheduler-file", str(tmp_path / "no.json"), "--retry-failed")  # fmt: skip
     assert r.returncode == 1 and "address or its scheduler file, not both" in r.stderr, r.stderr
 
 
