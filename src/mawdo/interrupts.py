@@ -61,6 +61,8 @@ class SigintWatch:
 
     Attributes
     ----------
+    count : int
+        SIGINTs received since the block was entered (>= 0).
     fired : bool
         A SIGINT arrived since the block was entered.
     """
