@@ -20,6 +20,7 @@ SUITES = [
     "bench_bbob",
     "bench_sipp",
     "bench_startup",
+    "bench_threads",
 ]
 
 

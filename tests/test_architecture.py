@@ -27,6 +27,7 @@ FLOORS = (
     ("mawdo.budget", 0),
     ("mawdo.jitcache", 0),  # drops stale Numba caches before any kernel loads
     ("mawdo.shuffle", 0),  # O(d) permutations: drawn by streams, inlined by optimizer kernels
+    ("mawdo.interrupts", 0),  # Ctrl-C told apart from errors (runner and commands)
     ("mawdo.optimizers", 1),
     ("mawdo.functions", 1),
     ("mawdo.suites", 2),  # BBOB/CEC problems (ioh/opfunu); run_problem drives minimize

@@ -25,13 +25,15 @@ QUICK_STUDY = "study-quick"
 def reproduce(
     out: str | Path,
     quick: bool = False,
-    workers: int = 2,
+    workers: int | None = None,
     dask=None,
     progress: bool = True,
     say=print,
     bench_overrides: dict | None = None,
     study: str | None = None,
     step=None,
+    scheduler_file: str | Path | None = None,
+    retry_failed: bool = False,
 ) -> Path:
     """Run the benchmark, ablation and planning studies and write ``OUT/report.md``.
 
@@ -42,8 +44,10 @@ def reproduce(
     quick : bool
         Reduced budget (5 runs x 100 iterations; 5 planning runs per algorithm, real-time
         planner) instead of the paper's benchmark protocol (30 x 500) and 50 planning runs.
-    workers, dask
-        Execution backend (see :func:`~mawdo.experiments.runner.run_plan`).
+    workers, dask, scheduler_file
+        Execution backend (see :func:`~mawdo.experiments.runner.run_plan`); ``workers``
+        defaults to 2 local processes, or 1 when a Dask cluster (``dask`` or
+        ``scheduler_file``) computes.
     bench_overrides : dict, optional
         Plan fields to change in the three benchmark plans (beyond ``quick``'s).
     study : str, optional
@@ -51,10 +55,17 @@ def reproduce(
     step : callable, optional
         ``step(message)`` returns a context manager that shows what a step is doing while it
         runs (the command's progress lines); each report (tens of seconds of figures) is one.
+    retry_failed : bool
+        Compute again the runs stored with an error (see ``run_plan``).
     """
     step = step or (lambda message: nullcontext())
     out = Path(out)
     stores = out / "results"
+    if workers is None:  # a cluster computes instead of a local pool
+        workers = 1 if dask is not None or scheduler_file is not None else 2
+    backend = dict(
+        workers=workers, dask=dask, scheduler_file=scheduler_file, retry_failed=retry_failed
+    )
     parts, plans = [], []
     for preset, title in (
         ("paper-table3", "Benchmark functions (paper Table 3)"),
@@ -68,7 +79,7 @@ def reproduce(
             plan = plan.with_overrides(**bench_overrides)
         db = stores / f"{preset}{'-quick' if quick else ''}.db"  # one store per part
         say(f"[{title}] {plan.describe()}")
-        summary = run_plan(plan, db, workers=workers, dask=dask, progress=progress)
+        summary = run_plan(plan, db, **backend, progress=progress)
         say(f"  {summary}")
         if summary.interrupted:
             raise KeyboardInterrupt
@@ -79,7 +90,7 @@ def reproduce(
     study = study_preset(study or (QUICK_STUDY if quick else "paper-table6"))
     db = stores / f"{study.name}-study.db"
     say(f"[Path planning (paper Table 6)] {study.describe()}")
-    summary = run_plan(study, db, workers=workers, dask=dask, progress=progress)
+    summary = run_plan(study, db, **backend, progress=progress)
     say(f"  {summary}")
     if summary.interrupted:
         raise KeyboardInterrupt

@@ -11,6 +11,7 @@ from pathlib import Path
 import typer
 
 from mawdo.cli.bbob import export_cmd
+from mawdo.cli.errors import RETRY_HELP, SCHEDULER_FILE_HELP
 
 bench_app = typer.Typer(
     name="bench",
@@ -40,10 +41,11 @@ def run_cmd(
     out: Path = typer.Option(Path("results.db"), "--out", "-o", help="Results store (SQLite)."),
     workers: int = typer.Option(1, "--workers", "-w", min=1, help="Local worker processes."),
     dask: str = typer.Option(None, "--dask", help="Dask scheduler address (tcp://host:8786)."),
+    scheduler_file: Path = typer.Option(None, "--scheduler-file", help=SCHEDULER_FILE_HELP),
     force: bool = typer.Option(
         False, "--force", help="Discard a store made by another plan or version."
     ),
-    retry_failed: bool = typer.Option(False, "--retry-failed", help="Recompute failed runs."),
+    retry_failed: bool = typer.Option(False, "--retry-failed", help=RETRY_HELP),
     runs: int = typer.Option(None, "--runs", help="Override: runs per (algorithm, function)."),
     iters: int = typer.Option(None, "--iters", help="Override: iterations (max_iter)."),
     pop_size: int = typer.Option(None, "--pop-size", help="Override: population size."),
@@ -98,7 +100,9 @@ def run_cmd(
             _fail(f"invalid plan:\n{exc}")
         except ValueError as exc:  # a malformed flag (--variant, --budget ...)
             _fail(str(exc))
-        run_opts = {"workers": workers, "dask": dask, "progress": progress}
+        run_opts = dict(
+            workers=workers, dask=dask, scheduler_file=scheduler_file, progress=progress
+        )
         return bbob.run_suite(splan, out, **run_opts, force=force, retry_failed=retry_failed)
     if instances is not None or dims is not None or variant or option:
         _fail("--instances, --dims, --variant and --option need --suite bbob|cec2017|cec2022")
@@ -135,6 +139,7 @@ def run_cmd(
             out,
             workers=workers,
             dask=dask,
+            scheduler_file=scheduler_file,
             progress=progress,
             force=force,
             retry_failed=retry_failed,

@@ -16,6 +16,8 @@ from pathlib import Path
 import typer
 from typer.core import TyperGroup
 
+from mawdo.interrupts import INTERRUPT_EXIT, is_interrupt
+
 # Typer vendors its own click; its ClickException is what Typer's main loop shows and exits on.
 _ClickException = next(c for c in typer.BadParameter.__mro__ if c.__name__ == "ClickException")
 
@@ -54,17 +56,32 @@ def message(exc: BaseException) -> str:
     return str(exc) or type(exc).__name__
 
 
+class Interrupted(_ClickException):
+    """Ctrl-C: one line on stderr, exit code 130 (what a shell reports for SIGINT)."""
+
+    exit_code = INTERRUPT_EXIT
+
+    def show(self, file=None) -> None:
+        typer.echo(f"interrupted: {self.format_message()}", err=True)
+
+
 class GuardedGroup(TyperGroup):
     """A Typer group whose commands (sub-groups included) end in :class:`CommandError` on an
-    expected error."""
+    expected error, and in :class:`Interrupted` on Ctrl-C."""
 
     def invoke(self, ctx):
         try:
             return super().invoke(ctx)
         except _ClickException:
             raise
-        except Exception as exc:
-            if isinstance(exc, _expected()):
+        except BaseException as exc:
+            # also the SystemError that compiled code (Numba) makes of a Ctrl-C
+            if is_interrupt(exc):
+                raise Interrupted(
+                    "stopped by Ctrl-C; a study's finished runs are stored, run the same "
+                    "command again to resume"
+                ) from None
+            if isinstance(exc, Exception) and isinstance(exc, _expected()):
                 raise CommandError(message(exc)) from None
             raise
 
@@ -80,6 +97,15 @@ class DefaultRunGroup(TyperGroup):
 
 
 IMAGE_SUFFIXES = (".png", ".svg", ".pdf")
+
+# shared by every study command
+RETRY_HELP = (
+    "compute again the stored runs that failed with an error (not those that ran and did not "
+    "succeed)"
+)
+SCHEDULER_FILE_HELP = (
+    "Dask scheduler file (dask scheduler --scheduler-file FILE), instead of an address"
+)
 
 
 @contextmanager

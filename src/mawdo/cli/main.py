@@ -18,6 +18,8 @@ from rich.table import Table
 
 from mawdo.cli.errors import (
     IMAGE_SUFFIXES,
+    RETRY_HELP,
+    SCHEDULER_FILE_HELP,
     GuardedGroup,
     bad_input,
     check_output_dir,
@@ -272,8 +274,10 @@ def demo(
 def reproduce(
     out: Path = typer.Option(Path("report"), help="output folder (report.md, results/)"),
     quick: bool = typer.Option(False, help="reduced budget: minutes instead of about an hour"),
-    workers: int = typer.Option(2, help="local worker processes"),
+    workers: int = typer.Option(None, help="local worker processes (default 2; 1 with Dask)"),
     dask: str = typer.Option(None, help="Dask scheduler address"),
+    scheduler_file: Path = typer.Option(None, help=SCHEDULER_FILE_HELP),
+    retry_failed: bool = typer.Option(False, help=RETRY_HELP),
     progress: bool = typer.Option(True, help="show progress bars"),
 ):
     """Reproduce the paper: benchmark, shifted suite, ablation and planning study, one report."""
@@ -283,17 +287,13 @@ def reproduce(
     from mawdo.reproduce import reproduce as run
 
     check_output_dir(out, "--out folder")
+    backend = dict(workers=workers, dask=dask, scheduler_file=scheduler_file)
     try:
         with notice_compiles(progress):  # runs with --workers 1 and the reports compile here
             path = run(
-                out,
-                quick=quick,
-                workers=workers,
-                dask=dask,
-                progress=progress,
-                say=console.print,
-                step=partial(step, enabled=progress),
-            )
+                out, quick=quick, **backend, retry_failed=retry_failed, progress=progress,
+                say=console.print, step=partial(step, enabled=progress),
+            )  # fmt: skip
     except KeyboardInterrupt:
         console.print("interrupted: run the same command again to resume")
         raise typer.Exit(130) from None

@@ -13,7 +13,7 @@ from pathlib import Path
 import typer
 from rich.console import Console
 
-from mawdo.cli.errors import DefaultRunGroup
+from mawdo.cli.errors import RETRY_HELP, SCHEDULER_FILE_HELP, DefaultRunGroup
 from mawdo.cli.progress import ERR, notice_compiles, step
 
 console = Console(width=None if sys.stdout.isatty() else 140)
@@ -164,7 +164,9 @@ def study_cmd(
     scenario: str = typer.Option(None, help="scenario name or file (override)"),
     workers: int = typer.Option(1, help="local worker processes"),
     dask: str = typer.Option(None, help="Dask scheduler address, e.g. tcp://host:8786"),
+    scheduler_file: Path = typer.Option(None, help=SCHEDULER_FILE_HELP),
     force: bool = typer.Option(False, help="discard a store made by another plan or version"),
+    retry_failed: bool = typer.Option(False, help=RETRY_HELP),
     report: Path = typer.Option(None, help="also write the report to this folder"),
     progress: bool = typer.Option(True, help="show a progress bar"),
 ):
@@ -185,7 +187,10 @@ def study_cmd(
     except PlanError as exc:
         raise bad_input(exc) from None
     console.print(plan.describe())
-    summary = run_plan(plan, out, workers=workers, dask=dask, progress=progress, force=force)
+    summary = run_plan(
+        plan, out, workers=workers, dask=dask, scheduler_file=scheduler_file,
+        progress=progress, force=force, retry_failed=retry_failed,
+    )  # fmt: skip
     console.print(str(summary))
     if summary.interrupted:
         raise typer.Exit(130)

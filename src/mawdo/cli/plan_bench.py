@@ -13,7 +13,7 @@ from pathlib import Path
 import typer
 from rich.console import Console
 
-from mawdo.cli.errors import DefaultRunGroup
+from mawdo.cli.errors import RETRY_HELP, SCHEDULER_FILE_HELP, DefaultRunGroup
 
 console = Console(width=None if sys.stdout.isatty() else 140)
 
@@ -100,8 +100,10 @@ def run_cmd(
     batch_size: int = typer.Option(None, help="scenes per task"),
     workers: int = typer.Option(1, help="local worker processes"),
     dask: str = typer.Option(None, help="Dask scheduler address, e.g. tcp://host:8786"),
+    scheduler_file: Path = typer.Option(None, help=SCHEDULER_FILE_HELP),
     out: Path = typer.Option(Path("results/arena.db"), help="SQLite results store"),
     force: bool = typer.Option(False, help="discard a store made by another plan or version"),
+    retry_failed: bool = typer.Option(False, help=RETRY_HELP),
     report: Path = typer.Option(None, help="also write the report to this folder"),
     progress: bool = typer.Option(True, help="show a progress bar"),
 ):
@@ -118,7 +120,10 @@ def run_cmd(
         raise typer.Exit(2) from None
     console.print(plan.describe())
     try:
-        summary = run_plan(plan, out, workers=workers, dask=dask, progress=progress, force=force)
+        summary = run_plan(
+            plan, out, workers=workers, dask=dask, scheduler_file=scheduler_file,
+            progress=progress, force=force, retry_failed=retry_failed,
+        )  # fmt: skip
     except (StoreError, ValueError) as exc:
         console.print(f"[bold red]error:[/] {exc}")
         raise typer.Exit(1) from None

@@ -11,10 +11,8 @@ from __future__ import annotations
 
 import multiprocessing as mp
 import os
-import signal
 import socket
 import sys
-import threading
 import time
 from collections.abc import Callable, Iterator
 from concurrent.futures import ProcessPoolExecutor, as_completed
@@ -23,8 +21,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from mawdo.experiments.progress import RunBar
 from mawdo.experiments.protocol import STUDY_KINDS, Study, kind_of
 from mawdo.experiments.store import Store, library_version
+from mawdo.experiments.workers import worker_init
+from mawdo.interrupts import SigintWatch, is_interrupt
 
 TASK_KEYS = ("algorithm", "problem", "first_run", "n_runs")
 
@@ -103,7 +104,17 @@ def execute_task(spec: dict[str, Any], execute: Callable | None = None) -> dict[
     if execute is None:
         execute = STUDY_KINDS[spec["kind"]].execute
     t0 = time.perf_counter()
-    rows = execute(spec)
+    # A Ctrl-C is never a result: whatever the kind made of it (an error row, a SystemError
+    # from compiled code), the task's rows are dropped and the sweep stops (issue 28).
+    with SigintWatch() as watch:
+        try:
+            rows = execute(spec)
+        except BaseException as exc:
+            if watch.fired or is_interrupt(exc):
+                raise KeyboardInterrupt from exc
+            raise
+    if watch.fired:
+        raise KeyboardInterrupt
     out = {
         "task": {k: spec[k] for k in TASK_KEYS},
         "rows": rows,
@@ -129,53 +140,6 @@ def _in_process(specs: list[dict], execute: Callable) -> Iterator[dict]:
         yield execute_task(spec, execute)
 
 
-def _worker_init(parent: int) -> None:
-    """Initializer of each pool worker: ignore Ctrl-C, and die with the sweep's process."""
-    # Only the parent handles Ctrl-C: it stops the pool and keeps what finished. A terminal's
-    # Ctrl-C reaches the whole process group, and a worker dying of it mid-task would break
-    # the pool before the parent can shut it down in order.
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    _die_with(parent)
-
-
-def _die_with(parent: int, poll: float = 0.5) -> None:
-    """Make this worker exit when ``parent`` (the sweep's process) dies, even by ``kill -9``.
-
-    A killed parent cannot stop its pool, and a worker busy in a task would otherwise compute
-    on for minutes (issue 12, defect 7). Two lines of defence: on Linux
-    ``prctl(PR_SET_PDEATHSIG, SIGKILL)`` (the worker's parent is the forkserver, which exits
-    when the sweep's process dies), and everywhere a daemon thread that polls whether
-    ``parent`` is still this worker's ancestor and alive.
-    """
-    if sys.platform.startswith("linux"):
-        try:
-            import ctypes
-
-            libc = ctypes.CDLL(None, use_errno=True)
-            libc.prctl(1, signal.SIGKILL, 0, 0, 0)  # 1 = PR_SET_PDEATHSIG
-        except (OSError, AttributeError):
-            pass
-    direct = os.getppid()
-
-    def watch() -> None:
-        while True:
-            time.sleep(poll)
-            if os.getppid() != direct or not _alive(parent):
-                os._exit(70)  # no cleanup: the parent that would read our results is gone
-
-    threading.Thread(target=watch, name="mawdo-parent-watch", daemon=True).start()
-
-
-def _alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:
-        return True
-    return True
-
-
 def _pool(specs: list[dict], workers: int, execute: Callable) -> Iterator[dict]:
     # forkserver/spawn rather than fork: the parent may hold threads (rich's refresh thread,
     # Dask, BLAS pools), and forking a threaded process can deadlock.
@@ -183,7 +147,7 @@ def _pool(specs: list[dict], workers: int, execute: Callable) -> Iterator[dict]:
     pool = ProcessPoolExecutor(
         max_workers=workers,
         mp_context=mp.get_context(method),
-        initializer=_worker_init,
+        initializer=worker_init,
         initargs=(os.getpid(),),
     )
     futures = {pool.submit(execute_task, s, execute): s for s in specs}
@@ -207,18 +171,25 @@ def _pool(specs: list[dict], workers: int, execute: Callable) -> Iterator[dict]:
                 proc.join(timeout=5)
 
 
-def _dask(specs: list[dict], dask, execute: Callable) -> Iterator[dict]:
+def _connect(dask, scheduler_file):
+    """A Dask client for an address or a scheduler file, and whether this sweep owns it."""
     from distributed import Client
+
+    if scheduler_file is None and not isinstance(dask, str):
+        return dask, False  # the caller's connected client, left open
+    where = dask if scheduler_file is None else f"of scheduler file {scheduler_file}"
+    try:
+        if scheduler_file is not None:
+            return Client(scheduler_file=str(scheduler_file), timeout="20s"), True
+        return Client(dask, timeout="20s"), True
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise ConnectionError(f"cannot connect to the Dask scheduler {where}: {exc}") from None
+
+
+def _dask(specs: list[dict], dask, execute: Callable, scheduler_file=None) -> Iterator[dict]:
     from distributed import as_completed as dask_as_completed
 
-    own = isinstance(dask, str)
-    if own:
-        try:
-            client = Client(dask, timeout="20s")
-        except (OSError, TimeoutError) as exc:
-            raise RuntimeError(f"cannot connect to the Dask scheduler at {dask}: {exc}") from None
-    else:
-        client = dask
+    client, own = _connect(dask, scheduler_file)
     futures = {}
     for s in specs:
         f = client.submit(execute_task, s, execute, pure=False)
@@ -240,45 +211,6 @@ def _dask(specs: list[dict], dask, execute: Callable) -> Iterator[dict]:
             client.close()
 
 
-# ---------------------------------------------------------------------- progress
-class _Bar:
-    def __init__(self, enabled: bool, total: int, label: str) -> None:
-        self.progress = None
-        if not enabled or total == 0:
-            return
-        from rich.console import Console
-        from rich.progress import (
-            BarColumn,
-            MofNCompleteColumn,
-            Progress,
-            TextColumn,
-            TimeElapsedColumn,
-            TimeRemainingColumn,
-        )
-
-        self.progress = Progress(
-            TextColumn("[bold]{task.description}"),
-            BarColumn(),
-            MofNCompleteColumn(),
-            TextColumn("runs"),
-            TimeElapsedColumn(),
-            TextColumn("ETA"),
-            TimeRemainingColumn(),
-            TextColumn("{task.fields[note]}"),
-            console=Console(stderr=True),
-        )
-        self.task = self.progress.add_task(label, total=total, note="")
-        self.progress.start()
-
-    def advance(self, n: int, note: str) -> None:
-        if self.progress is not None:
-            self.progress.update(self.task, advance=n, note=note)
-
-    def close(self) -> None:
-        if self.progress is not None:
-            self.progress.stop()
-
-
 def _say(msg: str) -> None:
     print(msg, file=sys.stderr, flush=True)
 
@@ -292,6 +224,7 @@ def run_plan(
     progress: bool = True,
     force: bool = False,
     retry_failed: bool = False,
+    scheduler_file: str | Path | None = None,
 ) -> RunSummary:
     """Compute every run of ``plan`` that ``store_path`` does not hold yet, and store it.
 
@@ -313,47 +246,55 @@ def run_plan(
     force : bool
         Reuse a store made by another plan or library version by discarding its runs.
     retry_failed : bool
-        Delete stored failed runs first, so they are computed again.
+        Compute again the stored runs that failed with an error (``error_text`` set); each
+        one's new row replaces it in the transaction that stores its task. A run that ended
+        without error but without success (a planner that did not reach its goal) is a result
+        and is kept.
+    scheduler_file : str or Path, optional
+        Send tasks to the Dask cluster whose scheduler wrote this file (``dask scheduler
+        --scheduler-file FILE``). Excludes ``dask`` and ``workers > 1``.
 
     Returns
     -------
     RunSummary
         Counts and wall time. A Ctrl-C does not raise: it stops the workers, keeps every
-        finished task, prints how to resume and returns with ``interrupted=True``.
+        finished task, stores nothing of the interrupted ones, prints how to resume and
+        returns with ``interrupted=True``.
 
     Raises
     ------
     StoreError
         The store cannot be used (another plan, read-only, corrupt ...).
     ValueError
-        Bad ``workers`` / ``dask`` combination.
+        Bad ``workers`` / ``dask`` / ``scheduler_file`` combination, or no scheduler file.
+    ConnectionError
+        The Dask scheduler cannot be reached.
     """
-    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
-        raise ValueError(f"workers={workers!r} must be an integer >= 1")
-    if dask is not None and workers > 1:
-        raise ValueError("give either workers > 1 (local pool) or dask (cluster), not both")
+    _check_backend(workers, dask, scheduler_file)
     execute = kind_of(plan).execute
     t0 = time.perf_counter()
     store_path = Path(store_path)
     summary = RunSummary(store=store_path, total=plan.total_runs)
     with Store.open(store_path, plan, force=force) as store:
-        if retry_failed:
-            store.delete_failed()
-        done_keys = store.done_keys()
-        tasks = plan.tasks(done_keys)
-        summary.skipped = plan.total_runs - sum(t.n_runs for t in tasks)
-        # each spec names the plan it is computed for; the store checks it on write
-        specs = [{**plan.task_spec(t), "plan_hash": plan.plan_hash} for t in tasks]
-        if dask is not None:
-            outcomes = _dask(specs, dask, execute)
-        elif workers > 1 and len(specs) > 1:
-            outcomes = _pool(specs, min(workers, len(specs)), execute)
-        else:
-            outcomes = _in_process(specs, execute)
-        bar = _Bar(progress, sum(t.n_runs for t in tasks), plan.name)
+        bar = RunBar(False, 0, "")
         try:
+            tasks = plan.tasks(store.done_keys(failed=not retry_failed))
+            summary.skipped = plan.total_runs - sum(t.n_runs for t in tasks)
+            # each spec names the plan it is computed for; the store checks it on write
+            specs = [{**plan.task_spec(t), "plan_hash": plan.plan_hash} for t in tasks]
+            if dask is not None or scheduler_file is not None:
+                outcomes = _dask(specs, dask, execute, scheduler_file)
+            elif workers > 1 and len(specs) > 1:
+                outcomes = _pool(specs, min(workers, len(specs)), execute)
+            else:
+                outcomes = _in_process(specs, execute)
+            bar = RunBar(progress, sum(t.n_runs for t in tasks), plan.name)
             _store_outcomes(outcomes, store, summary, bar)
-        except KeyboardInterrupt:
+        except BaseException as exc:
+            # Ctrl-C, also where compiled code (scene generation, a kernel) turned it into a
+            # SystemError: the finished tasks are stored, the rest is left for the resume.
+            if not is_interrupt(exc):
+                raise
             summary.interrupted = True
         finally:
             bar.close()
@@ -371,7 +312,22 @@ def run_plan(
     return summary
 
 
-def _store_outcomes(outcomes, store: Store, summary: RunSummary, bar: _Bar) -> None:
+def _check_backend(workers, dask, scheduler_file) -> None:
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+        raise ValueError(f"workers={workers!r} must be an integer >= 1")
+    if dask is not None and scheduler_file is not None:
+        raise ValueError("give either a Dask scheduler address or its scheduler file, not both")
+    if (dask is not None or scheduler_file is not None) and workers > 1:
+        raise ValueError("give either workers > 1 (local pool) or dask (cluster), not both")
+    if scheduler_file is not None and not Path(scheduler_file).is_file():
+        raise ValueError(
+            f"no Dask scheduler file at {scheduler_file}: start the scheduler with "
+            f"`dask scheduler --scheduler-file {scheduler_file}` (and its workers with "
+            f"`dask worker --scheduler-file {scheduler_file} --nworkers N --nthreads 1`)"
+        )
+
+
+def _store_outcomes(outcomes, store: Store, summary: RunSummary, bar: RunBar) -> None:
     """Store each outcome as it arrives; count lost tasks (worker failure, other version)."""
     version = library_version()
     with closing(outcomes):

@@ -230,6 +230,7 @@ class Store:
                 ),
             )
             task_id = cur.lastrowid
+            self._drop_errors(t)
             head = (self.plan.plan_hash, t["algorithm"], t["problem"])
             values = [
                 (
@@ -247,16 +248,22 @@ class Store:
             )
         return int(task_id)
 
-    def delete_failed(self) -> int:
-        """Remove failed runs (so a re-run retries them); returns how many were removed."""
-        with translate(self.path, "write to"), self.conn:
-            cur = self.conn.execute("DELETE FROM runs WHERE error_text IS NOT NULL")
-        return cur.rowcount
+    def _drop_errors(self, t: dict[str, Any]) -> None:
+        # A recomputed failure (run_plan's retry_failed) replaces its error row here, in the
+        # transaction of its new row: a crash in between loses neither. Rows without an error
+        # are results and are never replaced (their insert would be refused).
+        self.conn.execute(
+            "DELETE FROM runs WHERE algorithm = ? AND problem = ? AND run >= ? AND run < ? "
+            "AND error_text IS NOT NULL",
+            (t["algorithm"], t["problem"], t["first_run"], t["first_run"] + t["n_runs"]),
+        )
 
     # ------------------------------------------------------------------ reading
-    def done_keys(self) -> set[tuple[str, str, int]]:
-        """``(algorithm, problem, run)`` of every stored run, failed ones included."""
-        rows = self.conn.execute("SELECT algorithm, problem, run FROM runs").fetchall()
+    def done_keys(self, failed: bool = True) -> set[tuple[str, str, int]]:
+        """``(algorithm, problem, run)`` of every stored run; runs that failed with an error
+        (``error_text`` set) only if ``failed``."""
+        where = "" if failed else " WHERE error_text IS NULL"
+        rows = self.conn.execute(f"SELECT algorithm, problem, run FROM runs{where}").fetchall()
         return {(a, f, int(k)) for a, f, k in rows}
 
     def count(self, failed: bool | None = None) -> int:

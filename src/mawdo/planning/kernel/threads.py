@@ -3,10 +3,17 @@
 A candidate's cost, length, count and turning depend on that candidate alone (the filters in
 front of the exact tests only skip work whose outcome is certain), so chunks of rows can run at
 once and give the very numbers of one call. The chunks run in a Numba ``prange`` loop, on
-Numba's threading layer: its threads wait spinning for a moment after a call, so the next call
-starts without waking them (a pool of Python threads took about 0.1 ms to hand a chunk over,
-as long as a whole call of 240 candidates). The parallel function is compiled on the first call
+Numba's threading layer (a pool of Python threads took about 0.1 ms to hand a chunk over, as
+long as a whole call of 240 candidates). The parallel function is compiled on the first call
 with ``threads > 1``; with ``threads = 1`` the kernel is called directly.
+
+OpenMP's threads, left to themselves, wait spinning after a call (libgomp: 300,000 spins) so
+that the next one starts at once. On a machine whose cores are busy that spinning takes the
+cores from the thread with work and from everyone else: the realtime planner's replans became
+3-8x slower (median) with ``threads=2`` than with one thread (issue 28, ``python -m benchmarks
+threads``). So this module asks the OpenMP runtime to sleep at once (``OMP_WAIT_POLICY=passive``)
+unless the user chose a policy (``OMP_WAIT_POLICY``, ``GOMP_SPINCOUNT`` or ``KMP_BLOCKTIME`` set)
+or Numba's threads are already running (the runtime reads the variable when it starts).
 
 Numba's threading layers differ in safety (its documentation, "The Threading Layers"): the
 ``workqueue`` layer, the fallback where neither TBB nor OpenMP is installed, must not be
@@ -17,6 +24,7 @@ must not be used on both sides of a ``fork()`` (mawdo's study runner starts its 
 
 from __future__ import annotations
 
+import os
 import threading
 
 import numpy as np
@@ -29,6 +37,32 @@ from mawdo.validate import check_int
 MIN_ROWS = 16
 
 _lock = threading.Lock()
+
+# environment variables through which a user picks how OpenMP threads wait
+WAIT_VARIABLES = ("OMP_WAIT_POLICY", "GOMP_SPINCOUNT", "KMP_BLOCKTIME")
+
+
+def passive_wait() -> bool:
+    """Make Numba's OpenMP threads sleep, not spin, between calls, unless told otherwise.
+
+    Sets ``OMP_WAIT_POLICY=passive`` in this process's environment when none of
+    :data:`WAIT_VARIABLES` is set and Numba has not started its threads yet (the runtime reads
+    it when it starts; child processes inherit it). Called at import of this module.
+
+    Returns
+    -------
+    bool
+        Whether the variable was set.
+    """
+    from numba.np.ufunc import parallel
+
+    if any(v in os.environ for v in WAIT_VARIABLES) or getattr(parallel, "_is_initialized", True):
+        return False
+    os.environ["OMP_WAIT_POLICY"] = "passive"
+    return True
+
+
+passive_wait()
 
 
 @njit(cache=True, parallel=True, nogil=True)
