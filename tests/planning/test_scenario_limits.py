@@ -77,8 +77,8 @@ def test_nesting_depth_agrees_with_the_parsed_data(depth):
 
 def test_a_description_full_of_brackets_still_loads(tmp_path):
     p = tmp_path / "ok.toml"
-    p.write_text('schema_version = 1\ndescription = "' + "[" * 100 + '"\nstart = [1.0, 1.0]\n'
-                 "goal = [9.0, 9.0]\n")  # fmt: skip
+    p.write_text('schema_version = 1\ndescription = "' + "[" * 100 + '"\nstart = [10.0, 10.0]\n'
+                 "goal = [90.0, 90.0]\n")  # fmt: skip
     assert load_scenario(p).spec.description == "[" * 100
 
 
@@ -205,8 +205,8 @@ def test_too_many_obstacle_corners_suggest_what_the_cli_user_can_do(tmp_path):
         for y in np.arange(10.0, 1500.0, 29.5)
     ][:3000]
     p = tmp_path / "many.json"
-    p.write_text(json.dumps({**BASE, "width": 3000.0, "height": 3000.0, "start": [1.0, 1.0],
-                             "goal": [2999.0, 2999.0], "obstacles": obstacles}))  # fmt: skip
+    p.write_text(json.dumps({**BASE, "width": 3000.0, "height": 3000.0, "start": [5.0, 5.0],
+                             "goal": [2995.0, 2995.0], "obstacles": obstacles}))  # fmt: skip
     out = tmp_path / "out"
     res = mawdo("plan", str(p), "--out", str(out), "--no-progress", "--no-figures")
     assert res.returncode == 2, res.stderr
