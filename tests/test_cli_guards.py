@@ -15,19 +15,9 @@ from pathlib import Path
 
 import pytest
 
-ENV = {**os.environ, "MPLBACKEND": "Agg", "COLUMNS": "200"}
+from tests.cli_run import ENV, mawdo
+
 PAPER_TOML = Path(__file__).parents[1] / "src" / "mawdo" / "planning" / "data" / "paper.toml"
-
-
-def mawdo(*args: str, cwd=None, timeout: float = 300) -> subprocess.CompletedProcess:
-    return subprocess.run(
-        [sys.executable, "-m", "mawdo.cli", *args],
-        capture_output=True,
-        text=True,
-        timeout=timeout,
-        env=ENV,
-        cwd=cwd,
-    )
 
 
 def start(*args: str, cwd=None) -> subprocess.Popen:

@@ -4,27 +4,12 @@ timings (those are in ``python -m benchmarks startup``)."""
 
 from __future__ import annotations
 
-import os
-import subprocess
-import sys
-
 import numpy as np
 import pytest
 from numba import njit
 
 from mawdo.cli.progress import notice_compiles, step
-
-ENV = {**os.environ, "MPLBACKEND": "Agg", "COLUMNS": "200"}
-
-
-def mawdo(*args: str, env=None, timeout: float = 600) -> subprocess.CompletedProcess:
-    return subprocess.run(
-        [sys.executable, "-m", "mawdo.cli", *args],
-        capture_output=True,
-        text=True,
-        timeout=timeout,
-        env=env or ENV,
-    )
+from tests.cli_run import ENV, mawdo
 
 
 def test_a_compile_is_announced_once_with_its_total_time(capsys):

@@ -15,19 +15,7 @@ import pytest
 from mawdo import OPTIMIZERS, minimize
 from mawdo.problem import box_scale
 from mawdo.viz import log_floor
-
-
-def mawdo(*args: str, cwd=None, env=None, timeout=120) -> subprocess.CompletedProcess:
-    env = {**os.environ, "MPLBACKEND": "Agg", "COLUMNS": "200", **(env or {})}
-    return subprocess.run(
-        [sys.executable, "-m", "mawdo.cli", *args],
-        capture_output=True,
-        text=True,
-        timeout=timeout,
-        env=env,
-        cwd=cwd,
-    )
-
+from tests.cli_run import mawdo
 
 # a budget of hours: a refusal must come before any computing (else TimeoutExpired)
 HOURS = ("--runs", "1000", "--iters", "100000000", "--no-progress")
