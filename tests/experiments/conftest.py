@@ -75,3 +75,19 @@ def wait_for_tasks(db: Path, proc: subprocess.Popen, at_least: int, timeout: flo
                 pass  # tables not created yet
         time.sleep(0.01)
     raise AssertionError("runner stored no task in time")
+
+
+def gwo_fails_on_camel(monkeypatch):
+    """Make the benchmark kind's ``minimize`` raise for gwo on six_hump_camel (an error row);
+    returns the real ``minimize`` so a test can put it back."""
+    from mawdo.experiments.benchmark import execute as bench_exec_mod
+
+    real = bench_exec_mod.minimize
+
+    def flaky(fun, **kw):
+        if fun == "six_hump_camel" and kw["algorithm"] == "gwo":
+            raise FloatingPointError("objective exploded")
+        return real(fun, **kw)
+
+    monkeypatch.setattr(bench_exec_mod, "minimize", flaky)
+    return real

@@ -14,7 +14,7 @@ from pathlib import Path
 from mawdo.experiments import Store, run_plan
 from mawdo.experiments.benchmark import execute as bench_exec_mod
 
-from .conftest import SMALL, small_plan, stored_values
+from .conftest import SMALL, gwo_fails_on_camel, small_plan, stored_values
 
 SRC = str(Path(__file__).resolve().parents[2] / "src")
 ENV = {**os.environ, "PYTHONPATH": SRC}
@@ -37,14 +37,7 @@ def _sql(db: Path, sql: str, args=()) -> list[tuple]:
 
 def _with_failures(monkeypatch, tmp_path) -> Path:
     """A store of the small plan where gwo on six_hump_camel failed (2 tasks of 2 runs)."""
-    real = bench_exec_mod.minimize
-
-    def flaky(fun, **kw):
-        if fun == "six_hump_camel" and kw["algorithm"] == "gwo":
-            raise FloatingPointError("objective exploded")
-        return real(fun, **kw)
-
-    monkeypatch.setattr(bench_exec_mod, "minimize", flaky)
+    real = gwo_fails_on_camel(monkeypatch)
     db = tmp_path / "fail.db"
     assert run_plan(small_plan(), db, progress=False).failed == small_plan().runs
     monkeypatch.setattr(bench_exec_mod, "minimize", real)

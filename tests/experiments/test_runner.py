@@ -17,7 +17,7 @@ from mawdo.experiments import ExperimentPlan, Store, Task, execute_task, run_pla
 from mawdo.experiments import runner as runner_mod
 from mawdo.experiments.benchmark import execute as bench_exec_mod
 
-from .conftest import small_plan, stored_values, wait_for_tasks
+from .conftest import gwo_fails_on_camel, small_plan, stored_values, wait_for_tasks
 
 # A plan whose tasks are slow enough (~0.1 s each, batch of one run) to kill the runner
 # between tasks, and numerous enough that a kill after the first task leaves most undone.
@@ -198,14 +198,7 @@ def test_ctrl_c_stops_the_pool_keeps_finished_tasks_and_says_how_to_resume(
 
 
 def test_a_failing_task_becomes_error_rows(monkeypatch, tmp_path):
-    real = bench_exec_mod.minimize
-
-    def flaky(fun, **kw):
-        if fun == "six_hump_camel" and kw["algorithm"] == "gwo":
-            raise FloatingPointError("objective exploded")
-        return real(fun, **kw)
-
-    monkeypatch.setattr(bench_exec_mod, "minimize", flaky)
+    real = gwo_fails_on_camel(monkeypatch)
     plan = small_plan()
     db = tmp_path / "fail.db"
     summary = run_plan(plan, db, progress=False)
