@@ -124,3 +124,23 @@ def test_blocks_of_runs_give_the_batch_trace():
     for r, tr in enumerate(one.evaluation_trace):  # the trace ends where the driver's best is
         assert tr.best_y[-1] == one.fun[r] and tr.evals[-1] <= one.nfev[r]
         assert np.all(np.diff(tr.evals) > 0) and np.all(np.diff(tr.best_y) < 0)
+
+
+def test_a_callbacks_snapshots_leave_the_trace_as_it_is():
+    seen = []
+
+    def watch(snapshot):
+        seen.append(snapshot.evaluation_trace)
+        return False
+
+    kw = dict(dim=3, algorithm="gwo", runs=3, seed=4, max_evals=600, trace_evaluations=True)
+    watched, plain = minimize("ackley", callback=watch, **kw), minimize("ackley", **kw)
+    for a, b in zip(watched.evaluation_trace, plain.evaluation_trace, strict=True):
+        np.testing.assert_array_equal(a.evals, b.evals)
+        np.testing.assert_array_equal(a.best_y, b.best_y)
+    assert len(seen) > 5
+    for snapshot in seen:  # each holds the improvements so far: a prefix of the final trace
+        for part, final in zip(snapshot, plain.evaluation_trace, strict=True):
+            np.testing.assert_array_equal(part.evals, final.evals[: part.evals.size])
+            np.testing.assert_array_equal(part.best_y, final.best_y[: part.best_y.size])
+    assert sum(t.evals.size for t in seen[0]) < sum(t.evals.size for t in seen[-1])

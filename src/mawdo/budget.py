@@ -156,6 +156,7 @@ class EvaluationLog:
             r, e, y = np.empty(0, np.int64), np.empty(0, np.int64), np.empty(0)
         order = np.argsort(r, kind="stable")  # within a run the chunks are in time order
         r, e, y = r[order], e[order], y[order]
+        self.chunks = [(r, e, y)] if r.size else []  # one chunk: a callback's snapshots stay cheap
         cuts = np.searchsorted(r, np.arange(self.runs + 1))
         return [
             EvaluationTrace(e[cuts[i] : cuts[i + 1]].copy(), y[cuts[i] : cuts[i + 1]].copy())
