@@ -1,12 +1,13 @@
-"""BBOB pipeline throughput at D = 20: our run (driver + recorder + ioh) beside the bare ioh call.
+"""BBOB pipeline throughput at D = 20: our run (driver, its evaluation trace, ioh) beside the
+bare ioh call.
 
 The pipeline is :func:`mawdo.suites.run_problem` with uniform random search, whose own work is
 one uniform draw per point. The bare loop calls ``problem(X)`` on batches of the same shape as
 many times (handing ioh the float64 batch, as our formula does). Two ratios are printed: the raw
 one (pipeline time over the bare loop's) and the overhead, which leaves out the random search's
 own draws (timed alone, :func:`bare_draws`: about 0.1 us per D = 20 point, more than half the
-raw gap on the cheapest functions), so that it is the cost of the driver, the evaluation
-recorder and the batching. Target (issue 13): overhead <= 2x the bare call. CMA-ES and MAWDO are
+raw gap on the cheapest functions), so that it is the cost of the driver, its evaluation
+trace and the batching. Target (issue 13): overhead <= 2x the bare call. CMA-ES and MAWDO are
 timed too, for information (their own algorithm cost is not pipeline overhead).
 
 Then the suite-study presets are projected from every algorithm's measured rate
@@ -71,7 +72,7 @@ def pipeline(fid: int, algo: str, repeats: int = 3, runs: int = RUNS) -> tuple[f
     best, nfev = np.inf, 0
     for _ in range(repeats):
         t = time.perf_counter()
-        res, _ = run_problem(f, algo, runs=runs, budget=BUDGET, seed=0, final_target=None, **opts)
+        res = run_problem(f, algo, runs=runs, budget=BUDGET, seed=0, final_target=None, **opts)
         best = min(best, time.perf_counter() - t)
         nfev = int(res.nfev.sum())
     return best, nfev

@@ -56,7 +56,8 @@ def join_results(parts: list[OptimizeResult], per_run_keys=()) -> OptimizeResult
     history column, as a stopped run does in a batch. The message is the one a batch would end
     with: the target's when every block stopped at it, else the stop of the longest block that
     did not. ``per_run_keys`` name metadata entries that hold one item per run (joined); other
-    entries are taken from the first block. ``time`` is the blocks' total.
+    entries are taken from the first block. ``time`` is the blocks' total; the runs'
+    ``evaluation_trace`` lists are joined in run order.
     """
     T = max(p.history.shape[1] for p in parts)
 
@@ -78,9 +79,11 @@ def join_results(parts: list[OptimizeResult], per_run_keys=()) -> OptimizeResult
         if key in metadata:
             metadata[key] = [v for p in parts for v in p.metadata[key]]
     fields = ("x", "fun", "nfev", "nit", "history", "history_nfev", "status")
+    traced = parts[0].evaluation_trace is not None
     return dataclasses.replace(
         parts[0],
         **{name: stack(name) for name in fields},
+        evaluation_trace=[t for p in parts for t in p.evaluation_trace] if traced else None,
         message=others[0].message if others else target,
         time=float(sum(p.time for p in parts)),
         metadata=metadata,

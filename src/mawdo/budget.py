@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from mawdo.result import STATUS_MESSAGES
+from mawdo.result import STATUS_MESSAGES, EvaluationTrace
 from mawdo.validate import check_int, check_real
 
 DEFAULT_MAX_ITER = 500
@@ -92,6 +92,78 @@ def take_best(X, F, active, best_f, best_x, nit, it):  # pragma: no cover - comp
         nit[r] = it
 
 
+@njit(cache=True, nogil=True)
+def scan_improvements(F, active, best_f, nfev, r_out, e_out, y_out):  # pragma: no cover
+    """Each active run's improvements of its best-so-far within one iteration, in evaluation
+    order (read before :func:`take_best` moves ``best_f``).
+
+    Parameters (``R`` runs, ``n`` candidates each)
+    ----------
+    F : float64 (R, n)
+        The evaluator's values (non-finite and unevaluated candidates are +inf: never better).
+    active : bool (R,)
+        Runs still counting; the others record nothing (the target freeze).
+    best_f : float64 (R,)
+        Best-so-far before the iteration (+inf before any finite value); not written.
+    nfev : int64 (R,)
+        Evaluations of each run before the iteration.
+    r_out, e_out, y_out : (R n,)
+        Filled with ``k`` improvements, run by run: run, 1-based evaluation number, value.
+
+    Returns
+    -------
+    int
+        ``k``. A strict ``<`` makes a tie belong to its first evaluation (COCO's first least
+        value), so the last improvement of a run is the candidate :func:`take_best` keeps.
+    """
+    R, n = F.shape
+    k = 0
+    for r in range(R):
+        if not active[r]:
+            continue
+        b = best_f[r]
+        for j in range(n):
+            if F[r, j] < b:
+                b = F[r, j]
+                r_out[k], e_out[k], y_out[k] = r, nfev[r] + j + 1, b
+                k += 1
+    return k
+
+
+class EvaluationLog:
+    """Per-run improvements of the best-so-far against evaluations, gathered iteration by
+    iteration (the opt-in ``trace_evaluations`` of :func:`mawdo.minimize`)."""
+
+    def __init__(self, runs: int) -> None:
+        self.runs = runs
+        self.nfev = np.zeros(runs, dtype=np.int64)  # evaluations before the next iteration
+        self.chunks: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
+
+    def record(self, F: np.ndarray, active: np.ndarray, best_f: np.ndarray, nfev) -> None:
+        """Scan one iteration's ``F (R, n)`` against ``best_f`` before it; ``nfev`` after it."""
+        size = F.size
+        r, e, y = np.empty(size, np.int64), np.empty(size, np.int64), np.empty(size)
+        k = scan_improvements(F, active, best_f, self.nfev, r, e, y)
+        if k:
+            self.chunks.append((r[:k].copy(), e[:k].copy(), y[:k].copy()))
+        self.nfev[:] = nfev
+
+    def traces(self) -> list[EvaluationTrace]:
+        """One :class:`~mawdo.result.EvaluationTrace` per run, in run order."""
+        if self.chunks:
+            r, e, y = (np.concatenate(c) for c in zip(*self.chunks, strict=True))
+        else:
+            r, e, y = np.empty(0, np.int64), np.empty(0, np.int64), np.empty(0)
+        order = np.argsort(r, kind="stable")  # within a run the chunks are in time order
+        r, e, y = r[order], e[order], y[order]
+        self.chunks = [(r, e, y)] if r.size else []  # one chunk: a callback's snapshots stay cheap
+        cuts = np.searchsorted(r, np.arange(self.runs + 1))
+        return [
+            EvaluationTrace(e[cuts[i] : cuts[i + 1]].copy(), y[cuts[i] : cuts[i + 1]].copy())
+            for i in range(self.runs)
+        ]
+
+
 class RunLog:
     """Per-run best-so-far, history and status of a batch under one :class:`Budget`.
 
@@ -103,9 +175,11 @@ class RunLog:
         Number of runs R.
     x_start : numpy.ndarray
         Point reported as ``x`` by a run that has evaluated nothing yet, shape ``(D,)``.
+    trace : bool
+        Also keep each run's best-so-far against evaluations (:class:`EvaluationLog`).
     """
 
-    def __init__(self, budget: Budget, runs: int, x_start: np.ndarray) -> None:
+    def __init__(self, budget: Budget, runs: int, x_start: np.ndarray, trace: bool = False):
         self.budget = budget
         self.best_f = np.full(runs, np.inf)
         self.best_x = np.tile(x_start, (runs, 1))
@@ -114,6 +188,7 @@ class RunLog:
         self.nit = np.zeros(runs, dtype=np.int64)
         self.hist: list[np.ndarray] = []
         self.hist_nfev: list[np.ndarray] = []
+        self.evaluations = EvaluationLog(runs) if trace else None
         self.message = STATUS_MESSAGES[MAX_ITER]
         self.t0 = time.perf_counter()
 
@@ -131,6 +206,8 @@ class RunLog:
 
         The driver keeps its own best-so-far from evaluated points only; stopped runs freeze.
         """
+        if self.evaluations is not None:
+            self.evaluations.record(F, self.active, self.best_f, nfev)
         take_best(X, F, self.active, self.best_f, self.best_x, self.nit, it)
         self.hist.append(self.best_f.copy())
         self.hist_nfev.append(nfev.copy())

@@ -127,6 +127,7 @@ def minimize(
     preset: str = "paper",
     progress: bool = False,
     runs_per_block: int | None = None,
+    trace_evaluations: bool = False,
     **options,
 ) -> OptimizeResult:
     """Minimise ``fun`` over a box with ``runs`` independent runs of one algorithm.
@@ -178,9 +179,11 @@ def minimize(
     Returns
     -------
     OptimizeResult
-        Per-run arrays ``x (R, D)``, ``fun (R,)``, ``nfev (R,)``, ``history (R, T)``.
+        Per-run arrays ``x (R, D)``, ``fun (R,)``, ``nfev (R,)``, ``history (R, T)``, and
+        ``evaluation_trace`` (with ``trace_evaluations``).
     """
     _check_driver_arguments(runs, seed, first_run, callback, progress)
+    check_bool("trace_evaluations", trace_evaluations)
     budget = Budget(max_iter, max_evals, target, max_time)
     whole = callback is not None or max_time is not None
     _check_blocks(runs_per_block, runs, whole)
@@ -199,7 +202,8 @@ def minimize(
     try:
         for size in sizes:
             part_x0 = x0[done : done + size] if x0 is not None and np.ndim(x0) == 3 else x0
-            run = _Batch(problem, opt, budget, seed, first_run + done, size, part_x0)
+            run = _Batch(problem, opt, budget, seed, (first_run + done, size), part_x0,
+                         trace_evaluations)  # fmt: skip
             parts.append(run.drive(callback, bar))
             done += size
     finally:
@@ -211,8 +215,9 @@ def minimize(
 class _Batch:
     """One batch of runs through the driver loop: init -> (ask, evaluate, tell)*."""
 
-    def __init__(self, problem: Problem, opt: Optimizer, budget: Budget, seed, first_run: int,
-                 runs: int, x0) -> None:  # fmt: skip
+    def __init__(self, problem: Problem, opt: Optimizer, budget: Budget, seed,
+                 block: tuple[int, int], x0, trace: bool = False) -> None:  # fmt: skip
+        first_run, runs = block  # the block's first run index under seed, and its runs
         self.problem, self.opt, self.seed = problem, opt, seed
         algo_streams, noise_streams = _streams(seed, runs, first_run)
         self.evaluator = Evaluator(problem, noise_streams, opt.name)
@@ -222,7 +227,8 @@ class _Batch:
         space = Space(problem.lb / s, problem.ub / s)
         x0 = None if x0 is None else x0 / s
         self.state = opt.init(space, algo_streams, budget.horizon(opt.params.pop_size), x0)
-        self.log = RunLog(budget, runs, self._to_box(space.from_unit(np.zeros(problem.dim))))
+        x_start = self._to_box(space.from_unit(np.zeros(problem.dim)))
+        self.log = RunLog(budget, runs, x_start, trace)
 
     def _to_box(self, X: np.ndarray) -> np.ndarray:
         """The optimizer's candidates in the problem's box (themselves unless it is scaled)."""
@@ -302,6 +308,7 @@ def _result(opt, problem, seed, log: RunLog, nfev, message: str) -> OptimizeResu
         time=log.elapsed(),
         f_star=problem.f_star,
         metadata=dict(opt.metadata),
+        evaluation_trace=None if log.evaluations is None else log.evaluations.traces(),
     )
 
 

@@ -25,19 +25,43 @@ class Registry(Mapping[str, T], Generic[T]):
     def __init__(self, kind: str) -> None:
         self.kind = kind
         self._items: dict[str, T] = {}
+        self._aliases: dict[str, str] = {}
 
     def register(self, name: str, entry: T) -> T:
         """Add ``entry`` under ``name`` (lower-cased); a duplicate name is an error."""
         key = name.lower()
         if key in self._items:
             raise ValueError(f"{self.kind} {name!r} is already registered")
+        if key in self._aliases:
+            raise ValueError(f"{self.kind} {name!r} is already an alias")
         self._items[key] = entry
         return entry
+
+    def add_alias(self, alias: str, name: str) -> None:
+        """Make ``alias`` (a paper id, a former name) look up the registered ``name``; aliases
+        are not listed (iteration and ``len`` see registered names only)."""
+        key, target = alias.lower(), name.lower()
+        if key in self._aliases or key in self._items:
+            raise ValueError(f"{self.kind} alias {alias!r} is already taken")
+        if target not in self._items:
+            raise UnknownNameError(unknown_name_message(self.kind, name, self._items))
+        self._aliases[key] = target
+
+    @property
+    def aliases(self) -> dict[str, str]:
+        """A copy of the alias table (lower-case alias -> registered name)."""
+        return dict(self._aliases)
+
+    def resolve(self, name: str) -> str:
+        """The lower-case registered name ``name`` stands for (itself, or its alias's target);
+        whether it is registered is not checked."""
+        key = name.lower()
+        return self._aliases.get(key, key)
 
     def __getitem__(self, name: str) -> T:
         if not isinstance(name, str):
             raise TypeError(f"{self.kind} name must be a string, got {type(name).__name__}")
-        key = name.lower()
+        key = self.resolve(name)
         try:
             return self._items[key]
         except KeyError:

@@ -1,4 +1,5 @@
-"""``OptimizeResult``: what a batch of runs returns, with per-run arrays."""
+"""``OptimizeResult``: what a batch of runs returns, with per-run arrays (and, on request, each
+run's best-so-far against evaluations, :class:`EvaluationTrace`)."""
 
 from __future__ import annotations
 
@@ -14,6 +15,36 @@ STATUS_MESSAGES = {
     3: "time limit reached",
     4: "stopped by callback",
 }
+
+
+@dataclass(frozen=True)
+class EvaluationTrace:
+    """One run's best-so-far against evaluations (``minimize(..., trace_evaluations=True)``).
+
+    The record IOHprofiler's ``Analyzer`` logs and COCO reads runtimes from: the evaluation
+    numbers at which the best-so-far value improved, and the value from there on. Within one
+    iteration an improvement belongs to the first evaluation that reached its least value
+    (COCO's "first least value"); NaN and +-inf never improve; a run that reached ``target``
+    records nothing more.
+
+    Attributes
+    ----------
+    evals : numpy.ndarray of int64
+        1-based evaluation numbers of the run at which its best-so-far improved, shape ``(k,)``,
+        strictly increasing, each ``<= nfev`` of the run.
+    best_y : numpy.ndarray of float
+        Best-so-far value (raw ``f``, not ``f - f_star``) from each of those evaluations on,
+        shape ``(k,)``, strictly decreasing.
+    """
+
+    evals: np.ndarray
+    best_y: np.ndarray
+
+    def best_at(self, evaluations) -> np.ndarray:
+        """Best-so-far after ``evaluations`` evaluations (int or array of ints >= 0; +inf
+        before the first finite value)."""
+        k = np.searchsorted(self.evals, np.asarray(evaluations), side="right")
+        return np.concatenate([[np.inf], self.best_y])[k]
 
 
 @dataclass
@@ -53,6 +84,9 @@ class OptimizeResult:
         Known optimum of the problem, when there is one.
     metadata : dict
         Algorithm metadata (reference, ``reconstructed`` flag).
+    evaluation_trace : list of EvaluationTrace or None
+        Per run (``R`` items), its best-so-far against evaluations; None unless
+        ``minimize(..., trace_evaluations=True)``.
     """
 
     x: np.ndarray
@@ -70,6 +104,7 @@ class OptimizeResult:
     time: float = 0.0
     f_star: float | None = None
     metadata: dict = field(default_factory=dict)
+    evaluation_trace: list[EvaluationTrace] | None = None
 
     @property
     def runs(self) -> int:

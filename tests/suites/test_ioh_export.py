@@ -8,34 +8,33 @@ import ioh
 import numpy as np
 import pytest
 
-from mawdo.experiments.ioh_export import (
+from mawdo import minimize
+from mawdo.experiments.bbob.ioh_logs import (
     IOHRun,
     read_analyzer_logs,
-    runs_from_traces,
+    runs_from_result,
     write_analyzer_logs,
 )
-from mawdo.suites import EvaluationRecorder, get_problem, run_problem
+from mawdo.suites import get_problem, run_problem
 
 
 def ioh_and_ours(tmp_path, fid, iid, dims, runs=2, batches=25, n=6):
-    """The same evaluations logged by ioh.logger.Analyzer and recorded by us."""
+    """The same evaluations logged by ioh.logger.Analyzer and traced by our driver: its
+    objective is the ioh problem with the logger attached (the last batch cut by max_evals)."""
     lg = ioh.logger.Analyzer(
         root=str(tmp_path), folder_name="ioh", algorithm_name="rs", algorithm_info="uniform"
     )
-    rng = np.random.default_rng(fid)
     ours = []
     for dim in dims:
         f = get_problem("bbob", fid, instance=iid, dim=dim)
         p = ioh.get_problem(fid, iid, dim, ioh.ProblemClass.REAL)
         p.attach_logger(lg)
-        for _ in range(runs):
-            rec = EvaluationRecorder(f.func, 1)
-            for _ in range(batches):
-                X = rng.uniform(-5, 5, (n, dim))
-                p(X)
-                rec(X)
+        for k in range(runs):
+            res = minimize(lambda X, p=p: np.asarray(p(X), dtype=float), lb=f.lb, ub=f.ub,
+                           algorithm="random", pop_size=n, max_evals=batches * n - 2,
+                           seed=fid, first_run=k, trace_evaluations=True)  # fmt: skip
             p.reset()
-            ours += runs_from_traces(f, rec.traces())
+            ours += runs_from_result(f, res)
     lg.close()
     write_analyzer_logs(tmp_path / "ours", ours, "rs", "uniform")
     return tmp_path / "ioh", tmp_path / "ours", ours
@@ -66,8 +65,8 @@ def test_round_trip_of_a_batched_run_is_exact(tmp_path):
     written = []
     for fid, dim in ((1, 3), (1, 5), (17, 3)):
         f = get_problem("bbob", fid, instance=3, dim=dim)
-        res, traces = run_problem(f, "mawdo", runs=3, budget=80, seed=fid, final_target=None)
-        written += runs_from_traces(f, traces)
+        res = run_problem(f, "mawdo", runs=3, budget=80, seed=fid, final_target=None)
+        written += runs_from_result(f, res)
     files = write_analyzer_logs(tmp_path, written, "mawdo", "test")
     assert sorted(p.name for p in files) == [
         "IOHprofiler_f17_Schaffers10.json",
@@ -103,7 +102,8 @@ SCRIPTS = ([np.inf, np.inf, 5.0, 6.0, 0.25], [np.inf] * 4, [3.0, 1.5, 2.0, 0.5])
 
 
 def scripted_logs(tmp_path):
-    """The scripted runs logged by ioh's own Analyzer and written by us from our recorder."""
+    """The scripted runs logged by ioh's own Analyzer and written by us from our driver's
+    trace (one iteration of ``len(script)`` points: the objective is the logged problem)."""
     state = {"values": iter(())}
     name = f"Scripted{tmp_path.name[-6:]}"  # ioh keeps wrapped problems for the process
     ioh.wrap_problem(
@@ -117,15 +117,14 @@ def scripted_logs(tmp_path):
         function_id=problem.meta_data.problem_id, function_name=name, dim=2, instance=1,
         f_star=0.0,
     )  # fmt: skip
-    ours, X = [], np.linspace(-1, 1, 10).reshape(5, 2)
+    ours = []
     for script in SCRIPTS:
         state["values"] = iter(script)
-        rec = EvaluationRecorder(lambda x, s=script: np.array(s[: len(x)]), 1)
-        rec(X[: len(script)])
-        for x in X[: len(script)]:
-            problem(x)
+        res = minimize(lambda X: np.array([problem(x) for x in X]), [(-5, 5)] * 2,
+                       algorithm="random", pop_size=len(script), max_iter=1, seed=0,
+                       trace_evaluations=True)  # fmt: skip
         problem.reset()
-        ours += runs_from_traces(meta, rec.traces())
+        ours += runs_from_result(meta, res)
     lg.close()
     write_analyzer_logs(tmp_path / "ours", ours, "s")
     return tmp_path / "ioh", tmp_path / "ours", meta

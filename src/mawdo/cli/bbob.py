@@ -21,9 +21,9 @@ def is_suite_preset(name: str | None) -> bool:
 
 
 def is_suite_plan_file(path: Path | None) -> bool:
-    """Whether the plan file at ``path`` holds a suite plan (``kind = "bbob"``, a ``suite``
-    field or a ``bbob-*`` preset); False for anything else, which the benchmark's reader then
-    reads (and reports, if it cannot)."""
+    """Whether the plan file at ``path`` holds a suite plan (``kind = "suite"``, or its former
+    name ``"bbob"``, a ``suite`` field or a ``bbob-*`` preset); False for anything else, which
+    the benchmark's reader then reads (and reports, if it cannot)."""
     from mawdo.experiments import PlanError
     from mawdo.experiments.plans import read_plan_file
 
@@ -33,17 +33,21 @@ def is_suite_plan_file(path: Path | None) -> bool:
         data = read_plan_file(path)
     except PlanError:
         return False
-    return data.get("kind") == "bbob" or "suite" in data or is_suite_preset(data.get("preset"))
+    from mawdo.experiments.bbob import KIND, OLD_KIND_NAMES
+
+    kind = data.get("kind")
+    return kind in (KIND, *OLD_KIND_NAMES) or "suite" in data or is_suite_preset(data.get("preset"))
 
 
 def is_suite_store(path: Path) -> bool:
     """Whether the store at ``path`` holds a suite study (False if it is not a store at all:
     the caller's own reading then reports what is wrong)."""
     from mawdo.experiments import Store, StoreError
+    from mawdo.experiments.bbob import KIND
 
     try:
         with Store.read(path) as store:
-            return store.plan.kind == "bbob"
+            return store.plan.kind == KIND
     except StoreError:
         return False
 

@@ -150,6 +150,8 @@ class StudyKind:
         ``(store_path, out_dir, **options) -> Path`` of the main report file.
     description : str
         One line for listings.
+    aliases : tuple of str
+        Former names of the kind: stores and plans that name it so are read as this kind.
     """
 
     name: str
@@ -158,6 +160,7 @@ class StudyKind:
     row: type[RunRow]
     report: Callable[..., Path] | None = None
     description: str = ""
+    aliases: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         schema(self.row)  # fails now, at registration, on an undeclared field
@@ -185,7 +188,10 @@ def register_kind(kind: StudyKind) -> StudyKind:
             f"{kind.plan.__module__}.{kind.plan.__qualname__}"
         ):
             return old
-    return STUDY_KINDS.register(kind.name, kind)
+    STUDY_KINDS.register(kind.name, kind)
+    for old_name in kind.aliases:
+        STUDY_KINDS.add_alias(old_name, kind.name)
+    return kind
 
 
 def kind_of(plan: Any) -> StudyKind:

@@ -18,7 +18,7 @@ from typing import Any
 
 from mawdo.experiments.lock import StoreLockedError, WriterLock
 from mawdo.experiments.plans import PlanError
-from mawdo.experiments.protocol import StudyKind, kind_of, plan_from_json
+from mawdo.experiments.protocol import STUDY_KINDS, StudyKind, kind_of, plan_from_json
 from mawdo.experiments.rows import RowError, RunRow, check_row, from_sql, schema, to_sql
 from mawdo.experiments.sqlitefile import (
     CORRUPT_ADVICE,
@@ -414,7 +414,7 @@ def _mismatch(meta: dict[str, Any], plan: Any) -> str | None:
     """Why a stored meta row does not match ``plan`` and this library, or None."""
     if meta.get("schema_version") != SCHEMA_VERSION:
         return f"store schema {meta.get('schema_version')} (this library writes {SCHEMA_VERSION})"
-    if meta["study_kind"] != plan.kind:
+    if STUDY_KINDS.resolve(meta["study_kind"]) != plan.kind:  # a kind's former name is it
         return f"another study kind ({meta['study_kind']!r}, this plan is {plan.kind!r})"
     if meta["library_version"] != library_version():
         return (

@@ -23,43 +23,17 @@ PRESETS: dict[str, dict[str, tuple[float, float]]] = {
 
 
 class FunctionRegistry(Registry[BenchmarkFunction]):
-    """A :class:`~mawdo.registry.Registry` that also resolves aliases (paper ids).
+    """A :class:`~mawdo.registry.Registry` whose aliases are the paper ids (F1..F16).
 
     Aliases are looked up case-insensitively like names but are not part of iteration, ``len``
     or the list of known names in error messages.
     """
-
-    def __init__(self, kind: str) -> None:
-        super().__init__(kind)
-        self._aliases: dict[str, str] = {}
-
-    def register(self, name: str, entry: BenchmarkFunction) -> BenchmarkFunction:
-        """Add ``entry`` under ``name``; a name that is already an alias is refused."""
-        if name.lower() in self._aliases:
-            raise ValueError(f"{self.kind} {name!r} is already an alias")
-        return super().register(name, entry)
-
-    def add_alias(self, alias: str, name: str) -> None:
-        """Make ``alias`` resolve to the registered ``name``."""
-        key, target = alias.lower(), name.lower()
-        if key in self._aliases or key in self._items:
-            raise ValueError(f"{self.kind} alias {alias!r} is already taken")
-        if target not in self._items:
-            raise UnknownNameError(unknown_name_message(self.kind, name, self._items))
-        self._aliases[key] = target
-
-    @property
-    def aliases(self) -> dict[str, str]:
-        """A copy of the alias table (lower-case alias -> canonical name)."""
-        return dict(self._aliases)
 
     def canonical(self, name: str) -> str:
         """The canonical registered name for ``name`` or an alias of it."""
         return self[name].name
 
     def __getitem__(self, name: str) -> BenchmarkFunction:
-        if isinstance(name, str) and name.lower() in self._aliases:
-            name = self._aliases[name.lower()]
         try:
             return super().__getitem__(name)
         except UnknownNameError:

@@ -1,9 +1,9 @@
-"""Standard black-box suites (BBOB via ``ioh``, CEC 2017/2022 via ``opfunu``) and the recorder.
+"""Standard black-box suites (BBOB via ``ioh``, CEC 2017/2022 via ``opfunu``).
 
 ``get_problem("bbob", 3, instance=1, dim=20)`` returns a :class:`SuiteFunction` usable as the
 objective of :func:`mawdo.minimize`; :func:`run_problem` runs an optimizer on it under COCO's
-protocol (budget in evaluations per dimension) and returns per-run best-so-far traces against
-evaluations. The libraries come with the optional extra: ``pip install "mawdo[bbob]"``.
+protocol (budget in evaluations per dimension), the driver recording per-run best-so-far
+against evaluations. The libraries come with the optional extra: ``pip install "mawdo[bbob]"``.
 """
 
 from mawdo.suites import bbob as _bbob  # noqa: F401  (registers "bbob")
@@ -15,14 +15,12 @@ from mawdo.suites.base import (
     SuiteSpec,
     evaluation_budget,
     get_problem,
+    run_problem,
 )
-from mawdo.suites.recorder import EvaluationRecorder, RunTrace, run_problem
 
 __all__ = [
     "SUITES",
-    "EvaluationRecorder",
     "MissingExtraError",
-    "RunTrace",
     "SuiteFunction",
     "SuiteSpec",
     "evaluation_budget",

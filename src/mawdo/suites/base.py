@@ -89,8 +89,18 @@ class SuiteSpec:
         ``dims(function_id) -> tuple of int``: the dimensions the suite defines for a function.
     build : callable
         ``build(function_id, instance, dim) -> SuiteFunction``; called after validation.
+    library : str
+        The module that computes the values (``"ioh"``, ``"opfunu.cec_based.cec2017"``);
+        :meth:`require` imports it. Its top package is the pip package.
+    label : str
+        Display name in reports and exported logs (``"BBOB"``, ``"CEC2017"``).
     max_instance : int or None
         Largest instance (None: unbounded).
+    default_instances : tuple of int
+        Instances a study runs when none are named (BBOB: COCO's 1-5; CEC: its one).
+    groups : dict of str to tuple of int
+        Named groups of function ids that reports break results down by (BBOB: COCO's five);
+        empty when the suite defines none.
     """
 
     name: str
@@ -98,7 +108,16 @@ class SuiteSpec:
     function_names: tuple[str, ...]
     dims: Callable[[int], tuple[int, ...]]
     build: Callable[[int, int, int], SuiteFunction]
+    library: str
+    label: str
     max_instance: int | None = None
+    default_instances: tuple[int, ...] = (1,)
+    groups: dict[str, tuple[int, ...]] = dataclasses.field(default_factory=dict)
+
+    def require(self) -> None:
+        """Import the suite's library now; :class:`MissingExtraError` names the ``pip install``
+        that fixes a missing one."""
+        require(self.library, self.name)
 
     @property
     def functions(self) -> tuple[int, ...]:
@@ -223,6 +242,55 @@ def evaluation_budget(budget: float, dim: int) -> int:
     return max(1, math.ceil(budget * dim - 1e-9))
 
 
-def replace_formula(fun: SuiteFunction, func) -> SuiteFunction:
-    """The same problem with another formula (a recorder wrapping the original)."""
-    return dataclasses.replace(fun, func=func)
+def run_problem(
+    problem: SuiteFunction,
+    algorithm="mawdo",
+    *,
+    runs: int,
+    budget: float,
+    seed=0,
+    first_run: int = 0,
+    final_target: float | None = 1e-8,
+    **options,
+):
+    """Run ``algorithm`` on a suite problem under COCO's protocol, recording every run's
+    best-so-far against evaluations.
+
+    Parameters
+    ----------
+    problem : SuiteFunction
+        From :func:`get_problem`.
+    algorithm : str or Optimizer
+        Any registered optimizer (``cmaes``, ``random``, ``mawdo``, ...).
+    runs : int
+        Independent runs, >= 1 (in blocks of runs, see :func:`mawdo.minimize`).
+    budget : float
+        Evaluations per dimension, > 0; each run gets exactly ``ceil(budget * D)`` evaluations
+        (OBL's extra evaluations count), fewer if it reaches the final target.
+    seed, first_run
+        As in :func:`mawdo.minimize`; run ``k`` is the same alone or in any batch.
+    final_target : float or None
+        Precision ``f - f_star`` at which a run stops (COCO's last target, 1e-8); None runs
+        the whole budget.
+    **options
+        The algorithm's coefficients.
+
+    Returns
+    -------
+    OptimizeResult
+        The driver's result; ``evaluation_trace`` holds one
+        :class:`~mawdo.result.EvaluationTrace` per run.
+    """
+    from mawdo.minimize import minimize
+
+    return minimize(
+        problem,
+        algorithm=algorithm,
+        runs=runs,
+        seed=seed,
+        first_run=first_run,
+        max_evals=evaluation_budget(budget, problem.dim),
+        target=None if final_target is None else problem.f_star + final_target,
+        trace_evaluations=True,
+        **options,
+    )

@@ -40,6 +40,14 @@ BBOB_NAMES = (
     "LunacekBiRastrigin",
 )
 BBOB_DIMS = tuple(range(2, 41))
+BBOB_GROUPS: dict[str, tuple[int, ...]] = {
+    "separable": (1, 2, 3, 4, 5),
+    "low or moderate conditioning": (6, 7, 8, 9),
+    "high conditioning, unimodal": (10, 11, 12, 13, 14),
+    "multimodal, adequate global structure": (15, 16, 17, 18, 19),
+    "multimodal, weak global structure": (20, 21, 22, 23, 24),
+}
+"""COCO's five BBOB function groups (f1-f24)."""
 BBOB_BOUND = 5.0
 
 
@@ -105,5 +113,9 @@ BBOB = register_suite(
         function_names=BBOB_NAMES,
         dims=lambda fid: BBOB_DIMS,
         build=build_bbob,
+        library="ioh",
+        label="BBOB",
+        default_instances=(1, 2, 3, 4, 5),
+        groups=BBOB_GROUPS,
     )
 )

@@ -89,6 +89,8 @@ CEC2017 = register_suite(
         function_names=tuple(f"F{k}" for k in range(1, 30)),
         dims=lambda fid: cec_dims(2017, fid),
         build=_builder(2017),
+        library="opfunu.cec_based.cec2017",
+        label="CEC2017",
         max_instance=1,
     )
 )
@@ -99,6 +101,8 @@ CEC2022 = register_suite(
         function_names=tuple(f"F{k}" for k in range(1, 13)),
         dims=lambda fid: cec_dims(2022, fid),
         build=_builder(2022),
+        library="opfunu.cec_based.cec2022",
+        label="CEC2022",
         max_instance=1,
     )
 )

@@ -9,7 +9,7 @@ import numpy as np
 
 from mawdo.experiments import Store
 from mawdo.experiments.bbob import export_ioh
-from mawdo.experiments.ioh_export import read_analyzer_logs
+from mawdo.experiments.bbob.ioh_logs import read_analyzer_logs
 
 from .conftest import TINY
 

@@ -109,6 +109,12 @@ def test_variants_from_the_command_store_report_and_resume(tmp_path):
     by_file = mawdo("bench", "run", "--plan", "p.json", "--out", "v.db", "--no-progress",
                     cwd=tmp_path)  # fmt: skip
     assert "0 runs computed" in by_file.stdout, by_file.stderr
+    # "bbob" above is the kind's former name; its name now, with no suite field to go by
+    named = {**{k: v for k, v in plan.items() if k != "suite"}, "kind": "suite"}
+    (tmp_path / "q.json").write_text(json.dumps(named))
+    by_name = mawdo("bench", "run", "--plan", "q.json", "--out", "v.db", "--no-progress",
+                    cwd=tmp_path)  # fmt: skip
+    assert "0 runs computed" in by_name.stdout, by_name.stderr
     rep = mawdo("bench", "report", "v.db", "--out", "rep", "--no-plots", cwd=tmp_path)
     assert rep.returncode == 0, rep.stderr
     text = (tmp_path / "rep" / "report.md").read_text()

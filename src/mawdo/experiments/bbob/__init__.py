@@ -4,18 +4,25 @@
 Plan (:class:`SuitePlan`, presets ``bbob-quick`` and ``bbob-full``), one task on a worker
 (:func:`execute_suite_task`, rows :class:`SuiteRow` holding each run's best-so-far against
 evaluations), reading back (:mod:`.data`), measures (:mod:`.measures`), tables and report
-(:mod:`.report`), figures (:mod:`.plots`), IOHanalyzer export (:mod:`.export`). Importing this
-package registers the ``bbob`` study kind.
+(:mod:`.report`), figures (:mod:`.plots`), IOHanalyzer export (:mod:`.export`), COCO's measures
+as array functions (:mod:`.metrics`) and ioh's log format (:mod:`.ioh_logs`). Importing this
+package registers the ``suite`` study kind (called ``bbob`` before: stores and plans that say
+``kind = "bbob"`` are read as it).
 """
 
 from mawdo.experiments.bbob.execute import SuiteRow, execute_suite_task
 from mawdo.experiments.bbob.export import export_ioh
 from mawdo.experiments.bbob.keys import parse_ids
-from mawdo.experiments.bbob.plan import PRESET_HELP, PRESETS, SuitePlan, preset_plan
+from mawdo.experiments.bbob.plan import (
+    KIND,
+    OLD_KIND_NAMES,
+    PRESET_HELP,
+    PRESETS,
+    SuitePlan,
+    preset_plan,
+)
 from mawdo.experiments.bbob.report import write_suite_report
 from mawdo.experiments.protocol import StudyKind, register_kind
-
-KIND = "bbob"
 
 register_kind(
     StudyKind(
@@ -25,11 +32,13 @@ register_kind(
         row=SuiteRow,
         report=write_suite_report,
         description="standard suites (BBOB via ioh, CEC via opfunu) under COCO's protocol",
+        aliases=OLD_KIND_NAMES,
     )
 )
 
 __all__ = [
     "KIND",
+    "OLD_KIND_NAMES",
     "PRESETS",
     "PRESET_HELP",
     "SuitePlan",

@@ -2,7 +2,7 @@
 
 Everything a report or an export shows comes from here: the store's best-so-far records, read
 through :func:`load_runs`, turned into runtimes to targets (:func:`runtime_table`) and values at
-budgets (:func:`precision_at`) with :mod:`mawdo.experiments.bbob_metrics`.
+budgets (:func:`precision_at`) with :mod:`mawdo.experiments.bbob.metrics`.
 """
 
 from __future__ import annotations
@@ -13,7 +13,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mawdo.experiments.bbob_metrics import fixed_budget, runtimes
+from mawdo.experiments.bbob.metrics import fixed_budget, runtimes
+from mawdo.experiments.bbob.plan import KIND
 from mawdo.experiments.store import Store
 
 
@@ -126,7 +127,7 @@ def _load_one(store_path) -> StudyRuns:
 
     with Store.read(store_path) as store:
         plan = store.plan
-        if getattr(plan, "kind", None) != "bbob":
+        if getattr(plan, "kind", None) != KIND:
             raise StoreError(
                 f"{store_path} holds a {getattr(plan, 'kind', '?')!r} study, not a suite study "
                 f"(mawdo bench run --suite ...)"

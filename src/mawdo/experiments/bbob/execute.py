@@ -1,8 +1,10 @@
 """One task of the suite study on a worker: a vectorised batch of runs on one problem.
 
-Each run's best-so-far record against evaluations (:class:`mawdo.suites.RunTrace`: the
-evaluation numbers where it improved and the values from there on) is stored whole, so the
-runtime to any target and the value at any budget can be read from the store, exactly.
+Each run's best-so-far record against evaluations (the driver's
+:class:`~mawdo.result.EvaluationTrace`: the evaluation numbers where it improved and the values
+from there on) is stored whole, so the runtime to any target and the value at any budget can be
+read from the store, exactly. The driver runs the task in its blocks of runs (a run's numbers
+do not depend on its block).
 """
 
 from __future__ import annotations
@@ -90,7 +92,7 @@ def execute_suite_task(spec: dict[str, Any]) -> list[SuiteRow]:
         "max_evals": evaluation_budget(spec["budget"], spec["dim"]),
     }
     try:
-        res, traces = run_problem(
+        res = run_problem(
             problem,
             spec["optimizer"],  # a variant's label is the row's algorithm, not the optimizer
             runs=n,
@@ -108,7 +110,7 @@ def execute_suite_task(spec: dict[str, Any]) -> list[SuiteRow]:
         ]
     wall = time.perf_counter() - t0
     rows = []
-    for i, tr in enumerate(traces):
+    for i, tr in enumerate(res.evaluation_trace):
         fun = float(res.fun[i])
         rows.append(
             SuiteRow(
@@ -121,8 +123,14 @@ def execute_suite_task(spec: dict[str, Any]) -> list[SuiteRow]:
                 status=int(res.status[i]),
                 evals=np.asarray(tr.evals, dtype=np.int64),
                 best_so_far=np.asarray(tr.best_y, dtype=float),
-                best_x=np.asarray(tr.best_x, dtype=float),
+                best_x=_best_x(res, i),
                 **common,
             )
         )
     return rows
+
+
+def _best_x(res, i: int) -> np.ndarray:
+    """Run ``i``'s best point; NaN (shape ``(D,)``) for a run that saw no finite value."""
+    x = np.asarray(res.x[i], dtype=float)
+    return x if np.isfinite(res.fun[i]) else np.full_like(x, np.nan)

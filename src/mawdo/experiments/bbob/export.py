@@ -5,15 +5,14 @@ from __future__ import annotations
 from pathlib import Path
 
 from mawdo.experiments.bbob.data import load_runs
-from mawdo.experiments.ioh_export import IOHRun, write_analyzer_logs
-
-SUITE_LABEL = {"bbob": "BBOB", "cec2017": "CEC2017", "cec2022": "CEC2022"}
+from mawdo.experiments.bbob.ioh_logs import IOHRun, write_analyzer_logs
+from mawdo.suites import SUITES
 
 
 def export_ioh(store_path, folder) -> list[Path]:
     """Write every stored run as IOHanalyzer data: ``folder/<algorithm>/IOHprofiler_f*.json``
     and ``data_f*/IOHprofiler_f*_DIM*.dat`` (ioh's ``Analyzer`` format, see
-    :mod:`mawdo.experiments.ioh_export`). Zip ``folder`` (or one algorithm's folder) and upload
+    :mod:`mawdo.experiments.bbob.ioh_logs`). Zip ``folder`` (or one algorithm's folder) and upload
     it to IOHanalyzer.
 
     Parameters
@@ -51,6 +50,6 @@ def export_ioh(store_path, folder) -> list[Path]:
         if runs:
             setup = study.setups.get(algo, algo)
             info = f"mawdo {setup}, budget {study.budget:g} x D evaluations"
-            label = SUITE_LABEL.get(study.suite, study.suite)
+            label = SUITES[study.suite].label
             written += write_analyzer_logs(folder / algo, runs, algo, info, suite=label)
     return written

@@ -10,14 +10,14 @@ import math
 import numpy as np
 
 from mawdo.experiments.bbob.data import StudyRuns, precision_at, runtime_table
-from mawdo.experiments.bbob_metrics import (
-    BBOB_GROUPS,
+from mawdo.experiments.bbob.metrics import (
     aggregate_runtime,
     friedman_ranks,
     runtime_ecdf,
     standard_targets,
 )
 from mawdo.experiments.stats import Friedman
+from mawdo.suites import SUITES
 
 ART_TARGETS = (1e1, 1e-1, 1e-3, 1e-5, 1e-8)
 """Precision targets of the aRT tables."""
@@ -96,12 +96,11 @@ def friedman_final(study: StudyRuns, dims) -> Friedman:
 
 
 def groups(study: StudyRuns) -> dict[str, tuple[int, ...]]:
-    """Function groups of the study: COCO's five for BBOB (only functions in the plan), else
-    one group of every function."""
-    if study.suite != "bbob":
-        return {"all functions": study.functions}
+    """Function groups of the study: every function, then the suite's own groups
+    (:attr:`mawdo.suites.SuiteSpec.groups`: COCO's five for BBOB), each cut to the functions
+    in the plan."""
     out = {"all functions": study.functions}
-    for name, ids in BBOB_GROUPS.items():
+    for name, ids in SUITES[study.suite].groups.items():
         kept = tuple(f for f in ids if f in study.functions)
         if kept:
             out[name] = kept

@@ -27,7 +27,7 @@ from mawdo.experiments.protocol import Task, missing_run_tasks
 from mawdo.optimizers import PAPER_ALGORITHMS, make_optimizer
 from mawdo.streams import name_word
 from mawdo.suites import SUITES, evaluation_budget
-from mawdo.suites.base import format_dims, require
+from mawdo.suites.base import format_dims
 
 PLAN_SCHEMA = 1
 """Bumped when the meaning of a plan field changes; part of the plan hash."""
@@ -35,11 +35,12 @@ PLAN_SCHEMA = 1
 BBOB_SEED = 20251125
 """Master seed of the presets (the paper presets' seed)."""
 
-LIBRARY = {
-    "bbob": "ioh",
-    "cec2017": "opfunu.cec_based.cec2017",
-    "cec2022": "opfunu.cec_based.cec2022",
-}
+KIND = "suite"
+"""The kind's name (its plans' ``kind``)."""
+
+OLD_KIND_NAMES = ("bbob",)
+"""Names the kind had before (stores and plan files made then say ``kind = "bbob"``): read as
+:data:`KIND`. The plan hash never held the kind, so their hashes stay valid."""
 
 
 PositiveInt = Annotated[int, Field(strict=True, ge=1)]
@@ -87,8 +88,8 @@ class SuitePlan(StudyPlanBase):
         Runs per task (one vectorised batch on one worker). Does not affect numbers.
     """
 
-    study_kind: ClassVar[str] = "bbob"
-    kind: Literal["bbob"] = "bbob"
+    study_kind: ClassVar[str] = KIND
+    kind: Literal["suite"] = KIND
     name: str = "custom"
     suite: str = "bbob"
     variants: dict[str, str] = Field(default_factory=dict)  # before algorithms: they name labels
@@ -106,11 +107,15 @@ class SuitePlan(StudyPlanBase):
 
     @model_validator(mode="before")
     @classmethod
-    def _default_instances(cls, data: Any) -> Any:
-        # CEC suites have one instance: their default is (1,), BBOB's COCO's 1-5.
-        if isinstance(data, dict) and data.get("instances") is None:
-            suite = str(data.get("suite", "bbob")).strip().lower()
-            data = {**data, "instances": (1,) if suite.startswith("cec") else (1, 2, 3, 4, 5)}
+    def _old_kind_and_default_instances(cls, data: Any) -> Any:
+        if not isinstance(data, dict):
+            return data
+        if data.get("kind") in OLD_KIND_NAMES:
+            data = {**data, "kind": KIND}
+        if data.get("instances") is None:  # the suite's own (CEC: its one; BBOB: COCO's 1-5)
+            suite = SUITES.get(str(data.get("suite", "bbob")).strip().lower())
+            if suite is not None:  # an unknown suite is named by the suite field's check
+                data = {**data, "instances": suite.default_instances}
         return data
 
     @field_validator("suite")
@@ -268,7 +273,7 @@ class SuitePlan(StudyPlanBase):
     def check_libraries(self) -> None:
         """Import the suite's library now; raises :class:`~mawdo.suites.MissingExtraError`
         naming the ``pip install`` that fixes it (before any worker starts)."""
-        require(LIBRARY[self.suite], self.suite)
+        SUITES[self.suite].require()
 
     # ----------------------------------------------------------------------- work
     @property

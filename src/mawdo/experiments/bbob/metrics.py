@@ -2,7 +2,8 @@
 
 A run is summarised by its best-so-far record against evaluations (``evals``: 1-based evaluation
 numbers where the best improved; ``best_y``: the best raw value from there on), the format of
-:class:`mawdo.suites.RunTrace` and of IOHprofiler's logs. Precision is ``f - f_opt``.
+the driver's :class:`mawdo.result.EvaluationTrace` and of IOHprofiler's logs. Precision is
+``f - f_opt``.
 
 References: Hansen, Auger, Brockhoff, Tusar, "Anytime performance assessment in blackbox
 optimization benchmarking", IEEE TEVC 26(6), 2022; Hansen et al., "COCO: performance assessment",
@@ -16,15 +17,10 @@ from collections.abc import Sequence
 import numpy as np
 
 from mawdo.experiments.stats import Friedman, friedman
+from mawdo.suites.bbob import BBOB_GROUPS
 
-BBOB_GROUPS: dict[str, tuple[int, ...]] = {
-    "separable": (1, 2, 3, 4, 5),
-    "low or moderate conditioning": (6, 7, 8, 9),
-    "high conditioning, unimodal": (10, 11, 12, 13, 14),
-    "multimodal, adequate global structure": (15, 16, 17, 18, 19),
-    "multimodal, weak global structure": (20, 21, 22, 23, 24),
-}
-"""COCO's five BBOB function groups (f1-f24)."""
+__all__ = ["BBOB_GROUPS", "aggregate_runtime", "fixed_budget", "friedman_ranks", "function_group",
+           "runtime_ecdf", "runtimes", "standard_targets"]  # fmt: skip
 
 
 def standard_targets(high: float = 2.0, low: float = -8.0, per_decade: int = 5) -> np.ndarray:

@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import json
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable
 from dataclasses import dataclass
 from importlib import metadata
 from pathlib import Path
@@ -89,8 +89,18 @@ class IOHRun:
     f_opt: float = 0.0
 
 
-def runs_from_traces(problem, traces: Sequence) -> list[IOHRun]:
-    """:class:`IOHRun` records of :func:`mawdo.suites.run_problem`'s traces on ``problem``."""
+def runs_from_result(problem, result) -> list[IOHRun]:
+    """:class:`IOHRun` records of the runs of ``result`` on ``problem``.
+
+    Parameters
+    ----------
+    problem : SuiteFunction
+        The suite problem the runs solved.
+    result : OptimizeResult
+        From :func:`mawdo.suites.run_problem` (or ``minimize(..., trace_evaluations=True)``).
+    """
+    if result.evaluation_trace is None:
+        raise ValueError("the result holds no evaluation trace: run with trace_evaluations=True")
     return [
         IOHRun(
             problem.function_id,
@@ -99,11 +109,11 @@ def runs_from_traces(problem, traces: Sequence) -> list[IOHRun]:
             problem.instance,
             np.asarray(t.evals),
             np.asarray(t.best_y),
-            int(t.total_evals),
-            None if np.isnan(t.best_x).any() else np.asarray(t.best_x),
+            int(result.nfev[i]),
+            np.asarray(result.x[i]) if np.isfinite(result.fun[i]) else None,
             float(problem.f_star),
         )
-        for t in traces
+        for i, t in enumerate(result.evaluation_trace)
     ]
 
 
