@@ -18,11 +18,11 @@ import weakref
 
 import numpy as np
 
-from mawdo.planning.geometry import FlatObstacles, inflate
+from mawdo.planning.geometry import FlatObstacles, centre_box, inflate
 from mawdo.planning.guide import GUIDE_SEGMENTS, SLACK
 from mawdo.planning.scenario import Scenario
 from mawdo.planning.sipp.intervals import Movers
-from mawdo.planning.visgraph import VisGraph, _dijkstra, _from_point, build
+from mawdo.planning.visgraph import VisGraph, build, csr_dijkstra, visible_from_point
 
 __all__ = ["Roadmap"]
 
@@ -33,11 +33,11 @@ def _free_point(p, name: str, graph: VisGraph, scenario: Scenario) -> np.ndarray
     p = np.asarray(p, dtype=float)
     if p.shape != (2,) or not np.all(np.isfinite(p)):
         raise ValueError(f"{name} must be a finite (x, y) pair, got {p!r}")
-    x0, y0, x1, y1 = scenario.bounds
+    x0, y0, x1, y1 = graph.bounds
     if not (x0 <= p[0] <= x1 and y0 <= p[1] <= y1) or graph.inside(p):
         raise ValueError(
-            f"{name} {tuple(p)} is outside the map or inside an inflated static obstacle; "
-            "give a free point (or a smaller clearance)"
+            f"{name} {tuple(p)} is outside the map (shrunk by robot radius + clearance) or "
+            "inside an inflated static obstacle; give a free point (or a smaller clearance)"
         )
     return p
 
@@ -79,7 +79,8 @@ class Roadmap:
             for i in scenario.static_indices
         ]
         pts = np.reshape(np.asarray([scenario.goal, *spots], dtype=float), (-1, 2))
-        self.graph = build(static, scenario.bounds, points=pts)
+        # the map's border is a wall (as in the checker): the centre keeps rho from it
+        self.graph = build(static, centre_box(scenario, rho), points=pts)
         names = ["goal"] + [f"spots[{j}]" for j in range(len(pts) - 1)]
         for p, name in zip(pts, names, strict=True):
             _free_point(p, name, self.graph, scenario)
@@ -94,7 +95,7 @@ class Roadmap:
             dst += [seen, np.full(len(seen), i)]
         pairs = np.unique(np.column_stack([np.concatenate(src), np.concatenate(dst)]), axis=0)
         self.indptr, self.indices, self.weights = _csr(pairs, self.nodes)
-        self.to_goal = _dijkstra(
+        self.to_goal = csr_dijkstra(
             self.indptr, self.indices, self.weights, np.zeros(1, np.int64), np.zeros(1)
         )[0]
         moving = tuple(scenario.obstacles[i] for i in scenario.moving_indices)
@@ -123,7 +124,7 @@ class Roadmap:
         g = self.graph
         plain = np.zeros(len(g.nodes), np.bool_)  # no corner rule: visibility alone decides
         p = np.ascontiguousarray(p, dtype=float)
-        return _from_point(
+        return visible_from_point(
             p, g.nodes, g.prev, g.nxt, plain, g.edges, g.ring_ptr, g.ring_box, g.eps2
         )
 
