@@ -60,6 +60,10 @@ class Roadmap:
         Margin (px, >= 0) added to the robot radius, for static and moving obstacles alike.
     spots : sequence of (x, y)
         Free vertices (pixels) where the robot may wait: bays, pockets.
+    segments : int
+        Sides (>= 3) of the polygon standing in for a disc in the inflation: the rounded
+        corners are replaced by circumscribing ones, lengthening routes by up to
+        ``rho (1 / cos(pi / segments) - 1)`` px per corner (``rho``: radius + clearance).
 
     Attributes
     ----------
@@ -69,14 +73,17 @@ class Roadmap:
         Static distance to the goal over the graph (pixels; ``inf`` if cut off).
     """
 
-    def __init__(self, scenario: Scenario, clearance: float = 0.5, spots=()) -> None:
+    def __init__(
+        self, scenario: Scenario, clearance: float = 0.5, spots=(), segments: int = GUIDE_SEGMENTS
+    ) -> None:
         if not math.isfinite(clearance) or clearance < 0:
             raise ValueError(f"clearance must be finite and >= 0 px, got {clearance!r}")
+        if isinstance(segments, bool) or not isinstance(segments, int) or segments < 3:
+            raise ValueError(f"segments must be an integer >= 3, got {segments!r}")
         self.scenario, self.clearance = scenario, float(clearance)
         rho = scenario.robot_radius + clearance + SLACK
         static = [
-            inflate(scenario.obstacles[i].shape, rho, n=GUIDE_SEGMENTS)
-            for i in scenario.static_indices
+            inflate(scenario.obstacles[i].shape, rho, n=segments) for i in scenario.static_indices
         ]
         pts = np.reshape(np.asarray([scenario.goal, *spots], dtype=float), (-1, 2))
         # the map's border is a wall (as in the checker): the centre keeps rho from it
@@ -110,13 +117,16 @@ class Roadmap:
             self._pieces(m, 0.0, reach)
 
     @classmethod
-    def of(cls, scenario: Scenario, clearance: float = 0.5, spots=()) -> Roadmap:
-        """The roadmap of ``(scenario, clearance, spots)``, built at the first call, then kept
-        as long as the scenario lives."""
-        key = (float(clearance), tuple(map(tuple, np.reshape(np.asarray(spots, float), (-1, 2)))))
+    def of(
+        cls, scenario: Scenario, clearance: float = 0.5, spots=(), segments: int = GUIDE_SEGMENTS
+    ) -> Roadmap:
+        """The roadmap of ``(scenario, clearance, spots, segments)``, built at the first call,
+        then kept as long as the scenario lives."""
+        spots_key = tuple(map(tuple, np.reshape(np.asarray(spots, float), (-1, 2))))
+        key = (float(clearance), spots_key, segments)
         per = _CACHE.setdefault(scenario, {})
         if key not in per:
-            per[key] = cls(scenario, clearance, spots)
+            per[key] = cls(scenario, clearance, spots, segments)
         return per[key]
 
     def sees(self, p) -> np.ndarray:
