@@ -253,18 +253,20 @@ DOORWAY = Family(
 )
 
 
-def _slalom_walls(rng, p: dict, xs, t: float) -> list[dict]:
+def _slalom_walls(rng, p: dict, xs, t: float) -> tuple[list[dict], list[float]]:
     """Full-height walls at ``xs``, each with one gap ``2 r + slack`` px wide; the gaps
-    alternate between the upper and the lower part of the map."""
+    alternate between the upper and the lower part of the map. Returns the walls and the
+    gaps' centres (heights, px)."""
     s, r = p["size"], p["robot_radius"]
-    parity, obs = int(rng.integers(2)), []
+    parity, obs, ys = int(rng.integers(2)), [], []
     for j, x in enumerate(xs):
         gap = 2.0 * r + rng.uniform(p["slack_min"], p["slack_max"])
         band = (0.55, 0.9) if (j + parity) % 2 else (0.1, 0.45)
         y = rng.uniform(*band) * s
         obs.append(box(x - 0.5 * t, 0.0, x + 0.5 * t, y - 0.5 * gap))
         obs.append(box(x - 0.5 * t, y + 0.5 * gap, x + 0.5 * t, s))
-    return obs
+        ys.append(y)
+    return obs, ys
 
 
 def _draw_slalom(rng: np.random.Generator, p: dict) -> dict:
@@ -273,25 +275,28 @@ def _draw_slalom(rng: np.random.Generator, p: dict) -> dict:
     pitch = s / (k + 1)
     xs = pitch * np.arange(1, k + 1) + rng.uniform(-0.1, 0.1, k) * pitch
     t = rng.uniform(0.02, 0.05) * s
-    obs = _slalom_walls(rng, p, xs, t)
+    obs, ys = _slalom_walls(rng, p, xs, t)
     start, goal = _ends(rng, p, xs[0] - 0.5 * t, xs[-1] + 0.5 * t)
-    # patrols up and down the channels between walls: the robot times its crossings
-    for j in rng.permutation(k - 1)[: int(rng.integers(1, p["movers"] + 1))]:
+    # patrols along a wall, across its gap, on either side: the robot times its passages
+    for j in rng.permutation(k)[: int(rng.integers(1, p["movers"] + 1))]:
         rad = r * rng.uniform(1.0, 2.0)
-        x = 0.5 * (xs[j] + xs[j + 1])
-        obs.append(_up_and_down(rng, p, x, rad, rad + 1.0, s - rad - 1.0))
+        side = 1.0 if rng.random() < 0.5 else -1.0
+        x = xs[j] + side * (0.5 * t + rad * rng.uniform(0.3, 1.0))
+        amp = rng.uniform(1.5, 4.0) * (rad + r)
+        lo, hi = max(ys[j] - amp, rad + 1.0), min(ys[j] + amp, s - rad - 1.0)
+        obs.append(_up_and_down(rng, p, x, rad, lo, hi))
     return _finish(rng, p, start, goal, obs, ())
 
 
 SLALOM = Family(
     "slalom",
-    "walls with gaps at most 1 px wider than the robot, alternating sides, patrols between",
+    "walls with gaps at most 1 px wider than the robot, alternating sides, patrols across them",
     (
         Param("walls_min", 2, 2, 6, integer=True, doc="fewest walls"),
         Param("walls_max", 4, 2, 6, integer=True, doc="most walls"),
         Param("slack_min", 0.3, 0.05, 1.0, doc="narrowest gap beyond the robot diameter, px"),
         Param("slack_max", 1.0, 0.05, 1.0, doc="widest gap beyond the robot diameter, px"),
-        Param("movers", 2, 1, 5, integer=True, doc="most patrols between walls (at least one)"),
+        Param("movers", 2, 1, 6, integer=True, doc="most gap patrols (at least one)"),
         *speed_params(0.2, 0.6, "patrol"),
         *TIME_PARAMS,
     ),
