@@ -43,8 +43,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
-
 from mawdo.planning.scenario import Scenario
 from mawdo.planning.sipp.guide import SafeIntervalGuide, TimedRoute
 
@@ -134,14 +132,3 @@ def scenario_time_optimum(
         why = f"no timed route reaches the goal within the horizon ({span:.6g} time steps)"
         return TimeOptimum(False, math.inf, None, span, why)
     return TimeOptimum(True, routes[0].arrival, routes[0], span)
-
-
-def route_positions(route: TimedRoute, step: float = 1.0) -> np.ndarray:
-    """The route's positions at times ``0, step, 2 step, ...`` up to its arrival (pixels), the
-    arrival included: a trajectory for the checker or a figure."""
-    t = np.arange(route.times[0], route.arrival, step)
-    t = np.append(t, route.arrival)
-    # a wait repeats a time in no entry, a position in two: interpolate per coordinate
-    x = np.interp(t, route.times, route.points[:, 0])
-    y = np.interp(t, route.times, route.points[:, 1])
-    return np.column_stack([x, y])
