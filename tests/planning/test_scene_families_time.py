@@ -19,7 +19,12 @@ from mawdo.planning import scenario_from_dict
 from mawdo.planning.check import check_trajectory
 from mawdo.planning.motion import ConstantVelocity, Patrol
 from mawdo.planning.oracle import scenario_optimum
-from mawdo.planning.scenes import TIMED_FAMILIES, generate_scene, generate_scenes
+from mawdo.planning.scenes import (
+    TIMED_FAMILIES,
+    describe_family,
+    generate_scene,
+    generate_scenes,
+)
 from mawdo.planning.sipp import SafeIntervalGuide
 from mawdo.planning.sipp.optimum import scenario_time_optimum
 from tests.planning.sipp_reference import grid_earliest_arrival
@@ -54,6 +59,10 @@ def test_reproducible_from_the_seed(family_scenes):
     assert again.t_star == scenes[1].t_star
     other = generate_scene(fam, 1, seed=SEED + 1)
     assert other.to_toml() != scenes[1].to_toml()
+    # T* is the search on the scene's scenario and spots, nothing else
+    again = scenario_time_optimum(scenes[1].scenario, spots=scenes[1].spots)
+    assert again.t_star == scenes[1].t_star
+    assert describe_family(fam).startswith(f"{fam}: ") and "lattice = 6" in describe_family(fam)
 
 
 def test_valid_scenes_have_t_star_and_a_clean_route(family_scenes):
