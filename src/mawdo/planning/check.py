@@ -21,8 +21,9 @@ how far it leaves is ``r`` minus the smallest distance of those ends' centres to
 
 Active and passive collisions (issue 27): a collision during a step in which the robot moves
 is *active* (its own motion took part); one during a step in which it stands still (both ends
-within ``REST_TOL`` px) is *passive*: an obstacle ran into a robot at rest. Both are
-collisions; a run succeeds only with neither.
+within ``REST_TOL`` px) is *passive*: an obstacle ran into a robot at rest (whether some other
+action could have avoided it is not judged here). Both are collisions; a run succeeds only with
+neither.
 """
 
 from __future__ import annotations
