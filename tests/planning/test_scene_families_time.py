@@ -26,7 +26,7 @@ from mawdo.planning.scenes import (
     generate_scenes,
 )
 from mawdo.planning.sipp import SafeIntervalGuide
-from mawdo.planning.sipp.optimum import scenario_time_optimum
+from mawdo.planning.sipp.optimum import dodge_spots, scenario_time_optimum
 from tests.planning.sipp_reference import grid_earliest_arrival
 
 SEED = 11
@@ -195,7 +195,9 @@ def test_doorway_patrol_crosses_the_only_door():
 
 def test_lattice_parameter_and_bad_params():
     scene = generate_scene("doorway", 0, seed=SEED, params={"lattice": 0})
-    assert len(scene.spots) == 0 and math.isfinite(scene.t_star)
+    # no lattice: only the dodge spots along the static optimum (a doorway has no bays)
+    np.testing.assert_array_equal(scene.spots, dodge_spots(scene.optimum, scene.scenario))
+    assert len(scene.spots) > 0 and math.isfinite(scene.t_star)
     with pytest.raises(ValueError, match="speed_min"):
         generate_scene("corridor", 0, params={"speed_min": 0.9, "speed_max": 0.5})
     with pytest.raises(ValueError, match="slack_max"):
@@ -282,6 +284,28 @@ def test_reachable_walkers_are_conservative():
     # the reachable-set route is clean against the walk the checker sees
     if reach.reachable:
         assert check_trajectory(reach.route.points, sc, times=reach.route.times).ok
+
+
+def test_dodge_spots_by_hand():
+    """A 100 px route along y = 50 on an empty map, robot radius 2: every 12 px the point and
+    points 5 and 12 px to either side; a square at (60..70, 55..75) removes those within 3 px."""
+    sc = scenario_from_dict(
+        {
+            "schema_version": 1,
+            "width": 120.0,
+            "height": 100.0,
+            "start": [10.0, 50.0],
+            "goal": [110.0, 50.0],
+            "robot": {"radius": 2.0, "speed": 2.0},
+            "obstacles": [_box(60, 55, 70, 75)],
+        }
+    )
+    pts = dodge_spots([[10.0, 50.0], [110.0, 50.0]], sc)
+    xs = 10.0 + 12.0 * np.arange(1, 9)  # 22 .. 106
+    grid = {(x, 50.0 + o) for x in xs for o in (-12.0, -5.0, 0.0, 5.0, 12.0)}
+    gone = {(x, y) for x, y in grid if 57.0 <= x <= 73.0 and y >= 52.0}  # near the square
+    assert {tuple(np.round(p, 9)) for p in pts} == grid - gone
+    assert gone  # the square did remove some
 
 
 def test_no_route_within_the_horizon_is_reported():

@@ -139,7 +139,8 @@ class Family:
     timed : bool
         Time decides the scene (issue 27): a draw is valid only if the earliest arrival ``T*``
         exists (:func:`mawdo.planning.sipp.optimum.scenario_time_optimum`, with the draft's
-        waiting spots, key ``"_spots"``), and the scene stores it.
+        waiting spots, key ``"_spots"``, and dodge spots along the static optimum), and the
+        scene stores it.
     """
 
     name: str
@@ -232,8 +233,9 @@ class Scene:
         Earliest arrival at the goal (time steps; :mod:`mawdo.planning.sipp.optimum`) for the
         families where time decides (``Family.timed``); ``None`` for the others.
     spots : numpy.ndarray, shape (k, 2)
-        Waiting spots the family knows of (bays, a lattice of free points; pixels), used for
-        ``T*``.
+        Waiting spots (pixels) ``T*`` was computed with: the family's (bays, a lattice of
+        free points) and :func:`~mawdo.planning.sipp.optimum.dodge_spots` along the static
+        optimum.
     time_route : TimedRoute or None
         The earliest-arrival route (timed families).
     """
@@ -276,12 +278,16 @@ def _describe(family: Family, p: dict, seed: int, index: int, l_star: float, t_s
     )
 
 
-def _time_optimum(scenario: Scenario, spots: np.ndarray):
-    """``(TimeOptimum, None)`` or ``(None, reason)`` for a timed family's draw."""
-    from mawdo.planning.sipp.optimum import scenario_time_optimum
+def _time_optimum(scenario: Scenario, spots: np.ndarray, path: np.ndarray):
+    """``(TimeOptimum, spots, None)`` or ``(None, spots, reason)`` for a timed family's draw:
+    its spots, with dodge spots along the static optimum ``path`` added."""
+    from mawdo.planning.sipp.optimum import dodge_spots, scenario_time_optimum
 
+    spots = np.vstack([spots, dodge_spots(path, scenario)])
     opt = scenario_time_optimum(scenario, spots=spots)
-    return (opt, None) if opt.reachable else (None, f"no earliest arrival T* ({opt.reason})")
+    if not opt.reachable:
+        return None, spots, f"no earliest arrival T* ({opt.reason})"
+    return opt, spots, None
 
 
 def _attempt(family: Family, p: dict, seed: int, index: int, attempt: int):
@@ -307,7 +313,7 @@ def _attempt(family: Family, p: dict, seed: int, index: int, attempt: int):
         return None, f"no static route ({opt.reason})"
     timed = None
     if family.timed:
-        timed, reason = _time_optimum(scenario, spots)
+        timed, spots, reason = _time_optimum(scenario, spots, opt.path)
         if timed is None:
             return None, reason
     t_star = None if timed is None else timed.t_star

@@ -31,6 +31,12 @@ guide's 0.05 px slack. Random walkers are by default taken as discs growing at t
 (``walkers="reachable"``): then ``T*`` is the earliest arrival that is safe whatever the walk
 does; ``walkers="known"`` judges against the seeded walk instead.
 
+Which waiting spots: the more vertices, the closer the class comes to free space. The scene
+families give their bays, a lattice of free points and :func:`dodge_spots` along the static
+optimum (the point and points beside it every few robot radii): without the latter, a robot
+that must step aside from a faster mover reaches the goal up to 14 % later on the roadmap than
+the planner does in free space (chaser scenes, seed 0).
+
 The tests check it against a brute-force search on a fine time grid (shapely checker on every
 wait and move; :mod:`tests.planning.sipp_reference`): the same earliest arrival within the grid
 step times the route's moves.
@@ -43,13 +49,18 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from mawdo.planning.scenario import Scenario
 from mawdo.planning.sipp.guide import SafeIntervalGuide, TimedRoute
 
-__all__ = ["TIME_SEGMENTS", "TimeOptimum", "scenario_time_optimum"]
+__all__ = ["TIME_SEGMENTS", "TimeOptimum", "dodge_spots", "scenario_time_optimum"]
 
 #: Sides of the polygon standing in for the inflated corners when ``T*`` is computed.
 TIME_SEGMENTS = 32
+#: Dodge spots along a route: spacing and side offsets, in robot radii (see :func:`dodge_spots`).
+DODGE_STEP = 6.0
+DODGE_OFFSETS = (2.5, 6.0)
 
 
 @dataclass(frozen=True)
@@ -86,6 +97,54 @@ class TimeOptimum:
     def waiting(self) -> float:
         """Time the optimal route stands still (time steps; 0 when not reachable)."""
         return self.route.waiting if self.route is not None else 0.0
+
+
+def dodge_spots(
+    path, scenario: Scenario, step: float = DODGE_STEP, offsets=DODGE_OFFSETS
+) -> np.ndarray:
+    """Waiting spots along a route and beside it, where a timed route may step aside.
+
+    Every ``step`` robot radii along the polyline ``path``: the point itself and the points
+    ``offsets`` robot radii to either side, kept when free (at least the robot radius + 1 px
+    from the map's border and from every static obstacle).
+
+    Parameters
+    ----------
+    path : array_like, shape (k, 2)
+        A route (pixels), e.g. the static optimum.
+    scenario : Scenario
+    step : float
+        Spacing along the route (robot radii, > 0).
+    offsets : sequence of float
+        Side distances (robot radii, > 0).
+
+    Returns
+    -------
+    numpy.ndarray, shape (j, 2)
+        The free spots (pixels).
+    """
+    path = np.asarray(path, dtype=float).reshape(-1, 2)
+    r = scenario.robot_radius
+    gap = max(step * r, 1.0)
+    out = []
+    for a, b in zip(path[:-1], path[1:], strict=True):
+        length = float(np.hypot(*(b - a)))
+        if length == 0.0:
+            continue
+        u = (b - a) / length
+        n = np.array([-u[1], u[0]])
+        for d in np.arange(gap, length, gap):
+            c = a + d * u
+            out += [c] + [c + side * o * r * n for o in offsets for side in (-1.0, 1.0)]
+    pts = np.reshape(np.asarray(out, dtype=float), (-1, 2))
+    need = r + 1.0
+    inside = (pts >= need) & (pts <= np.array([scenario.width, scenario.height]) - need)
+    pts = pts[np.all(inside, axis=1)]
+    statics = [scenario.obstacles[i].shape for i in scenario.static_indices]
+    if statics and len(pts):
+        far = np.array([min(ob.distance(q) for ob in statics) for q in pts]) > need
+        pts = pts[far]
+    return pts
 
 
 def scenario_time_optimum(
