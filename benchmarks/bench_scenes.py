@@ -16,10 +16,13 @@ TARGET_MS = 50.0
 
 def generation(n: int = 8, seed: int = 0) -> None:
     from mawdo.planning.oracle import scenario_optimum
-    from mawdo.planning.scenes import FAMILIES, generate_scene
+    from mawdo.planning.scenes import FAMILIES, TIMED_FAMILIES, generate_scene
 
     print(f"scene generation + L*, default parameters, {n} scenes per family (seed {seed})")
-    for fam in FAMILIES:
+    print(
+        f"  (timed families {', '.join(TIMED_FAMILIES)} also compute T*: python -m benchmarks sipp)"
+    )
+    for fam in (f for f in FAMILIES if f not in TIMED_FAMILIES):
         generate_scene(fam, 0, seed=seed + 1)  # warm caches (map files, imports)
         times, oracle, attempts, obstacles = [], [], [], []
         for i in range(n):

@@ -3,6 +3,10 @@ static polygons and 10 movers (5 constant-velocity circles, 3 patrolling circles
 walkers seen as reachable sets). Target: median build + query <= 10 ms (one core), where the
 build is what a (re)plan redoes (start, movers, safe intervals) and the map's roadmap, built
 once per map, is timed apart.
+
+Also (issue 27, item 4) the earliest arrival T* of the timed scene families: per family, scene
+generation with T* (median ms), draws per valid scene, and T* against the static optimum's time
+(T* / (L*/v): how much time decides) -- measurements, no target.
 ``python -m benchmarks sipp``.
 """
 
@@ -105,7 +109,36 @@ def guide_build_query(
     )
 
 
+def time_optimum(n: int = 50, seed: int = 0) -> None:
+    """Per timed family: ``n`` scenes generated with their T* (time, draws, T* / (L*/v))."""
+    from mawdo.planning.scenes import TIMED_FAMILIES, generate_scene
+    from mawdo.planning.sipp.optimum import scenario_time_optimum
+
+    print(f"timed families: {n} scenes each (seed {seed}), generation with T* per scene")
+    for fam in TIMED_FAMILIES:
+        generate_scene(fam, 0, seed=seed + 1)  # compile, warm caches
+        gen, t_opt, ratio, draws, waits = [], [], [], [], 0
+        for i in range(n):
+            t = time.perf_counter()
+            sc = generate_scene(fam, i, seed=seed)
+            gen.append(time.perf_counter() - t)
+            t = time.perf_counter()
+            scenario_time_optimum(sc.scenario, spots=sc.spots)  # T* alone (roadmap cached)
+            t_opt.append(time.perf_counter() - t)
+            ratio.append(sc.t_star / (sc.l_star / sc.scenario.robot_speed))
+            draws.append(sc.attempts)
+            waits += sc.time_route.waiting > 0.5
+        r = np.array(ratio)
+        print(
+            f"  {fam:9s} generation median {1e3 * np.median(gen):6.1f} ms (T* query alone "
+            f"{1e3 * np.median(t_opt):5.1f} ms), draws/scene {np.mean(draws):.2f}; "
+            f"T*/(L*/v) median {np.median(r):.3f}, p95 {np.percentile(r, 95):.3f}, "
+            f"max {r.max():.3f}; {int(np.sum(r > 1.01))}/{n} over 1.01, waits in {waits}/{n}"
+        )
+
+
 def main() -> None:
+    time_optimum()
     guide_build_query(k=1)
     guide_build_query(k=3)
     guide_build_query(k=1, walkers="known")

@@ -18,6 +18,12 @@ The map's border is a wall: a step whose robot disc leaves the map ``[0, W] x [0
 than ``tol`` collides with it (``CheckReport.border``). The disc's centre moves along a segment
 and the map is a convex box, so the step stays inside exactly when the discs at both ends do;
 how far it leaves is ``r`` minus the smallest distance of those ends' centres to the border.
+
+Active and passive collisions (issue 27): a collision during a step in which the robot moves
+is *active* (its own motion took part); one during a step in which it stands still (both ends
+within ``REST_TOL`` px) is *passive*: an obstacle ran into a robot at rest (whether some other
+action could have avoided it is not judged here). Both are collisions; a run succeeds only with
+neither.
 """
 
 from __future__ import annotations
@@ -36,6 +42,8 @@ __all__ = ["CheckReport", "check_static_path", "check_trajectory"]
 DEFAULT_TOL = 1e-9
 #: Spacing (pixels) of the points on which a polygon's penetration depth is measured.
 DEPTH_STEP = 0.25
+#: A step whose two positions are this close (pixels) is the robot at rest.
+REST_TOL = 1e-9
 
 
 @dataclass(frozen=True)
@@ -61,6 +69,12 @@ class CheckReport:
     border_excess : float
         How far the disc leaves the map at worst (pixels; <= 0: it stays inside, ``-inf``
         without a map, as for :func:`check_static_path`).
+    active, passive : tuple of (int, int)
+        The ``collisions`` split by whether the robot moves during the step (active) or stands
+        still (passive: hit at rest); together they are ``collisions``.
+    active_time, passive_time : float
+        Start time (time steps) of the first step with an active / passive collision; ``nan``
+        when there is none (and for :func:`check_static_path`, which has no times).
     """
 
     ok: bool
@@ -70,6 +84,10 @@ class CheckReport:
     out_of_map: tuple[int, ...] = ()
     border: tuple[int, ...] = ()
     border_excess: float = -np.inf
+    active: tuple[tuple[int, int], ...] = ()
+    passive: tuple[tuple[int, int], ...] = ()
+    active_time: float = np.nan
+    passive_time: float = np.nan
 
     @property
     def hits(self) -> int:
@@ -82,7 +100,10 @@ class CheckReport:
         obstacles; route leaves the map by 1.5 px"``."""
         parts = []
         if self.collisions:
-            parts.append(f"{len(self.collisions)} collisions with obstacles")
+            parts.append(
+                f"{len(self.collisions)} collisions with obstacles ({len(self.active)} active, "
+                f"{len(self.passive)} passive)"
+            )
         if self.border:
             parts.append(f"route leaves the map by {self.border_excess:.3g} px")
         return "; ".join(parts) if parts else "ok"
@@ -127,8 +148,21 @@ def _shape_distance(shape, lines: np.ndarray) -> np.ndarray:
     return shapely.distance(lines, poly) - _polygon_depth(lines, poly)
 
 
-def _report(clearance: np.ndarray, tol: float, out_of_map=(), excess=None) -> CheckReport:
-    """The report; ``excess`` is how far each step's disc leaves the map (pixels), if any."""
+def _split(collisions, moving: np.ndarray, times) -> dict:
+    """The collisions split by ``moving[step]``, with the start time of each kind's first."""
+    out = {}
+    for name, want in (("active", True), ("passive", False)):
+        part = tuple(c for c in collisions if bool(moving[c[0]]) == want)
+        first = float(times[part[0][0]]) if part and times is not None else np.nan
+        out[name], out[name + "_time"] = part, first
+    return out
+
+
+def _report(
+    clearance: np.ndarray, tol: float, moving, times=None, out_of_map=(), excess=None
+) -> CheckReport:
+    """The report; ``moving[s]``: the robot moves during step ``s``; ``times``: the steps'
+    start times (time steps); ``excess``: how far each step's disc leaves the map (pixels)."""
     steps, obs = np.nonzero(clearance < -tol)
     collisions = tuple((int(s), int(o)) for s, o in zip(steps, obs, strict=True))
     min_c = float(clearance.min()) if clearance.size else np.inf
@@ -137,7 +171,15 @@ def _report(clearance: np.ndarray, tol: float, out_of_map=(), excess=None) -> Ch
         border = tuple(int(s) for s in np.nonzero(excess > tol)[0])
         worst = float(excess.max())
     ok = not collisions and not out_of_map and not border
-    return CheckReport(ok, collisions, min_c, clearance, tuple(out_of_map), border, worst)
+    return CheckReport(
+        ok, collisions, min_c, clearance, tuple(out_of_map), border, worst,
+        **_split(collisions, moving, times),
+    )  # fmt: skip
+
+
+def _moving(p: np.ndarray) -> np.ndarray:
+    """Per step ``p[s] -> p[s + 1]``: the robot moves (by more than ``REST_TOL`` px)."""
+    return np.hypot(*np.diff(p, axis=0).T) > REST_TOL
 
 
 def _border_excess(p: np.ndarray, radius: float, width: float, height: float) -> np.ndarray:
@@ -184,8 +226,9 @@ def check_trajectory(
     -------
     CheckReport
         ``collisions`` lists ``(step, obstacle)``: step ``s`` is the move from position ``s`` to
-        ``s + 1`` (step 0 for a single position); ``border`` the steps whose robot disc leaves
-        the map (:meth:`CheckReport.describe` says by how much).
+        ``s + 1`` (step 0 for a single position, the robot at rest); ``active`` and ``passive``
+        split them by whether the robot moves in that step; ``border`` the steps whose robot
+        disc leaves the map (:meth:`CheckReport.describe` says by how much).
     """
     p = _as_points(positions, "positions")
     if times is None:
@@ -224,7 +267,10 @@ def check_trajectory(
             index.append(np.full(len(rel), s))
         lines = shapely.linestrings(np.concatenate(coords), indices=np.concatenate(index))
         clearance[:, o.index] = _shape_distance(o.shape, lines) - r
-    return _report(clearance, tol, [int(i) for i in outside], _border_excess(p, r, W, H))
+    return _report(
+        clearance, tol, _moving(p), times[:-1], [int(i) for i in outside],
+        _border_excess(p, r, W, H),
+    )  # fmt: skip
 
 
 def check_static_path(
@@ -247,7 +293,8 @@ def check_static_path(
     Returns
     -------
     CheckReport
-        ``collisions`` lists ``(segment, obstacle)`` (segment 0 for a single point).
+        ``collisions`` lists ``(segment, obstacle)`` (segment 0 for a single point);
+        ``active`` those on segments of non-zero length, ``passive`` those at a point.
     """
     p = _as_points(path, "path")
     if len(p) == 1:
@@ -256,4 +303,4 @@ def check_static_path(
     clearance = np.full((len(lines), len(obstacles)), np.inf)
     for j, ob in enumerate(obstacles):
         clearance[:, j] = _shape_distance(ob, lines) - radius
-    return _report(clearance, tol)
+    return _report(clearance, tol, _moving(p))

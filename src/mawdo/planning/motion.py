@@ -19,7 +19,7 @@ Models
     without simulating the bounces.
 ``Patrol``
     Moves at a fixed speed along a closed route of offsets ``(0, 0) -> w1 -> ... -> wm -> (0, 0)``
-    and repeats.
+    and repeats, optionally standing still at each point for a given time (a mover that parks).
 ``BoundedRandomWalk``
     Every ``hold`` steps a new velocity is drawn uniformly from the disc of radius ``step``; the
     unfolded walk is folded into the map (:func:`fold`) at those times and the obstacle moves
@@ -220,11 +220,16 @@ class Patrol(Motion):
         written). After the last point the obstacle returns to ``route[0]`` and starts again.
     speed : float
         Speed along the route (pixels per time step), ``>= 0``.
+    waits : array_like, shape (m,), optional
+        Time steps (>= 0) spent standing at each route point before leaving it (``waits[0]``
+        at the start of every lap, from ``t = 0``): a mover that parks. ``None``: no stops.
     """
 
     route: np.ndarray
     speed: float
+    waits: np.ndarray | None = None
     _cum: np.ndarray = field(init=False, repr=False)
+    _lap: tuple = field(init=False, repr=False, default=())
 
     def __post_init__(self) -> None:
         route = np.asarray(self.route, dtype=float).reshape(-1, 2)
@@ -232,12 +237,31 @@ class Patrol(Motion):
         cum = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(closed, axis=0).T))))
         object.__setattr__(self, "route", route)
         object.__setattr__(self, "_cum", cum)
+        if self.waits is not None:
+            waits = np.asarray(self.waits, dtype=float).reshape(-1)
+            if waits.shape != (len(route),) or np.any(~np.isfinite(waits)) or np.any(waits < 0):
+                raise ValueError(f"waits must be {len(route)} finite times >= 0, got {waits!r}")
+            object.__setattr__(self, "waits", waits)
+            if self.speed > 0 and cum[-1] > 0:
+                object.__setattr__(self, "_lap", self._lap_table(closed, cum, waits))
+
+    def _lap_table(self, closed, cum, waits) -> tuple[np.ndarray, np.ndarray]:
+        """Knot times of one lap from 0 to the period and the offsets there: a stop is two
+        knots at one position; zero-time entries (no wait, an empty leg) are dropped."""
+        legs = np.diff(cum) / self.speed
+        dt = np.ravel(np.column_stack([waits, legs]))  # wait at point j, then leg j -> j + 1
+        after = np.stack([closed[:-1], closed[1:]], axis=1).reshape(-1, 2)  # where each ends
+        keep = np.r_[True, dt > 0]
+        times = np.concatenate(([0.0], np.cumsum(dt)))
+        return times[keep], np.vstack([closed[:1], after])[keep]
 
     @property
     def period(self) -> float:
-        """Time for one lap (time steps); ``inf`` for a static patrol."""
+        """Time for one lap (time steps), stops included; ``inf`` for a static patrol."""
         total = self._cum[-1]
-        return total / self.speed if self.speed > 0 and total > 0 else np.inf
+        if not (self.speed > 0 and total > 0):
+            return np.inf
+        return self._lap[0][-1] if self._lap else total / self.speed
 
     @cached_property  # asked at every step and piece; the fields never change (frozen)
     def is_static(self) -> bool:  # type: ignore[override]
@@ -245,13 +269,20 @@ class Patrol(Motion):
 
     @property
     def waypoint_times(self) -> np.ndarray:
-        """Times in the first lap when each route point is reached (time steps)."""
+        """Times in the first lap when the velocity changes (time steps): when each route
+        point is reached and, with stops, when it is left."""
+        if self._lap:
+            return self._lap[0][:-1]
         return self._cum[:-1] / self.speed if not self.is_static else np.zeros(len(self.route))
 
     def offset(self, t) -> np.ndarray:
         t = np.asarray(t, dtype=float)
         if self.is_static:
             return np.zeros(t.shape + (2,)) + self.route[0]
+        if self._lap:
+            lt, lp = self._lap
+            u = np.mod(t, lt[-1])
+            return np.stack([np.interp(u, lt, lp[:, 0]), np.interp(u, lt, lp[:, 1])], axis=-1)
         closed = np.vstack([self.route, self.route[:1]])
         s = np.mod(t * self.speed, self._cum[-1])
         # piece index: the last route point whose arc length is <= s

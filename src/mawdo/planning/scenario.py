@@ -35,7 +35,8 @@ File layout (TOML)::
 
 Other motions: ``{ model = "patrol", waypoints = [[dx, dy], ...], speed = 2.0 }`` (offsets from
 the written position; the route is closed through ``(0, 0)``; ``cycle = "back_and_forth"`` retraces
-it instead) and ``{ model = "bounded_random_walk", step = 1.5, hold = 5 }`` (speed at most
+it instead; ``waits = [w0, w1, ...]`` stops it for that many steps at each point) and
+``{ model = "bounded_random_walk", step = 1.5, hold = 5 }`` (speed at most
 ``step``, a new random velocity every ``hold`` steps).
 """
 
@@ -129,12 +130,15 @@ class ConstantVelocityMotion(_Model):
 
 
 class PatrolMotion(_Model):
-    """Patrol through offsets (pixels) from the written position at ``speed`` px per step."""
+    """Patrol through offsets (pixels) from the written position at ``speed`` px per step;
+    ``waits`` (optional, time steps >= 0): how long it stands at the written position and at
+    each waypoint before leaving (one more than the waypoints; retraced with the route)."""
 
     model: Literal["patrol"] = "patrol"
     waypoints: list[Point] = Field(min_length=1)
     speed: float = Field(ge=0)
     cycle: Literal["loop", "back_and_forth"] = "loop"
+    waits: list[Annotated[float, Field(ge=0)]] | None = None
 
 
 class RandomWalkMotion(_Model):
@@ -476,6 +480,14 @@ def _semantic_errors(spec: ScenarioSpec) -> list[tuple[str, str]]:
         if not isinstance(motion, StaticMotion) and (np.any(lo > 0) or np.any(hi < 0)):
             errors.append((path, "a moving obstacle must lie inside the map at t=0"))
         if isinstance(motion, PatrolMotion):
+            if motion.waits is not None and len(motion.waits) != len(motion.waypoints) + 1:
+                errors.append(
+                    (
+                        f"{path}.motion.waits",
+                        f"needs {len(motion.waypoints) + 1} times (the written position and "
+                        f"each waypoint), got {len(motion.waits)}",
+                    )
+                )
             for j, w in enumerate(motion.waypoints):
                 if np.any(np.asarray(w) < lo) or np.any(np.asarray(w) > hi):
                     errors.append(
@@ -519,9 +531,11 @@ def _build_motion(ob, index: int, spec: ScenarioSpec) -> Motion:
     if isinstance(m, PatrolMotion):
         way = np.asarray(m.waypoints, dtype=float)
         route = np.vstack([np.zeros((1, 2)), way])
+        waits = None if m.waits is None else np.asarray(m.waits, dtype=float)
         if m.cycle == "back_and_forth":
             route = np.vstack([route, route[-2:0:-1]])  # retrace, the closing leg ends at (0, 0)
-        return Patrol(route, m.speed)
+            waits = None if waits is None else np.concatenate([waits, waits[-2:0:-1]])
+        return Patrol(route, m.speed, waits)
     if isinstance(m, RandomWalkMotion):
         # one independent stream per obstacle, derived from the scenario seed
         seed = np.random.SeedSequence(spec.seed, spawn_key=(index,))

@@ -24,7 +24,7 @@ from numba import njit
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-__all__ = ["MAX_NODES", "VisGraph", "build"]
+__all__ = ["MAX_NODES", "VisGraph", "build", "csr_dijkstra", "visible_from_point"]
 
 #: Most corner nodes a graph may have: the build enumerates ``n^2 / 2`` pairs (about 2e8 cheap
 #: tangent tests here, a second or so); beyond it the caller must simplify the obstacles.
@@ -136,8 +136,13 @@ def _edges(nodes, prev, nxt, corner, edges, ring_ptr, ring_box, eps2):
 
 
 @njit(cache=True)
-def _from_point(p, nodes, prev, nxt, corner, edges, ring_ptr, ring_box, eps2):
-    """Nodes visible from a free point ``p`` along a segment tangent at the node."""
+def visible_from_point(p, nodes, prev, nxt, corner, edges, ring_ptr, ring_box, eps2):
+    """Nodes visible from a free point ``p`` (pixels) along a segment tangent at the node.
+
+    The arrays are a :class:`VisGraph`'s fields (:meth:`VisGraph.visible_from` passes them);
+    a ``corner`` mask of all ``False`` drops the tangent rule, leaving visibility alone.
+    Returns the node indices (int64, ascending).
+    """
     out = []
     for j in range(len(nodes)):
         if corner[j] and not _tangent(
@@ -160,8 +165,23 @@ def _from_point(p, nodes, prev, nxt, corner, edges, ring_ptr, ring_box, eps2):
 
 
 @njit(cache=True)
-def _dijkstra(indptr, indices, weights, init_nodes, init_dist):
-    """Shortest distances from a virtual source joined to ``init_nodes`` (``pred = -1`` there)."""
+def csr_dijkstra(indptr, indices, weights, init_nodes, init_dist):
+    """Shortest distances over a CSR graph from a virtual source joined to ``init_nodes``.
+
+    Parameters
+    ----------
+    indptr, indices, weights : numpy.ndarray
+        The graph (CSR; int64 pointers and targets, edge lengths >= 0 in pixels).
+    init_nodes : numpy.ndarray of int64
+        Nodes the virtual source reaches, at distances ``init_dist`` (pixels).
+
+    Returns
+    -------
+    dist : numpy.ndarray
+        Distance per node (``inf``: unreachable).
+    pred : numpy.ndarray of int64
+        Predecessor per node: ``-1`` at a source node, ``-2`` unreached.
+    """
     n = len(indptr) - 1
     dist = np.full(n, np.inf)
     pred = np.full(n, -2, dtype=np.int64)
@@ -298,7 +318,7 @@ class VisGraph:
     def visible_from(self, p) -> np.ndarray:
         """Indices of nodes a free point ``p`` sees along a segment tangent at the node."""
         p = np.ascontiguousarray(p, dtype=float)
-        return _from_point(
+        return visible_from_point(
             p,
             self.nodes,
             self.prev,
@@ -315,8 +335,8 @@ class VisGraph:
         return bool(_visible(p[0], p[1], q[0], q[1], self.edges, self.ring_ptr, self.ring_box))
 
     def dijkstra(self, init_nodes, init_dist):
-        """Distances (pixels) and predecessors from a virtual source (see ``_dijkstra``)."""
-        return _dijkstra(
+        """Distances (pixels) and predecessors from a virtual source (see ``csr_dijkstra``)."""
+        return csr_dijkstra(
             self.indptr,
             self.indices,
             self.weights,

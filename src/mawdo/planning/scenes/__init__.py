@@ -5,7 +5,9 @@
 >>> scenes[0].l_star, scenes[0].write("out/scenes")                   # doctest: +SKIP
 
 Families (:data:`FAMILIES`): ``open``, ``forest``, ``rooms``, ``maze``, ``u_trap``, ``narrow``
-(static), ``crossing``, ``dense``, ``movingai`` (with moving obstacles). ``describe_family``
+(static), ``crossing``, ``dense``, ``movingai`` (with moving obstacles), and the families
+where time decides (issue 27; each scene has its earliest arrival ``T*``): ``corridor``,
+``doorway``, ``chaser``, ``crowd``, ``parked``, ``slalom``. ``describe_family``
 lists a family's parameters with their ranges. A scene is a pure function of
 ``(family, params, seed, index)`` (see :mod:`mawdo.planning.scenes.base`).
 """
@@ -23,7 +25,9 @@ from mawdo.planning.scenes.base import (
     SceneRejected,
     build_scene,
 )
+from mawdo.planning.scenes.lanes import CORRIDOR, DOORWAY, PARKED, SLALOM
 from mawdo.planning.scenes.movingai import MOVINGAI
+from mawdo.planning.scenes.pursuit import CHASER, CROWD
 from mawdo.planning.scenes.static import FOREST, MAZE, OPEN, ROOMS
 from mawdo.planning.scenes.toml import scenario_to_toml, write_scenario
 from mawdo.planning.scenes.traffic import CROSSING, DENSE
@@ -37,6 +41,7 @@ __all__ = [
     "Param",
     "Scene",
     "SceneRejected",
+    "TIMED_FAMILIES",
     "describe_family",
     "generate_scene",
     "generate_scenes",
@@ -46,7 +51,12 @@ __all__ = [
 
 #: Registered scene families by name.
 FAMILIES: Registry[Family] = Registry("scene family")
-for _f in (OPEN, FOREST, ROOMS, MAZE, U_TRAP, NARROW, CROSSING, DENSE, MOVINGAI):
+#: Families where time decides (issue 27): each scene stores its earliest arrival ``T*``.
+TIMED_FAMILIES = ("corridor", "doorway", "chaser", "crowd", "parked", "slalom")
+for _f in (
+    *(OPEN, FOREST, ROOMS, MAZE, U_TRAP, NARROW, CROSSING, DENSE, MOVINGAI),
+    *(CORRIDOR, DOORWAY, CHASER, CROWD, PARKED, SLALOM),
+):
     FAMILIES.register(_f.name, _f)
 
 

@@ -136,6 +136,11 @@ class Family:
     check : callable, optional
         ``check(params)`` raises ``ValueError`` for parameter combinations that can never give
         a solvable scene (e.g. a door narrower than the robot).
+    timed : bool
+        Time decides the scene (issue 27): a draw is valid only if the earliest arrival ``T*``
+        exists (:func:`mawdo.planning.sipp.optimum.scenario_time_optimum`, with the draft's
+        waiting spots, key ``"_spots"``, and dodge spots along the static optimum), and the
+        scene stores it.
     """
 
     name: str
@@ -144,6 +149,7 @@ class Family:
     draw: Callable[[np.random.Generator, dict], dict]
     moving: bool = False
     check: Callable[[dict], None] | None = None
+    timed: bool = False
     all_params: tuple[Param, ...] = field(init=False)
 
     def __post_init__(self) -> None:
@@ -223,6 +229,15 @@ class Scene:
         The optimum's vertices (pixels).
     attempts : int
         Draws used (1 = the first draw was valid).
+    t_star : float or None
+        Earliest arrival at the goal (time steps; :mod:`mawdo.planning.sipp.optimum`) for the
+        families where time decides (``Family.timed``); ``None`` for the others.
+    spots : numpy.ndarray, shape (k, 2)
+        Waiting spots (pixels) ``T*`` was computed with: the family's (bays, a lattice of
+        free points) and :func:`~mawdo.planning.sipp.optimum.dodge_spots` along the static
+        optimum.
+    time_route : TimedRoute or None
+        The earliest-arrival route (timed families).
     """
 
     family: str
@@ -233,6 +248,9 @@ class Scene:
     l_star: float
     optimum: np.ndarray
     attempts: int
+    t_star: float | None = None
+    spots: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    time_route: Any = None
 
     @property
     def name(self) -> str:
@@ -251,12 +269,25 @@ class Scene:
         return write_scenario(self.scenario, path)
 
 
-def _describe(family: Family, p: dict, seed: int, index: int, l_star: float) -> str:
+def _describe(family: Family, p: dict, seed: int, index: int, l_star: float, t_star=None) -> str:
     args = ", ".join(f"{k}={v!r}" for k, v in p.items())
+    timed = "" if t_star is None else f"; earliest arrival T*={t_star:.6f} steps"
     return (
         f"mawdo.planning.scenes: family={family.name}, seed={seed}, index={index}, {args}; "
-        f"static optimum L*={l_star:.6f} px"
+        f"static optimum L*={l_star:.6f} px{timed}"
     )
+
+
+def _time_optimum(scenario: Scenario, spots: np.ndarray, path: np.ndarray):
+    """``(TimeOptimum, spots, None)`` or ``(None, spots, reason)`` for a timed family's draw:
+    its spots, with dodge spots along the static optimum ``path`` added."""
+    from mawdo.planning.sipp.optimum import dodge_spots, scenario_time_optimum
+
+    spots = np.vstack([spots, dodge_spots(path, scenario)])
+    opt = scenario_time_optimum(scenario, spots=spots)
+    if not opt.reachable:
+        return None, spots, f"no earliest arrival T* ({opt.reason})"
+    return opt, spots, None
 
 
 def _attempt(family: Family, p: dict, seed: int, index: int, attempt: int):
@@ -267,6 +298,7 @@ def _attempt(family: Family, p: dict, seed: int, index: int, attempt: int):
         data = family.draw(rng, p)
     except Redraw as exc:
         return None, str(exc)
+    spots = np.asarray(data.pop("_spots", np.zeros((0, 2))), dtype=float).reshape(-1, 2)
     data["name"] = f"{family.name}-s{seed}-{index}"
     data["seed"] = int(ss.generate_state(1, np.uint64)[0] >> np.uint64(1))
     try:
@@ -279,10 +311,21 @@ def _attempt(family: Family, p: dict, seed: int, index: int, attempt: int):
     opt = scenario_optimum(scenario)
     if not opt.reachable:
         return None, f"no static route ({opt.reason})"
+    timed = None
+    if family.timed:
+        timed, spots, reason = _time_optimum(scenario, spots, opt.path)
+        if timed is None:
+            return None, reason
+    t_star = None if timed is None else timed.t_star
     # only the description changes: the validated spec is copied, not validated again
-    text = _describe(family, p, seed, index, opt.length)
+    text = _describe(family, p, seed, index, opt.length, t_star)
     scenario = replace(scenario, spec=scenario.spec.model_copy(update={"description": text}))
-    return Scene(family.name, seed, index, p, scenario, opt.length, opt.path, attempt + 1), None
+    route = None if timed is None else timed.route
+    scene = Scene(
+        family.name, seed, index, p, scenario, opt.length, opt.path, attempt + 1,
+        t_star, spots, route,
+    )  # fmt: skip
+    return scene, None
 
 
 def build_scene(family: Family, p: dict, seed: int, index: int) -> Scene:

@@ -15,14 +15,16 @@ import shapely
 from mawdo.planning.scenes.base import Family, Param, Redraw, draft
 from mawdo.planning.scenes.shapes import circle, convex_polygon, diagonal_endpoints, place, polygon
 
-__all__ = ["CROSSING", "DENSE"]
+__all__ = ["CROSSING", "DENSE", "moving_disc", "range_check", "static_polygons"]
 
 
 def _margin(p: dict) -> float:
     return max(0.04 * p["size"], p["robot_radius"] + p["clearance"] + 1.0)
 
 
-def _range_check(*pairs):
+def range_check(*pairs):
+    """A family check: for each ``(lo, hi)`` pair of parameter names, ``p[lo] <= p[hi]``."""
+
     def check(p: dict) -> None:
         for lo, hi in pairs:
             if p[lo] > p[hi]:
@@ -31,8 +33,8 @@ def _range_check(*pairs):
     return check
 
 
-def _statics(rng, p: dict, count: int, start, goal) -> list[dict]:
-    """``count`` convex polygons (circumradius 15-35 px) clear of start and goal."""
+def static_polygons(rng, p: dict, count: int, start, goal) -> list[dict]:
+    """``count`` static convex polygons (circumradius 15-35 px) clear of start and goal."""
     s = p["size"]
     keep = [(pt, p["robot_radius"] + p["clearance"] + 1.0) for pt in (start, goal)]
 
@@ -84,7 +86,7 @@ def _draw_crossing(rng: np.random.Generator, p: dict) -> dict:
     dist = float(np.hypot(*d))
     d /= dist
     obs = [_crosser(rng, p, start, d, dist) for _ in range(p["n"])]
-    obs += _statics(rng, p, p["statics"], start, goal)
+    obs += static_polygons(rng, p, p["statics"], start, goal)
     return draft(p, start, goal, obs)
 
 
@@ -105,11 +107,11 @@ CROSSING = Family(
     ),
     _draw_crossing,
     moving=True,
-    check=_range_check(("rmin", "rmax"), ("speed_min", "speed_max")),
+    check=range_check(("rmin", "rmax"), ("speed_min", "speed_max")),
 )
 
 
-def _mover(rng, p: dict, start, goal) -> dict:
+def moving_disc(rng, p: dict, start, goal) -> dict:
     """A disc with a constant velocity or a random walk, kept away from start and goal at t = 0
     by its radius + the robot's + clearance + 10 steps of its own motion."""
     s, v = p["size"], p["robot_speed"]
@@ -138,8 +140,8 @@ def _mover(rng, p: dict, start, goal) -> dict:
 
 def _draw_dense(rng: np.random.Generator, p: dict) -> dict:
     start, goal = diagonal_endpoints(rng, p, _margin(p))
-    obs = _statics(rng, p, p["statics"], start, goal)
-    obs += [_mover(rng, p, start, goal) for _ in range(p["n"])]
+    obs = static_polygons(rng, p, p["statics"], start, goal)
+    obs += [moving_disc(rng, p, start, goal) for _ in range(p["n"])]
     return draft(p, start, goal, obs)
 
 
@@ -157,5 +159,5 @@ DENSE = Family(
     ),
     _draw_dense,
     moving=True,
-    check=_range_check(("rmin", "rmax"), ("speed_min", "speed_max")),
+    check=range_check(("rmin", "rmax"), ("speed_min", "speed_max")),
 )

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mawdo.planning.guide import GUIDE_SEGMENTS
 from mawdo.planning.scenario import Scenario
 from mawdo.planning.sipp.intervals import safe_intervals
 from mawdo.planning.sipp.roadmap import Roadmap
@@ -77,6 +78,9 @@ class SafeIntervalGuide:
     walkers : {"reachable", "known"}
         Random walkers as discs (shapes) growing at their top speed from where they are at
         ``t0`` (default; conservative), or as their seeded walk (what the checker judges).
+    segments : int
+        Sides (>= 3) of the polygons standing in for the inflated obstacles' rounded corners
+        (:class:`~mawdo.planning.sipp.roadmap.Roadmap`); more is closer to exact, slower.
 
     Raises
     ------
@@ -93,11 +97,12 @@ class SafeIntervalGuide:
         spots=(),
         horizon: float | None = None,
         walkers: str = "reachable",
+        segments: int = GUIDE_SEGMENTS,
     ) -> None:
         if not math.isfinite(t0) or t0 < 0:
             raise ValueError(f"t0 must be finite and >= 0 time steps, got {t0!r}")
         self.scenario, self.t0 = scenario, float(t0)
-        self.roadmap = Roadmap.of(scenario, clearance, spots)
+        self.roadmap = Roadmap.of(scenario, clearance, spots, segments)
         start = scenario.start if start is None else start
         self.nodes, self.indptr, self.indices, self.weights, self.to_goal = self.roadmap.with_start(
             start

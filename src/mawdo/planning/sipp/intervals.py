@@ -9,7 +9,8 @@ reachable set (the shape where it is at ``t0``, growing at the walk's top speed)
 
 :func:`forbidden` gives the closed departure intervals at which a straight timed move collides
 (exact, :mod:`mawdo.planning.sipp.geometry`); :func:`segment_free` is the independent yes/no
-test of one timed move, piece by piece, with the cost kernel's exact primitives; the search
+test of one timed move, piece by piece, with the exact primitives of
+:mod:`mawdo.planning.sipp.exact`; the search
 accepts a departure only when that test passes. :func:`safe_intervals` gives each vertex's open
 safe intervals (the gaps between the forbidden intervals of a robot standing still).
 """
@@ -23,13 +24,9 @@ import numpy as np
 from numba import njit
 
 from mawdo.planning.geometry import FlatObstacles
-from mawdo.planning.kernel.primitives import (
-    _point_in_polygon,
-    _point_segment_d2,
-    _segment_hits_polygon,
-)
 from mawdo.planning.motion import BoundedRandomWalk
 from mawdo.planning.scenario import Scenario
+from mawdo.planning.sipp.exact import point_in_polygon, point_segment_d2, segment_hits_polygon
 from mawdo.planning.sipp.geometry import clip_range, cone_start, disc_range
 
 __all__ = ["EPS", "Movers", "earliest_free", "forbidden", "safe_intervals", "segment_free"]
@@ -176,7 +173,7 @@ def _polygon_piece(d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, i, nv, thr, buf, 
             tm = 0.5 * (cur + g1)
             s = 0.5 * (max(0.0, ta - tm) + min(T, tb - tm))
             t = tm + s
-            if _point_in_polygon(d0x + s * ex - t * wx, d0y + s * ey - t * wy, verts, i, nv):
+            if point_in_polygon(d0x + s * ex - t * wx, d0y + s * ey - t * wy, verts, i, nv):
                 buf, n = _push(buf, n, cur, g1)
         if j < len(edges):
             cur = max(cur, edges[j, 1])
@@ -294,9 +291,9 @@ def segment_free(ux, uy, vx, vy, ta, tb, mv):
             x2 = ux + ex * (t2 - ta) - po[k - 1, 0] - pv[k - 1, 0] * (t2 - pt0[k - 1])
             y2 = uy + ey * (t2 - ta) - po[k - 1, 1] - pv[k - 1, 1] * (t2 - pt0[k - 1])
             if circle[m]:
-                if _point_segment_d2(center[m, 0], center[m, 1], x1, y1, x2, y2) <= thr[m] ** 2:
+                if point_segment_d2(center[m, 0], center[m, 1], x1, y1, x2, y2) <= thr[m] ** 2:
                     return False
-            elif _segment_hits_polygon(x1, y1, x2, y2, verts, m, nverts[m], thr[m]):
+            elif segment_hits_polygon(x1, y1, x2, y2, verts, m, nverts[m], thr[m]):
                 return False
     return True
 

@@ -18,11 +18,11 @@ import weakref
 
 import numpy as np
 
-from mawdo.planning.geometry import FlatObstacles, inflate
+from mawdo.planning.geometry import FlatObstacles, centre_box, inflate
 from mawdo.planning.guide import GUIDE_SEGMENTS, SLACK
 from mawdo.planning.scenario import Scenario
 from mawdo.planning.sipp.intervals import Movers
-from mawdo.planning.visgraph import VisGraph, _dijkstra, _from_point, build
+from mawdo.planning.visgraph import VisGraph, build, csr_dijkstra, visible_from_point
 
 __all__ = ["Roadmap"]
 
@@ -33,11 +33,11 @@ def _free_point(p, name: str, graph: VisGraph, scenario: Scenario) -> np.ndarray
     p = np.asarray(p, dtype=float)
     if p.shape != (2,) or not np.all(np.isfinite(p)):
         raise ValueError(f"{name} must be a finite (x, y) pair, got {p!r}")
-    x0, y0, x1, y1 = scenario.bounds
+    x0, y0, x1, y1 = graph.bounds
     if not (x0 <= p[0] <= x1 and y0 <= p[1] <= y1) or graph.inside(p):
         raise ValueError(
-            f"{name} {tuple(p)} is outside the map or inside an inflated static obstacle; "
-            "give a free point (or a smaller clearance)"
+            f"{name} {tuple(p)} is outside the map (shrunk by robot radius + clearance) or "
+            "inside an inflated static obstacle; give a free point (or a smaller clearance)"
         )
     return p
 
@@ -60,6 +60,10 @@ class Roadmap:
         Margin (px, >= 0) added to the robot radius, for static and moving obstacles alike.
     spots : sequence of (x, y)
         Free vertices (pixels) where the robot may wait: bays, pockets.
+    segments : int
+        Sides (>= 3) of the polygon standing in for a disc in the inflation: the rounded
+        corners are replaced by circumscribing ones, lengthening routes by up to
+        ``rho (1 / cos(pi / segments) - 1)`` px per corner (``rho``: radius + clearance).
 
     Attributes
     ----------
@@ -69,17 +73,21 @@ class Roadmap:
         Static distance to the goal over the graph (pixels; ``inf`` if cut off).
     """
 
-    def __init__(self, scenario: Scenario, clearance: float = 0.5, spots=()) -> None:
+    def __init__(
+        self, scenario: Scenario, clearance: float = 0.5, spots=(), segments: int = GUIDE_SEGMENTS
+    ) -> None:
         if not math.isfinite(clearance) or clearance < 0:
             raise ValueError(f"clearance must be finite and >= 0 px, got {clearance!r}")
+        if isinstance(segments, bool) or not isinstance(segments, int) or segments < 3:
+            raise ValueError(f"segments must be an integer >= 3, got {segments!r}")
         self.scenario, self.clearance = scenario, float(clearance)
         rho = scenario.robot_radius + clearance + SLACK
         static = [
-            inflate(scenario.obstacles[i].shape, rho, n=GUIDE_SEGMENTS)
-            for i in scenario.static_indices
+            inflate(scenario.obstacles[i].shape, rho, n=segments) for i in scenario.static_indices
         ]
         pts = np.reshape(np.asarray([scenario.goal, *spots], dtype=float), (-1, 2))
-        self.graph = build(static, scenario.bounds, points=pts)
+        # the map's border is a wall (as in the checker): the centre keeps rho from it
+        self.graph = build(static, centre_box(scenario, rho), points=pts)
         names = ["goal"] + [f"spots[{j}]" for j in range(len(pts) - 1)]
         for p, name in zip(pts, names, strict=True):
             _free_point(p, name, self.graph, scenario)
@@ -94,7 +102,7 @@ class Roadmap:
             dst += [seen, np.full(len(seen), i)]
         pairs = np.unique(np.column_stack([np.concatenate(src), np.concatenate(dst)]), axis=0)
         self.indptr, self.indices, self.weights = _csr(pairs, self.nodes)
-        self.to_goal = _dijkstra(
+        self.to_goal = csr_dijkstra(
             self.indptr, self.indices, self.weights, np.zeros(1, np.int64), np.zeros(1)
         )[0]
         moving = tuple(scenario.obstacles[i] for i in scenario.moving_indices)
@@ -109,13 +117,16 @@ class Roadmap:
             self._pieces(m, 0.0, reach)
 
     @classmethod
-    def of(cls, scenario: Scenario, clearance: float = 0.5, spots=()) -> Roadmap:
-        """The roadmap of ``(scenario, clearance, spots)``, built at the first call, then kept
-        as long as the scenario lives."""
-        key = (float(clearance), tuple(map(tuple, np.reshape(np.asarray(spots, float), (-1, 2)))))
+    def of(
+        cls, scenario: Scenario, clearance: float = 0.5, spots=(), segments: int = GUIDE_SEGMENTS
+    ) -> Roadmap:
+        """The roadmap of ``(scenario, clearance, spots, segments)``, built at the first call,
+        then kept as long as the scenario lives."""
+        spots_key = tuple(map(tuple, np.reshape(np.asarray(spots, float), (-1, 2))))
+        key = (float(clearance), spots_key, segments)
         per = _CACHE.setdefault(scenario, {})
         if key not in per:
-            per[key] = cls(scenario, clearance, spots)
+            per[key] = cls(scenario, clearance, spots, segments)
         return per[key]
 
     def sees(self, p) -> np.ndarray:
@@ -123,7 +134,7 @@ class Roadmap:
         g = self.graph
         plain = np.zeros(len(g.nodes), np.bool_)  # no corner rule: visibility alone decides
         p = np.ascontiguousarray(p, dtype=float)
-        return _from_point(
+        return visible_from_point(
             p, g.nodes, g.prev, g.nxt, plain, g.edges, g.ring_ptr, g.ring_box, g.eps2
         )
 
