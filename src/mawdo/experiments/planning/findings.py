@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mawdo.experiments.planning.plan import BASELINE, VARIANTS, StudyPlan
+from mawdo.experiments.planning.plan import BASELINE, StudyPlan
 
 NAN = float("nan")
 DEVIATIONS = "docs/deviations.md"
@@ -35,7 +35,10 @@ def label(algorithm: str, dims: tuple[int, ...] = ()) -> str:
     at = f"D = {'/'.join(str(d) for d in dims)}" if dims else "the planner's D"
     if algorithm == "mawdo":
         return f"MAWDO (low-D stabilisation on at {at})"
-    if algorithm in VARIANTS and VARIANTS[algorithm] == ("mawdo", {"low_dim": 3}):
+    from mawdo.planning.planners import PLANNERS
+
+    spec = PLANNERS[algorithm] if algorithm in PLANNERS else None
+    if spec is not None and (spec.optimizer, spec.optimizer_options) == ("mawdo", {"low_dim": 3}):
         return f"MAWDO literal (stabilisation only at D <= 3: off at {at})"
     from mawdo.optimizers import OPTIMIZERS
 

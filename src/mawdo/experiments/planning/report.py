@@ -221,7 +221,9 @@ def study_figures(store: Store, out: Path, gif: bool = True) -> list[Path]:
         "smoothness_rad": "total turning (rad)",
     }
     for k, _ in COMPARED:
-        figs.append(render.plot_metric_boxes(boxes[k], out / f"box_{k}.png", names[k]))
+        # a metric no run has (the gap when no run reached the goal) gets no figure
+        if any(np.isfinite(np.asarray(v, dtype=float)).any() for v in boxes[k].values()):
+            figs.append(render.plot_metric_boxes(boxes[k], out / f"box_{k}.png", names[k]))
     if gif and "mawdo" in plan.algorithms:
         pick = _pick(study_runs(store, "mawdo", route=True), "median")
         if pick is not None:
