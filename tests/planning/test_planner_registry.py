@@ -5,11 +5,13 @@ an independent check of its route; one step-limit rule; the run loop builds its 
 
 from __future__ import annotations
 
+import sys
+
 import numpy as np
 import pytest
 
 from mawdo.experiments import PlanError, Store, run_plan
-from mawdo.experiments.arena import ArenaPlan, arena_tables
+from mawdo.experiments.arena import ArenaPlan, arena_tables, write_arena_report
 from mawdo.planning import (
     PLANNERS,
     PlannerConfig,
@@ -74,6 +76,9 @@ def test_a_planner_registered_here_runs_through_the_arena_and_its_report(registe
         rows = [r for _, _, r in store.rows(NAME)]
         table = arena_tables(store)[0]
     assert len(rows) == 4
+    # the report (tables, figures, the failure gallery drawn from stored traces) takes it too
+    report = write_arena_report(db, tmp_path / "report", gallery_limit=2).read_text()
+    assert sum(line.startswith("|") and NAME in line for line in report.splitlines()) == 2
     from mawdo.experiments.arena.execute import scenario_from_toml
     from mawdo.planning.baselines import route_times
 
@@ -189,3 +194,10 @@ def test_the_run_loop_builds_its_optimizers_once(monkeypatch):
     )
     assert len(res.replans) > 5  # many replans ...
     assert made == ["gwo", "gwo"]  # ... one optimizer for the first plan, one for the replans
+
+
+def test_without_ompl_its_planners_say_how_to_install_it(monkeypatch):
+    monkeypatch.setitem(sys.modules, "ompl", None)  # "import ompl" now fails as if absent
+    for name in (n for n in PLANNERS if PLANNERS[n].needs_extra == "ompl"):
+        with pytest.raises(ImportError, match=r"pip install 'mawdo\[ompl\]'"):
+            PLANNERS[name].run(_scene(), 0, PlannerConfig(), time_limit=0.1)
