@@ -167,10 +167,13 @@ def generated_findings(by: dict[str, list[dict]]) -> list[str]:
 
 def identical_pairs(by: dict[str, list[dict]]) -> list[str]:
     """Algorithms whose runs (same seeds) drove routes of exactly the same lengths."""
+    from mawdo.planning.planners import PLANNERS
+
+    # seeded planners only: deterministic ones (the oracle follower) share no seeds
     lengths = {
         a: tuple(r["metrics"]["length_px"] if r["metrics"] else None for r in runs)
         for a, runs in by.items()
-        if a != BASELINE and runs
+        if PLANNERS[a].seeded and runs
     }
     names = list(lengths)
     return [
