@@ -16,16 +16,6 @@ from mawdo.experiments.planning.plan import (
 from mawdo.experiments.planning.report import write_study_report
 from mawdo.experiments.protocol import StudyKind, register_kind
 
-
-def __getattr__(name: str):
-    # run_metrics_kept moved to mawdo.planning.metrics (issue 26); the old path still answers
-    if name == "run_metrics_kept":
-        from mawdo.planning.metrics import run_metrics_kept
-
-        return run_metrics_kept
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
 KIND = "planning"
 
 register_kind(
