@@ -105,18 +105,23 @@ def arena_runs(
     """Seconds per arena run (scene 0 of each family, ``realtime`` preset) in *CPU* time of this
     process, which a machine shared with other jobs leaves far steadier than wall time (the
     planner is single-threaded); issue 14 budgets the arena by these per-run costs."""
-    from mawdo.planning.planner import ORACLE_FOLLOWER, follow_oracle, plan
+    from dataclasses import replace
+
+    from mawdo.planning import PLANNERS, PRESETS
     from mawdo.planning.scenes import generate_scene
 
+    cfg = PRESETS["realtime"]
     print("arena runs, scene 0 per family, realtime preset, CPU seconds per run")
     for alg in algorithms:
-        if alg != ORACLE_FOLLOWER:  # compile outside the timing
-            plan(generate_scene(families[0], 0, seed=0).scenario, alg, seed=0, max_steps=2)
+        planner = PLANNERS[alg]
+        if planner.optimizer is not None:  # compile outside the timing
+            first = generate_scene(families[0], 0, seed=0).scenario
+            planner.run(first, 0, replace(cfg, max_steps=2))
         row = []
         for fam in families:
             sc = generate_scene(fam, 0, seed=0).scenario
             t = time.process_time()
-            res = follow_oracle(sc) if alg == ORACLE_FOLLOWER else plan(sc, alg, seed=0)
+            res = planner.run(sc, 0, cfg)
             row.append(f"{fam} {time.process_time() - t:5.2f} s ({res.steps} steps)")
         print(f"  {alg:16s} " + ", ".join(row))
 

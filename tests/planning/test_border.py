@@ -11,12 +11,13 @@ import pytest
 
 from mawdo.planning import PathCost, check_trajectory, scenario_optimum
 from mawdo.planning.baselines.result import make_result, route_times
-from mawdo.planning.config import PlannerConfig, _Drive
+from mawdo.planning.config import PlannerConfig
 from mawdo.planning.guard import Guard
 from mawdo.planning.guide import SLACK, Guide
 from mawdo.planning.oracle import shortest_path
 from mawdo.planning.path import polyline_length
 from mawdo.planning.planner import plan
+from mawdo.planning.result import Drive
 from mawdo.planning.scenario import ScenarioError
 
 from .test_check import scenario
@@ -112,7 +113,7 @@ def test_a_run_forced_against_the_border_is_no_success():
     sc = world(obstacles=[rect(60, 7, 140, 80)])
     centre_only = shortest_path(sc.start, sc.goal, [_inflated(sc)], sc.bounds).path
     assert centre_only[:, 1].min() == pytest.approx(3.0, abs=0.05)
-    drive = _Drive(sc.start.copy())
+    drive = Drive(sc.start.copy())
     stamps = route_times(centre_only, sc.robot_speed)
     drive.route, drive.stamps = list(centre_only), list(stamps)
     res = drive.result(

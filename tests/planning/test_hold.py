@@ -75,7 +75,7 @@ def test_the_paper_presets_replan_every_step():
 def test_holds_are_stored_and_old_payloads_read_as_none_held():
     import io
 
-    from mawdo.planning.planner import result_from_bytes, result_to_bytes
+    from mawdo.planning.result import result_from_bytes, result_to_bytes
 
     sc = generate_scene("forest", 1, 0).scenario
     res = plan(sc, "mawdo", seed=1, config="quick")

@@ -105,7 +105,7 @@ def test_first_plan_uses_its_own_population(paper, monkeypatch):
     real, calls = module.minimize, []
 
     def spy(*a, **kw):
-        calls.append(kw["pop_size"])
+        calls.append(kw["algorithm"].params.pop_size)  # the run's optimizers, built once
         return real(*a, **kw)
 
     monkeypatch.setattr(module, "minimize", spy)

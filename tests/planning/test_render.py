@@ -37,7 +37,7 @@ def test_grid_png_has_the_figure_size_and_one_block_of_panels_per_algorithm(runs
     expected = fig.get_size_inches() * fig.dpi
     assert abs(size[0] - expected[0]) <= 3 and abs(size[1] - expected[1]) <= 3
     assert 1400 <= size[0] <= 1800  # four panels of a row, ~1600 px
-    assert render._panel_count(fig) == 2 * 2 * 4
+    assert render.panel_count(fig) == 2 * 2 * 4
     titles = [sub.get_suptitle() for sub in fig.subfigs if sub.get_suptitle()]
     assert len(titles) == 2
     assert titles[0].startswith("MAWDO") and titles[1].startswith("WOA")
@@ -76,7 +76,7 @@ def test_panel_shows_the_run_at_its_time(runs):
         (disc,) = by_gid(ax, f"moving:{ob.id}")
         if ob.is_circle:
             np.testing.assert_allclose(disc.center, np.add(ob.shape.center, ob.offset(t)))
-    assert render._panel_count(fig) == 3
+    assert render.panel_count(fig) == 3
 
 
 def test_headline_metrics_and_registered_labels(runs):
@@ -131,7 +131,7 @@ def test_convergence_and_box_plots_write_pngs(runs, tmp_path):
 
 
 def test_ragged_curves_are_padded_with_their_last_value():
-    arr = render._as_runs([[5.0, 4.0, 3.0], [6.0, 2.0]], "x")
+    arr = render.as_runs([[5.0, 4.0, 3.0], [6.0, 2.0]], "x")
     np.testing.assert_array_equal(arr, [[5.0, 4.0, 3.0], [6.0, 2.0, 2.0]])
 
 

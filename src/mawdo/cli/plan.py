@@ -112,7 +112,7 @@ def run_cmd(
 ):
     """Plan and execute one run; print and save its metrics."""
     from mawdo.cli.errors import bad_input, check_output_dir
-    from mawdo.experiments.planning import run_metrics_kept
+    from mawdo.planning.metrics import run_metrics_kept
 
     # every input is checked before --out is created (exit 2, as for the other commands)
     try:

@@ -1,7 +1,8 @@
-"""Planner settings (presets), result types and the recorder of the executed motion.
+"""Planner settings: :class:`PlannerConfig`, the named presets, :func:`with_settings` and the
+one step-limit rule every planner obeys (:func:`step_limit`).
 
-Kept apart from :mod:`mawdo.planning.planner` so that the run loop
-(:mod:`mawdo.planning.execute`) and the public entry points import them without a cycle."""
+The result types live in :mod:`mawdo.planning.result`; the planners in
+:mod:`mawdo.planning.planners`."""
 
 from dataclasses import dataclass, field, replace
 
@@ -192,90 +193,6 @@ PRESETS = {
 }
 
 
-@dataclass
-class Replan:
-    """One optimisation made during a run."""
-
-    step: int
-    position: np.ndarray  # (2,) robot position when planning (pixels)
-    waypoints: np.ndarray  # (m, 2) best waypoints
-    cost: float
-    length: float  # plan length from position to goal (pixels)
-    collisions: int  # n of Eq. 27 for the plan, as the cost kernel sees it
-    latency: float  # wall seconds
-    nfev: int
-    history: np.ndarray  # best cost per iteration
-
-
-@dataclass
-class PlanResult:
-    """Outcome of one planning run.
-
-    Attributes
-    ----------
-    trajectory : numpy.ndarray, shape (k, 2)
-        Executed robot positions at steps 0, 1, ..., k-1 (pixels).
-    route, route_times : numpy.ndarray, shapes (j, 2) and (j,)
-        The executed polyline with every waypoint the robot passed between two steps, and the
-        time (time steps, fractional) at which it was at each point: the robot follows its plan
-        exactly, so this, not the straight lines between step positions, is what it drove.
-    success : bool
-        The robot reached the goal within the step limit *and* the independent checker
-        (:func:`mawdo.planning.check.check_trajectory`: space, time, robot radius, map border)
-        accepts the executed route.
-    reason : str
-        ``"goal reached"``, or why not: ``"no collision-free route found ..."``,
-        ``"step limit reached before the goal"``, ``"goal reached but the route collides ..."``.
-    replans : list of Replan
-        Every optimisation, the first plan included.
-    collision_free : bool
-        The checker's verdict on the executed route.
-    min_clearance : float
-        Smallest clearance of the executed route (px, true robot radius).
-    near_misses : int
-        Route segments whose clearance fell below the planner's margin without colliding.
-    waits, evasions : int
-        Steps the guard waited in place / made an evasive move (no safe candidate).
-    holds : int
-        Replans skipped, each cleared by the guard to the goal: the plan ran straight to the
-        goal (:attr:`PlannerConfig.hold_straight`), or the last search found nothing better
-        and the plan is within :attr:`PlannerConfig.hold_gap` of the shortest static route.
-    fallbacks : int
-        Times the guard drove an elite candidate other than the optimizer's best.
-    """
-
-    scenario: Scenario
-    algorithm: str
-    seed: int
-    config: PlannerConfig
-    trajectory: np.ndarray
-    success: bool
-    reason: str
-    replans: list[Replan]
-    route: np.ndarray | None = None
-    route_times: np.ndarray | None = None
-    collision_free: bool = False
-    min_clearance: float = float("nan")
-    near_misses: int = 0
-    waits: int = 0
-    evasions: int = 0
-    fallbacks: int = 0
-    holds: int = 0
-
-    @property
-    def steps(self) -> int:
-        return len(self.trajectory) - 1
-
-    @property
-    def latencies(self) -> np.ndarray:
-        """Wall seconds of each replan after the first plan."""
-        return np.array([r.latency for r in self.replans[1:]])
-
-    @property
-    def nfev(self) -> int:
-        return int(sum(r.nfev for r in self.replans))
-
-
 # Per-algorithm options the planner uses unless the config overrides them. MAWDO runs with its
 # stabilisation (centroid gravity, per-group coefficients, vmax/4) on at D = 40: with the paper's
 # D <= 3 threshold, AWDO's gravity toward the box centre pulls every waypoint to the map centre
@@ -283,50 +200,14 @@ class PlanResult:
 PLANNING_OPTIONS = {"mawdo": {"low_dim": 10_000}}
 
 
-class _Drive:
-    """The executed motion: positions at integer steps, and the route with every vertex passed
-    between two steps, time-stamped (what the checker and the metrics judge)."""
-
-    def __init__(self, start: np.ndarray) -> None:
-        self.traj, self.route, self.stamps = [start.copy()], [start.copy()], [0.0]
-
-    def move(self, step: int, pos: np.ndarray, passed=(), frac=()) -> None:
-        self.route.extend(passed)
-        self.stamps.extend(step + np.asarray(frac, dtype=float))
-        self.route.append(pos.copy())
-        self.stamps.append(step + 1.0)
-        self.traj.append(pos.copy())
-
-    def result(self, reason: str, scenario, margin: float = 0.0, **fields) -> PlanResult:
-        """The run's outcome; the independent checker judges the route (success needs it)."""
-        from mawdo.planning.check import check_trajectory
-
-        route, stamps = np.array(self.route), np.array(self.stamps)
-        rep = check_trajectory(route, scenario, times=stamps)
-        reached = reason == "goal reached"
-        if reached and not rep.ok:
-            reason = f"goal reached but the route collides ({rep.hits} checker hits: "
-            reason += f"{rep.describe()})"
-        per_step = rep.clearance.min(axis=1) if rep.clearance.size else np.zeros(0)
-        return PlanResult(
-            trajectory=np.array(self.traj),
-            success=reached and rep.ok,
-            reason=reason,
-            route=route,
-            route_times=stamps,
-            scenario=scenario,
-            collision_free=bool(rep.ok),
-            min_clearance=float(rep.min_clearance),
-            near_misses=int(np.sum((per_step >= -1e-9) & (per_step < margin))),
-            **fields,
-        )
-
-
-def _resolve(scenario) -> Scenario:
+def resolve_scenario(scenario) -> Scenario:
+    """A scenario, or the built-in one of that name."""
     return get_scenario(scenario) if isinstance(scenario, str) else scenario
 
 
-def _config(config, overrides) -> PlannerConfig:
+def resolve_config(config, overrides=None) -> PlannerConfig:
+    """A :class:`PlannerConfig`, a preset's name (default ``"realtime"``) or None, with
+    ``overrides`` applied (:func:`with_settings`)."""
     if config is None:
         config = PRESETS["realtime"]
     elif isinstance(config, str):
@@ -349,6 +230,16 @@ def with_settings(config: PlannerConfig, settings: dict) -> PlannerConfig:
             hint = f" Did you mean {close[0]!r}?" if close else ""
             raise ValueError(f"unknown planner setting {key!r}.{hint} Settings: {', '.join(names)}")
     return replace(config, **settings)
+
+
+def check_overrides(overrides: dict, preset: str) -> dict:
+    """``overrides`` as a dict after checking them on the preset they change (a study plan's
+    validator: ``ValueError`` naming the bad setting)."""
+    try:
+        with_settings(PRESETS[preset], overrides)
+    except TypeError as exc:  # a value of the wrong type met a comparison
+        raise ValueError(str(exc)) from None
+    return dict(overrides)
 
 
 #: Most steps the automatic step limit may set (see ``PlannerConfig.max_steps``).
@@ -380,3 +271,18 @@ def step_limit(max_steps: int | None, straight: float, reach: float, speed: floa
     if max_steps is not None:
         return int(max_steps), rule
     return min(rule, AUTO_STEP_CAP), rule
+
+
+STEP_LIMIT_REACHED = "step limit reached before the goal"
+
+
+def step_limit_note(max_steps: int | None, limit: int, rule: int) -> str:
+    """The reason a run stopped by its step limit gives: :data:`STEP_LIMIT_REACHED`, plus how to
+    allow more when the automatic ``rule`` was capped (``max_steps`` is None and ``rule >
+    limit``)."""
+    if rule > limit and max_steps is None:
+        return STEP_LIMIT_REACHED + (
+            f" (the automatic limit of {rule} steps was capped at {limit}: "
+            "set max_steps, CLI --max-steps, to allow more)"
+        )
+    return STEP_LIMIT_REACHED

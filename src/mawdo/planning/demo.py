@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from mawdo.planning.config import PRESETS
-from mawdo.planning.planner import PlanResult
+from mawdo.planning.result import PlanResult
 
 #: What the demo runs: the paper scenario, MAWDO, the real-time planner preset.
 SCENARIO = "paper"
@@ -43,9 +43,9 @@ class DemoRun:
     @property
     def title(self) -> str:
         """The figure's title: label, seed, length (px), gap L/L* and smoothness (rad)."""
-        from mawdo.planning.render.snapshots import _headline
+        from mawdo.planning.render.snapshots import run_headline
 
-        return _headline(LABEL, self.result, self.metrics)
+        return run_headline(LABEL, self.result, self.metrics)
 
     @property
     def caption(self) -> str:

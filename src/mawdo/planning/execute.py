@@ -14,14 +14,15 @@ import weakref
 
 import numpy as np
 
-from mawdo.planning.config import PlannerConfig, PlanResult, Replan, _Drive, step_limit
+from mawdo.planning.config import PLANNING_OPTIONS, PlannerConfig, step_limit, step_limit_note
 from mawdo.planning.cost import PathCost, assemble_paths
 from mawdo.planning.guard import Elite, Guard
 from mawdo.planning.guide import Guide
 from mawdo.planning.path import advance, densify, polyline_length
 from mawdo.planning.polish import polish
+from mawdo.planning.result import Drive, PlanResult, Replan
 from mawdo.planning.scenario import Scenario
-from mawdo.planning.seeding import _optimise, _seeds, _via_paths
+from mawdo.planning.seeding import via_paths, warm_seeds
 from mawdo.streams import replan_seed_sequences
 
 NO_ROUTE = "no collision-free route found"
@@ -49,6 +50,17 @@ def _waypoints_needed(routes, cfg: PlannerConfig) -> int:
         return cfg.n_waypoints
     inner = max(len(r) - 2 for r in routes)
     return max(cfg.n_waypoints, min(cfg.max_waypoints, int(np.ceil(1.5 * inner))))
+
+
+def _optimizers(algorithm: str, cfg: PlannerConfig) -> dict:
+    """The run's optimizers, built once: one per population size (first plan, replans), with
+    the planner's options for the algorithm (:data:`~mawdo.planning.config.PLANNING_OPTIONS`)
+    under the config's own."""
+    from mawdo.optimizers import make_optimizer
+
+    opts = {**PLANNING_OPTIONS.get(algorithm, {}), **cfg.options}
+    sizes = {cfg.first_pop_size or cfg.pop_size, cfg.pop_size}
+    return {p: make_optimizer(algorithm, pop_size=p, **opts) for p in sizes}
 
 
 class _Watched:
@@ -84,6 +96,7 @@ class Run:
             threads=cfg.threads,
         )
         self.guard = Guard(sc, cfg.clearance)
+        self.optimizers = _optimizers(algorithm, cfg)
         self.replans: list[Replan] = []
         self.counts = {"waits": 0, "evasions": 0, "fallbacks": 0, "holds": 0}
         self.stalled = False  # the last search found nothing cheaper than its warm start
@@ -109,10 +122,10 @@ class Run:
         if remainder is None:
             n_via = max(0, int(cfg.seed_fraction * pop) - 1 - len(guide))
             line = densify(np.array([pos, self.sc.goal]), self.m).reshape(1, -1)
-            via = _via_paths(pos, self.sc.goal, self.m, n_via, rng, lb, ub, *self.sc.bounds[2:])
+            via = via_paths(pos, self.sc.goal, self.m, n_via, rng, lb, ub, *self.sc.bounds[2:])
             x0 = np.vstack([guide, line, via])
         else:
-            x0 = np.vstack([_seeds(remainder, self.m, cfg, rng, lb, ub), guide])
+            x0 = np.vstack([warm_seeds(remainder, self.m, cfg, rng, lb, ub), guide])
         # the straight line to a goal on the map's edge may pass it by an ulp; minimize
         # refuses warm starts outside the box
         return np.clip(x0[:pop], lb, ub)
@@ -121,6 +134,8 @@ class Run:
 
     def optimise(self, pos, step: int, remainder) -> tuple[np.ndarray, Elite]:
         """Run the optimizer from ``pos`` at time ``step``; the best candidates, best first."""
+        from mawdo.minimize import minimize
+
         cfg, k = self.cfg, len(self.replans)
         ss, own = replan_seed_sequences(self.seed, k)
         rng = np.random.default_rng(own)
@@ -131,18 +146,15 @@ class Run:
         elite = Elite(cfg.elite_size)
         watched = _Watched(self.cost, elite)
         t = float(step)
-
-        res = _optimise(
-            watched,
-            pos,
-            t,
-            self.algorithm,
-            cfg,
-            cfg.first_iters if first else cfg.replan_iters,
-            ss,
-            x0,
-            None if first else cfg.replan_time,
-            pop,
+        res = minimize(
+            lambda X: watched(X, start=pos, t0=t),
+            lb=self.cost.bounds[0],
+            ub=self.cost.bounds[1],
+            algorithm=self.optimizers[pop],
+            seed=ss,
+            max_iter=cfg.first_iters if first else cfg.replan_iters,
+            max_time=None if first else cfg.replan_time,
+            x0=x0,
         )
         # only where it can matter: the extra cost call then changes nothing in other presets
         self.stalled = not first and cfg.hold_gap > 0 and self._stalled(res.fun[0], x0[:1], pos, t)
@@ -213,17 +225,12 @@ class Run:
         v = sc.robot_speed
         reach = self._reachable()
         if isinstance(reach, str):
-            return self._finish(_Drive(sc.start.copy()), f"{NO_ROUTE}: static obstacles: {reach}")
+            return self._finish(Drive(sc.start.copy()), f"{NO_ROUTE}: static obstacles: {reach}")
         max_steps, rule = self.step_limit()
         pos = sc.start.copy()
-        drive = _Drive(pos)
+        drive = Drive(pos)
         remainder, stuck, force = None, 0, False
-        reason = "step limit reached before the goal"
-        if rule > max_steps and cfg.max_steps is None:
-            reason += (
-                f" (the automatic limit of {rule} steps was capped at {max_steps}: "
-                "set max_steps, CLI --max-steps, to allow more)"
-            )
+        reason = step_limit_note(cfg.max_steps, max_steps, rule)
         for step in range(max_steps + 1):
             if progress is not None:
                 progress(step, max_steps, len(self.replans))

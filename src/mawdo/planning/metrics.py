@@ -1,17 +1,25 @@
-"""Per-run metrics of a planning run (docs/deviations.md#d-gap, paper Table 6 plus what it lacks).
+"""Per-run metrics of a planning run, for every planner (docs/deviations.md#d-gap, paper
+Table 6 plus what it lacks).
 
-Computed from the executed route, the scenario, the exact oracle and the independent checker;
-nothing here trusts the cost kernel that produced the plans.
+:func:`run_metrics` is the one measure of a :class:`~mawdo.planning.result.PlanResult`, whatever
+planner made it; the names carry their units. The checker's verdict (``collision_free``,
+``collisions``, ``min_clearance_px``) is the result's own: every planner judges its route with
+the independent checker when the run ends, so it is not checked a second time here. Only the
+optimality references call the exact oracle; nothing here trusts the cost kernel that produced
+the plans.
 """
 
 from __future__ import annotations
 
+import traceback
+
 import numpy as np
 
-from mawdo.planning.check import check_trajectory
 from mawdo.planning.oracle import scenario_optimum
 from mawdo.planning.path import polyline_length, turning_angles
-from mawdo.planning.planner import PlanResult
+from mawdo.planning.result import PlanResult
+
+__all__ = ["METRICS", "run_metrics", "run_metrics_kept", "snapshot_gaps", "static_optimum"]
 
 # Column order of the study table; units in the names.
 METRICS = (
@@ -63,8 +71,12 @@ def snapshot_gaps(result: PlanResult, count: int = 8) -> np.ndarray:
     return np.array(out)
 
 
+def _stat(values: np.ndarray, fn) -> float:
+    return float(fn(values)) if values.size else float("nan")
+
+
 def run_metrics(result: PlanResult, l_star: float | None = None, snapshots: int = 8) -> dict:
-    """Every metric of one run, as a flat dict of numbers (see ``METRICS``).
+    """Every metric of one run of any planner, as a flat dict (see :data:`METRICS`).
 
     Parameters
     ----------
@@ -72,41 +84,90 @@ def run_metrics(result: PlanResult, l_star: float | None = None, snapshots: int 
     l_star : float, optional
         Precomputed static optimum (pixels), to save the oracle call across runs.
     snapshots : int
-        How many replans get the per-snapshot optimality ratio (each needs an oracle call).
+        How many replans get the per-snapshot optimality ratio (each needs an oracle call);
+        0: none (``snapshot_gap_*`` are NaN).
+
+    Returns
+    -------
+    dict
+        Pixels (``*_px``, ``length_px``), radians (``*_rad``), milliseconds (``*_ms``) and
+        seconds (``first_plan_s``); ``gap`` = ``length_px / l_star_px`` (NaN unless the run
+        succeeded); latencies are the replans after the first plan (NaN without any). A
+        single-shot planner that found no route has None for the route's metrics and its
+        checker verdict; one without a guard (``result.guarded`` False) has None for the
+        guard's counts.
     """
-    sc = result.scenario
-    l_star = static_optimum(sc) if l_star is None else l_star
+    l_star = static_optimum(result.scenario) if l_star is None else l_star
     route = result.route if result.route is not None else result.trajectory
-    times = result.route_times if result.route_times is not None else None
-    check = check_trajectory(route, sc, times=times)
     turns = turning_angles(route)
     length = polyline_length(route)
     lat = result.latencies * 1e3
     snap = snapshot_gaps(result, snapshots) if snapshots else np.zeros(0)
-    return {
+    solved = result.solved
+    p50, p95, p99 = np.percentile(lat, [50, 95, 99]) if lat.size else (float("nan"),) * 3
+    out = {
         "success": bool(result.success),
         "reason": result.reason,
-        "collision_free": bool(check.ok),
-        "length_px": length,
+        "collision_free": bool(result.collision_free) if solved else None,
+        "length_px": length if solved else None,
         "gap": length / l_star if result.success else float("nan"),
-        "smoothness_rad": float(turns.sum()),
-        "max_turn_rad": float(turns.max()) if turns.size else 0.0,
-        "collisions": check.hits,  # the map's border included
-        "min_clearance_px": float(check.min_clearance),
-        "snapshot_gap_median": float(np.median(snap)) if snap.size else float("nan"),
-        "snapshot_gap_max": float(np.max(snap)) if snap.size else float("nan"),
-        "latency_p50_ms": float(np.median(lat)) if lat.size else float("nan"),
-        "latency_p95_ms": float(np.percentile(lat, 95)) if lat.size else float("nan"),
-        "latency_max_ms": float(np.max(lat)) if lat.size else float("nan"),
+        "smoothness_rad": float(turns.sum()) if solved else None,
+        "max_turn_rad": (float(turns.max()) if turns.size else 0.0) if solved else None,
+        "collisions": int(result.hits) if solved else None,  # the map's border included
+        "min_clearance_px": float(result.min_clearance) if solved else None,
+        "snapshot_gap_median": _stat(snap, np.median),
+        "snapshot_gap_max": _stat(snap, np.max),
+        "latency_p50_ms": float(p50),
+        "latency_p95_ms": float(p95),
+        "latency_p99_ms": float(p99),
+        "latency_max_ms": _stat(lat, np.max),
         "first_plan_s": float(result.replans[0].latency) if result.replans else float("nan"),
         "nfev": result.nfev,
         "steps": result.steps,
         "l_star_px": l_star,
-        # the guard's record (issue 10): 0 for runs stored before it existed
-        "waits": int(getattr(result, "waits", 0)),
-        "evasions": int(getattr(result, "evasions", 0)),
-        "elite_fallbacks": int(getattr(result, "fallbacks", 0)),
-        "near_misses": int(getattr(result, "near_misses", 0)),
-        # steps on a kept plan, without a replan (PlannerConfig.hold_straight, hold_gap)
-        "holds": int(getattr(result, "holds", 0)),
     }
+    # the guard's record (issue 10), and replans kept without a search (hold_straight, hold_gap)
+    counts = {"waits": result.waits, "evasions": result.evasions,
+              "elite_fallbacks": result.fallbacks, "near_misses": result.near_misses,
+              "holds": result.holds}  # fmt: skip
+    out |= {k: int(v) if result.guarded else None for k, v in counts.items()}
+    return out
+
+
+def run_metrics_kept(
+    result: PlanResult, l_star: float | None = None, snapshots: int = 8
+) -> tuple[dict | None, str | None]:
+    """:func:`run_metrics` of a computed run that never throws the run away (issue 12).
+
+    Returns
+    -------
+    metrics : dict or None
+        Every metric; when the oracle-based ones fail (a huge map, say), those that need no
+        oracle, with the reason in ``metrics["metrics_error"]``; None when even those fail.
+    error : str or None
+        Why ``metrics`` is None.
+    """
+    errors = []
+    if l_star is None:
+        try:
+            l_star = static_optimum(result.scenario)
+        except Exception as exc:  # noqa: BLE001 - metrics without L* are still worth having
+            l_star = float("nan")
+            errors.append(f"static optimum: {one_line(exc)}")
+    try:
+        m = run_metrics(result, l_star=l_star, snapshots=snapshots)
+    except Exception as exc:  # noqa: BLE001 - keep the run, lose only the failing metric
+        errors.append(f"full metrics: {one_line(exc)}")
+        try:
+            m = run_metrics(result, l_star=l_star, snapshots=0)
+        except Exception as exc2:  # noqa: BLE001
+            errors.append(one_line(exc2))
+            return None, "; ".join(errors)
+    if errors:
+        m["metrics_error"] = "; ".join(errors)
+    return m, None
+
+
+def one_line(exc: BaseException) -> str:
+    """An exception as one line, ``Type: message``."""
+    return "".join(traceback.format_exception_only(exc)).strip()

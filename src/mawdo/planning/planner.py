@@ -9,30 +9,30 @@ and perturbed copies, and runs for an iteration or wall-time budget on the cost 
 a greedy local descent (:mod:`mawdo.planning.polish`). The guard verifies the
 stretch to be driven before the next replan and falls back to the elite, to waiting or to an
 evasive move; the independent checker judges the executed route (:mod:`mawdo.planning.execute`).
-This module holds the public entry points (``plan``, the oracle-following baseline) and the
-serialisation; settings and result types live in :mod:`mawdo.planning.config` and are
-re-exported here."""
+This module holds the public entry point :func:`plan`; settings live in
+:mod:`mawdo.planning.config`, result types and their serialisation in
+:mod:`mawdo.planning.result`, the oracle follower in :mod:`mawdo.planning.follower` (all
+re-exported here), and every planner by name in :data:`mawdo.planning.planners.PLANNERS`."""
 
 from __future__ import annotations
-
-import time
-
-import numpy as np
 
 from mawdo.planning.config import (  # noqa: F401  (public names re-exported)
     PLANNING_OPTIONS,
     PRESETS,
     PlannerConfig,
-    PlanResult,
-    Replan,
-    _config,
-    _Drive,
-    _resolve,
+    resolve_config,
+    resolve_scenario,
     step_limit,
 )
 from mawdo.planning.execute import Run
-from mawdo.planning.path import advance, polyline_length
-from mawdo.planning.seeding import _optimise, _seeds, _via_paths  # noqa: F401
+from mawdo.planning.follower import ORACLE_FOLLOWER, follow_oracle  # noqa: F401
+from mawdo.planning.path import polyline_length
+from mawdo.planning.result import (  # noqa: F401  (public names re-exported)
+    PlanResult,
+    Replan,
+    result_from_bytes,
+    result_to_bytes,
+)
 
 
 def plan(
@@ -98,162 +98,13 @@ def prepare(
     from mawdo.optimizers import OPTIMIZERS
     from mawdo.validate import check_seed
 
-    sc = _resolve(scenario)
+    sc = resolve_scenario(scenario)
     OPTIMIZERS[algorithm]  # an unknown name fails here, listing the known ones
     check_seed(seed)
-    cfg = _config(config, overrides)
+    cfg = resolve_config(config, overrides)
     return Run(sc, algorithm, seed, cfg, dynamic)
 
 
 def executed_length(result: PlanResult) -> float:
     """Length of the executed route (pixels)."""
     return polyline_length(result.route)
-
-
-ORACLE_FOLLOWER = "oracle_follower"
-
-
-def follow_oracle(scenario, max_steps: int | None = None) -> PlanResult:
-    """The baseline a robotics engineer would pick: follow the exact shortest path on the
-    obstacles frozen at each instant, ignoring their motion (replanned every step).
-
-    Deterministic (no seed). When the frozen map leaves no path (a moving obstacle covers the
-    robot's inflated position or blocks every route) the robot waits for a step.
-    """
-    from mawdo.planning.oracle import scenario_optimum
-
-    sc = _resolve(scenario)
-    v = sc.robot_speed
-    max_steps = step_limit(max_steps, sc.straight_line_length(), 0.0, v)[0]
-    pos = sc.start.copy()
-    drive = _Drive(pos)
-    replans: list[Replan] = []
-    reason = "step limit reached before the goal"
-    for step in range(max_steps + 1):
-        if np.hypot(*(sc.goal - pos)) <= 1e-9:
-            reason = "goal reached"
-            break
-        if step == max_steps:
-            break
-        t0 = time.perf_counter()
-        opt = scenario_optimum(sc, t=float(step), static_only=False, start=pos)
-        latency = time.perf_counter() - t0
-        here = pos.copy()
-        passed, frac = (), ()
-        if opt.reachable:
-            pos, _, passed, frac = advance(opt.path, v)
-            waypoints = opt.path[1:-1]
-        else:
-            waypoints = np.zeros((0, 2))
-        replans.append(
-            Replan(
-                step=step,
-                position=here,
-                waypoints=waypoints,
-                cost=float("nan"),
-                length=float(opt.length),
-                collisions=0,
-                latency=latency,
-                nfev=0,
-                history=np.zeros(0),
-            )
-        )
-        drive.move(step, pos, passed, frac)
-    return drive.result(
-        reason,
-        scenario=sc,
-        algorithm=ORACLE_FOLLOWER,
-        seed=0,
-        config=PlannerConfig(),
-        replans=replans,
-    )
-
-
-def result_to_bytes(result: PlanResult) -> bytes:
-    """Serialise what figures need (route, replans) to ``.npz`` bytes; the scenario is not
-    included (the study stores its plan, which names it)."""
-    import io
-
-    reps = result.replans
-    m = max((len(r.waypoints) for r in reps), default=0)
-    wp = np.full((len(reps), m, 2), np.nan)
-    for i, r in enumerate(reps):
-        wp[i, : len(r.waypoints)] = r.waypoints
-    h = max((len(r.history) for r in reps), default=0)
-    hist = np.full((len(reps), h), np.nan)
-    for i, r in enumerate(reps):
-        hist[i, : len(r.history)] = r.history
-    buf = io.BytesIO()
-    np.savez_compressed(
-        buf,
-        trajectory=result.trajectory,
-        route=result.route,
-        route_times=result.route_times,
-        step=np.array([r.step for r in reps]),
-        position=np.array([r.position for r in reps]),
-        waypoints=wp,
-        cost=np.array([r.cost for r in reps]),
-        length=np.array([r.length for r in reps]),
-        collisions=np.array([r.collisions for r in reps]),
-        latency=np.array([r.latency for r in reps]),
-        nfev=np.array([r.nfev for r in reps]),
-        history=hist,
-        meta=np.array([result.algorithm, str(result.seed), result.reason]),
-        success=np.array(result.success),
-        collision_free=np.array(result.collision_free),
-        min_clearance=np.array(result.min_clearance),
-        events=np.array(
-            [result.waits, result.evasions, result.fallbacks, result.near_misses, result.holds]
-        ),
-    )
-    return buf.getvalue()
-
-
-def result_from_bytes(data: bytes, scenario) -> PlanResult:
-    """Inverse of :func:`result_to_bytes` (the config is not stored: defaults are filled in)."""
-    import io
-
-    z = np.load(io.BytesIO(data), allow_pickle=False)
-    reps = []
-    for i in range(len(z["step"])):
-        w = z["waypoints"][i]
-        h = z["history"][i]
-        reps.append(
-            Replan(
-                step=int(z["step"][i]),
-                position=z["position"][i],
-                waypoints=w[~np.isnan(w[:, 0])],
-                cost=float(z["cost"][i]),
-                length=float(z["length"][i]),
-                collisions=int(z["collisions"][i]),
-                latency=float(z["latency"][i]),
-                nfev=int(z["nfev"][i]),
-                history=h[~np.isnan(h)],
-            )
-        )
-    algorithm, seed, reason = (str(x) for x in z["meta"])
-    extra = {}
-    if "events" in z.files:  # payloads written since the guard (issue 10)
-        w, e, f, nm, *held = (int(x) for x in z["events"])  # holds: written since 0.3
-        extra = dict(
-            holds=held[0] if held else 0,
-            collision_free=bool(z["collision_free"]),
-            min_clearance=float(z["min_clearance"]),
-            waits=w,
-            evasions=e,
-            fallbacks=f,
-            near_misses=nm,
-        )
-    return PlanResult(
-        scenario=_resolve(scenario),
-        algorithm=algorithm,
-        seed=int(seed) if seed.lstrip("-").isdigit() else 0,
-        config=PlannerConfig(),
-        trajectory=z["trajectory"],
-        success=bool(z["success"]),
-        reason=reason,
-        replans=reps,
-        route=z["route"],
-        route_times=z["route_times"],
-        **extra,
-    )

@@ -1,58 +1,28 @@
-"""Seeds and one optimizer call of a (re)plan: guide/warm-start copies, via-point paths.
+"""Seed candidates of a (re)plan: perturbed copies of a route, and via-point paths.
 
-Kept apart from :mod:`mawdo.planning.planner` so that the run loop
-(:mod:`mawdo.planning.execute`) imports them without a cycle."""
+The run loop (:mod:`mawdo.planning.execute`) draws them from its own replan streams."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from mawdo.planning.config import PLANNING_OPTIONS, PlannerConfig
-from mawdo.planning.cost import PathCost
+from mawdo.planning.config import PlannerConfig
 from mawdo.planning.path import densify
 
-
-def _optimise(
-    cost: PathCost,
-    pos,
-    t,
-    algorithm,
-    config: PlannerConfig,
-    iters,
-    seed_seq,
-    x0,
-    max_time,
-    pop_size,
-):
-    from mawdo.minimize import minimize
-
-    lb, ub = cost.bounds
-    opts = {**PLANNING_OPTIONS.get(algorithm, {}), **config.options}
-    res = minimize(
-        lambda X: cost(X, start=pos, t0=t),
-        lb=lb,
-        ub=ub,
-        algorithm=algorithm,
-        runs=1,
-        seed=seed_seq,
-        max_iter=iters,
-        max_time=max_time,
-        x0=x0,
-        pop_size=pop_size,
-        **opts,
-    )
-    return res
+__all__ = ["via_paths", "warm_seeds"]
 
 
-def _seeds(route, m, config, rng, lb, ub):
-    """A route's ``m`` waypoints (geometry kept) plus ``warm_copies`` perturbed copies."""
+def warm_seeds(route, m: int, config: PlannerConfig, rng, lb, ub) -> np.ndarray:
+    """A route's ``m`` waypoints (geometry kept) plus ``config.warm_copies`` copies perturbed
+    by N(0, ``config.warm_sigma``) px, clipped to ``[lb, ub]``; shape ``(1 + copies, 2 m)``."""
     base = densify(route, m).reshape(-1)
     noise = rng.normal(0.0, config.warm_sigma, (config.warm_copies, base.size))
     return np.clip(np.vstack([base, base + noise]), lb, ub)
 
 
-def _via_paths(start, goal, m, n, rng, lb, ub, width, height):
-    """``n`` path-like candidates: start -> one or two random via points -> goal, densified.
+def via_paths(start, goal, m: int, n: int, rng, lb, ub, width: float, height: float):
+    """``n`` path-like candidates: start -> one or two random via points -> goal, densified
+    to ``m`` waypoints and clipped to ``[lb, ub]`` (pixels); shape ``(n, 2 m)``.
 
     Uniform random waypoints make zig-zags that cross every obstacle; routes through random via
     points are short, diverse, and often collision-free, the usual way to seed a waypoint planner.

@@ -9,7 +9,6 @@ gap ECDFs, a failure gallery). Importing this package registers the ``arena`` st
 from mawdo.experiments.arena.execute import ArenaRow, execute_arena_task
 from mawdo.experiments.arena.plan import (
     ARENA_PRESETS,
-    BASELINE_SEES_TIME,
     ORACLE,
     ArenaPlan,
     arena_preset,
@@ -32,7 +31,6 @@ register_kind(
 
 __all__ = [
     "ARENA_PRESETS",
-    "BASELINE_SEES_TIME",
     "KIND",
     "ORACLE",
     "ArenaPlan",

@@ -5,6 +5,8 @@ scene can be re-run alone with ``mawdo plan FILE`` and the report never regenera
 scene the generator rejects (no valid draw in ``MAX_ATTEMPTS``) is stored with
 ``status = "rejected"`` and the generator's reasons: it is not a planner failure and counts in
 no rate. A failed or colliding run also keeps its trace (``result_to_bytes``) for the gallery.
+Every planner is run through :data:`mawdo.planning.planners.PLANNERS` and measured by
+:func:`mawdo.planning.metrics.run_metrics`.
 """
 
 from __future__ import annotations
@@ -18,7 +20,6 @@ from typing import Any
 
 import numpy as np
 
-from mawdo.experiments.arena.plan import BASELINE_SEES_TIME, ORACLE
 from mawdo.experiments.rows import RunRow, column
 
 
@@ -71,129 +72,64 @@ def scene_hash(toml_text: str) -> str:
     return hashlib.sha256(toml_text.encode("utf-8")).hexdigest()
 
 
-def _percentiles(lat_s: np.ndarray) -> tuple[float | None, float | None, float | None]:
-    if lat_s.size == 0:
-        return None, None, None
-    p = np.percentile(lat_s * 1e3, [50, 95, 99])
-    return float(p[0]), float(p[1]), float(p[2])
+#: Arena column -> :func:`~mawdo.planning.metrics.run_metrics` name (the columns keep the
+#: names stored since the arena's first schema, so old stores stay readable).
+COLUMNS = {
+    "success": "success",
+    "collision_free": "collision_free",
+    "reason": "reason",
+    "length": "length_px",
+    "gap": "gap",
+    "clearance": "min_clearance_px",
+    "turning": "smoothness_rad",
+    "waits": "waits",
+    "evasions": "evasions",
+    "latency_p50_ms": "latency_p50_ms",
+    "latency_p95_ms": "latency_p95_ms",
+    "latency_p99_ms": "latency_p99_ms",
+    "first_plan_s": "first_plan_s",
+    "nfev": "nfev",
+}
+# not measured: stored as None (NULL), not NaN (the gap of a failed run stays NaN)
+_NONE_IF_NAN = ("latency_p50_ms", "latency_p95_ms", "latency_p99_ms", "first_plan_s")
 
 
-def _from_plan_result(res, l_star: float) -> dict[str, Any]:
-    """Metrics of a receding-horizon run (ours or the oracle follower).
+def row_metrics(res, l_star: float) -> dict[str, Any]:
+    """The arena columns of a run of any planner, from
+    :func:`~mawdo.planning.metrics.run_metrics` (no snapshot ratios, the scene's ``l_star``)."""
+    from mawdo.planning.metrics import run_metrics
 
-    The verdict and the clearance are the result's own: every run ends by judging its route with
-    the independent checker (``mawdo.planning.config._Drive.result``), so checking it again
-    here would only repeat that work (8-14 % of a run).
-    """
-    from mawdo.planning.path import polyline_length, turning_angles
-
-    route = res.route if res.route is not None else res.trajectory
-    length = polyline_length(route)
-    p50, p95, p99 = _percentiles(res.latencies)
-    return {
-        "success": int(bool(res.success)),
-        "collision_free": int(bool(res.collision_free)),
-        "reason": res.reason,
-        "length": float(length),
-        "gap": float(length / l_star) if res.success else float("nan"),
-        "clearance": float(res.min_clearance),
-        "turning": float(turning_angles(route).sum()),
-        "waits": int(res.waits),
-        "evasions": int(res.evasions),
-        "latency_p50_ms": p50,
-        "latency_p95_ms": p95,
-        "latency_p99_ms": p99,
-        "first_plan_s": float(res.replans[0].latency) if res.replans else None,
-        "nfev": int(res.nfev),
-    }
+    m = run_metrics(res, l_star=l_star, snapshots=0)
+    out = {col: m[name] for col, name in COLUMNS.items()}
+    for col in ("success", "collision_free"):
+        out[col] = None if out[col] is None else int(out[col])
+    for col in _NONE_IF_NAN:
+        out[col] = None if np.isnan(out[col]) else out[col]
+    return out
 
 
-def baseline_trace(scenario, result):
-    """A single-shot baseline's route as a :class:`PlanResult` (for the gallery's renderer)."""
-    from mawdo.planning.baselines import route_times
-    from mawdo.planning.config import PlannerConfig, PlanResult, Replan
+def plan_scene(name: str, sc, l_star: float, seed: int, preset: str, overrides: dict,
+               options: dict | None = None):  # fmt: skip
+    """Run the planner ``name`` (:data:`~mawdo.planning.planners.PLANNERS`) on ``sc`` with the
+    preset and its overrides, passing it those of ``options`` it takes; returns the
+    :class:`~mawdo.planning.result.PlanResult` and its arena columns (:func:`row_metrics`)."""
+    from mawdo.planning.config import resolve_config
+    from mawdo.planning.planners import PLANNERS
 
-    route = result.route if result.route is not None else scenario.start[None, :]
-    times = route_times(route, scenario.robot_speed) if len(route) > 1 else np.zeros(1)
-    steps = np.arange(0.0, np.floor(times[-1]) + 1.0)
-    traj = np.column_stack([np.interp(steps, times, route[:, i]) for i in (0, 1)])
-    rep = Replan(
-        step=0,
-        position=scenario.start.copy(),
-        waypoints=route[1:-1],
-        cost=float("nan"),
-        length=float(result.length),
-        collisions=0,
-        latency=float(result.time),
-        nfev=int(result.validity_checks),
-        history=np.zeros(0),
-    )
-    return PlanResult(
-        scenario=scenario,
-        algorithm=result.planner,
-        seed=0,
-        config=PlannerConfig(),
-        trajectory=traj,
-        success=bool(result.success),
-        reason=result.reason,
-        replans=[rep],
-        route=route,
-        route_times=times,
-        collision_free=bool(result.collision_free),
-        min_clearance=float(result.min_clearance),
-    )
-
-
-def _from_baseline(scenario, result, l_star: float) -> dict[str, Any]:
-    from mawdo.planning.path import turning_angles
-
-    route = result.route
-    return {
-        "success": int(bool(result.success)),
-        "collision_free": int(bool(result.collision_free)) if result.solved else None,
-        "reason": result.reason,
-        "length": float(result.length) if result.solved else None,
-        "gap": float(result.length / l_star) if result.success else float("nan"),
-        "clearance": float(result.min_clearance) if result.solved else None,
-        "turning": float(turning_angles(route).sum()) if route is not None else None,
-        "waits": None,
-        "evasions": None,
-        "latency_p50_ms": None,
-        "latency_p95_ms": None,
-        "latency_p99_ms": None,
-        "first_plan_s": float(result.time),
-        "nfev": int(result.validity_checks),
-    }
+    planner = PLANNERS[name]
+    opts = {k: v for k, v in (options or {}).items() if k in planner.options}
+    res = planner.run(sc, seed, resolve_config(preset, overrides), **opts)
+    return res, row_metrics(res, l_star)
 
 
 def _plan_one(spec: dict[str, Any], scene, seed: int) -> tuple[dict[str, Any], bytes | None]:
-    """Run the task's planner on ``scene``; returns its metrics and, if failed, its trace."""
-    from mawdo.planning.planner import follow_oracle, plan, result_to_bytes, step_limit
+    """The metrics of the task's planner on ``scene`` and, if it failed, its trace."""
+    from mawdo.planning.result import result_to_bytes
 
-    name, sc = spec["algorithm"], scene.scenario
-    if name == ORACLE:
-        # the step limit our planner gets (planning.execute): follow_oracle's own default
-        # (4 straight lines) cuts long detours such as mazes short
-        steps, _ = step_limit(
-            spec["overrides"].get("max_steps"),
-            sc.straight_line_length(),
-            scene.l_star,
-            sc.robot_speed,
-        )
-        res = follow_oracle(sc, max_steps=steps)
-        m = _from_plan_result(res, scene.l_star)
-    elif spec["is_baseline"]:
-        from mawdo.planning.baselines import run_baseline
-
-        opts = spec["ompl"] if name != "straight" else {}
-        base = run_baseline(name, sc, **opts)
-        m = _from_baseline(sc, base, scene.l_star)
-        res = baseline_trace(sc, base) if not (m["success"] and m["collision_free"]) else None
-    else:
-        res = plan(sc, algorithm=name, seed=seed, config=spec["preset"], **spec["overrides"])
-        m = _from_plan_result(res, scene.l_star)
+    res, m = plan_scene(spec["algorithm"], scene.scenario, scene.l_star, seed, spec["preset"],
+                        spec["overrides"], spec["planner_options"])  # fmt: skip
     bad = not (m["success"] and m["collision_free"])
-    return m, (result_to_bytes(res) if bad and res is not None else None)
+    return m, (result_to_bytes(res) if bad else None)
 
 
 def execute_arena_task(spec: dict[str, Any]) -> list[ArenaRow]:
@@ -205,7 +141,9 @@ def execute_arena_task(spec: dict[str, Any]) -> list[ArenaRow]:
     from mawdo.planning.scenes import SceneRejected, generate_scene
 
     fam, rows = spec["problem"], []
-    sees = BASELINE_SEES_TIME.get(spec["algorithm"], "yes (predicted motion)")
+    from mawdo.planning.planners import PLANNERS
+
+    sees = PLANNERS[spec["algorithm"]].sees_time
     for i, seed in enumerate(spec["planner_seeds"]):
         k = spec["first_run"] + i
         t1 = time.perf_counter()

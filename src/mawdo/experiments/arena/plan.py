@@ -16,7 +16,7 @@ from __future__ import annotations
 import difflib
 from typing import Annotated, Any, ClassVar, Literal
 
-from pydantic import Field, field_validator, model_validator
+from pydantic import Field, ValidationInfo, field_validator, model_validator
 
 from mawdo.experiments.plans import PlanError, StudyPlanBase
 from mawdo.experiments.protocol import Task, missing_run_tasks
@@ -24,16 +24,7 @@ from mawdo.streams import name_word, seed_word
 
 ARENA_SCHEMA = 1
 ORACLE = "oracle_follower"
-#: Baselines and whether they see time (the oracle follower sees the obstacles where they are at
-#: each step, frozen, never their motion; the others see only the static obstacles).
-BASELINE_SEES_TIME = {
-    ORACLE: "positions each step",
-    "straight": "no",
-    "rrtstar": "no",
-    "bitstar": "no",
-    "prmstar": "no",
-}
-BASELINE_ALIASES = {"oracle": ORACLE, ORACLE: ORACLE}
+BASELINE_ALIASES = {"oracle": ORACLE}
 
 
 def _unknown(what: str, name: str, known) -> ValueError:
@@ -53,12 +44,16 @@ def check_family(name: str) -> str:
 
 
 def check_baseline(name: str) -> str:
-    """A baseline's canonical name (``oracle`` is the oracle follower)."""
+    """A baseline's canonical name: a registered planner not driven by an optimizer
+    (:data:`~mawdo.planning.planners.PLANNERS`; ``oracle`` is the oracle follower)."""
+    from mawdo.planning.planners import PLANNERS
+
     key = str(name).strip().lower()
     key = BASELINE_ALIASES.get(key, key)
-    if key not in BASELINE_SEES_TIME:
-        raise _unknown("baseline", str(name), ["oracle", *list(BASELINE_SEES_TIME)[1:]])
-    return key
+    if key not in PLANNERS or PLANNERS[key].optimizer is not None:
+        known = [n for n in PLANNERS if PLANNERS[n].optimizer is None]
+        raise _unknown("baseline", str(name), ["oracle", *(n for n in known if n != ORACLE)])
+    return PLANNERS[key].name
 
 
 def _unique(names, check, field: str) -> tuple[str, ...]:
@@ -76,9 +71,14 @@ def _unique(names, check, field: str) -> tuple[str, ...]:
 
 
 def _check_algorithm(name: str) -> str:
-    from mawdo.optimizers import OPTIMIZERS
+    """A planner driven by an optimizer (a registered optimizer or a variant such as
+    ``mawdo_literal``); ``KeyError`` with close names otherwise."""
+    from mawdo.planning.planners import PLANNERS
 
-    return OPTIMIZERS[str(name).strip()].name
+    spec = PLANNERS[str(name).strip()]
+    if spec.optimizer is None:
+        raise ValueError(f"{spec.name!r} is a baseline: list it under baselines")
+    return spec.name
 
 
 class ArenaPlan(StudyPlanBase):
@@ -93,9 +93,11 @@ class ArenaPlan(StudyPlanBase):
     n : int
         Scenes per family, >= 1.
     algorithms : sequence of str
-        Registered optimizers driving our planner (may be empty if baselines are given).
+        Planners driven by an optimizer (:data:`~mawdo.planning.planners.PLANNERS`: any
+        registered optimizer, ``mawdo_literal``); may be empty if baselines are given.
     baselines : sequence of str
-        ``oracle`` (the oracle follower), ``straight``, ``rrtstar``, ``bitstar``, ``prmstar``.
+        The other planners: ``oracle`` (the oracle follower), ``straight``, ``rrtstar``,
+        ``bitstar``, ``prmstar``, or any registered later.
     params : dict family -> dict
         Family parameters overriding the defaults (checked against their ranges).
     seed : int
@@ -144,15 +146,11 @@ class ArenaPlan(StudyPlanBase):
 
     @field_validator("overrides")
     @classmethod
-    def _over(cls, overrides):
-        from mawdo.planning.config import PRESETS, with_settings
+    def _over(cls, overrides, info: ValidationInfo):
+        from mawdo.planning.config import check_overrides
 
-        # PlanError puts "overrides: " in front of the message
-        try:
-            with_settings(PRESETS["realtime"], overrides)
-        except TypeError as exc:  # a value of the wrong type met a comparison
-            raise ValueError(str(exc)) from None
-        return dict(overrides)
+        # against the plan's own preset (an invalid preset is reported on its own field)
+        return check_overrides(overrides, info.data.get("planner", "realtime"))
 
     @model_validator(mode="after")
     def _params_and_planners(self):
@@ -204,10 +202,10 @@ class ArenaPlan(StudyPlanBase):
             "seed": self.seed,
             "params": dict(self.params.get(fam, {})),
             "planner_seeds": [self.planner_seed(fam, k) for k in task.runs],
-            "is_baseline": task.algorithm in self.baselines,
             "preset": self.planner,
             "overrides": dict(self.overrides),
-            "ompl": {"time_limit": self.ompl_time, "resolution": self.ompl_resolution},
+            # each planner takes those of its options it knows (PlannerSpec.options)
+            "planner_options": {"time_limit": self.ompl_time, "resolution": self.ompl_resolution},
         }
 
     def describe(self) -> str:

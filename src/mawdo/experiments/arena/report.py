@@ -91,7 +91,7 @@ def _plan_of(store: Store) -> ArenaPlan:
 
 def arena_tables(store: Store) -> list[Table]:
     """The per family and planner table (one row each, in plan order)."""
-    from mawdo.experiments.arena.plan import BASELINE_SEES_TIME
+    from mawdo.planning.planners import PLANNERS, PREDICTED
 
     plan = _plan_of(store)
     t = Table(
@@ -113,7 +113,8 @@ def arena_tables(store: Store) -> list[Table]:
         for p in plan.planners:
             rows = [r for _, _, r in store.rows(p, fam, skip=NO_TRACE)]
             num = cell_numbers(rows)
-            sees = BASELINE_SEES_TIME.get(p, "yes")
+            sees = PLANNERS[p].sees_time if p in PLANNERS else "?"
+            sees = "yes" if sees == PREDICTED else sees
             t.rows.append([fam, _label(p), sees, *[num[c] for c in COLUMNS[3:]]])
     t.notes.append(
         "success = goal reached and the independent checker approves the executed route; "
@@ -143,7 +144,7 @@ def arena_figures(store: Store, out: Path) -> list[Path]:
     from matplotlib.lines import Line2D
     from matplotlib.ticker import MaxNLocator
 
-    from mawdo.planning.render import _new_figure
+    from mawdo.planning.render import new_figure
 
     plan = _plan_of(store)
     rows = {
@@ -153,7 +154,7 @@ def arena_figures(store: Store, out: Path) -> list[Path]:
     }
     # one colour per planner in every panel, whether or not it has data there
     colors = {p: f"C{i % 10}" for i, p in enumerate(plan.planners)}
-    fig = _new_figure((7, 4.5), 120)
+    fig = new_figure((7, 4.5), 120)
     ax = fig.add_subplot()
     for p in plan.planners:
         w = np.array(
@@ -179,7 +180,7 @@ def arena_figures(store: Store, out: Path) -> list[Path]:
     nf = len(plan.families)
     cols = min(nf, 3)
     nrows = -(-nf // cols)
-    fig = _new_figure((4 * cols, 3.2 * nrows + 0.4), 110)
+    fig = new_figure((4 * cols, 3.2 * nrows + 0.4), 110)
     axes = np.atleast_1d(fig.subplots(nrows, cols, squeeze=False)).ravel()
     for ax, f in zip(axes, plan.families, strict=False):
         for p in plan.planners:
@@ -229,7 +230,7 @@ def failure_gallery(store: Store, out: Path, limit: int | None = None) -> list[t
     Returns ``(image file, scene file)`` pairs relative to ``out``; ``limit`` caps the images.
     """
     from mawdo.planning import render
-    from mawdo.planning.planner import result_from_bytes
+    from mawdo.planning.result import result_from_bytes
 
     plan = _plan_of(store)
     items = []

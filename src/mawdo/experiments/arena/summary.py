@@ -133,9 +133,8 @@ def render_worst(store_path, out_dir, planner: str = "mawdo", k: int = 3) -> lis
     ``success``, ``collision_free``, ``gap``. Raises ``RuntimeError`` if a re-run does not
     reproduce the stored verdict and gap (the scene or the planner changed since the study).
     """
-    from mawdo.experiments.arena.execute import _from_plan_result, scenario_from_toml
+    from mawdo.experiments.arena.execute import plan_scene, scenario_from_toml
     from mawdo.planning import render
-    from mawdo.planning.planner import plan as run_planner
 
     out = Path(out_dir)
     (out / "worst").mkdir(parents=True, exist_ok=True)
@@ -147,9 +146,7 @@ def render_worst(store_path, out_dir, planner: str = "mawdo", k: int = 3) -> lis
         for fam, r in worst_runs(store, planner, k):
             full = next(x for _, _, x in store.rows(planner, fam) if x.run == r.run)
             sc = scenario_from_toml(full.scene_toml, r.scene_name)
-            res = run_planner(sc, algorithm=planner, seed=r.planner_seed, config=ap.planner,
-                              **dict(ap.overrides))  # fmt: skip
-            m = _from_plan_result(res, r.l_star)
+            res, m = plan_scene(planner, sc, r.l_star, r.planner_seed, ap.planner, ap.overrides)
             same_gap = (np.isnan(m["gap"]) and not r.success) or np.isclose(m["gap"], r.gap)
             if m["success"] != r.success or m["collision_free"] != r.collision_free or not same_gap:
                 raise RuntimeError(

@@ -6,15 +6,10 @@ registers the ``planning`` study kind. (The planner itself is :mod:`mawdo.planni
 below.)
 """
 
-from mawdo.experiments.planning.execute import (
-    PlanningRow,
-    execute_planning_task,
-    run_metrics_kept,
-)
+from mawdo.experiments.planning.execute import PlanningRow, execute_planning_task
 from mawdo.experiments.planning.plan import (
     BASELINE,
     STUDY_PRESETS,
-    VARIANTS,
     StudyPlan,
     study_preset,
 )
@@ -35,13 +30,11 @@ register_kind(
 )
 
 __all__ = [
-    "run_metrics_kept",
     "BASELINE",
     "KIND",
     "STUDY_PRESETS",
     "PlanningRow",
     "StudyPlan",
-    "VARIANTS",
     "execute_planning_task",
     "study_preset",
     "write_study_report",

@@ -7,13 +7,11 @@ so the report draws every figure from the store without planning again.
 from __future__ import annotations
 
 import time
-import traceback
 from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 
-from mawdo.experiments.planning.plan import BASELINE
 from mawdo.experiments.rows import RunRow, column
 
 
@@ -61,64 +59,64 @@ def first_plan_path(result, scenario) -> np.ndarray | None:
 
 
 def execute_planning_task(spec: dict[str, Any]) -> list[PlanningRow]:
-    """Plan ``n_runs`` runs of one algorithm; a run that raises becomes a row with its error.
+    """Plan ``n_runs`` runs of one planner; a run that raises becomes a row with its error.
 
     A computed run is never thrown away by its metrics (issue 12, defect 4): the route is
     stored first, and metrics that fail (the oracle on a huge map, say) fall back to those
-    that need no oracle, with the failure in ``metrics["metrics_error"]``.
+    that need no oracle, with the failure in ``metrics["metrics_error"]``
+    (:func:`~mawdo.planning.metrics.run_metrics_kept`).
     """
     from mawdo.planning import scenario_from_dict
     from mawdo.planning.metrics import static_optimum
+    from mawdo.planning.planners import PLANNERS
 
     sc = scenario_from_dict(spec["scenario"], source=f"scenario {spec['problem']!r}")
     try:
-        l_star, l_star_error = static_optimum(sc), None
-    except Exception as exc:  # noqa: BLE001 - the runs are still worth planning and storing
-        l_star, l_star_error = float("nan"), f"static optimum: {_one_line(exc)}"
+        l_star = static_optimum(sc)
+    except Exception:  # noqa: BLE001 - each run's metrics try again and keep the reason
+        l_star = None
+    planner = PLANNERS[spec["algorithm"]]
     settings = {"planner": spec["planner"], **spec["overrides"]}
     rows = []
     for i, seed in enumerate(spec["seeds"]):
         run = spec["first_run"] + i
         t1 = time.perf_counter()
         try:
-            res = _plan_one(sc, spec, seed)
+            res = _plan_one(planner, sc, spec, seed)
         except Exception as exc:  # noqa: BLE001 - a failing run is a row, not a dead study
+            from mawdo.planning.metrics import one_line
+
             rows.append(
                 PlanningRow(
                     run=run,
                     wall_time=time.perf_counter() - t1,
-                    error_text=_one_line(exc),
+                    error_text=one_line(exc),
                     seed=seed,
                     settings=settings,
                 )
             )
             continue
-        row = _row(run, t1, seed, settings, res, l_star, l_star_error, spec["snapshots"])
-        rows.append(_with_first_plan(row, res, sc, spec["algorithm"] == BASELINE))
+        row = _row(run, t1, seed, settings, res, l_star, spec["snapshots"])
+        rows.append(_with_first_plan(row, res, sc, planner.optimizer is None))
     return rows
 
 
-def _plan_one(sc, spec: dict[str, Any], seed: int):
-    from mawdo.planning.planner import follow_oracle, plan
+def _plan_one(planner, sc, spec: dict[str, Any], seed: int):
+    """One run of ``planner`` (:class:`~mawdo.planning.planners.PlannerSpec`); the task's
+    overrides already hold a variant's optimizer options."""
+    from mawdo.planning.config import resolve_config
 
-    if spec["algorithm"] == BASELINE:
-        return follow_oracle(sc)
-    return plan(
-        sc,
-        algorithm=spec.get("optimizer", spec["algorithm"]),
-        seed=seed,
-        config=spec["planner"],
-        **spec["overrides"],
-    )
+    return planner.run(sc, seed, resolve_config(spec["planner"], spec["overrides"]))
 
 
-def _row(run, t1, seed, settings, res, l_star, l_star_error, snapshots) -> PlanningRow:
+def _row(run, t1, seed, settings, res, l_star, snapshots) -> PlanningRow:
     """The stored row of a computed run: route first, then whatever metrics can be had."""
-    from mawdo.planning.planner import result_to_bytes
+    from mawdo.planning.metrics import run_metrics_kept
+    from mawdo.planning.result import result_to_bytes
 
     route = result_to_bytes(res)
     curve = res.replans[0].history if res.replans else np.zeros(0)
-    metrics, error = _metrics(res, l_star, l_star_error, snapshots)
+    metrics, error = run_metrics_kept(res, l_star=l_star, snapshots=snapshots)
     return PlanningRow(
         run=run,
         wall_time=time.perf_counter() - t1,
@@ -139,48 +137,3 @@ def _with_first_plan(row: PlanningRow, res, sc, baseline: bool) -> PlanningRow:
     smooth = None if first is None else float(turning_angles(first).sum())
     dim = 2 * len(res.replans[0].waypoints) if res.replans else None
     return replace(row, first_plan_smoothness_rad=smooth, plan_dim=None if baseline else dim)
-
-
-def run_metrics_kept(res, snapshots: int = 8) -> tuple[dict | None, str | None]:
-    """Metrics of a computed run that never throw the run away.
-
-    Returns
-    -------
-    metrics : dict or None
-        :func:`mawdo.planning.metrics.run_metrics`; when the oracle-based ones fail, those
-        that need no oracle, with the reason in ``metrics["metrics_error"]``; None when even
-        those fail.
-    error : str or None
-        Why ``metrics`` is None.
-    """
-    from mawdo.planning.metrics import static_optimum
-
-    try:
-        l_star, l_star_error = static_optimum(res.scenario), None
-    except Exception as exc:  # noqa: BLE001 - metrics without L* are still worth having
-        l_star, l_star_error = float("nan"), f"static optimum: {_one_line(exc)}"
-    return _metrics(res, l_star, l_star_error, snapshots)
-
-
-def _metrics(res, l_star: float, l_star_error: str | None, snapshots: int):
-    """``(metrics, error)``: every metric, else those without oracle calls (with the reason
-    in ``metrics_error``), else ``(None, reason)``."""
-    from mawdo.planning.metrics import run_metrics
-
-    errors = [l_star_error] if l_star_error else []
-    try:
-        m = run_metrics(res, l_star=l_star, snapshots=snapshots)
-    except Exception as exc:  # noqa: BLE001 - keep the run, lose only the failing metric
-        errors.append(f"full metrics: {_one_line(exc)}")
-        try:
-            m = run_metrics(res, l_star=l_star, snapshots=0)
-        except Exception as exc2:  # noqa: BLE001
-            errors.append(_one_line(exc2))
-            return None, "; ".join(errors)
-    if errors:
-        m["metrics_error"] = "; ".join(errors)
-    return m, None
-
-
-def _one_line(exc: BaseException) -> str:
-    return "".join(traceback.format_exception_only(exc)).strip()

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mawdo.experiments.planning.plan import BASELINE, VARIANTS, StudyPlan
+from mawdo.experiments.planning.plan import BASELINE, StudyPlan
 
 NAN = float("nan")
 DEVIATIONS = "docs/deviations.md"
@@ -35,7 +35,10 @@ def label(algorithm: str, dims: tuple[int, ...] = ()) -> str:
     at = f"D = {'/'.join(str(d) for d in dims)}" if dims else "the planner's D"
     if algorithm == "mawdo":
         return f"MAWDO (low-D stabilisation on at {at})"
-    if algorithm in VARIANTS and VARIANTS[algorithm] == ("mawdo", {"low_dim": 3}):
+    from mawdo.planning.planners import PLANNERS
+
+    spec = PLANNERS[algorithm] if algorithm in PLANNERS else None
+    if spec is not None and (spec.optimizer, spec.optimizer_options) == ("mawdo", {"low_dim": 3}):
         return f"MAWDO literal (stabilisation only at D <= 3: off at {at})"
     from mawdo.optimizers import OPTIMIZERS
 
@@ -164,10 +167,13 @@ def generated_findings(by: dict[str, list[dict]]) -> list[str]:
 
 def identical_pairs(by: dict[str, list[dict]]) -> list[str]:
     """Algorithms whose runs (same seeds) drove routes of exactly the same lengths."""
+    from mawdo.planning.planners import PLANNERS
+
+    # seeded planners only: deterministic ones (the oracle follower) share no seeds
     lengths = {
         a: tuple(r["metrics"]["length_px"] if r["metrics"] else None for r in runs)
         for a, runs in by.items()
-        if a != BASELINE and runs
+        if PLANNERS[a].seeded and runs
     }
     names = list(lengths)
     return [

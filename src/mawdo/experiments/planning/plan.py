@@ -20,7 +20,7 @@ from pydantic import Field, PositiveInt, ValidationInfo, field_validator, model_
 
 from mawdo.experiments.plans import PlanError, StudyPlanBase
 from mawdo.experiments.protocol import Task
-from mawdo.optimizers import OPTIMIZERS, PAPER_ALGORITHMS
+from mawdo.optimizers import PAPER_ALGORITHMS
 from mawdo.streams import name_word, seed_word
 
 PAPER_SEED = 20251125
@@ -30,20 +30,13 @@ STUDY_SCHEMA = 2
 """2: the scenario's contents are part of the plan (and its hash), not its name."""
 BASELINE = "oracle_follower"
 
-VARIANTS: dict[str, tuple[str, dict[str, Any]]] = {
-    "mawdo_literal": ("mawdo", {"low_dim": 3}),
-}
-"""Study labels that run a registered optimizer with fixed options: ``label -> (optimizer,
-options)``. ``mawdo_literal`` is MAWDO with the paper's low-dimensional threshold (D <= 3, so
-the stabilisation is off at the planner's D = 40), beside the planner's default MAWDO, which has
-it on (``docs/deviations.md#d-planning-low-dim``)."""
-
 
 def _check_algorithm(name: str) -> str:
-    if name.lower() in (BASELINE, *VARIANTS):
-        return name.lower()
+    """A registered planner's name (:data:`~mawdo.planning.planners.PLANNERS`)."""
+    from mawdo.planning.planners import PLANNERS
+
     try:
-        return OPTIMIZERS[name].name
+        return PLANNERS[name].name
     except KeyError as exc:
         raise ValueError(str(exc.args[0])) from None
 
@@ -101,9 +94,9 @@ class StudyPlan(StudyPlanBase):
     name : str
         Label for reports.
     algorithms : sequence of str
-        Registered optimizers, study variants (:data:`VARIANTS`, e.g. ``"mawdo_literal"``) and
-        optionally ``"oracle_follower"`` (the deterministic baseline: one run, whatever ``runs``
-        says).
+        Registered planners (:data:`~mawdo.planning.planners.PLANNERS`): optimizers, variants
+        such as ``"mawdo_literal"``, and baselines such as ``"oracle_follower"`` (a
+        deterministic planner makes one run, whatever ``runs`` says).
     scenario : str
         On input, a built-in scenario name or a scenario file path (``.toml``/``.json``); the
         plan then holds that scenario's name.
@@ -177,15 +170,11 @@ class StudyPlan(StudyPlanBase):
 
     @field_validator("overrides")
     @classmethod
-    def _over(cls, overrides):
-        from mawdo.planning.config import PRESETS, with_settings
+    def _over(cls, overrides, info: ValidationInfo):
+        from mawdo.planning.config import check_overrides
 
-        # PlanError puts "overrides: " in front of the message
-        try:
-            with_settings(PRESETS["study"], overrides)
-        except TypeError as exc:  # a value of the wrong type met a comparison
-            raise ValueError(str(exc)) from None
-        return dict(overrides)
+        # against the plan's own preset (an invalid preset is reported on its own field)
+        return check_overrides(overrides, info.data.get("planner", "study"))
 
     # ---------------------------------------------------------------- identity
     def numbers_spec(self) -> dict[str, Any]:
@@ -198,7 +187,10 @@ class StudyPlan(StudyPlanBase):
 
     # ---------------------------------------------------------------- work
     def runs_of(self, algorithm: str) -> int:
-        return 1 if algorithm == BASELINE else self.runs
+        """``runs``, or 1 for a deterministic planner (the oracle follower)."""
+        from mawdo.planning.planners import PLANNERS
+
+        return self.runs if PLANNERS[algorithm].seeded else 1
 
     @property
     def total_runs(self) -> int:
@@ -219,14 +211,17 @@ class StudyPlan(StudyPlanBase):
         return out
 
     def task_spec(self, task: Task) -> dict[str, Any]:
-        optimizer, options = VARIANTS.get(task.algorithm, (task.algorithm, {}))
+        from mawdo.planning.planners import PLANNERS
+
+        planner = PLANNERS[task.algorithm]
+        options = planner.optimizer_options
         overrides = dict(self.overrides)
         if options:  # a variant's options win over the plan's for the options it names
             overrides["options"] = {**overrides.get("options", {}), **options}
         return {
             "kind": self.kind,
             **task.key(),
-            "optimizer": optimizer,
+            "optimizer": planner.optimizer,
             "seeds": [self.run_seed(k) for k in task.runs],
             "planner": self.planner,
             "overrides": overrides,

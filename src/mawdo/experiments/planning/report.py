@@ -143,6 +143,8 @@ def _table6_row(a: str, runs: list[dict], dims: tuple[int, ...]) -> list:
 
 def _wilcoxon_table(plan: StudyPlan, by: dict[str, list[dict]]) -> Table:
     """Wilcoxon rank-sum of MAWDO against each rival on length, gap and smoothness."""
+    from mawdo.planning.planners import PLANNERS
+
     wil = Table(
         name="table6_wilcoxon",
         title="Wilcoxon rank-sum of MAWDO (stabilised) against each rival on the runs that "
@@ -155,7 +157,7 @@ def _wilcoxon_table(plan: StudyPlan, by: dict[str, list[dict]]) -> Table:
         # only runs that reached the goal: a truncated run is "shorter" for the wrong reason
         ref = [r for r in by["mawdo"] if r["metrics"] and r["metrics"]["success"]]
         for a in plan.algorithms:
-            if a in ("mawdo", BASELINE):
+            if a == "mawdo" or not PLANNERS[a].seeded:  # one run of a deterministic one
                 continue
             rival = [r for r in by[a] if r["metrics"] and r["metrics"]["success"]]
             runs = f"{len(ref)} / {len(rival)}"
@@ -192,7 +194,8 @@ def _pick(runs, how: str):
 def study_figures(store: Store, out: Path, gif: bool = True) -> list[Path]:
     """Every figure of the study, from stored runs only."""
     from mawdo.planning import render
-    from mawdo.planning.planner import result_from_bytes
+    from mawdo.planning.planners import PLANNERS
+    from mawdo.planning.result import result_from_bytes
 
     plan = store.plan
     sc = plan.scenario_object()
@@ -205,7 +208,7 @@ def study_figures(store: Store, out: Path, gif: bool = True) -> list[Path]:
         if pick is not None:
             best[a] = (lab, result_from_bytes(pick["route"], sc), pick["metrics"])
         c = [r["curve"] for r in runs if r["metrics"] and r["curve"].size]
-        if c and a != BASELINE:
+        if c and PLANNERS[a].optimizer is not None:  # an optimizer's convergence
             T = max(len(x) for x in c)
             curves[lab] = np.stack([np.pad(x, (0, T - len(x)), mode="edge") for x in c])
         for k, _ in COMPARED:
@@ -221,7 +224,9 @@ def study_figures(store: Store, out: Path, gif: bool = True) -> list[Path]:
         "smoothness_rad": "total turning (rad)",
     }
     for k, _ in COMPARED:
-        figs.append(render.plot_metric_boxes(boxes[k], out / f"box_{k}.png", names[k]))
+        # a metric no run has (the gap when no run reached the goal) gets no figure
+        if any(np.isfinite(np.asarray(v, dtype=float)).any() for v in boxes[k].values()):
+            figs.append(render.plot_metric_boxes(boxes[k], out / f"box_{k}.png", names[k]))
     if gif and "mawdo" in plan.algorithms:
         pick = _pick(study_runs(store, "mawdo", route=True), "median")
         if pick is not None:

@@ -9,7 +9,9 @@ bitstar    no          OMPL BIT*, idem
 prmstar    no          OMPL PRM*, idem
 =========  ==========  =============================================================
 
-Every baseline returns a :class:`BaselineResult`; its route, followed at the robot's speed from
+Every baseline returns a :class:`BaselineResult` (:func:`as_plan_result` turns it into the
+:class:`~mawdo.planning.result.PlanResult` every planner of
+:data:`mawdo.planning.planners.PLANNERS` returns); its route, followed at the robot's speed from
 t = 0, is judged against all obstacles (moving ones included) by
 :func:`mawdo.planning.check.check_trajectory`. ``run_baseline(name, scenario, **options)``
 dispatches by name; OMPL options are ``time_limit`` (s), ``resolution`` (px), ``clearance``
@@ -22,7 +24,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from functools import partial
 
-from mawdo.planning.baselines.result import BaselineResult, judge, route_times
+from mawdo.planning.baselines.result import BaselineResult, as_plan_result, judge, route_times
 from mawdo.planning.baselines.sampling import OMPL_PLANNERS, ompl_available, plan_ompl
 from mawdo.planning.baselines.straight import plan_straight
 from mawdo.planning.scenario import Scenario
@@ -32,6 +34,7 @@ __all__ = [
     "BASELINES",
     "BaselineResult",
     "BaselineSpec",
+    "as_plan_result",
     "judge",
     "ompl_available",
     "plan_ompl",

@@ -7,9 +7,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from mawdo.planning.check import CheckReport, check_static_path, check_trajectory
+from mawdo.planning.config import PlannerConfig, step_limit
+from mawdo.planning.result import PlanResult, Replan
 from mawdo.planning.scenario import Scenario
 
-__all__ = ["BaselineResult", "judge", "route_times"]
+__all__ = ["BaselineResult", "as_plan_result", "judge", "route_times"]
 
 
 @dataclass(frozen=True)
@@ -42,6 +44,8 @@ class BaselineResult:
         State validity checks the planner made (OMPL; 0 for the straight line).
     reason : str
         ``"ok"`` or why there is no route / why it is rejected.
+    hits : int
+        The checker's hits on the timed route (0 without a route).
     """
 
     planner: str
@@ -55,6 +59,7 @@ class BaselineResult:
     min_clearance: float
     validity_checks: int = 0
     reason: str = "ok"
+    hits: int = 0
 
     @property
     def success(self) -> bool:
@@ -100,5 +105,54 @@ def make_result(
         reason = f"checker rejects the timed route: {timed.describe()}"
     return BaselineResult(
         name, True, route, length, seconds, False, timed.ok, static.ok, timed.min_clearance,
-        checks, reason,
+        checks, reason, int(timed.hits),
     )  # fmt: skip
+
+
+def as_plan_result(
+    scenario: Scenario, result: BaselineResult, config: PlannerConfig | None = None
+) -> PlanResult:
+    """A single-shot baseline's route as a :class:`~mawdo.planning.result.PlanResult`: the
+    route followed at the robot's speed from t = 0, sampled at every step up to the one that
+    reaches the goal, with the checker's verdict of ``result`` (not judged again).
+
+    The step limit is the rule every planner obeys (:func:`~mawdo.planning.config.step_limit`,
+    ``config.max_steps`` or the automatic value): a route the robot cannot drive within it
+    does not reach the goal (``success`` False, the trajectory stops at the limit).
+    """
+    config = PlannerConfig() if config is None else config
+    solved = result.route is not None
+    route = result.route if solved else scenario.start[None, :]
+    times = route_times(route, scenario.robot_speed) if len(route) > 1 else np.zeros(1)
+    limit = _limit(scenario, config.max_steps, float(times[-1]))
+    # positions at every step; the last step ends at the goal, as a driven run's does
+    end = min(np.ceil(times[-1] - 1e-9), limit)
+    steps = np.arange(0.0, end + 1.0)
+    traj = np.column_stack([np.interp(steps, times, route[:, i]) for i in (0, 1)])
+    success, reason = bool(result.success), result.reason
+    if solved and times[-1] > limit:  # the robot never gets to the end of its route
+        success, reason = False, "step limit reached before the goal"
+    rep = Replan(
+        step=0, position=scenario.start.copy(), waypoints=route[1:-1], cost=float("nan"),
+        length=float(result.length), collisions=0, latency=float(result.time),
+        nfev=int(result.validity_checks), history=np.zeros(0),
+    )  # fmt: skip
+    return PlanResult(
+        scenario=scenario, algorithm=result.planner, seed=0, config=config, trajectory=traj,
+        success=success, reason=reason, replans=[rep], route=route, route_times=times,
+        collision_free=bool(result.collision_free), min_clearance=float(result.min_clearance),
+        hits=int(result.hits), solved=solved, guarded=False,
+    )  # fmt: skip
+
+
+def _limit(scenario: Scenario, max_steps: int | None, duration: float) -> int:
+    """The step limit for a route of ``duration`` steps; the static optimum (an oracle call)
+    is asked for only when the route outlasts the rule without it."""
+    straight, v = scenario.straight_line_length(), scenario.robot_speed
+    limit, _ = step_limit(max_steps, straight, 0.0, v)
+    if duration > limit and max_steps is None:
+        from mawdo.planning.oracle import scenario_optimum
+
+        opt = scenario_optimum(scenario, static_only=True)
+        limit, _ = step_limit(None, straight, opt.length if opt.reachable else 0.0, v)
+    return limit

@@ -7,7 +7,7 @@
   (paper Fig. 3).
 * :func:`plot_metric_boxes` - box plots of one metric across algorithms.
 
-Every map panel is drawn by one function, :func:`_draw_world`, so the grid and the animation show
+Every map panel is drawn by one function, :func:`draw_world`, so the grid and the animation show
 exactly the same things. Figures are built with the object-oriented API
 (:class:`matplotlib.figure.Figure` on an Agg canvas), never through ``pyplot``: nothing here
 changes the global backend or leaves figures registered in ``pyplot``.
@@ -23,42 +23,42 @@ A package, one module per job (every name is importable from here as before):
 # ruff: noqa: F401 - private names are re-exported: callers import them from here as before
 from mawdo.planning.render.animation import animate, animation_times
 from mawdo.planning.render.plots import (
-    _as_runs,
-    _plain_log_labels,
+    as_runs,
+    plain_log_labels,
     plot_cost_convergence,
     plot_metric_boxes,
 )
 from mawdo.planning.render.snapshots import (
     TIME_NOTE,
-    _all_subfigures,
-    _default_times,
-    _headline,
-    _panel_count,
+    all_subfigures,
+    default_times,
+    panel_count,
+    run_headline,
     snapshot_figure,
     snapshot_grid,
 )
 from mawdo.planning.render.style import (
-    _IMAGE_SUFFIXES,
-    _LEGEND_LABELS,
-    _STYLE,
     GRID_DPI,
+    IMAGE_SUFFIXES,
+    LEGEND_LABELS,
     PANEL_IN,
+    STYLE,
     TRACK_STEPS,
-    _active_replan,
-    _as_results,
-    _display,
-    _fmt_time,
-    _new_figure,
-    _optimum_path,
-    _output_path,
-    _position_at,
-    _reference_point,
-    _rings,
-    _route,
-    _save,
-    _trail_until,
+    active_replan,
+    as_results,
+    checked_output_path,
+    display_name,
+    format_time,
+    new_figure,
+    optimum_path,
+    position_at,
+    reference_point,
+    rings_of,
+    route_of,
+    save_figure,
+    trail_until,
 )
-from mawdo.planning.render.world import _draw_world, _legend_handles
+from mawdo.planning.render.world import draw_world, legend_handles
 
 __all__ = [
     "animate",

@@ -1,7 +1,7 @@
 """An animated GIF of one planning run (Pillow, no ffmpeg).
 
 Fast by blitting: the figure (legend, axes, ticks, labels) is rendered once as a background;
-each frame restores it, moves the map's artists to the frame's time (:func:`_world_state`, the
+each frame restores it, moves the map's artists to the frame's time (:func:`world_state`, the
 same one that draws the snapshot panels) and draws only them and the panel title. Redrawing the
 whole figure per frame cost about 0.14 s of CPU a frame, mostly in the legend's and the ticks'
 text layout; blitting costs a few milliseconds. The frames share one palette, so Pillow maps
@@ -14,22 +14,22 @@ from pathlib import Path
 
 import numpy as np
 
-from mawdo.planning.planner import PlanResult
 from mawdo.planning.render.style import (
-    _display,
-    _fmt_time,
-    _new_figure,
-    _optimum_path,
-    _output_path,
-    _route,
+    checked_output_path,
+    display_name,
+    format_time,
+    new_figure,
+    optimum_path,
+    route_of,
 )
 from mawdo.planning.render.world import (
-    _add_layer,
-    _draw_world,
-    _legend_handles,
-    _set_layer,
-    _world_state,
+    add_layer,
+    draw_world,
+    legend_handles,
+    set_layer,
+    world_state,
 )
+from mawdo.planning.result import PlanResult
 
 #: Colours of the shared palette taken exactly as drawn (the rest of the 256 by median cut).
 _EXACT_COLOURS = 96
@@ -44,7 +44,7 @@ def animation_times(result: PlanResult, every: int = 1, max_frames: int = 200) -
         raise ValueError(f"every={every!r} must be a positive integer")
     if not isinstance(max_frames, int | np.integer) or max_frames < 2:
         raise ValueError(f"max_frames={max_frames!r} must be an integer >= 2")
-    end = float(_route(result)[1][-1])
+    end = float(route_of(result)[1][-1])
     ts = np.arange(0.0, end + 1e-9, every)
     if ts[-1] < end - 1e-9:
         ts = np.append(ts, end)
@@ -92,15 +92,15 @@ def animate(
         raise TypeError(f"animate needs a PlanResult, got {type(result).__name__}")
     if not (isinstance(fps, int | np.integer | float) and fps > 0):
         raise ValueError(f"fps={fps!r} must be > 0")
-    out = _output_path(path, (".gif",))
+    out = checked_output_path(path, (".gif",))
     ts = animation_times(result, every, max_frames)
     sc = result.scenario
-    opt = _optimum_path(sc, {}) if optimum else None
-    fig = _new_figure((5.0, 5.6), dpi)
+    opt = optimum_path(sc, {}) if optimum else None
+    fig = new_figure((5.0, 5.6), dpi)
     fig.get_layout_engine().set(w_pad=0.02, h_pad=0.02)
-    fig.suptitle(f"{label or _display(result.algorithm)}  (seed {result.seed})", fontsize=10)
+    fig.suptitle(f"{label or display_name(result.algorithm)}  (seed {result.seed})", fontsize=10)
     ax = fig.add_subplot()
-    handles = _legend_handles(sc.robot_radius)
+    handles = legend_handles(sc.robot_radius)
     fig.legend(
         handles=handles,
         loc="outside lower center",
@@ -111,14 +111,14 @@ def animate(
         columnspacing=1.0,
     )
 
-    frame0 = _world_state(sc, float(ts[0]), result, opt)
-    _draw_world(ax, sc, float(ts[0]), result=result, optimum=opt)
+    frame0 = world_state(sc, float(ts[0]), result, opt)
+    draw_world(ax, sc, float(ts[0]), result=result, optimum=opt)
     ax.set_xlabel("x (px)", fontsize=7)
     ax.set_ylabel("y (px)", fontsize=7)
     fig.draw_without_rendering()  # fix the constrained layout once; frames keep it
     fig.set_layout_engine("none")
     frames = _Frames(fig, ax, sc, frame0)
-    images = [frames.grab(_world_state(sc, float(t), result, opt), t) for t in ts]
+    images = [frames.grab(world_state(sc, float(t), result, opt), t) for t in ts]
     _write_gif(images, out, fps)
     return out
 
@@ -133,7 +133,7 @@ class _Frames:
             self.layers.setdefault(a.get_gid(), []).append(a)
         for gid, data in state.items():  # layers absent at the first time: empty artists
             if gid not in self.layers:
-                self.layers[gid] = _add_layer(ax, scenario, gid, data)
+                self.layers[gid] = add_layer(ax, scenario, gid, data)
         self.gids = list(state)
         for a in self._artists():
             a.set_animated(True)
@@ -142,26 +142,26 @@ class _Frames:
         self.background = fig.canvas.copy_from_bbox(fig.bbox)
 
     def _artists(self) -> list:
-        # the order of a fresh panel: by zorder, ties in the order _draw_world adds them
+        # the order of a fresh panel: by zorder, ties in the order draw_world adds them
         arts = [a for gid in self.gids for a in self.layers[gid]]
         return sorted(arts, key=lambda a: a.get_zorder())  # (a stable sort)
 
     def grab(self, state: dict, t: float):
-        """The frame at time ``t`` (state from :func:`_world_state`) as an RGB image."""
+        """The frame at time ``t`` (state from :func:`world_state`) as an RGB image."""
         from PIL import Image
 
         for gid in self.gids:
             data = state.get(gid)
             arts = self.layers[gid]
-            if not _set_layer(arts, gid, data):
+            if not set_layer(arts, gid, data):
                 for a in arts:
                     a.remove()
-                arts[:] = _add_layer(self.ax, self.scenario, gid, data)
+                arts[:] = add_layer(self.ax, self.scenario, gid, data)
                 for a in arts:
                     a.set_animated(True)
             for a in arts:
                 a.set_visible(data is not None)
-        self.ax.title.set_text(f"t = {_fmt_time(float(t))}")
+        self.ax.title.set_text(f"t = {format_time(float(t))}")
         canvas = self.fig.canvas
         canvas.restore_region(self.background)
         for a in [*self._artists(), self.ax.title]:

@@ -8,15 +8,15 @@ from pathlib import Path
 import numpy as np
 
 from mawdo.planning.render.style import (
-    _IMAGE_SUFFIXES,
-    _display,
-    _new_figure,
-    _output_path,
-    _save,
+    IMAGE_SUFFIXES,
+    checked_output_path,
+    display_name,
+    new_figure,
+    save_figure,
 )
 
 
-def _as_runs(curves, label: str) -> np.ndarray:
+def as_runs(curves, label: str) -> np.ndarray:
     """A ``(runs, iterations)`` array; 1-D rows of unequal length are padded with their last value
     (a best-so-far curve stays flat after it stops)."""
     if isinstance(curves, np.ndarray) and curves.ndim == 2:
@@ -32,7 +32,7 @@ def _as_runs(curves, label: str) -> np.ndarray:
     return arr
 
 
-def _plain_log_labels(ax, values: np.ndarray) -> None:
+def plain_log_labels(ax, values: np.ndarray) -> None:
     """Plain numbers (``225``, not ``2.25 x 10^2``) on a log axis spanning less than a decade."""
     from matplotlib.ticker import FuncFormatter
 
@@ -67,22 +67,22 @@ def plot_cost_convergence(
 
     if not isinstance(curves, Mapping) or not curves:
         raise ValueError("no curves to plot: pass a dict label -> (runs, iterations) array")
-    data = {str(k): _as_runs(v, str(k)) for k, v in curves.items()}
-    out = _output_path(path, _IMAGE_SUFFIXES)
+    data = {str(k): as_runs(v, str(k)) for k, v in curves.items()}
+    out = checked_output_path(path, IMAGE_SUFFIXES)
     if log and any(np.nanmin(a) <= 0 for a in data.values()):
         log = False
-    fig = _new_figure((6.4, 4.2), 120)
+    fig = new_figure((6.4, 4.2), 120)
     ax = fig.add_subplot()
     for key, arr in data.items():
-        band(ax, arr, f"{_display(key)} (n = {arr.shape[0]})", log=log)
+        band(ax, arr, f"{display_name(key)} (n = {arr.shape[0]})", log=log)
     ax.set_xlabel("iteration")
     ax.set_ylabel("best cost C" + (" (log scale)" if log else ""))
     ax.set_title(title or "First plan: median best cost and IQR over runs", fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
     if log:
-        _plain_log_labels(ax, np.concatenate([a.ravel() for a in data.values()]))
+        plain_log_labels(ax, np.concatenate([a.ravel() for a in data.values()]))
     ax.legend(fontsize=8)
-    return _save(fig, out)
+    return save_figure(fig, out)
 
 
 def plot_metric_boxes(
@@ -114,11 +114,11 @@ def plot_metric_boxes(
         arr = arr.ravel()
         kept = arr[np.isfinite(arr)]
         data.append(kept)
-        ticks.append(f"{_display(key)}\n(n = {kept.size}/{arr.size})")
+        ticks.append(f"{display_name(key)}\n(n = {kept.size}/{arr.size})")
     if not any(d.size for d in data):
         raise ValueError(f"no finite values of {metric_label!r} to plot")
-    out = _output_path(path, _IMAGE_SUFFIXES)
-    fig = _new_figure((max(4.0, 1.1 * len(data) + 1.5), 4.2), 120)
+    out = checked_output_path(path, IMAGE_SUFFIXES)
+    fig = new_figure((max(4.0, 1.1 * len(data) + 1.5), 4.2), 120)
     ax = fig.add_subplot()
     pos = np.arange(1, len(data) + 1)
     shown = [d if d.size else np.array([np.nan]) for d in data]
@@ -137,4 +137,4 @@ def plot_metric_boxes(
     if title:
         ax.set_title(title, fontsize=10)
     ax.grid(True, axis="y", alpha=0.3)
-    return _save(fig, out)
+    return save_figure(fig, out)

@@ -7,20 +7,20 @@ from pathlib import Path
 
 import numpy as np
 
-from mawdo.planning.planner import PlanResult
 from mawdo.planning.render.style import (
-    _IMAGE_SUFFIXES,
     GRID_DPI,
+    IMAGE_SUFFIXES,
     PANEL_IN,
-    _as_results,
-    _display,
-    _new_figure,
-    _optimum_path,
-    _output_path,
-    _route,
-    _save,
+    as_results,
+    checked_output_path,
+    display_name,
+    new_figure,
+    optimum_path,
+    route_of,
+    save_figure,
 )
-from mawdo.planning.render.world import _draw_world, _legend_handles
+from mawdo.planning.render.world import draw_world, legend_handles
+from mawdo.planning.result import PlanResult
 
 #: Printed under the legend of every snapshot grid. A panel freezes the obstacles at its time
 #: while the lines span other times, so a plan drawn across an obstacle is not a collision.
@@ -31,7 +31,7 @@ TIME_NOTE = (
 )
 
 
-def _headline(label: str, result: PlanResult, metrics: dict | None) -> str:
+def run_headline(label: str, result: PlanResult, metrics: dict | None) -> str:
     parts = [f"{label}  (seed {result.seed})"]
     if metrics:
         if "length_px" in metrics:
@@ -46,9 +46,9 @@ def _headline(label: str, result: PlanResult, metrics: dict | None) -> str:
     return "  |  ".join(parts)
 
 
-def _default_times(result: PlanResult, n: int) -> np.ndarray:
+def default_times(result: PlanResult, n: int) -> np.ndarray:
     """``n`` integer times spread evenly from 0 to the end of the run."""
-    end = float(_route(result)[1][-1])
+    end = float(route_of(result)[1][-1])
     return np.round(np.linspace(0.0, end, n))
 
 
@@ -73,7 +73,7 @@ def snapshot_figure(
         One sub-figure per result (its title is the algorithm and the headline metrics) with
         ``rows x cols`` map panels titled ``"t = <t>"``, and one legend sub-figure at the bottom.
     """
-    items = _as_results(results)
+    items = as_results(results)
     for name, v in (("rows", rows), ("cols", cols)):
         if not isinstance(v, int | np.integer) or v < 1:
             raise ValueError(f"{name}={v!r} must be a positive integer")
@@ -91,25 +91,25 @@ def snapshot_figure(
     block_h = rows * PANEL_IN + 0.75  # title row and x labels
     legend_h = 1.0  # the legend and the time note under it
     width = cols * PANEL_IN + 0.5
-    fig = _new_figure((width, len(items) * block_h + legend_h), dpi)
+    fig = new_figure((width, len(items) * block_h + legend_h), dpi)
     fig.get_layout_engine().set(w_pad=0.03, h_pad=0.05, hspace=0.02, wspace=0.02)
     subfigs = fig.subfigures(
         len(items) + 1, 1, height_ratios=[block_h] * len(items) + [legend_h], squeeze=False
     )[:, 0]
     cache: dict = {}
     for (key, res), sub in zip(items, subfigs[:-1], strict=False):
-        label = _display(key)
+        label = display_name(key)
         m = metrics.get(key, metrics.get(label))
-        sub.suptitle(_headline(label, res, m), fontsize=11, fontweight="bold")
-        ts = _default_times(res, n_panels) if times is None else times
-        opt = _optimum_path(res.scenario, cache) if optimum else None
+        sub.suptitle(run_headline(label, res, m), fontsize=11, fontweight="bold")
+        ts = default_times(res, n_panels) if times is None else times
+        opt = optimum_path(res.scenario, cache) if optimum else None
         axes = sub.subplots(rows, cols, squeeze=False)
         for i, ax in enumerate(axes.flat):
             r, c = divmod(i, cols)
             if i >= len(ts):
                 ax.set_visible(False)
                 continue
-            _draw_world(ax, res.scenario, float(ts[i]), result=res, optimum=opt)
+            draw_world(ax, res.scenario, float(ts[i]), result=res, optimum=opt)
             if c == 0:
                 ax.set_ylabel("y (px)", fontsize=8)
             else:
@@ -119,7 +119,7 @@ def snapshot_figure(
             else:
                 ax.tick_params(labelbottom=False)
     r0 = items[0][1].scenario.robot_radius
-    handles = _legend_handles(r0)
+    handles = legend_handles(r0)
     subfigs[-1].legend(
         handles=handles,
         loc="upper center",
@@ -190,25 +190,25 @@ def snapshot_grid(
     OSError
         The path cannot be written (the message names it).
     """
-    out = _output_path(path, _IMAGE_SUFFIXES)
+    out = checked_output_path(path, IMAGE_SUFFIXES)
     fig = snapshot_figure(
         results, times=times, rows=rows, cols=cols, optimum=optimum, metrics=metrics, dpi=dpi
     )
-    return _save(fig, out, metadata=dict(metadata)) if metadata else _save(fig, out)
+    return save_figure(fig, out, metadata=dict(metadata)) if metadata else save_figure(fig, out)
 
 
 # --------------------------------------------------------------------------------------------
 # animation
 
 
-def _panel_count(fig) -> int:
+def panel_count(fig) -> int:
     """Map panels of a snapshot figure (axes titled ``"t = ..."``), for tests and checks."""
-    axes = [ax for sub in [fig, *_all_subfigures(fig)] for ax in sub.axes]
+    axes = [ax for sub in [fig, *all_subfigures(fig)] for ax in sub.axes]
     return sum(1 for ax in set(axes) if ax.get_visible() and ax.get_title().startswith("t = "))
 
 
-def _all_subfigures(fig) -> list:
+def all_subfigures(fig) -> list:
     out = []
     for sub in getattr(fig, "subfigs", []):
-        out += [sub, *_all_subfigures(sub)]
+        out += [sub, *all_subfigures(sub)]
     return out

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mawdo.planning.planner import PlanResult, Replan
+from mawdo.planning.result import PlanResult, Replan
 from mawdo.planning.scenario import Scenario
 
 #: Resolution of the snapshot grid (dots per inch); 4 panels of PANEL_IN are ~1600 px wide.
@@ -16,12 +16,12 @@ GRID_DPI = 120
 #: Side of one map panel in the snapshot grid (inches).
 PANEL_IN = 3.2
 #: Output formats of the static figures.
-_IMAGE_SUFFIXES = (".png", ".svg", ".pdf")
+IMAGE_SUFFIXES = (".png", ".svg", ".pdf")
 #: Steps of obstacle motion shown as a faint track behind each moving obstacle.
 TRACK_STEPS = 25.0
 
 # One place for every colour and line style, shared by the panels and the legend.
-_STYLE = {
+STYLE = {
     "static": {"facecolor": "goldenrod", "edgecolor": "darkgoldenrod", "lw": 0.8},
     "moving": {"facecolor": "0.12", "edgecolor": "black", "lw": 0.8},
     "inflated": {"color": "0.35", "lw": 0.6, "ls": (0, (3, 2)), "alpha": 0.7},
@@ -41,7 +41,7 @@ _STYLE = {
     "robot": {"facecolor": "deepskyblue", "edgecolor": "navy", "lw": 1.0},
 }
 
-_LEGEND_LABELS = {
+LEGEND_LABELS = {
     "static": "static obstacle",
     "moving": "moving obstacle",
     "inflated": "inflated by robot radius",
@@ -59,7 +59,7 @@ _LEGEND_LABELS = {
 # helpers
 
 
-def _new_figure(figsize, dpi, layout="constrained"):
+def new_figure(figsize, dpi, layout="constrained"):
     """A :class:`~matplotlib.figure.Figure` on an Agg canvas, outside ``pyplot``."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
@@ -69,7 +69,7 @@ def _new_figure(figsize, dpi, layout="constrained"):
     return fig
 
 
-def _display(name) -> str:
+def display_name(name) -> str:
     """Display label of a registered algorithm (``"mewdo"`` -> ``"MEWDO (reconstructed)"``)."""
     from mawdo.optimizers import OPTIMIZERS
 
@@ -77,7 +77,7 @@ def _display(name) -> str:
     return OPTIMIZERS[name].display if name.lower() in OPTIMIZERS else name
 
 
-def _output_path(path, suffixes: tuple[str, ...] | None = None) -> Path:
+def checked_output_path(path, suffixes: tuple[str, ...] | None = None) -> Path:
     """Check an output path before any drawing: a known suffix and a directory we can make."""
     out = Path(path)
     if suffixes is not None and out.suffix.lower() not in suffixes:
@@ -94,7 +94,7 @@ def _output_path(path, suffixes: tuple[str, ...] | None = None) -> Path:
     return out
 
 
-def _save(fig, out: Path, **kwargs) -> Path:
+def save_figure(fig, out: Path, **kwargs) -> Path:
     try:
         fig.savefig(out, **kwargs)
     except OSError as exc:
@@ -102,7 +102,7 @@ def _save(fig, out: Path, **kwargs) -> Path:
     return out
 
 
-def _as_results(results) -> list[tuple[str, PlanResult]]:
+def as_results(results) -> list[tuple[str, PlanResult]]:
     """``[(key, result), ...]`` from a list of results or a mapping label -> result."""
     if isinstance(results, PlanResult):
         results = [results]
@@ -125,7 +125,7 @@ def _as_results(results) -> list[tuple[str, PlanResult]]:
     return items
 
 
-def _route(result: PlanResult) -> tuple[np.ndarray, np.ndarray]:
+def route_of(result: PlanResult) -> tuple[np.ndarray, np.ndarray]:
     """The executed polyline and its time stamps (falls back to the integer-step trajectory)."""
     if result.route is not None and result.route_times is not None and len(result.route):
         return np.asarray(result.route, float), np.asarray(result.route_times, float)
@@ -133,18 +133,18 @@ def _route(result: PlanResult) -> tuple[np.ndarray, np.ndarray]:
     return traj, np.arange(len(traj), dtype=float)
 
 
-def _position_at(route: np.ndarray, times: np.ndarray, t: float) -> np.ndarray:
+def position_at(route: np.ndarray, times: np.ndarray, t: float) -> np.ndarray:
     """Robot position at time ``t`` on the executed route (held at the ends)."""
     return np.array([np.interp(t, times, route[:, 0]), np.interp(t, times, route[:, 1])])
 
 
-def _trail_until(route: np.ndarray, times: np.ndarray, t: float) -> np.ndarray:
+def trail_until(route: np.ndarray, times: np.ndarray, t: float) -> np.ndarray:
     """The executed route from the start up to time ``t`` (pixels)."""
     done = route[times <= t]
-    return np.vstack([done, _position_at(route, times, t)[None]])
+    return np.vstack([done, position_at(route, times, t)[None]])
 
 
-def _active_replan(result: PlanResult, t: float) -> Replan | None:
+def active_replan(result: PlanResult, t: float) -> Replan | None:
     """The plan the robot follows at time ``t``: the last replan made at or before ``t``."""
     active = None
     for rp in result.replans:
@@ -155,20 +155,20 @@ def _active_replan(result: PlanResult, t: float) -> Replan | None:
     return active
 
 
-def _rings(geom):
+def rings_of(geom):
     """Exterior rings (``(k, 2)`` arrays) of a shapely polygon or multipolygon."""
     parts = getattr(geom, "geoms", [geom])
     return [np.asarray(p.exterior.coords) for p in parts if hasattr(p, "exterior")]
 
 
-def _reference_point(obstacle) -> np.ndarray:
+def reference_point(obstacle) -> np.ndarray:
     """A point that moves with the obstacle (circle centre, polygon vertex mean), at offset 0."""
     if obstacle.is_circle:
         return np.asarray(obstacle.shape.center, float)
     return np.asarray(obstacle.shape.vertices, float).mean(axis=0)
 
 
-def _optimum_path(scenario: Scenario, cache: dict) -> np.ndarray | None:
+def optimum_path(scenario: Scenario, cache: dict) -> np.ndarray | None:
     """Static optimum path of a scenario (cached per scenario object)."""
     key = id(scenario)
     if key not in cache:
@@ -178,7 +178,7 @@ def _optimum_path(scenario: Scenario, cache: dict) -> np.ndarray | None:
     return cache[key]
 
 
-def _fmt_time(t: float) -> str:
+def format_time(t: float) -> str:
     return f"{t:.0f}" if abs(t - round(t)) < 1e-9 else f"{t:.1f}"
 
 

@@ -6,25 +6,25 @@ from __future__ import annotations
 import numpy as np
 
 from mawdo.planning.geometry import inflated_obstacles
-from mawdo.planning.planner import PlanResult
 from mawdo.planning.render.style import (
-    _LEGEND_LABELS,
-    _STYLE,
+    LEGEND_LABELS,
+    STYLE,
     TRACK_STEPS,
-    _active_replan,
-    _fmt_time,
-    _reference_point,
-    _rings,
-    _route,
-    _trail_until,
+    active_replan,
+    format_time,
+    reference_point,
+    rings_of,
+    route_of,
+    trail_until,
 )
+from mawdo.planning.result import PlanResult
 from mawdo.planning.scenario import Scenario
 
 # drawing order of the line layers (obstacles: 2 static, 3 moving; robot 8)
 _ZORDER = {"track": 1.5, "optimum": 4, "plan": 5, "trail": 6, "start": 7, "goal": 7}
 
 
-def _draw_world(
+def draw_world(
     ax,
     scenario: Scenario,
     t: float,
@@ -70,17 +70,17 @@ def _draw_world(
     else:
         for artist in [*ax.lines, *ax.patches]:
             artist.remove()
-    for gid, data in _world_state(scenario, t, result, optimum, track).items():
+    for gid, data in world_state(scenario, t, result, optimum, track).items():
         if data is not None:
-            _add_layer(ax, scenario, gid, data)
+            add_layer(ax, scenario, gid, data)
     ax.set_xlim(0.0, scenario.width)
     ax.set_ylim(0.0, scenario.height)
     ax.set_aspect("equal", adjustable="box")
     ax.tick_params(labelsize=small - 1, length=2, pad=1.5)
-    ax.set_title(f"t = {_fmt_time(t)}" if title is None else title, fontsize=small + 1, pad=3)
+    ax.set_title(f"t = {format_time(t)}" if title is None else title, fontsize=small + 1, pad=3)
 
 
-def _world_state(
+def world_state(
     scenario: Scenario,
     t: float,
     result: PlanResult | None = None,
@@ -105,34 +105,34 @@ def _world_state(
             state[f"{kind}:{ob.id}"] = np.asarray(ob.shape.center, float) + off
         else:
             state[f"{kind}:{ob.id}"] = np.asarray(ob.shape.vertices, float) + off
-        state[f"inflated:{ob.id}"] = _rings(grown) if scenario.robot_radius > 0 else []
+        state[f"inflated:{ob.id}"] = rings_of(grown) if scenario.robot_radius > 0 else []
         if not ob.is_static and track > 0:
             state[f"track:{ob.id}"] = None
             if t > 0:
                 ts = np.linspace(max(0.0, t - track), t, max(2, int(2 * min(track, t)) + 1))
-                state[f"track:{ob.id}"] = _reference_point(ob) + ob.offset(ts)
+                state[f"track:{ob.id}"] = reference_point(ob) + ob.offset(ts)
     if optimum is not None:
         state["optimum"] = optimum
     state["start"] = np.asarray(scenario.start, float)
     state["goal"] = np.asarray(scenario.goal, float)
     if result is not None:
-        route, times = _route(result)
-        active = _active_replan(result, t)
+        route, times = route_of(result)
+        active = active_replan(result, t)
         finished = result.success and t >= times[-1] - 1e-9
         state["plan"] = None
         if active is not None and not finished:
             state["plan"] = np.vstack([active.position, active.waypoints, scenario.goal])
-        trail = _trail_until(route, times, t)
+        trail = trail_until(route, times, t)
         state["trail"] = trail
         state["robot"] = trail[-1]
     return state
 
 
-def _add_layer(ax, scenario: Scenario, gid: str, data) -> list:
-    """Draw one entry of :func:`_world_state` on ``ax`` in its style; returns its artists."""
+def add_layer(ax, scenario: Scenario, gid: str, data) -> list:
+    """Draw one entry of :func:`world_state` on ``ax`` in its style; returns its artists."""
     from matplotlib.patches import Circle, Polygon
 
-    s = _STYLE
+    s = STYLE
     kind, _, oid = gid.partition(":")
     if kind in ("static", "moving"):
         ob = next(o for o in scenario.obstacles if str(o.id) == oid)
@@ -151,8 +151,8 @@ def _add_layer(ax, scenario: Scenario, gid: str, data) -> list:
     return ax.plot(xy[:, 0], xy[:, 1], zorder=_ZORDER[kind], gid=gid, **s[kind])
 
 
-def _set_layer(artists: list, gid: str, data) -> bool:
-    """Move the artists :func:`_add_layer` made to ``data``; False if they cannot follow it (a
+def set_layer(artists: list, gid: str, data) -> bool:
+    """Move the artists :func:`add_layer` made to ``data``; False if they cannot follow it (a
     ring more or less), so the caller draws them anew."""
     kind = gid.partition(":")[0]
     if kind == "inflated":
@@ -172,8 +172,8 @@ def _set_layer(artists: list, gid: str, data) -> bool:
     return True
 
 
-def _legend_handles(robot_radius: float) -> list:
-    """Proxy artists for the figure legend, in the styles of :func:`_draw_world`.
+def legend_handles(robot_radius: float) -> list:
+    """Proxy artists for the figure legend, in the styles of :func:`draw_world`.
 
     Ordered so that a 5-column legend (filled column by column) pairs related entries:
     obstacles, their outline and track, the robot's path and plan, optimum and robot, start and
@@ -182,8 +182,8 @@ def _legend_handles(robot_radius: float) -> list:
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
-    s = _STYLE
-    lab = _LEGEND_LABELS
+    s = STYLE
+    lab = LEGEND_LABELS
     robot = s["robot"]
     robot_marker = {
         "ls": "none",
