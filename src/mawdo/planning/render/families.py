@@ -1,6 +1,6 @@
 """Gallery of the scene families where time decides (issue 27): one panel per scene.
 
-Each panel shows the world at ``t = 0`` (:func:`~mawdo.planning.render.world._draw_world`:
+Each panel shows the world at ``t = 0`` (:func:`~mawdo.planning.render.world.draw_world`:
 obstacles, their inflation, start, goal, the static optimum), each moving obstacle's future
 track up to the earliest arrival ``T*`` with an arrow for where it heads first, the waiting
 spots of the scene, and the earliest-arrival route (:mod:`mawdo.planning.sipp.optimum`) with its
@@ -16,15 +16,15 @@ from pathlib import Path
 import numpy as np
 
 from mawdo.planning.render.style import (
-    _IMAGE_SUFFIXES,
     GRID_DPI,
+    IMAGE_SUFFIXES,
     PANEL_IN,
-    _new_figure,
-    _output_path,
-    _reference_point,
-    _save,
+    checked_output_path,
+    new_figure,
+    reference_point,
+    save_figure,
 )
-from mawdo.planning.render.world import _draw_world
+from mawdo.planning.render.world import draw_world
 
 __all__ = ["timed_gallery", "timed_panel"]
 
@@ -39,7 +39,7 @@ def _first_move(ob, t_end: float) -> tuple[np.ndarray, np.ndarray] | None:
     """Where the obstacle's reference point is at ``t = 0`` and once it has moved by twice its
     size (or where it gets farthest by ``t_end``); ``None`` if it never moves before then."""
     ts = np.linspace(0.0, t_end, 400)
-    pts = _reference_point(ob) + ob.offset(ts)
+    pts = reference_point(ob) + ob.offset(ts)
     step = np.hypot(*(pts - pts[0]).T)
     size = max(float(np.ptp(np.reshape(ob.shape.bounds(), (2, 2)), axis=0).max()), 1.0)
     far = np.nonzero(step >= 2.0 * size)[0]
@@ -65,12 +65,12 @@ def timed_panel(ax, scene, small: float = 7.0) -> None:
         f"{scene.family}: T* {scene.t_star:.1f}, L*/v {scene.l_star / v:.1f}, "
         f"waits {route.waiting:.1f} (steps)"
     )
-    _draw_world(ax, sc, 0.0, optimum=scene.optimum, track=0.0, title=title, small=small)
+    draw_world(ax, sc, 0.0, optimum=scene.optimum, track=0.0, title=title, small=small)
     horizon = max(scene.t_star, 1.0)
     for i in sc.moving_indices:
         ob = sc.obstacles[i]
         ts = np.linspace(0.0, horizon, 300)
-        future = _reference_point(ob) + ob.offset(ts)
+        future = reference_point(ob) + ob.offset(ts)
         ax.plot(*future.T, **_FUTURE)
         move = _first_move(ob, horizon)
         if move is not None:
@@ -133,7 +133,7 @@ def timed_gallery(
     """
     from mawdo.planning.scenes import TIMED_FAMILIES, generate_scene
 
-    out = None if path is None else _output_path(path, _IMAGE_SUFFIXES)
+    out = None if path is None else checked_output_path(path, IMAGE_SUFFIXES)
     if scenes is None:
         scenes = [generate_scene(f, index, seed=seed) for f in TIMED_FAMILIES]
     scenes = list(scenes)
@@ -142,7 +142,7 @@ def timed_gallery(
     if isinstance(cols, bool) or not isinstance(cols, int) or cols < 1:
         raise ValueError(f"cols must be an integer >= 1, got {cols!r}")
     rows = -(-len(scenes) // cols)
-    fig = _new_figure((cols * PANEL_IN, rows * PANEL_IN + 0.6), dpi)
+    fig = new_figure((cols * PANEL_IN, rows * PANEL_IN + 0.6), dpi)
     axes = np.atleast_1d(fig.subplots(rows, cols, squeeze=False)).ravel()
     for ax, scene in zip(axes, scenes, strict=False):
         timed_panel(ax, scene)
@@ -151,4 +151,4 @@ def timed_gallery(
     _legend(fig)
     if out is None:
         return fig
-    return _save(fig, Path(out), dpi=dpi)
+    return save_figure(fig, Path(out), dpi=dpi)
