@@ -306,3 +306,15 @@ def test_exact_evaluation_budget_and_target_status():
     assert np.all(res.status == 2) and np.all(res.nit == 1)
     assert res.message == "target value reached" and np.all(res.fun <= 1e3)
     assert res.history.shape == (2, 1)
+
+
+def test_an_option_shared_by_name_states_its_own_algorithms_interval():
+    # sigma0 means a fraction of the box side for cmaes ((0, 1]) but a step for wind ((0, inf)):
+    # each field declares its own range, so the message gives the interval that applies
+    with pytest.raises(ValueError, match=r"^sigma0=0 must be a finite number in \(0, 1\]$"):
+        make_optimizer("cmaes", sigma0=0)
+    with pytest.raises(ValueError, match=r"^sigma0=2 must be a finite number in \(0, 1\]$"):
+        make_optimizer("cmaes", sigma0=2)
+    assert make_optimizer("wdo", sigma0=2).params.sigma0 == 2
+    with pytest.raises(ValueError, match=r"^q_min=0.5 must be a finite number in \[0, 0.333"):
+        make_optimizer("mewdo", q_min=0.5)

@@ -194,6 +194,10 @@ class Optimizer(ABC):
     params_class: ClassVar[type[Params]] = Params
     per_run_metadata: ClassVar[tuple[str, ...]] = ()
     """Keys of ``metadata`` that hold one entry per run (joined when runs go in blocks)."""
+    sequential: ClassVar[bool] = False
+    """True when ``ask`` gives one candidate per run, each depending on the value of the last
+    (an iteration is then one evaluation, not ``pop_size``): budgets set in iterations mean
+    ``pop_size`` times fewer evaluations for such an algorithm."""
 
     def __init__(self, params: Params | None = None, name: str | None = None, **options) -> None:
         if name is not None:
