@@ -76,6 +76,10 @@ def test_scipy_defaults_are_its_own():
     )  # fmt: skip
     assert tuple(ref.dither) == res.params["mutation"] and ref.atol == res.params["atol"]
     assert set(STRATEGIES) == set(ref._binomial) | set(ref._exponential)
+    # Sobol rounds the population up to a power of two
+    res = de_run(max_evals=3, init="sobol")
+    size = DifferentialEvolutionSolver(bowl, BOUNDS, init="sobol").num_population_members
+    assert res.params["pop_size"] == size == 64
 
 
 @pytest.mark.parametrize("budget", [7, 130, 200])

@@ -217,6 +217,7 @@ class ScipyDEState:
     streams: RunStreams
     x0: np.ndarray | None = None  # (R, k, D) warm-start points still to evaluate
     seeds: list = field(default_factory=list)  # per run: the seed of each call that asked
+    pending: tuple | None = None  # the next points and their calls, collected by tell
 
 
 def _stop_runs(runs: list) -> None:
@@ -242,7 +243,7 @@ class ScipyDE(Optimizer):
     def init(self, space: Space, streams: RunStreams, max_iter: int, x0=None) -> ScipyDEState:
         R, D = streams.runs, space.dim
         if self.params.auto_pop_size:  # scipy's size, reported in the result's params
-            S = max(5, self.params.popsize * D)
+            S = max(5, self.params.popsize * D)  # (the problem refuses equal bounds)
             S = 1 << (S - 1).bit_length() if self.params.init == "sobol" else S
             self.params = dataclasses.replace(self.params, pop_size=S)
         state = ScipyDEState(runs=[None] * R, space=space, streams=streams)
@@ -264,20 +265,30 @@ class ScipyDE(Optimizer):
     def ask(self, state: ScipyDEState) -> np.ndarray:
         if state.x0 is not None:
             return state.x0
+        pending, state.pending = state.pending, None
+        X, calls = self._collect(state) if pending is None else pending
+        # counted here, when the points go to the driver: a call begun after the last tell
+        # (its first point collected, never evaluated) is no restart
+        new = [(r, c) for r, c in enumerate(calls) if len(state.seeds[r]) == c[0]]
+        for r, (_, seed) in new:
+            state.seeds[r].append(seed)
+        if new:  # new lists: the results already returned keep theirs
+            self.metadata["restarts"] = [len(s) - 1 for s in state.seeds]
+            self.metadata["de_seeds"] = [list(s) for s in state.seeds]
+        return X
+
+    def _collect(self, state: ScipyDEState) -> tuple[np.ndarray, list]:
+        """Each run's next point, waiting for its thread (``(R, 1, D)``, in the box), and the
+        ``(call, seed)`` it belongs to."""
         X = np.empty((len(state.runs), 1, state.space.dim))
-        new_call = False
+        calls = []
         for r, run in enumerate(state.runs):
             msg = run.requests.get()
             if isinstance(msg, BaseException):
                 raise msg
             X[r, 0], call, seed = msg
-            if len(state.seeds[r]) == call:  # the first point of a new call
-                state.seeds[r].append(seed)
-                new_call = True
-        if new_call:  # new lists: the results already returned keep theirs
-            self.metadata["restarts"] = [len(s) - 1 for s in state.seeds]
-            self.metadata["de_seeds"] = [list(s) for s in state.seeds]
-        return np.clip(X, state.space.lb, state.space.ub)
+            calls.append((call, seed))
+        return np.clip(X, state.space.lb, state.space.ub), calls
 
     def tell(self, state: ScipyDEState, X: np.ndarray, F: np.ndarray) -> ScipyDEState:
         if state.x0 is not None:  # warm start: each run's scipy x0 is its best x0 point
@@ -288,4 +299,8 @@ class ScipyDE(Optimizer):
             return state
         for r, run in enumerate(state.runs):
             run.replies.put(float(F[r, 0]))
+        # Wait for the next points now, while the driver has nothing to run: a thread woken
+        # while the driver still works waits for the GIL's switch interval (5 ms) each time
+        # (one run: 5.8 ms an iteration instead of about 0.7).
+        state.pending = self._collect(state)
         return state
