@@ -14,7 +14,7 @@ from mawdo.budget import Budget
 from mawdo.minimize import make_problem
 from mawdo.optimizers.registry import OPTIMIZERS, make_optimizer
 from mawdo.problem import as_bounds
-from mawdo.validate import OPTION_RANGES, ArgumentTypeError, check_int, check_real, check_seed
+from mawdo.validate import ArgumentTypeError, check_int, check_real, check_seed
 
 NAN, INF = float("nan"), float("inf")
 B3 = [(-5, 5)] * 3
@@ -207,18 +207,24 @@ def test_every_numeric_option_of_every_algorithm_is_checked(algorithm, field, ba
         make_optimizer(algorithm, **{field: bad})
 
 
-def test_the_option_table_covers_every_numeric_option():
-    # a new option missing from OPTION_RANGES would only get the type-derived check
-    assert {f for _, f in ALL_NUMERIC} <= set(OPTION_RANGES)
+def test_every_numeric_option_declares_its_constraint_on_its_field():
+    # a numeric field declared without option() would only get the type-derived check
+    undeclared = []
+    for name in OPTIMIZERS:
+        params = make_optimizer(name).params
+        fields = {f.name: f for f in dataclasses.fields(params)}
+        undeclared += [
+            (name, f) for a, f in ALL_NUMERIC if a == name and "option" not in fields[f].metadata
+        ]
+    assert undeclared == []
     assert len(ALL_NUMERIC) > 30
 
 
 def test_an_optimizer_instance_is_checked_too():
     from mawdo.optimizers.wdo import Wind
 
-    opt = Wind(alpha=NAN)  # built directly, bypassing the registry
-    with pytest.raises(ValueError, match="alpha=nan"):
-        run(algorithm=opt)
+    with pytest.raises(ValueError, match=r"alpha=nan must be a finite number in \[0, 1\]"):
+        Wind(alpha=NAN)  # built directly, bypassing the registry: checked all the same
     with pytest.raises(ValueError, match="RT=nan"):
         run(algorithm=Wind(), RT=NAN)
 
@@ -300,3 +306,15 @@ def test_exact_evaluation_budget_and_target_status():
     assert np.all(res.status == 2) and np.all(res.nit == 1)
     assert res.message == "target value reached" and np.all(res.fun <= 1e3)
     assert res.history.shape == (2, 1)
+
+
+def test_an_option_shared_by_name_states_its_own_algorithms_interval():
+    # sigma0 means a fraction of the box side for cmaes ((0, 1]) but a step for wind ((0, inf)):
+    # each field declares its own range, so the message gives the interval that applies
+    with pytest.raises(ValueError, match=r"^sigma0=0 must be a finite number in \(0, 1\]$"):
+        make_optimizer("cmaes", sigma0=0)
+    with pytest.raises(ValueError, match=r"^sigma0=2 must be a finite number in \(0, 1\]$"):
+        make_optimizer("cmaes", sigma0=2)
+    assert make_optimizer("wdo", sigma0=2).params.sigma0 == 2
+    with pytest.raises(ValueError, match=r"^q_min=0.5 must be a finite number in \[0, 0.333"):
+        make_optimizer("mewdo", q_min=0.5)

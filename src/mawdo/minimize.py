@@ -173,8 +173,8 @@ def minimize(
         flat in ``runs``; one block with ``callback`` or ``max_time``, which see the whole
         batch. Pass ``runs`` for an objective that must see every run in each call.
     **options
-        Algorithm coefficients, e.g. ``pop_size=50``, ``groups=8``; each a finite number in its
-        range (:data:`mawdo.validate.OPTION_RANGES`).
+        Algorithm coefficients, e.g. ``pop_size=50``, ``groups=8``; each checked against the
+        constraint its algorithm declares on the field (:func:`mawdo.optimizers.base.option`).
 
     Returns
     -------

@@ -58,6 +58,12 @@ class Registry(Mapping[str, T], Generic[T]):
         key = name.lower()
         return self._aliases.get(key, key)
 
+    def unregister(self, name: str) -> T:
+        """Remove and return the entry under ``name`` (for throw-away entries in tests)."""
+        entry = self[name]
+        del self._items[self.resolve(name)]
+        return entry
+
     def __getitem__(self, name: str) -> T:
         if not isinstance(name, str):
             raise TypeError(f"{self.kind} name must be a string, got {type(name).__name__}")

@@ -12,10 +12,8 @@ as the command line does, still catch it).
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import numbers
-from typing import Any
 
 import numpy as np
 
@@ -189,71 +187,3 @@ def check_seed(seed, name: str = "seed"):
         if v < 0:
             raise ValueError(f"{name}={seed!r} is negative: {fix}")
     return seed
-
-
-# The range of every numeric algorithm option, by name. The Params classes check their own
-# cross-field rules (groups <= pop_size, obl needs restart, q_min <= 1/3); this table adds what
-# a comparison-based check cannot see: NaN, inf, bools and strings. Options missing here still get
-# the type-derived check (finite real for ``float``, integer for ``int``).
-# name -> (kind, low, high, low_open, high_open)
-OPTION_RANGES: dict[str, tuple] = {
-    "pop_size": ("int", 2, None),
-    "groups": ("int", 1, None),
-    "restart_every": ("int", 1, None),
-    "low_dim": ("int", 0, None),
-    "alpha": ("real", 0, 1, False, False),  # friction: u <- (1 - alpha) u + ...
-    "g": ("real", 0, None, False, False),
-    "RT": ("real", 0, None, False, False),
-    "c": ("real", 0, None, False, False),
-    "vmax": ("real", 0, None, True, False),
-    "restart_frac": ("real", 0, 1, True, False),
-    "sigma0": ("real", 0, None, True, False),
-    "sigma_end": ("real", 0, None, True, False),
-    "eta": ("real", 0, 1, False, False),
-    "lr": ("real", 0, 1, True, False),
-    "q_min": ("real", 0, 1, False, False),
-    "b": ("real", None, None, False, False),
-    "cma_sigma": ("real", 0, None, True, False),
-}
-
-
-def _field_kind(f: dataclasses.Field) -> str:
-    t = f.type if isinstance(f.type, str) else getattr(f.type, "__name__", str(f.type))
-    return t.split("|")[0].strip()
-
-
-def check_option(name: str, value, declared: str = "") -> None:
-    """Check one algorithm option against :data:`OPTION_RANGES` or its declared type."""
-    spec = OPTION_RANGES.get(name)
-    if spec is not None and spec[0] == "int":
-        check_int(name, value, spec[1], spec[2])
-    elif spec is not None:
-        check_real(name, value, spec[1], spec[2], low_open=spec[3], high_open=spec[4])
-    elif declared == "float":
-        check_real(name, value)
-    elif declared == "int":
-        check_int(name, value)
-    elif declared == "bool":
-        check_bool(name, value)
-    elif declared == "str" and not isinstance(value, str):
-        raise ArgumentTypeError(f"{name}={value!r} must be a string, not a {_what(value)}")
-    elif declared == "tuple":
-        if not isinstance(value, tuple | list) or isinstance(value, str):
-            raise ArgumentTypeError(f"{name}={value!r} must be a tuple of numbers")
-        for i, v in enumerate(value):
-            check_real(f"{name}[{i}]", v)
-
-
-def check_options(params_class: type, options: dict[str, Any]) -> None:
-    """Check the known options of ``params_class`` (unknown names are left to ``make_params``,
-    which suggests close names)."""
-    fields = {f.name: f for f in dataclasses.fields(params_class)}
-    for key, value in options.items():
-        if key in fields:
-            check_option(key, value, _field_kind(fields[key]))
-
-
-def check_params(params) -> None:
-    """Check every field of a built ``Params`` instance (presets and defaults included)."""
-    for f in dataclasses.fields(params):
-        check_option(f.name, getattr(params, f.name), _field_kind(f))

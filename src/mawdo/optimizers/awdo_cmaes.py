@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mawdo.optimizers.base import Space, finite_last
+from mawdo.optimizers.base import Space, finite_last, option
 from mawdo.optimizers.purecmaes import PureCMAES
 from mawdo.optimizers.wdo import Wind, WindParams, WindState
 from mawdo.streams import RunStreams
@@ -38,7 +38,7 @@ class AWDOCMAParams(WindParams):
         Initial CMA-ES step size over the coefficient vector (0.5 in ``AWDO_v03.m``).
     """
 
-    cma_sigma: float = 0.5
+    cma_sigma: float = option(0.5, lo=0, lo_open=True)
 
 
 @dataclass

@@ -11,12 +11,14 @@ from __future__ import annotations
 
 import dataclasses
 from abc import ABC, abstractmethod
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
 import numpy as np
 
 from mawdo.streams import RunStreams
+from mawdo.validate import ArgumentTypeError, check_bool, check_int, check_real
 
 
 @dataclass
@@ -47,36 +49,123 @@ class Space:
         return out
 
 
-def check_range(name: str, value, low=None, high=None, *, low_open=False, high_open=False):
-    """Raise ``ValueError`` naming ``name`` unless ``value`` lies in the given interval."""
-    ok = True
-    if low is not None:
-        ok &= value > low if low_open else value >= low
-    if high is not None:
-        ok &= value < high if high_open else value <= high
-    if not ok:
-        lo = "(" if low_open else "["
-        hi = ")" if high_open else "]"
-        raise ValueError(
-            f"{name}={value!r} is out of range; it must lie in "
-            f"{lo}{'-inf' if low is None else low}, {'inf' if high is None else high}{hi}"
-        )
+@dataclass(frozen=True)
+class Constraint:
+    """What one option accepts: its type, and for numbers an interval, for text a choice.
+
+    Read by :func:`check_options` from the field's metadata (see :func:`option`); a field
+    declared without :func:`option` gets the check of its annotated type alone.
+
+    Attributes
+    ----------
+    kind : {"int", "float", "bool", "str", "tuple", ""}
+        The value's type; ``""`` takes it from the field's annotation.
+    lo, hi : float, optional
+        Interval ends (``None``: unbounded on that side).
+    lo_open, hi_open : bool
+        Whether the end is excluded (real options only; integer ends are inclusive).
+    choices : tuple of str, optional
+        The accepted words of a text option.
+    rule : callable, optional
+        ``rule(name, value)`` raising ``ValueError``: a further check of this field alone.
+    """
+
+    kind: str = ""
+    lo: float | None = None
+    hi: float | None = None
+    lo_open: bool = False
+    hi_open: bool = False
+    choices: tuple | None = None
+    rule: Callable[[str, Any], None] | None = None
+
+    def check(self, name: str, value, annotated: str = "") -> None:
+        """Raise ``ValueError`` (``ArgumentTypeError`` for a wrong type) naming ``name`` unless
+        ``value`` satisfies the constraint."""
+        kind = self.kind or annotated
+        if kind == "int":
+            check_int(name, value, self.lo, self.hi)
+        elif kind == "float":
+            check_real(name, value, self.lo, self.hi, low_open=self.lo_open, high_open=self.hi_open)
+        elif kind == "bool":
+            check_bool(name, value)
+        elif kind == "str":
+            if not isinstance(value, str):
+                what = type(value).__name__
+                raise ArgumentTypeError(f"{name}={value!r} must be a string, not a {what}")
+            if self.choices is not None and value not in self.choices:
+                raise ValueError(f"{name}={value!r} is not valid; choose one of {self.choices}")
+        elif kind == "tuple":
+            if not isinstance(value, tuple | list) or isinstance(value, str):
+                raise ArgumentTypeError(f"{name}={value!r} must be a tuple of numbers")
+            for i, v in enumerate(value):
+                check_real(f"{name}[{i}]", v)
+        if self.rule is not None:
+            self.rule(name, value)
 
 
-def check_choice(name: str, value, choices):
-    if value not in choices:
-        raise ValueError(f"{name}={value!r} is not valid; choose one of {tuple(choices)}")
+def option(
+    default,
+    *,
+    kind: str = "",
+    lo=None,
+    hi=None,
+    lo_open: bool = False,
+    hi_open: bool = False,
+    choices=None,
+    rule=None,
+):
+    """A ``Params`` field that declares what it accepts (checked by :func:`check_options`).
+
+    Parameters
+    ----------
+    default : object
+        The field's default (immutable: a number, a string, a bool or a tuple).
+    kind, lo, hi, lo_open, hi_open, choices, rule
+        See :class:`Constraint`; ``kind`` defaults to the field's annotation.
+
+    Examples
+    --------
+    ``alpha: float = option(0.4, lo=0, hi=1)`` accepts finite reals in ``[0, 1]``;
+    ``velocity: str = option("wdo", choices=("wdo", "awdo"))`` one of two words.
+    """
+    choices = None if choices is None else tuple(choices)
+    rule_ = Constraint(kind, lo, hi, lo_open, hi_open, choices, rule)
+    return dataclasses.field(default=default, metadata={"option": rule_})
+
+
+def _annotated(f: dataclasses.Field) -> str:
+    t = f.type if isinstance(f.type, str) else getattr(f.type, "__name__", str(f.type))
+    return t.split("|")[0].strip()
+
+
+def check_options(params) -> None:
+    """Check every field of a ``Params`` instance against its declared :class:`Constraint`
+    (its annotated type when it declares none), in declaration order.
+
+    Called by ``Params.__post_init__`` before the cross-field rules of a subclass, so a
+    comparison there never meets NaN, a bool or a string, and a built ``Params`` is valid
+    however it was made (registry, optimizer class, ``dataclasses.replace``).
+    """
+    for f in dataclasses.fields(params):
+        f.metadata.get("option", _PLAIN).check(f.name, getattr(params, f.name), _annotated(f))
+
+
+_PLAIN = Constraint()
 
 
 @dataclass(frozen=True)
 class Params:
-    """Base class of every optimizer's coefficients; subclasses validate in ``__post_init__``."""
+    """Base class of every optimizer's coefficients.
 
-    pop_size: int = 50
+    Each field declares its own constraint with :func:`option` (checked by
+    :func:`check_options` on construction); a subclass's ``__post_init__`` adds only the
+    rules that tie fields together (after calling ``super().__post_init__()``).
+    """
+
+    pop_size: int = option(50, lo=2)
 
     def __post_init__(self) -> None:
-        if not isinstance(self.pop_size, int | np.integer) or self.pop_size < 2:
-            raise ValueError(f"pop_size={self.pop_size!r} must be an integer >= 2")
+        check_options(self)
 
     def as_dict(self) -> dict[str, Any]:
         """The fields as a new dict (what ``dataclasses.asdict`` gives)."""
@@ -105,6 +194,10 @@ class Optimizer(ABC):
     params_class: ClassVar[type[Params]] = Params
     per_run_metadata: ClassVar[tuple[str, ...]] = ()
     """Keys of ``metadata`` that hold one entry per run (joined when runs go in blocks)."""
+    sequential: ClassVar[bool] = False
+    """True when ``ask`` gives one candidate per run, each depending on the value of the last
+    (an iteration is then one evaluation, not ``pop_size``): budgets set in iterations mean
+    ``pop_size`` times fewer evaluations for such an algorithm."""
 
     def __init__(self, params: Params | None = None, name: str | None = None, **options) -> None:
         if name is not None:

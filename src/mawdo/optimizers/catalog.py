@@ -153,3 +153,16 @@ register(
         label="Random",
     )
 )
+
+from mawdo.optimizers.scipy_de import ScipyDE  # noqa: E402
+
+register(
+    AlgorithmSpec(
+        "scipy_de",
+        ScipyDE,
+        {},
+        "Storn & Price, J. Global Optim. 11, 1997; scipy.optimize.differential_evolution",
+        "scipy's differential evolution (its defaults), one call per run, restarted when it ends",
+        label="DE (scipy)",
+    )
+)

@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mawdo.optimizers.base import Optimizer, Params, Space, as_x0, check_range, finite_last
+from mawdo.optimizers.base import Optimizer, Params, Space, as_x0, finite_last, option
 from mawdo.streams import RunStreams
 
 
@@ -50,12 +50,8 @@ class CMAESParams(Params):
     """
 
     auto_pop_size: bool = True
-    sigma0: float = 0.2
+    sigma0: float = option(0.2, lo=0, hi=1, lo_open=True)
     restarts: bool = True
-
-    def __post_init__(self) -> None:
-        super().__post_init__()
-        check_range("sigma0", self.sigma0, 0.0, 1.0, low_open=True)
 
 
 def ask_generation(cma, n: int) -> np.ndarray:

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from mawdo.optimizers.base import Optimizer, Params, Space, as_x0, check_range, initial_population
+from mawdo.optimizers.base import Optimizer, Params, Space, as_x0, initial_population, option
 from mawdo.optimizers.kernels import mewdo_step, update_personal_best, words_per_permutation
 from mawdo.streams import RunStreams
 
@@ -53,19 +53,13 @@ class MEWDOParams(Params):
         Floor of each strategy's share, in [0, 1/3].
     """
 
-    alpha: float = 0.4
-    g: float = 0.2
-    RT: float = 3.0
-    c: float = 0.4
-    vmax: float = 0.3
-    lr: float = 0.1
-    q_min: float = 0.1
-
-    def __post_init__(self) -> None:
-        super().__post_init__()
-        check_range("vmax", self.vmax, 0, None, low_open=True)
-        check_range("lr", self.lr, 0, 1, low_open=True)
-        check_range("q_min", self.q_min, 0, 1.0 / N_STRATEGIES)
+    alpha: float = option(0.4, lo=0, hi=1)
+    g: float = option(0.2, lo=0)
+    RT: float = option(3.0, lo=0)
+    c: float = option(0.4, lo=0)
+    vmax: float = option(0.3, lo=0, lo_open=True)
+    lr: float = option(0.1, lo=0, hi=1, lo_open=True)
+    q_min: float = option(0.1, lo=0, hi=1.0 / N_STRATEGIES)
 
 
 def update_shares(succ_rate, q, lr, q_min):

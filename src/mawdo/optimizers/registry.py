@@ -11,7 +11,6 @@ from typing import Any
 
 from mawdo.optimizers.base import Optimizer
 from mawdo.registry import Registry
-from mawdo.validate import check_options, check_params
 
 
 @dataclass(frozen=True)
@@ -66,6 +65,12 @@ def register(spec: AlgorithmSpec) -> AlgorithmSpec:
     return OPTIMIZERS.register(spec.name, spec)
 
 
+def unregister(name: str) -> AlgorithmSpec:
+    """Remove a registered algorithm (a throw-away entry of a test) and return its spec."""
+    _PARAMS.clear()
+    return OPTIMIZERS.unregister(name)
+
+
 def make_optimizer(algorithm: str | Optimizer, **options) -> Optimizer:
     """Instantiate a registered algorithm with its preset and the given options.
 
@@ -76,8 +81,10 @@ def make_optimizer(algorithm: str | Optimizer, **options) -> Optimizer:
         options are given).
     **options
         Coefficients of the algorithm (``pop_size``, ``groups``, ...); unknown names raise
-        ``ValueError`` listing the valid ones. Every numeric option must be a finite real number
-        in its range (:data:`mawdo.validate.OPTION_RANGES`); bools and strings are refused.
+        ``ValueError`` listing the valid ones. Each option must satisfy the constraint its
+        ``Params`` field declares (:func:`mawdo.optimizers.base.option`): a finite real number
+        in its range, an integer, a bool, one of its words; NaN, inf and strings for numbers
+        are refused.
 
     Raises
     ------
@@ -86,21 +93,16 @@ def make_optimizer(algorithm: str | Optimizer, **options) -> Optimizer:
     mawdo.validate.ArgumentTypeError
         A value of the wrong type (also a ``ValueError``).
     """
-    # Options are checked here, before any Params is built: NaN and inf pass comparison-based
-    # range checks, and a string or bool would reach the algorithm's arithmetic.
+    # Building the Params checks every option (Params.__post_init__ -> check_options).
     if isinstance(algorithm, Optimizer):
-        check_options(type(algorithm.params), options)
         if options:
             algorithm = type(algorithm)(algorithm.params, name=algorithm.name, **options)
-        check_params(algorithm.params)
         return algorithm
     spec = OPTIMIZERS[algorithm]
     key = _params_key(spec.name, options)
     params = _PARAMS.get(key) if key is not None else None
     if params is None:
-        check_options(spec.cls.params_class, options)
         opt = spec.cls(name=spec.name, **{**spec.preset, **options})
-        check_params(opt.params)
         if key is not None and len(_PARAMS) < _PARAMS_MAX:
             _PARAMS[key] = opt.params
     else:  # the same name and options were checked before: their (frozen) Params are valid

@@ -29,14 +29,18 @@ from mawdo.optimizers.base import (
     Params,
     Space,
     as_x0,
-    check_choice,
-    check_range,
     initial_population,
+    option,
 )
 from mawdo.optimizers.boundary import BOUNDARY_POLICIES, confine_positions
 from mawdo.optimizers.kernels import seed_xoshiro, segment_ranks, update_personal_best
 from mawdo.optimizers.wind_kernel import wind_step
 from mawdo.streams import RunStreams
+
+
+def _three_weights(name: str, value) -> None:
+    if len(value) != 3 or min(value) < 0 or sum(value) <= 0:
+        raise ValueError(f"{name}={value!r} must be three non-negative numbers")
 
 
 @dataclass(frozen=True)
@@ -89,49 +93,35 @@ class WindParams(Params):
         Redraw the per-group coefficients every iteration instead of once.
     """
 
-    velocity: str = "wdo"
-    alpha: float = 0.4
-    g: float = 0.2
-    RT: float = 3.0
-    c: float = 0.4
-    coef_draw: str = "iteration"
-    vmax: float = 0.3
-    groups: int = 1
-    guidance: str = "global"
-    rank_scope: str = "population"
+    velocity: str = option("wdo", choices=("wdo", "awdo"))
+    alpha: float = option(0.4, lo=0, hi=1)  # friction: u <- (1 - alpha) u + ...
+    g: float = option(0.2, lo=0)
+    RT: float = option(3.0, lo=0)
+    c: float = option(0.4, lo=0)
+    coef_draw: str = option("iteration", choices=("iteration", "parcel"))
+    vmax: float = option(0.3, lo=0, lo_open=True)
+    groups: int = option(1, lo=1)
+    guidance: str = option("global", choices=("global", "group", "hierarchical"))
+    rank_scope: str = option("population", choices=("population", "group"))
     schedule: bool = True
-    weights: tuple = (0.6, 0.3, 0.1)
+    weights: tuple = option((0.6, 0.3, 0.1), rule=_three_weights)
     gate: bool = True
     restart: bool = False
-    restart_every: int = 50
-    restart_frac: float = 0.1
-    sigma0: float = 0.5
-    sigma_end: float = 0.05
+    restart_every: int = option(50, lo=1)
+    restart_frac: float = option(0.1, lo=0, hi=1, lo_open=True)
+    sigma0: float = option(0.5, lo=0, lo_open=True)
+    sigma_end: float = option(0.05, lo=0, lo_open=True)
     obl: bool = False
-    boundary: str = "clip"
-    eta: float = 0.5
+    boundary: str = option("clip", choices=BOUNDARY_POLICIES)
+    eta: float = option(0.5, lo=0, hi=1)
     low_dim_stabilization: bool = False
-    low_dim: int = 3
+    low_dim: int = option(3, lo=0)
     hetero_redraw: bool = False
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        check_choice("velocity", self.velocity, ("wdo", "awdo"))
-        check_choice("coef_draw", self.coef_draw, ("iteration", "parcel"))
-        check_choice("guidance", self.guidance, ("global", "group", "hierarchical"))
-        check_choice("rank_scope", self.rank_scope, ("population", "group"))
-        check_choice("boundary", self.boundary, BOUNDARY_POLICIES)
-        check_range("vmax", self.vmax, 0, None, low_open=True)
-        check_range("eta", self.eta, 0, 1)
-        check_range("restart_frac", self.restart_frac, 0, 1, low_open=True)
-        check_range("sigma0", self.sigma0, 0, None, low_open=True)
-        check_range("sigma_end", self.sigma_end, 0, None, low_open=True)
-        if not isinstance(self.groups, int | np.integer) or not 1 <= self.groups <= self.pop_size:
+        if self.groups > self.pop_size:
             raise ValueError(f"groups={self.groups!r} must be an integer in [1, pop_size]")
-        if not isinstance(self.restart_every, int | np.integer) or self.restart_every < 1:
-            raise ValueError(f"restart_every={self.restart_every!r} must be an integer >= 1")
-        if len(self.weights) != 3 or min(self.weights) < 0 or sum(self.weights) <= 0:
-            raise ValueError(f"weights={self.weights!r} must be three non-negative numbers")
         if self.obl and not self.restart:
             raise ValueError("obl=True acts on restarted parcels: set restart=True as well")
 

@@ -36,7 +36,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from mawdo.optimizers.base import Optimizer, Params, Space, check_choice, initial_population
+from mawdo.optimizers.base import Optimizer, Params, Space, initial_population, option
 from mawdo.streams import RunStreams
 
 
@@ -62,16 +62,10 @@ class WOAParams(Params):
         iteration started with.
     """
 
-    b: float = 1.0
-    l_range: str = "matlab"
-    random_whale: str = "per_dimension"
-    update: str = "in_place"
-
-    def __post_init__(self) -> None:
-        super().__post_init__()
-        check_choice("l_range", self.l_range, ("matlab", "paper"))
-        check_choice("random_whale", self.random_whale, ("per_dimension", "per_whale"))
-        check_choice("update", self.update, ("in_place", "snapshot"))
+    b: float = option(1.0)
+    l_range: str = option("matlab", choices=("matlab", "paper"))
+    random_whale: str = option("per_dimension", choices=("per_dimension", "per_whale"))
+    update: str = option("in_place", choices=("in_place", "snapshot"))
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
