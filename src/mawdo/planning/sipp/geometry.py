@@ -34,7 +34,7 @@ import math
 import numpy as np
 from numba import njit
 
-from mawdo.planning.kernel.primitives import _point_in_polygon
+from mawdo.planning.kernel.primitives import point_in_polygon
 
 __all__ = ["clip_range", "cone_start", "disc_range"]
 
@@ -215,6 +215,6 @@ def cone_start(ux, uy, ex, ey, T, circle, cx, cy, thr, verts, i, nv, ox, oy, vma
                 verts[i, kk, 1],
             ),
         )
-    if _point_in_polygon(px + T * ex, py + T * ey, verts, i, nv):
+    if point_in_polygon(px + T * ex, py + T * ey, verts, i, nv):
         best = min(best, -T)
     return t_base + best - thr / vmax

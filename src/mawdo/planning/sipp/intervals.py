@@ -24,9 +24,9 @@ from numba import njit
 
 from mawdo.planning.geometry import FlatObstacles
 from mawdo.planning.kernel.primitives import (
-    _point_in_polygon,
-    _point_segment_d2,
-    _segment_hits_polygon,
+    point_in_polygon,
+    point_segment_d2,
+    segment_hits_polygon,
 )
 from mawdo.planning.motion import BoundedRandomWalk
 from mawdo.planning.scenario import Scenario
@@ -176,7 +176,7 @@ def _polygon_piece(d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, i, nv, thr, buf, 
             tm = 0.5 * (cur + g1)
             s = 0.5 * (max(0.0, ta - tm) + min(T, tb - tm))
             t = tm + s
-            if _point_in_polygon(d0x + s * ex - t * wx, d0y + s * ey - t * wy, verts, i, nv):
+            if point_in_polygon(d0x + s * ex - t * wx, d0y + s * ey - t * wy, verts, i, nv):
                 buf, n = _push(buf, n, cur, g1)
         if j < len(edges):
             cur = max(cur, edges[j, 1])
@@ -294,9 +294,9 @@ def segment_free(ux, uy, vx, vy, ta, tb, mv):
             x2 = ux + ex * (t2 - ta) - po[k - 1, 0] - pv[k - 1, 0] * (t2 - pt0[k - 1])
             y2 = uy + ey * (t2 - ta) - po[k - 1, 1] - pv[k - 1, 1] * (t2 - pt0[k - 1])
             if circle[m]:
-                if _point_segment_d2(center[m, 0], center[m, 1], x1, y1, x2, y2) <= thr[m] ** 2:
+                if point_segment_d2(center[m, 0], center[m, 1], x1, y1, x2, y2) <= thr[m] ** 2:
                     return False
-            elif _segment_hits_polygon(x1, y1, x2, y2, verts, m, nverts[m], thr[m]):
+            elif segment_hits_polygon(x1, y1, x2, y2, verts, m, nverts[m], thr[m]):
                 return False
     return True
 
