@@ -90,3 +90,18 @@ def test_numba_cache_dir_mirrors_are_cleaned_too(tmp_path, monkeypatch):
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(base))
     assert drop_stale_caches(pkg) == 1
     assert not (mirrored / "helper.h-1.py311.nbi").exists()
+
+
+def test_numba_cache_dir_folders_are_cleaned_too(tmp_path, monkeypatch):
+    # where Numba itself puts a module's caches under NUMBA_CACHE_DIR (its locator, not ours)
+    from numba.core.caching import _CacheLocator
+
+    pkg = _package(tmp_path)
+    base = tmp_path / "numba-cache"
+    folder = base / _CacheLocator.get_suitable_cache_subpath(str(pkg / "sub" / "helper.py"))
+    folder.mkdir(parents=True)
+    (folder / "helper.h-1.py311.nbi").write_bytes(b"cached")
+    (folder / "helper.h-1.py311.1.nbc").write_bytes(b"cached")
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(base))
+    assert drop_stale_caches(pkg) == 2
+    assert not any(folder.iterdir())

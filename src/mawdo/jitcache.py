@@ -95,7 +95,9 @@ def cache_dirs(root: Path = PACKAGE) -> list[Path]:
     """Folders that may hold Numba caches of modules under ``root``.
 
     The ``__pycache__`` folders beside the sources, and, when ``NUMBA_CACHE_DIR`` is set, the
-    folders Numba mirrors the package's path into under it.
+    folders Numba keeps there for each source folder: ``<folder name>_<SHA-1 of its absolute
+    path>`` (Numba >= 0.57, :func:`numba_cache_folder`), or the source path mirrored under it
+    (older Numba).
     """
     dirs = [p for p in root.rglob("__pycache__") if p.is_dir()]
     base = os.environ.get("NUMBA_CACHE_DIR")
@@ -103,7 +105,16 @@ def cache_dirs(root: Path = PACKAGE) -> list[Path]:
         mirrored = Path(base) / str(root).lstrip(os.sep)
         if mirrored.is_dir():
             dirs += [mirrored, *(p for p in mirrored.rglob("*") if p.is_dir())]
+        folders = [root, *(p for p in root.rglob("*") if p.is_dir() and p.name != "__pycache__")]
+        dirs += [d for d in (numba_cache_folder(f, Path(base)) for f in folders) if d.is_dir()]
     return dirs
+
+
+def numba_cache_folder(source_dir: Path, base: Path) -> Path:
+    """Where Numba caches the kernels of the modules in ``source_dir`` when ``NUMBA_CACHE_DIR``
+    is ``base`` (Numba's ``_CacheLocator.get_suitable_cache_subpath``)."""
+    path = os.path.abspath(source_dir)
+    return base / f"{os.path.basename(path)}_{hashlib.sha1(path.encode()).hexdigest()}"
 
 
 def drop_stale_caches(root: Path = PACKAGE) -> int:
