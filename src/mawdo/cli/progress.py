@@ -95,25 +95,32 @@ def warm_kernels(enabled: bool = True) -> int:
 
 
 class _CompileNotice:
-    """A Numba compile listener: one line when the first kernel of the process starts compiling,
-    a line every :data:`EVERY` seconds while compiling, and the total when asked."""
+    """A Numba compile listener. At the first compile of the ``with`` body: the parallel warm-up
+    of the missing kernels (if ``warm``); then, if ``enabled``, one line when compiling in this
+    process starts, a line every :data:`EVERY` seconds while it goes on, the total when
+    asked."""
 
-    def __init__(self) -> None:
+    def __init__(self, enabled: bool = True, warm: bool = True) -> None:
+        self.enabled, self.warm = enabled, warm
         self.depth = 0
         self.started: float | None = None
         self.compiled = 0.0  # seconds spent compiling so far
         self.stop = threading.Event()
-        self.ticker: threading.Thread | None = None
 
     def on_start(self, event) -> None:
         if self.depth == 0:
             if self.started is None:
-                ERR.print(COMPILE_MESSAGE + " ...", highlight=False)
-                self.ticker = threading.Thread(target=self._tick, daemon=True)
-                self.ticker.start()
+                self._first()
             self.t0 = time.perf_counter()
             self.started = self.started or self.t0
         self.depth += 1
+
+    def _first(self) -> None:
+        if self.warm:  # the kernel compiling now goes on here; its callees load from the cache
+            warm_kernels(self.enabled)
+        if self.enabled:
+            ERR.print(COMPILE_MESSAGE + " ...", highlight=False)
+            threading.Thread(target=self._tick, daemon=True).start()
 
     def on_end(self, event) -> None:
         self.depth -= 1
@@ -128,7 +135,7 @@ class _CompileNotice:
 
     def summary(self) -> str | None:
         """``"kernels compiled in <s> s"`` if anything was compiled, else None."""
-        if self.started is None:
+        if self.started is None or not self.enabled:
             return None
         return f"kernels compiled in {self.compiled:.1f} s (cached for later runs)"
 
@@ -137,21 +144,20 @@ class _CompileNotice:
 def notice_compiles(enabled: bool = True, warm: bool = True):
     """Within the ``with`` body, say on stderr when Numba compiles kernels (a first run).
 
-    On entry, a cold cache is first filled in parallel processes (:func:`warm_kernels`, even
-    with ``enabled`` False: it is faster either way). Then Numba compiles a kernel on its first
-    call when its on-disk cache misses; a listener on Numba's ``numba:compile`` event sees each
-    compile start and end, so the line appears exactly when compiling starts, a line follows
-    every :data:`EVERY` seconds while it goes on, and the summary says how long all of it took.
-    ``warm=False`` skips the parallel warm-up.
+    Numba compiles a kernel on its first call when its on-disk cache misses; a listener on
+    Numba's ``numba:compile`` event sees each compile start and end. At the first one, the
+    missing kernels of :mod:`mawdo.jitwarm`'s table are compiled in parallel processes
+    (:func:`warm_kernels`, also with ``enabled`` False: it is faster either way; not with
+    ``warm=False``), so nothing is compiled before a command has checked its input. Then a line
+    says that compiling goes on in this process, a line follows every :data:`EVERY` seconds
+    while it does, and the summary says how long all of it took.
     """
-    if warm:
-        warm_kernels(enabled)
-    if not enabled:
+    if not (enabled or warm):
         yield
         return
     from numba.core import event
 
-    notice = _CompileNotice()
+    notice = _CompileNotice(enabled, warm)
     hooks = {"on_start": lambda _, e: notice.on_start(e), "on_end": lambda _, e: notice.on_end(e)}
     listener = type("CompileHook", (event.Listener,), hooks)()
     event.register("numba:compile", listener)
