@@ -4,7 +4,7 @@ One place for the commands' progress lines (results go to stdout; this goes to s
 
 * :func:`step` - a spinner with the step's name on a terminal, a plain ``"<step> ..."`` line
   otherwise (logs, pipes), then ``"<step>: done in <s> s"``;
-* :func:`notice_compiles` - on a cold Numba cache, first compiles the kernels of
+* :func:`notice_compiles` - at the first compile on a cold Numba cache, compiles the kernels of
   :mod:`mawdo.jitwarm`'s table in two processes at once (a line every 2 s), then says when
   Numba compiles anything else, with a line every 2 s while it does and the time it took
   (only a first run after installing or upgrading compiles; later runs load from the cache).
