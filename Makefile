@@ -6,7 +6,7 @@ STAMP  := $(VENV)/.installed
 DEVSTAMP := $(VENV)/.installed-dev
 export MPLBACKEND ?= Agg
 
-.PHONY: demo readme-img test test-all bench lint clean
+.PHONY: install demo readme-img test test-all bench lint clean
 
 $(PY):
 	$(PYTHON) -m venv $(VENV)
@@ -20,7 +20,13 @@ $(DEVSTAMP): pyproject.toml | $(PY)
 	$(PY) -m pip install -q -e ".[dev]"
 	@touch $(STAMP) $@
 
-demo: $(STAMP)
+# Installing includes compiling the Numba kernels the first commands need (about 70 s of CPU,
+# in 2 processes at once, with a progress line every 2 s), so that no first run waits for it.
+# Numba caches them; later calls find them there and return in a second or two.
+install: $(STAMP)
+	$(PY) -m mawdo.jitwarm --jobs 2
+
+demo: install
 	$(VENV)/bin/mawdo demo --out out/demo
 
 # The README image is the demo's own figure (mawdo.planning.demo.write_figure), copied; it

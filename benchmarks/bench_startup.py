@@ -2,14 +2,28 @@
 (Numba compiles the kernels), a warm one (kernels cached, snapshot grid and GIF included) and
 ``mawdo reproduce --quick``, each as a fresh process, on a cold or warm Numba cache.
 
-Targets: cold first plan <= 30 s wall on 2 cores, warm plan with its figures <= 5 s wall.
-``reproduce --quick`` has no target; it is measured so that its minutes are known.
+Targets: first plan after installing <= 30 s wall on 2 cores, warm plan with its figures
+<= 5 s wall. ``reproduce --quick`` has no target; it is measured so that its minutes are known.
 
-A cold cache is a fresh, empty ``NUMBA_CACHE_DIR`` (Numba then caches there and nowhere else);
-warm reuses the folder a cold run filled. Wall time depends on what else runs on the machine,
-so each row also gives the CPU time of the process and its children, and the load average.
-``python -m benchmarks startup`` (about 5 to 15 minutes; ``STARTUP_SAMPLES=k`` for k warm
-samples, default 3; ``STARTUP_REPRODUCE=0`` skips the reproduction).
+Rows (each a fresh, empty ``NUMBA_CACHE_DIR`` where it says cold; Numba then caches there and
+nowhere else):
+
+* ``install: python -m mawdo.jitwarm --jobs 2`` - what ``make install`` / ``make demo`` run after
+  ``pip install``: the kernels compiled in 2 processes at once. Counted as installing, not as
+  the first plan; the next row is the first plan after it.
+* ``first plan paper after install`` - the target's row (installing included the compile).
+* ``cold plan paper, no install step`` - a user who ran ``pip install`` only: the command finds
+  its kernels missing and compiles them in 2 processes itself (a progress line every 2 s).
+* ``cold plan paper, one process`` - the same with ``MAWDO_JIT_JOBS=1``: compiled in the
+  command's own process as they are needed, as before issue 28.
+* ``warm plan paper + GIF (k)`` - kernels cached.
+
+Wall time depends on what else runs on the machine (here 2 cores shared with other jobs), so
+each row also gives the CPU time (user + sys) of the process and all its children
+(``getrusage(RUSAGE_CHILDREN)``) and the load average. ``python -m benchmarks startup``
+(about 5 to 15 minutes; ``STARTUP_SAMPLES=k`` warm samples, default 3; ``STARTUP_REPRODUCE=1``
+adds the cold ``reproduce --quick``, 15 to 30 minutes; ``STARTUP_SRC=path`` measures another
+copy of the sources, e.g. an older commit's ``src`` for a before/after).
 """
 
 from __future__ import annotations
@@ -23,6 +37,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+SRC = Path(os.environ.get("STARTUP_SRC", ROOT / "src")).resolve()
 
 
 def _flag(ok: bool) -> str:
@@ -34,17 +49,16 @@ def _children_cpu() -> float:
     return use.ru_utime + use.ru_stime
 
 
-def timed(args: list[str], cache: Path, cwd: Path) -> tuple[float, float]:
-    """Run ``python -m mawdo.cli ARGS`` with the Numba cache in ``cache``; (wall s, CPU s)."""
-    env = {**os.environ, "NUMBA_CACHE_DIR": str(cache)}
-    env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(ROOT / "src"), env.get("PYTHONPATH")]))
+def timed(args: list[str], cache: Path, cwd: Path, env: dict | None = None) -> tuple[float, float]:
+    """Run ``python ARGS`` with the Numba cache in ``cache``; (wall s, CPU s of it and its
+    children)."""
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(cache), **(env or {})}
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(SRC), env.get("PYTHONPATH")]))
     cpu, t = _children_cpu(), time.perf_counter()
-    proc = subprocess.run(
-        [sys.executable, "-m", "mawdo.cli", *args], cwd=cwd, env=env, capture_output=True
-    )
+    proc = subprocess.run([sys.executable, *args], cwd=cwd, env=env, capture_output=True)
     wall, cpu = time.perf_counter() - t, _children_cpu() - cpu
     if proc.returncode:
-        raise RuntimeError(f"mawdo {' '.join(args)} failed:\n{proc.stderr.decode()[-2000:]}")
+        raise RuntimeError(f"{' '.join(args)} failed:\n{proc.stderr.decode()[-2000:]}")
     return wall, cpu
 
 
@@ -55,25 +69,37 @@ def _load() -> str:
 
 def _row(name: str, wall: float, cpu: float, target: float | None) -> None:
     goal = f"(target <= {target:g} s {_flag(wall <= target)})" if target else "(no target)"
-    print(f"  {name:34s} wall {wall:7.1f} s {goal:24s} CPU {cpu:7.1f} s   {_load()}")
+    print(f"  {name:38s} wall {wall:7.1f} s {goal:24s} CPU {cpu:7.1f} s   {_load()}", flush=True)
+
+
+def _cold(tmp: Path, name: str) -> Path:
+    cache = tmp / name
+    cache.mkdir()
+    return cache
 
 
 def main() -> None:
     samples = int(os.environ.get("STARTUP_SAMPLES", "3"))
+    plan = ["-m", "mawdo.cli", "plan", "paper", "--no-progress", "--out"]
+    print(f"  sources: {SRC}")
     with tempfile.TemporaryDirectory(prefix="mawdo-startup-") as tmp:
         tmp = Path(tmp)
-        cache = tmp / "numba-cold"
-        cache.mkdir()
-        plan = ["plan", "paper", "--no-progress", "--out"]
-        _row("cold first `plan paper`", *timed([*plan, str(tmp / "cold")], cache, tmp), 30)
+        cache = _cold(tmp, "numba-install")
+        if (SRC / "mawdo" / "jitwarm.py").is_file():
+            warm = ["-m", "mawdo.jitwarm", "--jobs", "2"]
+            _row("install: python -m mawdo.jitwarm -j 2", *timed(warm, cache, tmp), None)
+            _row("first plan paper after install", *timed([*plan, "first"], cache, tmp), 30)
+            one = _cold(tmp, "numba-cold")
+            _row("cold plan paper, no install step", *timed([*plan, "cold"], one, tmp), 30)
+        jobs1 = {"MAWDO_JIT_JOBS": "1"}
+        cold = _cold(tmp, "numba-cold1")
+        _row("cold plan paper, one process", *timed([*plan, "c1"], cold, tmp, jobs1), 30)
         for k in range(samples):
-            out = str(tmp / f"warm{k}")
-            _row(f"warm `plan paper` + GIF ({k + 1})", *timed([*plan, out], cache, tmp), 5)
-        if os.environ.get("STARTUP_REPRODUCE", "1") != "0":
-            cold = tmp / "numba-reproduce"
-            cold.mkdir()
-            args = ["reproduce", "--quick", "--no-progress", "--out", str(tmp / "repro")]
-            _row("cold `reproduce --quick`", *timed(args, cold, tmp), None)
+            _row(f"warm plan paper + GIF ({k + 1})", *timed([*plan, f"w{k}"], cold, tmp), 5)
+        if os.environ.get("STARTUP_REPRODUCE", "0") != "0":
+            repro = _cold(tmp, "numba-reproduce")
+            args = ["-m", "mawdo.cli", "reproduce", "--quick", "--no-progress", "--out", "r"]
+            _row("cold reproduce --quick", *timed(args, repro, tmp), None)
 
 
 if __name__ == "__main__":

@@ -26,6 +26,7 @@ FLOORS = (
     ("mawdo.validate", 0),  # argument checks: used by the core itself
     ("mawdo.budget", 0),
     ("mawdo.jitcache", 0),  # drops stale Numba caches before any kernel loads
+    ("mawdo.jitwarm", 0),  # fills the Numba cache in parallel processes (install, cold start)
     ("mawdo.shuffle", 0),  # O(d) permutations: drawn by streams, inlined by optimizer kernels
     ("mawdo.interrupts", 0),  # Ctrl-C told apart from errors (runner and commands)
     ("mawdo.optimizers", 1),

@@ -21,15 +21,33 @@ def test_a_compile_is_announced_once_with_its_total_time(capsys):
     def calls(x):
         return twice(x) + 1
 
-    with notice_compiles():
+    with notice_compiles(warm=False):  # (the kernels' warm-up: tests/test_jitwarm.py)
         assert calls(3) == 7  # compiles calls, and twice inside it
         assert calls(4.5) == 10.0  # a second signature: compiled, not announced again
     err = capsys.readouterr().err
     assert err.count("compiling kernels (first run only") == 1
     assert err.count("kernels compiled in") == 1
-    with notice_compiles():
+    with notice_compiles(warm=False):
         assert calls(5) == 11  # nothing left to compile: nothing said
     assert capsys.readouterr().err == ""
+
+
+def test_a_long_compile_says_every_few_seconds_that_it_goes_on(capsys, monkeypatch):
+    from mawdo.cli import progress
+
+    monkeypatch.setattr(progress, "EVERY", 0.01)  # a line every 10 ms of compiling
+
+    @njit(cache=False)
+    def slow(x):
+        return np.sort(x)[0] + np.argsort(x)[0]  # a few hundred ms of compiling
+
+    with notice_compiles(warm=False):
+        assert slow(np.array([3.0, 1.0])) == 2.0
+    err = capsys.readouterr().err.splitlines()
+    ticks = [line for line in err if line.startswith("compiling kernels: ")]
+    assert len(ticks) >= 2 and all(line.endswith(" s") for line in ticks)
+    assert err[0].startswith("compiling kernels (first run only")
+    assert err[-1].startswith("kernels compiled in")
 
 
 def test_a_step_names_itself_and_says_when_it_is_done(capsys):

@@ -21,7 +21,10 @@ def _package(tmp_path):
 
 
 def _cache(pkg):
-    files = [pkg / "__pycache__" / "kernel.f-1.py311.nbi", pkg / "sub" / "__pycache__" / "h.nbc"]
+    files = [
+        pkg / "__pycache__" / "kernel.f-1.py311.nbi",
+        pkg / "__pycache__" / "kernel.f-1.py311.1.nbc",
+    ]
     for f in files:
         f.write_bytes(b"cached")
     keep = pkg / "__pycache__" / "kernel.cpython-311.pyc"
@@ -35,6 +38,7 @@ def test_caches_go_when_a_helper_in_another_file_changes(tmp_path):
     assert drop_stale_caches(pkg) == 2  # no stamp yet: nothing cached can be trusted
     assert not any(f.exists() for f in files) and keep.exists()
     assert (pkg / "__pycache__" / STAMP).read_text() == sources_digest(pkg)
+    assert sources_digest(pkg).startswith("kernel.py ")  # one line per module with kernels
     files, _ = _cache(pkg)
     assert drop_stale_caches(pkg) == 0  # same sources: the caches stay
     assert all(f.exists() for f in files)
@@ -90,3 +94,39 @@ def test_numba_cache_dir_mirrors_are_cleaned_too(tmp_path, monkeypatch):
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(base))
     assert drop_stale_caches(pkg) == 1
     assert not (mirrored / "helper.h-1.py311.nbi").exists()
+
+
+def test_numba_cache_dir_folders_are_cleaned_too(tmp_path, monkeypatch):
+    # where Numba itself puts a module's caches under NUMBA_CACHE_DIR (its locator, not ours)
+    from numba.core.caching import _CacheLocator
+
+    pkg = _package(tmp_path)
+    base = tmp_path / "numba-cache"
+    folder = base / _CacheLocator.get_suitable_cache_subpath(str(pkg / "sub" / "helper.py"))
+    folder.mkdir(parents=True)
+    (folder / "helper.h-1.py311.nbi").write_bytes(b"cached")
+    (folder / "helper.h-1.py311.1.nbc").write_bytes(b"cached")
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(base))
+    assert drop_stale_caches(pkg) == 2
+    assert not any(folder.iterdir())
+
+
+def test_a_kernel_module_that_does_not_import_the_edit_keeps_its_caches(tmp_path):
+    pkg = _package(tmp_path)
+    (pkg / "other.py").write_text("from numba import njit\n\n@njit\ndef g():\n    return 0\n")
+    drop_stale_caches(pkg)
+    files, _ = _cache(pkg)
+    other = pkg / "__pycache__" / "other.g-1.py311.nbi"
+    other.write_bytes(b"cached")
+    (pkg / "sub" / "helper.py").write_text("def helper():\n    return 5\n")
+    assert drop_stale_caches(pkg) == 2  # kernel.py's (it imports the helper), not other.py's
+    assert not any(f.exists() for f in files) and other.exists()
+    (pkg / "other.py").write_text("from numba import njit\n\n@njit\ndef g():\n    return 1\n")
+    assert drop_stale_caches(pkg) == 1 and not other.exists()
+
+
+def test_a_stamp_of_an_older_mawdo_drops_everything(tmp_path):
+    pkg = _package(tmp_path)
+    files, _ = _cache(pkg)
+    (pkg / "__pycache__" / STAMP).write_text("0" * 64)  # one digest for all sources
+    assert drop_stale_caches(pkg) == 2

@@ -66,36 +66,62 @@ def _defines_kernels(path: Path) -> bool:
     return False
 
 
+def kernel_modules(root: Path = PACKAGE) -> list[Path]:
+    """The ``.py`` files under ``root`` that import Numba at their top level (where kernels are
+    defined), sorted."""
+    return sorted(p for p in root.rglob("*.py") if _defines_kernels(p))
+
+
+def _closure(starts: list[Path], root: Path, graph: dict[Path, set[Path]]) -> set[Path]:
+    """``starts`` and every module of the package they import, transitively (``graph`` caches
+    each file's imports)."""
+    todo, seen = list(starts), set()
+    while todo:
+        path = todo.pop()
+        if path not in seen:
+            seen.add(path)
+            if path not in graph:
+                graph[path] = _imported_files(path, root)
+            todo.extend(graph[path] - seen)
+    return seen
+
+
 def kernel_sources(root: Path = PACKAGE) -> list[Path]:
     """The ``.py`` files under ``root`` a compiled kernel can depend on, sorted.
 
     Those that import Numba at their top level (where kernels are defined), and every module
     of the package they import, transitively.
     """
-    todo = [p for p in root.rglob("*.py") if _defines_kernels(p)]
-    seen: set[Path] = set()
-    while todo:
-        path = todo.pop()
-        if path not in seen:
-            seen.add(path)
-            todo.extend(_imported_files(path, root) - seen)
-    return sorted(seen)
+    return sorted(_closure(kernel_modules(root), root, {}))
+
+
+def module_digests(root: Path = PACKAGE) -> dict[str, str]:
+    """Per module defining kernels (path relative to ``root``), a SHA-256 (hex) of the paths and
+    contents of the module and of every module of the package it imports, transitively: all
+    that its compiled kernels can contain."""
+    graph: dict[Path, set[Path]] = {}
+    out = {}
+    for module in kernel_modules(root):
+        h = hashlib.sha256()
+        for path in sorted(_closure([module], root, graph)):
+            h.update(str(path.relative_to(root)).encode())
+            h.update(path.read_bytes())
+        out[str(module.relative_to(root))] = h.hexdigest()
+    return out
 
 
 def sources_digest(root: Path = PACKAGE) -> str:
-    """SHA-256 (hex) of the relative paths and contents of :func:`kernel_sources`."""
-    h = hashlib.sha256()
-    for path in kernel_sources(root):
-        h.update(str(path.relative_to(root)).encode())
-        h.update(path.read_bytes())
-    return h.hexdigest()
+    """The stamp's text: one line ``<module> <digest>`` per :func:`module_digests` entry."""
+    return "\n".join(f"{m} {d}" for m, d in sorted(module_digests(root).items()))
 
 
 def cache_dirs(root: Path = PACKAGE) -> list[Path]:
     """Folders that may hold Numba caches of modules under ``root``.
 
     The ``__pycache__`` folders beside the sources, and, when ``NUMBA_CACHE_DIR`` is set, the
-    folders Numba mirrors the package's path into under it.
+    folders Numba keeps there for each source folder: ``<folder name>_<SHA-1 of its absolute
+    path>`` (Numba >= 0.57, :func:`numba_cache_folder`), or the source path mirrored under it
+    (older Numba).
     """
     dirs = [p for p in root.rglob("__pycache__") if p.is_dir()]
     base = os.environ.get("NUMBA_CACHE_DIR")
@@ -103,7 +129,16 @@ def cache_dirs(root: Path = PACKAGE) -> list[Path]:
         mirrored = Path(base) / str(root).lstrip(os.sep)
         if mirrored.is_dir():
             dirs += [mirrored, *(p for p in mirrored.rglob("*") if p.is_dir())]
+        folders = [root, *(p for p in root.rglob("*") if p.is_dir() and p.name != "__pycache__")]
+        dirs += [d for d in (numba_cache_folder(f, Path(base)) for f in folders) if d.is_dir()]
     return dirs
+
+
+def numba_cache_folder(source_dir: Path, base: Path) -> Path:
+    """Where Numba caches the kernels of the modules in ``source_dir`` when ``NUMBA_CACHE_DIR``
+    is ``base`` (Numba's ``_CacheLocator.get_suitable_cache_subpath``)."""
+    path = os.path.abspath(source_dir)
+    return base / f"{os.path.basename(path)}_{hashlib.sha1(path.encode()).hexdigest()}"
 
 
 def drop_stale_caches(root: Path = PACKAGE) -> int:
@@ -128,21 +163,59 @@ def drop_stale_caches(root: Path = PACKAGE) -> int:
         stamped = None  # no stamp yet: treat every cache as stale
     # fast path: no source file changed (path, size, mtime) since the stamp was checked
     files = _stat_signature(root)
-    if stamped and _read(stamp_dir / STAT_STAMP) == f"{files} {stamped}":
+    if stamped and _read(stamp_dir / STAT_STAMP) == f"{files} {_sha(stamped)}":
         return 0
     digest = sources_digest(root)
     removed = 0
     if stamped != digest:
-        for d in cache_dirs(root):
-            for f in (*d.glob("*.nbi"), *d.glob("*.nbc")):
-                try:
-                    f.unlink()
-                    removed += 1
-                except OSError:
-                    pass  # another process removed it first, or a read-only install
+        old = _parse_stamp(stamped)
+        new = _parse_stamp(digest) or {}
+        changed = None if old is None else {m for m in old.keys() | new if old.get(m) != new.get(m)}
+        removed = _drop(root, changed)
         _write(stamp, digest)
-    _write(stamp_dir / STAT_STAMP, f"{files} {digest}")
+    _write(stamp_dir / STAT_STAMP, f"{files} {_sha(digest)}")
     return removed
+
+
+def _parse_stamp(text: str | None) -> dict[str, str] | None:
+    """The ``{module: digest}`` of a stamp; None if absent or from an older mawdo (one digest)."""
+    rows = [line.split(" ") for line in (text or "").splitlines()]
+    if not rows or any(len(r) != 2 or not r[0].endswith(".py") for r in rows):
+        return None
+    return dict(rows)
+
+
+def _drop(root: Path, modules: set[str] | None) -> int:
+    """Delete the cached kernels of ``modules`` (paths relative to ``root``; None: of every
+    module). Numba names a module's cache files ``<module name>.<function>-<line>...`` in the
+    cache folder of the module's folder."""
+    wanted = None if modules is None else {_cache_prefixes(root / m) for m in modules}
+    wanted = None if wanted is None else {pair for pairs in wanted for pair in pairs}
+    removed = 0
+    for d in cache_dirs(root):
+        for f in (*d.glob("*.nbi"), *d.glob("*.nbc")):
+            if wanted is not None and (d, f.name.split(".")[0]) not in wanted:
+                continue
+            try:
+                f.unlink()
+                removed += 1
+            except OSError:
+                pass  # another process removed it first, or a read-only install
+    return removed
+
+
+def _cache_prefixes(module: Path) -> frozenset[tuple[Path, str]]:
+    """(cache folder, file name prefix) pairs of the Numba caches of ``module``'s kernels."""
+    folders = [module.parent / "__pycache__"]
+    base = os.environ.get("NUMBA_CACHE_DIR")
+    if base:
+        folders += [numba_cache_folder(module.parent, Path(base))]
+        folders += [Path(base) / str(module.parent).lstrip(os.sep)]
+    return frozenset((f, module.stem) for f in folders)
+
+
+def _sha(text: str) -> str:
+    return hashlib.sha256(text.encode()).hexdigest()
 
 
 def _stat_signature(root: Path) -> str:

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from mawdo.planning import PathCost, get_scenario, scenario_from_dict
-from mawdo.planning.kernel import _segment_reaches_origin
+from mawdo.planning.kernel.primitives import segment_reaches_origin
 
 
 def _exact_d2(ax, ay, bx, by) -> Fraction:
@@ -32,8 +32,8 @@ def test_division_free_reach_agrees_with_the_exact_distance_off_the_boundary():
     for ax, ay, bx, by in segs:
         r = float(_exact_d2(ax, ay, bx, by)) ** 0.5
         inside += r < 5.0
-        assert _segment_reaches_origin(ax, ay, bx, by, (r + 1e-9) ** 2)
-        assert not _segment_reaches_origin(ax, ay, bx, by, (r - 1e-9) ** 2)
+        assert segment_reaches_origin(ax, ay, bx, by, (r + 1e-9) ** 2)
+        assert not segment_reaches_origin(ax, ay, bx, by, (r - 1e-9) ** 2)
     assert inside > 10  # the near-origin cases are there
 
 

@@ -250,7 +250,10 @@ def demo(
         f"{sc.height:g} px, {len(sc.static_indices)} static and "
         f"{len(sc.moving_indices)} moving obstacles), real-time receding-horizon replanning"
     )
-    run = job.run_demo(seed)
+    from mawdo.cli.progress import notice_compiles, step
+
+    with notice_compiles():  # a first run after installing compiles the kernels
+        run = job.run_demo(seed)
     t = Table(title="MAWDO on the paper scenario (one run)")
     t.add_column("metric")
     t.add_column("value", justify="right")
@@ -262,8 +265,10 @@ def demo(
     (out / "metrics.md").write_text(
         "| metric | value |\n|---|---|\n" + "".join(f"| {k} | {v} |\n" for k, v in run.rows())
     )
-    grid = job.write_figure(run, out / job.FIGURE)
-    gif = render.animate(run.result, out / "mawdo_paper.gif", every=2)
+    with step("drawing the snapshot grid"):
+        grid = job.write_figure(run, out / job.FIGURE)
+    with step(f"writing the GIF ({len(render.animation_times(run.result))} frames)"):
+        gif = render.animate(run.result, out / "mawdo_paper.gif", every=2)
     console.print(f"snapshot grid : {grid}")
     console.print(f"animation     : {gif}")
     console.print(f"metrics       : {out / 'metrics.md'}, {out / 'metrics.json'}")

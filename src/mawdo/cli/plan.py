@@ -117,7 +117,8 @@ def run_cmd(
     # every input is checked before --out is created (exit 2, as for the other commands)
     try:
         sc = _scenario(scenario)
-        run = _prepare(sc, algorithm, seed, preset, static, threads, max_steps)
+        with notice_compiles(progress):  # setting up the run compiles the kernels
+            run = _prepare(sc, algorithm, seed, preset, static, threads, max_steps)
     except (KeyError, ValueError, FileNotFoundError) as exc:
         raise bad_input(exc) from None
     check_output_dir(out, "--out folder")

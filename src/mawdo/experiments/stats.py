@@ -22,7 +22,6 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import stats as sps
 
 ALPHA = 0.05
 
@@ -117,6 +116,8 @@ def ranksum(a, b, alpha: float = ALPHA) -> RankSum:
     if np.all(pooled == pooled[0]):
         # Zero rank variance: scipy returns NaN here; "no evidence of a difference" is p = 1.
         return RankSum(n1 * n2 / 2.0, 1.0, "=", n1, n2)
+    from scipy import stats as sps  # lazy: importing scipy.stats costs ~1.5 s per command
+
     res = sps.mannwhitneyu(x, y, alternative="two-sided", method="asymptotic")
     p = float(res.pvalue)
     if not np.isfinite(p):
@@ -231,6 +232,8 @@ def friedman(table, algorithms: Sequence[str]) -> Friedman:
     if n == 0:
         nan = float("nan")
         return Friedman(tuple(algorithms), np.full(k, nan), 0, nan, nan)
+    from scipy import stats as sps
+
     ranks = np.vstack([sps.rankdata(row, method="average") for row in m])
     mean_ranks = ranks.mean(axis=0)
     stat = pval = float("nan")

@@ -20,10 +20,10 @@ the obstacle moves along a straight segment, which is tested against the shape a
 Speed
 -----
 The exact tests above decide every hit. Everything in front of them only skips work whose
-outcome is certain, with room to spare for rounding (:data:`_MARGIN`), so the counts are those of
+outcome is certain, with room to spare for rounding (:data:`MARGIN`), so the counts are those of
 the exact tests alone (which get the very numbers they would get without the filters):
 
-* Candidates go in blocks of :data:`_BLOCK`, their paths laid end to end, so that the passes
+* Candidates go in blocks of :data:`BLOCK`, their paths laid end to end, so that the passes
   over segments are long, branch-free loops that vectorise.
 * Standing obstacles: one pass of distances to the bounding-circle centre. Within the *accept
   disc* (for a circle, the circle itself: the exact test; for a polygon, the largest disc about
@@ -31,14 +31,14 @@ the exact tests alone (which get the very numbers they would get without the fil
   in between, the polygon test runs. The pass measures without a division (``cross^2 <= r^2
   |ab|^2`` where the foot of the perpendicular falls inside the segment, else the nearer end):
   a division made the loop several times slower. That distance only decides segments more than
-  :data:`_MARGIN` from both radii; a block with any segment closer is measured again exactly
+  :data:`MARGIN` from both radii; a block with any segment closer is measured again exactly
   (:func:`_exact_distances`), so every verdict is the exact distance's.
 * Polygon test: separating axes (convex-hull edge normals and the segment's normal) reject. For
   a convex polygon they also accept (overlap on every axis means intersection) and otherwise
   prove the two disjoint, when the distance is attained at a polygon vertex or a segment end
-  (vertex-segment and end-edge distances). Only what lies within :data:`_MARGIN` of a decision
+  (vertex-segment and end-edge distances). Only what lies within :data:`MARGIN` of a decision
   boundary goes to the general test (edges, distances, point-in-polygon). For a convex polygon
-  the tests of all a pass's segments run at once (:func:`_classify`, vectorised).
+  the tests of all a pass's segments run at once (:func:`classify_segments`, vectorised).
 * Moving obstacles (``spacetime``): the obstacle's centre at each path time (few knots in the
   block's time span: each piece in turn, branch-free; many: interpolated in a grid of
   positions, filled as far as needed), then a *lens* test per segment: while the robot is on a
@@ -47,76 +47,24 @@ the exact tests alone (which get the very numbers they would get without the fil
   distance) of the point that moves uniformly between the two; relative to that point the robot
   moves along a segment. Exact for a segment within one piece, up to the rounding room, which
   also covers measuring that segment's distance without a division
-  (:func:`_segment_reach_levels`; blocks with NaN or huge coordinates keep the division). A
+  (:func:`segment_reach_levels`; blocks with NaN or huge coordinates keep the division). A
   segment that comes within the accept radius less that deviation and the room is a sure hit,
   counted there; the other
   segments that pass it are walked piece by piece, as above; those spanning more than
-  :data:`_PIECES` pieces are first tested against the box of the obstacle's positions over them
+  :data:`PIECES` pieces are first tested against the box of the obstacle's positions over them
   (sparse tables of knot boxes), and the pieces' relative segments are measured in one pass.
 * Turning: ``|atan2|`` by a branch-free Cephes ``atan`` (within 2 ulp of the C library), one
   vectorised pass per block.
 
-Modules (a package so that each job has its own file; every name is importable from here as
-before): :mod:`.constants`, :mod:`.primitives` (exact geometry tests), :mod:`.classify`
-(vectorised polygon verdicts, obstacle tables), :mod:`.passes` (block layout, standing
-obstacles), :mod:`.moving` (moving obstacles, three steps), :mod:`.population` (the entry point),
-:mod:`.threads` (the entry point on chunks of rows at once, for ``PathCost(threads=k)``).
+Modules (a package so that each job has its own file; names shared between them are public,
+the package itself exports only the entry point): :mod:`.constants`, :mod:`.primitives`
+(exact geometry tests), :mod:`.classify` (vectorised polygon verdicts, obstacle tables),
+:mod:`.passes` (block layout, standing obstacles), :mod:`.moving` (moving obstacles, three
+steps), :mod:`.population` (the entry point), :mod:`.threads` (the entry point on chunks of
+rows at once, for ``PathCost(threads=k)``).
 """
 
-# ruff: noqa: F401 - private names are re-exported: callers import them from here as before
-from mawdo.planning.kernel.classify import _classify, _prepare
-from mawdo.planning.kernel.constants import (
-    _BLOCK,
-    _COUNT,
-    _GRID_CELLS,
-    _MARGIN,
-    _MOREBITS,
-    _P0,
-    _P1,
-    _P2,
-    _P3,
-    _P4,
-    _PIECES,
-    _Q0,
-    _Q1,
-    _Q2,
-    _Q3,
-    _Q4,
-    _SANE,
-    _SLACK,
-    _T3P8,
-    ZERO_LENGTH,
-)
-from mawdo.planning.kernel.moving import (
-    Block,
-    _centres,
-    _exact_moving,
-    _lens_dev,
-    _moving_pass,
-    _near_segments,
-    _room,
-)
-from mawdo.planning.kernel.passes import (
-    _block_paths,
-    _box_tables,
-    _exact_distances,
-    _fill_boxes,
-    _static_pass,
-    _stride,
-    _sure_distances,
-)
-from mawdo.planning.kernel.population import _layout, population_cost, scratch_size
-from mawdo.planning.kernel.primitives import (
-    _abs_atan2,
-    _on_box,
-    _orient,
-    _point_in_polygon,
-    _point_segment_d2,
-    _polygon_hit,
-    _segment_hits_polygon,
-    _segment_reach_levels,
-    _segment_reaches_origin,
-    _segments_touch,
-)
+from mawdo.planning.kernel.constants import ZERO_LENGTH
+from mawdo.planning.kernel.population import population_cost, scratch_size
 
 __all__ = ["ZERO_LENGTH", "population_cost", "scratch_size"]

@@ -7,13 +7,13 @@ import math
 import numpy as np
 from numba import njit
 
-from mawdo.planning.kernel.constants import _MARGIN, _SLACK
-from mawdo.planning.kernel.primitives import _orient, _point_in_polygon, _point_segment_d2
+from mawdo.planning.kernel.constants import MARGIN, SLACK
+from mawdo.planning.kernel.primitives import orient, point_in_polygon, point_segment_d2
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _classify(i, n, seg, out, scratch, obs, extra, margin):
-    """:func:`_polygon_hit` for ``n`` segments at once, convex polygon i, loops over segments
+def classify_segments(i, n, seg, out, scratch, obs, extra, margin):
+    """:func:`polygon_hit` for ``n`` segments at once, convex polygon i, loops over segments
     innermost (they vectorise).
 
     Long by design: one fused Numba pass; splitting it adds calls in the hot loop.
@@ -21,8 +21,8 @@ def _classify(i, n, seg, out, scratch, obs, extra, margin):
     Long because it is one vectorised pass per axis over all segments (Numba hot loop).
 
     ``seg = (ax, ay, bx, by)`` arrays (obstacle i's frame); writes ``out[e]``: 1 hit, 0 miss, -1
-    undecided (the general test, :func:`_segment_hits_polygon`, decides). The same arithmetic
-    as :func:`_polygon_hit`, so the same decisions.
+    undecided (the general test, :func:`segment_hits_polygon`, decides). The same arithmetic
+    as :func:`polygon_hit`, so the same decisions.
     """
     sax, say, sbx, sby = seg
     gap, lo, hi, snx, sny, slen, best, sep = scratch
@@ -106,14 +106,14 @@ def _classify(i, n, seg, out, scratch, obs, extra, margin):
     for e in range(n):
         has = slen[e] > 0.0
         g = max(gap[e], max(lo[e], -hi[e])) if has else gap[e]
-        miss = sep[e] | (has & ((lo[e] > r + _SLACK) | (hi[e] < -r - _SLACK)))
+        miss = sep[e] | (has & ((lo[e] > r + SLACK) | (hi[e] < -r - SLACK)))
         far = 0 if best[e] > hi_rej else -1
         apart = 1 if best[e] <= lo_acc else far
         out[e] = 0 if miss else (1 if g < -margin else (apart if g > margin else -1))
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _prepare(is_circle, thresh, verts, nverts, bound, hull, nhull):
+def prepare_obstacles(is_circle, thresh, verts, nverts, bound, hull, nhull):
     """Per-obstacle data for the fast paths: ``(acc2, convex, hlo, hhi, einv)``.
 
     acc2 : squared radius about the bounding-circle centre within which any segment is a hit:
@@ -138,17 +138,17 @@ def _prepare(is_circle, thresh, verts, nverts, bound, hull, nhull):
         cx = bound[i, 4]
         cy = bound[i, 5]
         acc2[i] = -1.0
-        if _point_in_polygon(cx, cy, verts, i, nv):
+        if point_in_polygon(cx, cy, verts, i, nv):
             d2 = np.inf
             for k in range(nv):
                 kk = k + 1 if k + 1 < nv else 0
                 d2 = min(
                     d2,
-                    _point_segment_d2(
+                    point_segment_d2(
                         cx, cy, verts[i, k, 0], verts[i, k, 1], verts[i, kk, 0], verts[i, kk, 1]
                     ),
                 )
-            acc = (math.sqrt(d2) + thresh[i]) * (1.0 - _MARGIN) - _MARGIN
+            acc = (math.sqrt(d2) + thresh[i]) * (1.0 - MARGIN) - MARGIN
             if acc > 0.0:
                 acc2[i] = acc * acc
         pos = False
@@ -156,7 +156,7 @@ def _prepare(is_circle, thresh, verts, nverts, bound, hull, nhull):
         for k in range(nv):
             k0 = k - 1 if k > 0 else nv - 1
             k1 = k + 1 if k + 1 < nv else 0
-            o = _orient(
+            o = orient(
                 verts[i, k0, 0], verts[i, k0, 1], verts[i, k, 0], verts[i, k, 1],
                 verts[i, k1, 0], verts[i, k1, 1],
             )  # fmt: skip

@@ -6,31 +6,31 @@ from __future__ import annotations
 ZERO_LENGTH = 1e-9
 # Separating-axis rejections only fire with this much room to spare (pixels), so that rounding
 # can never reject a true hit; anything closer goes to the exact test.
-_SLACK = 1e-9
+SLACK = 1e-9
 # Fast decisions keep this much room (pixels, and relative): rounding is below 1e-9 px for
 # coordinates up to 1e7 px, so a fast decision is always the exact one.
-_MARGIN = 1e-6
+MARGIN = 1e-6
 # Candidates with a coordinate beyond this (pixels), or NaN, skip the fast accepts.
-_SANE = 1e7
+SANE = 1e7
 # A segment spanning more of an obstacle's pieces than this is first tested against a box.
-_PIECES = 3
+PIECES = 3
 # Candidates per block (the loops over a block's segments vectorise).
-_BLOCK = 128
+BLOCK = 128
 # A block's path times find their pieces by counting knots when it spans at most this many.
-_COUNT = 10
+COUNT = 10
 # Cells of the moving obstacles' position grids.
-_GRID_CELLS = 2048
+GRID_CELLS = 2048
 
 # |atan2| (Cephes atan.c, double precision: peak relative error 1.9e-16)
-_P0 = -8.750608600031904122785e-1
-_P1 = -1.615753718733365076637e1
-_P2 = -7.500855792314704667340e1
-_P3 = -1.228866684490136173410e2
-_P4 = -6.485021904942025371773e1
-_Q0 = 2.485846490142306297962e1
-_Q1 = 1.650270098316988542046e2
-_Q2 = 4.328810604912902668951e2
-_Q3 = 4.853903996359136964868e2
-_Q4 = 1.945506571482613964425e2
-_MOREBITS = 6.123233995736765886130e-17
-_T3P8 = 2.41421356237309504880  # tan(3 pi / 8)
+P0 = -8.750608600031904122785e-1
+P1 = -1.615753718733365076637e1
+P2 = -7.500855792314704667340e1
+P3 = -1.228866684490136173410e2
+P4 = -6.485021904942025371773e1
+Q0 = 2.485846490142306297962e1
+Q1 = 1.650270098316988542046e2
+Q2 = 4.328810604912902668951e2
+Q3 = 4.853903996359136964868e2
+Q4 = 1.945506571482613964425e2
+MOREBITS = 6.123233995736765886130e-17
+T3P8 = 2.41421356237309504880  # tan(3 pi / 8)

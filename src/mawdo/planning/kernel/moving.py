@@ -2,7 +2,7 @@
 is at each path time, which segments come within reach of it (a lens test), and the exact tests
 of those, piece by piece of the obstacle's motion.
 
-One compiled function per step; :func:`_moving_pass` runs them for one obstacle and one block.
+One compiled function per step; :func:`moving_pass` runs them for one obstacle and one block.
 The steps are inlined into it (Numba IR inlining). The lens test of step 2 measures without a
 division (a filter with room to spare; see :func:`_near_segments`); the centres and the exact
 tests are computed as they always were, so every count is the same.
@@ -16,24 +16,24 @@ from collections import namedtuple
 import numpy as np
 from numba import njit
 
-from mawdo.planning.kernel.classify import _classify
-from mawdo.planning.kernel.constants import _COUNT, _GRID_CELLS, _MARGIN, _PIECES
-from mawdo.planning.kernel.passes import _fill_boxes
+from mawdo.planning.kernel.classify import classify_segments
+from mawdo.planning.kernel.constants import COUNT, GRID_CELLS, MARGIN, PIECES
+from mawdo.planning.kernel.passes import fill_boxes
 from mawdo.planning.kernel.primitives import (
-    _point_segment_d2,
-    _polygon_hit,
-    _segment_hits_polygon,
-    _segment_reach_levels,
+    point_segment_d2,
+    polygon_hit,
+    segment_hits_polygon,
+    segment_reach_levels,
 )
 
 Block = namedtuple("Block", ["t0", "speed", "bn", "npts", "sane", "cmax", "tmax"])
 """A block's scalars: planning time and robot speed (time steps, px per step), candidates in the
 block and points per path, whether all coordinates are sane, the largest coordinate (px) and the
-latest path time (time steps); as :func:`mawdo.planning.kernel.passes._block_paths` finds them."""
+latest path time (time steps); as :func:`mawdo.planning.kernel.passes.block_paths` finds them."""
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _moving_pass(i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, grid, hits, ncol):
+def moving_pass(i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, grid, hits, ncol):
     """Hits of the block's segments on moving obstacle i (spacetime); adds them to ``ncol``.
 
     The exact test walks the robot's segments and the obstacle's constant-velocity pieces
@@ -75,9 +75,9 @@ def _centres(i, blk, path, work, obs, motion, grid):
     while kw < last and kt[i, kw + 1] <= tmax:
         kw += 1
     gi = 1.0 / gdt[i]
-    gneed = int((tmax - t0) * gi) + 2 if tmax - t0 < (_GRID_CELLS - 2) * gdt[i] else -1
-    on_grid = gneed > 0 and kw - ks > _COUNT
-    if kw - ks <= _COUNT:
+    gneed = int((tmax - t0) * gi) + 2 if tmax - t0 < (GRID_CELLS - 2) * gdt[i] else -1
+    on_grid = gneed > 0 and kw - ks > COUNT
+    if kw - ks <= COUNT:
         # few knots: place the centre on each piece in turn where the piece has begun
         # (branch-free)
         tw = kt[i, ks]
@@ -152,7 +152,7 @@ def _room(i, blk, pre):
     vm = vmax[i]
     # relative to the coordinates and times involved
     room = (
-        _MARGIN * (1.0 + 4.0 * cmax + 4.0 * omax[i]) + 1e-9 * tmax * (2.0 * speed + vm)
+        MARGIN * (1.0 + 4.0 * cmax + 4.0 * omax[i]) + 1e-9 * tmax * (2.0 * speed + vm)
         if sane
         else np.inf
     )
@@ -181,7 +181,7 @@ def _near_segments(i, blk, room, a2, path, work, obs, pre, hits):
     ta and where it will be at tb, so it stays within sqrt(a^2 - d^2) (a = vmax (tb - ta) / 2,
     d half the distance between the two) of the point that moves uniformly between them; the
     robot, relative to that point, moves along a segment. Branch-free. Sane blocks measure the
-    distance without a division (:func:`_segment_reach_levels`, with room to spare), others as
+    distance without a division (:func:`segment_reach_levels`, with room to spare), others as
     before (NaN and infinities compare as they always did).
 
     In sane blocks a segment whose relative segment comes within the accept radius
@@ -202,9 +202,9 @@ def _near_segments(i, blk, room, a2, path, work, obs, pre, hits):
         acc = math.sqrt(a2) if a2 > 0.0 else -np.inf  # (a2 < 0: no accept disc)
         for p in range(npt - 1):
             dev = _lens_dev(p, vm, tt, cxp, cyp, cep)
-            reach = (rho + dev) * (1.0 + _MARGIN) + room
-            inner = (acc - dev) * (1.0 - _MARGIN) - room
-            close, sure = _segment_reach_levels(
+            reach = (rho + dev) * (1.0 + MARGIN) + room
+            inner = (acc - dev) * (1.0 - MARGIN) - room
+            close, sure = segment_reach_levels(
                 px[p] - cxp[p], py[p] - cyp[p], px[p + 1] - cxp[p + 1], py[p + 1] - cyp[p + 1],
                 reach * reach, inner * inner if inner > 0.0 else -1.0,
             )  # fmt: skip
@@ -215,8 +215,8 @@ def _near_segments(i, blk, room, a2, path, work, obs, pre, hits):
             near[p] = close
     else:
         for p in range(npt - 1):
-            reach = (rho + _lens_dev(p, vm, tt, cxp, cyp, cep)) * (1.0 + _MARGIN) + room
-            d = _point_segment_d2(
+            reach = (rho + _lens_dev(p, vm, tt, cxp, cyp, cep)) * (1.0 + MARGIN) + room
+            d = point_segment_d2(
                 0.0, 0.0, px[p] - cxp[p], py[p] - cyp[p], px[p + 1] - cxp[p + 1],
                 py[p + 1] - cyp[p + 1],
             )  # fmt: skip
@@ -283,10 +283,10 @@ def _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, 
                 kb -= 1
             while kb < last and kt[i, kb + 1] < tb:
                 kb += 1
-            if kb - k > _PIECES:
+            if kb - k > PIECES:
                 # many pieces: first the box of the offsets over them
                 if not boxed[i]:
-                    _fill_boxes(i, ko, nk, boxes, bbase, lg)
+                    fill_boxes(i, ko, nk, boxes, bbase, lg)
                     boxed[i] = True
                 k0 = kt[i, k]
                 sa = max(ta, k0)
@@ -309,10 +309,10 @@ def _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, 
                 hy = 0.5 * (yhi - ylo)
                 mx = bcx + 0.5 * (xlo + xhi)
                 my = bcy + 0.5 * (ylo + yhi)
-                r_ = rho * (1.0 + _MARGIN) + room
+                r_ = rho * (1.0 + MARGIN) + room
                 ex = bx - ax
                 ey = by - ay
-                reach = (rho + math.sqrt(hx * hx + hy * hy)) * (1.0 + _MARGIN) + room
+                reach = (rho + math.sqrt(hx * hx + hy * hy)) * (1.0 + MARGIN) + room
                 if (
                     max(ax, bx) < mx - hx - r_
                     or min(ax, bx) > mx + hx + r_
@@ -320,7 +320,7 @@ def _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, 
                     or min(ay, by) > my + hy + r_
                     or abs(ex * (my - ay) - ey * (mx - ax))
                     > r_ * math.sqrt(ex * ex + ey * ey) + hx * abs(ey) + hy * abs(ex)
-                    or _point_segment_d2(mx, my, ax, ay, bx, by) > reach * reach
+                    or point_segment_d2(mx, my, ax, ay, bx, by) > reach * reach
                 ):
                     f += 1
                     continue
@@ -354,12 +354,12 @@ def _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, 
                 pay = ay + rvy[p] * (sa - ta) - (ko[i, kk, 1] + vy * (sa - k0))
                 pbx = ax + rvx[p] * (sb - ta) - (ko[i, kk, 0] + vx * (sb - k0))
                 pby = ay + rvy[p] * (sb - ta) - (ko[i, kk, 1] + vy * (sb - k0))
-                d = _point_segment_d2(bcx, bcy, pax, pay, pbx, pby)
+                d = point_segment_d2(bcx, bcy, pax, pay, pbx, pby)
                 if d <= rho2 and (
                     d <= a2
                     or (
                         not is_circle[i]
-                        and _polygon_hit(
+                        and polygon_hit(
                             pax, pay, pbx, pby, i, thresh, verts, nverts, hull, nhull, extra,
                             margin,
                         )
@@ -369,7 +369,7 @@ def _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, 
                     break
             f += 1
         for e in range(ne):
-            qd2[e] = _point_segment_d2(bcx, bcy, qax[e], qay[e], qbx[e], qby[e])
+            qd2[e] = point_segment_d2(bcx, bcy, qax[e], qay[e], qbx[e], qby[e])
         if convex:
             # the polygon tests of the entries within the bounding circle, all at once
             sax, say, sbx, sby = cls[0]
@@ -386,7 +386,7 @@ def _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, 
                 sidx[nt] = e
                 vmap[e] = 2  # (not tested)
                 nt += 1 if (d <= rho2) & (d > a2) else 0
-            _classify(i, nt, cls[0], verdict, cls[2], obs, extra, margin)
+            classify_segments(i, nt, cls[0], verdict, cls[2], obs, extra, margin)
             for t in range(nt):
                 vmap[sidx[t]] = verdict[t]
         # the entries within the bounding circle, listed without a branch (most are not)
@@ -404,11 +404,11 @@ def _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, 
                 v = vmap[e]  # (2 for those within a2: not classified)
                 hit = hit | (v == 1)
                 if v < 0 and not done[p]:
-                    hit = _segment_hits_polygon(
+                    hit = segment_hits_polygon(
                         qax[e], qay[e], qbx[e], qby[e], verts, i, nverts[i], thresh[i]
                     )
             elif not hit and not is_circle[i] and not done[p]:
-                hit = _polygon_hit(
+                hit = polygon_hit(
                     qax[e], qay[e], qbx[e], qby[e], i, thresh, verts, nverts, hull, nhull,
                     extra, margin,
                 )  # fmt: skip

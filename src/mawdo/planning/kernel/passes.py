@@ -8,23 +8,23 @@ import math
 import numpy as np
 from numba import njit
 
-from mawdo.planning.kernel.classify import _classify
-from mawdo.planning.kernel.constants import _SANE, ZERO_LENGTH
+from mawdo.planning.kernel.classify import classify_segments
+from mawdo.planning.kernel.constants import SANE, ZERO_LENGTH
 from mawdo.planning.kernel.primitives import (
-    _abs_atan2,
-    _point_segment_d2,
-    _polygon_hit,
-    _segment_hits_polygon,
+    abs_atan2,
+    point_segment_d2,
+    polygon_hit,
+    segment_hits_polygon,
 )
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _box_tables(nk):
+def box_tables(nk):
     """Layout of sparse tables of the knot offsets' boxes, for box-of-a-knot-range queries.
 
     Returns ``(base, lg, filled)``: level ``L`` of obstacle ``i`` holds, for each knot ``p``,
     the box ``(xmin, ymin, xmax, ymax)`` of knots ``p .. p + 2^L - 1`` at row
-    ``base[i] + L * nk[i] + p`` of a table of ``base[-1]`` rows, once :func:`_fill_boxes` has
+    ``base[i] + L * nk[i] + p`` of a table of ``base[-1]`` rows, once :func:`fill_boxes` has
     filled it (``filled[i]``); ``lg[n] = floor(log2(n))``.
     """
     n = nk.shape[0]
@@ -41,8 +41,8 @@ def _box_tables(nk):
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _fill_boxes(i, ko, nk, table, base, lg):
-    """Fill obstacle i's sparse table (see :func:`_box_tables`)."""
+def fill_boxes(i, ko, nk, table, base, lg):
+    """Fill obstacle i's sparse table (see :func:`box_tables`)."""
     b = base[i]
     for p in range(nk[i]):
         table[b + p, 0] = ko[i, p, 0]
@@ -61,7 +61,7 @@ def _fill_boxes(i, ko, nk, table, base, lg):
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _stride(n):
+def stride(n):
     """Elements (8 bytes each) between the starts of scratch arrays of n elements: n rounded up
     to whole 4 KiB pages, plus 576 bytes (so that 64 of them start at 64 different offsets)."""
     return (n + 511) // 512 * 512 + 72
@@ -71,11 +71,11 @@ def _stride(n):
 # population loop (0.67 -> 0.28 ms a call of 1360 candidates without obstacles), and one call
 # per block costs nothing.
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _block_paths(X, c0, bn, start, goal, t0, speed, path, out_len, out_turn):
+def block_paths(X, c0, bn, start, goal, t0, speed, path, out_len, out_turn):
     """Lay the paths of candidates ``c0 .. c0 + bn - 1`` end to end, with their lengths (C1),
     times, velocities and turning (C3).
 
-    Returns ``(sane, cmax, tmax)``: no coordinate is NaN or beyond ``_SANE``, the largest
+    Returns ``(sane, cmax, tmax)``: no coordinate is NaN or beyond ``SANE``, the largest
     coordinate magnitude, the latest path time (NaN times left out).
     """
     px, py, tt, seg, sdx, sdy, rvx, rvy, ux, uy, ang, ufirst = path
@@ -98,7 +98,7 @@ def _block_paths(X, c0, bn, start, goal, t0, speed, path, out_len, out_turn):
     for p in range(bn * npts):
         ax = abs(px[p])
         ay = abs(py[p])
-        bad += 0 if (ax <= _SANE) & (ay <= _SANE) else 1  # (NaN too)
+        bad += 0 if (ax <= SANE) & (ay <= SANE) else 1  # (NaN too)
         cmax = ax if ax > cmax else cmax
         cmax = ay if ay > cmax else cmax
     sane = bad == 0
@@ -129,7 +129,7 @@ def _block_paths(X, c0, bn, start, goal, t0, speed, path, out_len, out_turn):
     ufirst[bn] = nz
     # |theta_i - pi| equals the angle between consecutive directions
     for v in range(nz - 1):
-        ang[v] = _abs_atan2(
+        ang[v] = abs_atan2(
             ux[v] * uy[v + 1] - uy[v] * ux[v + 1], ux[v] * ux[v + 1] + uy[v] * uy[v + 1]
         )
     for b in range(bn):
@@ -161,7 +161,7 @@ def _exact_distances(cx, cy, p0, p1, px, py, real, a2, rho2, near, hits):
     it flagged."""
     nnear = 0
     for p in range(p0, p1):
-        d = _point_segment_d2(cx, cy, px[p], py[p], px[p + 1], py[p + 1])
+        d = point_segment_d2(cx, cy, px[p], py[p], px[p + 1], py[p + 1])
         hit = d <= a2
         close = d <= rho2 and not hit and real[p]
         hits[p] += 1 if hit else 0
@@ -222,7 +222,7 @@ def _sure_distances(cx, cy, npt, px, py, real, a2, rho, margin, near, hits):
 
 # Not inlined either: on its own it compiles to tighter loops than inside the population loop.
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _static_pass(i, ox, oy, bn, npts, path, work, cls, obs, extra, a2, margin, hits, ncol):
+def static_pass(i, ox, oy, bn, npts, path, work, cls, obs, extra, a2, margin, hits, ncol):
     """Hits of the block's segments on obstacle i standing at offset ``(ox, oy)``.
 
     Bounding-circle distances in one branch-free pass: inside the accept disc is a hit (for a
@@ -250,7 +250,7 @@ def _static_pass(i, ox, oy, bn, npts, path, work, cls, obs, extra, a2, margin, h
     if not extra[1][i]:  # not convex: one by one
         for f in range(nf):
             p = flagged[f]
-            if _polygon_hit(
+            if polygon_hit(
                 px[p] - ox, py[p] - oy, px[p + 1] - ox, py[p + 1] - oy, i, thresh, verts,
                 nverts, hull, nhull, extra, margin,
             ):  # fmt: skip
@@ -264,13 +264,11 @@ def _static_pass(i, ox, oy, bn, npts, path, work, cls, obs, extra, a2, margin, h
         say[f] = py[p] - oy
         sbx[f] = px[p + 1] - ox
         sby[f] = py[p + 1] - oy
-    _classify(i, nf, cls[0], verdict, cls[2], obs, extra, margin)
+    classify_segments(i, nf, cls[0], verdict, cls[2], obs, extra, margin)
     for f in range(nf):
         v = verdict[f]
         if v == 1 or (
             v < 0
-            and _segment_hits_polygon(
-                sax[f], say[f], sbx[f], sby[f], verts, i, nverts[i], thresh[i]
-            )
+            and segment_hits_polygon(sax[f], say[f], sbx[f], sby[f], verts, i, nverts[i], thresh[i])
         ):
             ncol[cand[flagged[f]]] += 1

@@ -7,16 +7,16 @@ import math
 import numpy as np
 from numba import njit
 
-from mawdo.planning.kernel.classify import _prepare
-from mawdo.planning.kernel.constants import _BLOCK, _GRID_CELLS, _MARGIN
-from mawdo.planning.kernel.moving import Block, _moving_pass
-from mawdo.planning.kernel.passes import _block_paths, _box_tables, _static_pass, _stride
+from mawdo.planning.kernel.classify import prepare_obstacles
+from mawdo.planning.kernel.constants import BLOCK, GRID_CELLS, MARGIN
+from mawdo.planning.kernel.moving import Block, moving_pass
+from mawdo.planning.kernel.passes import block_paths, box_tables, static_pass, stride
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
 def _layout(n, npts, nk, spacetime):
     """Scratch layout for a call: ``(nb, size, cap, fs, fc, gs, nmov, rows, total)``."""
-    nb = max(min(_BLOCK, n), 1)  # candidates per block
+    nb = max(min(BLOCK, n), 1)  # candidates per block
     size = nb * npts  # points per block
     cap = size * 2  # relative segments on pieces, per batch
     nmov = 0
@@ -29,9 +29,9 @@ def _layout(n, npts, nk, spacetime):
             while (2 << q) <= nk[i]:
                 q += 1
             rows += nk[i] * (q + 1)
-    fs = _stride(size)
-    fc = _stride(cap)
-    gs = _stride(nmov * _GRID_CELLS)
+    fs = stride(size)
+    fc = stride(cap)
+    gs = stride(nmov * GRID_CELLS)
     return nb, size, cap, fs, fc, gs, nmov, rows, 18 * fs + 20 * fc + 4 * gs + 4 * rows
 
 
@@ -101,7 +101,7 @@ def population_cost(
     npts = X.shape[1] // 2 + 2
     nseg = npts - 1
     n_obs = nk.shape[0]
-    extra = _prepare(is_circle, thresh, verts, nverts, bound, hull, nhull)
+    extra = prepare_obstacles(is_circle, thresh, verts, nverts, bound, hull, nhull)
     acc2 = extra[0]
     moving = np.zeros(n_obs, dtype=np.bool_)
     for i in range(n_obs):
@@ -115,12 +115,12 @@ def population_cost(
         if moving[i]:
             for k in range(nk[i] - 1):
                 vmax[i] = max(vmax[i], math.sqrt(kv[i, k, 0] ** 2 + kv[i, k, 1] ** 2))
-            vmax[i] = vmax[i] * (1.0 + _MARGIN) + _MARGIN
+            vmax[i] = vmax[i] * (1.0 + MARGIN) + MARGIN
             extent = 0.0
             for k in range(nk[i]):
                 extent = max(extent, max(abs(ko[i, k, 0]), abs(ko[i, k, 1])))
             omax[i] += extent
-    bbase, lg, boxed = _box_tables(nk if spacetime else nk[:0])
+    bbase, lg, boxed = box_tables(nk if spacetime else nk[:0])
     # Per moving obstacle a grid of its centre's positions over time, filled as far as the
     # blocks need: cells of gdt time steps from t0, the piece at each cell's start, and per cell
     # how far the centre can stray from the chord between its ends (0 without a knot inside,
@@ -132,11 +132,11 @@ def population_cost(
     for i in range(n_obs):
         if moving[i]:
             span = max(kt[i, nk[i] - 1] - t0, 0.0) + 1.0
-            gdt[i] = max(2.0 / vmax[i], span / (_GRID_CELLS - 2))
+            gdt[i] = max(2.0 / vmax[i], span / (GRID_CELLS - 2))
             ggap[i] = 0.5 * vmax[i] * gdt[i]
             grow[i] = nmov
             nmov += 1
-    # Candidates are processed in blocks of _BLOCK, their paths laid end to end (point p of the
+    # Candidates are processed in blocks of BLOCK, their paths laid end to end (point p of the
     # block is point p % npts of candidate p // npts; "segment" p joins points p and p + 1 and
     # is a real segment unless p % npts == nseg), so that the loops over segments are long
     # enough to vectorise.
@@ -152,17 +152,17 @@ def population_cost(
     cbuf = buf[o : o + 16 * fc]  # floats of the relative segments on pieces
     jbuf = buf[o + 16 * fc : o + 20 * fc].view(np.int64)
     o += 20 * fc
-    ng = nmov * _GRID_CELLS
+    ng = nmov * GRID_CELLS
     grid = (
         gdt,
         ggap,
         grow,
         np.zeros(n_obs, dtype=np.int64),  # cells filled
         k_start.copy(),  # piece at the last filled cell
-        buf[o : o + ng].reshape((nmov, _GRID_CELLS)),
-        buf[o + gs : o + gs + ng].reshape((nmov, _GRID_CELLS)),
-        buf[o + 2 * gs : o + 2 * gs + ng].reshape((nmov, _GRID_CELLS)),
-        buf[o + 3 * gs : o + 3 * gs + ng].view(np.int64).reshape((nmov, _GRID_CELLS)),
+        buf[o : o + ng].reshape((nmov, GRID_CELLS)),
+        buf[o + gs : o + gs + ng].reshape((nmov, GRID_CELLS)),
+        buf[o + 2 * gs : o + 2 * gs + ng].reshape((nmov, GRID_CELLS)),
+        buf[o + 3 * gs : o + 3 * gs + ng].view(np.int64).reshape((nmov, GRID_CELLS)),
     )
     o += 4 * gs
     nbox = 4 * nrow
@@ -203,7 +203,7 @@ def population_cost(
         jbuf[0:cap],  # qseg: their segments
         np.zeros(size, dtype=np.bool_),  # done: segment already counted
     )
-    cls = (  # for _classify: segments, verdicts, scratch; entries and their verdicts
+    cls = (  # for classify_segments: segments, verdicts, scratch; entries and their verdicts
         (
             cbuf[5 * fc : 5 * fc + cap],
             cbuf[6 * fc : 6 * fc + cap],
@@ -228,8 +228,8 @@ def population_cost(
     ncol = np.empty(nb, dtype=np.int64)  # and by the exact tests, per candidate
     for c0 in range(0, n, nb):
         bn = min(nb, n - c0)
-        sane, cmax, tmax = _block_paths(X, c0, bn, start, goal, t0, speed, path, out_len, out_turn)
-        margin = _MARGIN if sane else np.inf
+        sane, cmax, tmax = block_paths(X, c0, bn, start, goal, t0, speed, path, out_len, out_turn)
+        margin = MARGIN if sane else np.inf
         hits[:] = 0
         ncol[:] = 0
         # n_collision (Eq. 20): (segment, obstacle) pairs that hit
@@ -237,13 +237,13 @@ def population_cost(
             a2 = acc2[i] if sane or is_circle[i] else -1.0
             if moving[i]:
                 blk = Block(t0, speed, bn, npts, sane, cmax, tmax)
-                _moving_pass(
+                moving_pass(
                     i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, grid, hits, ncol
                 )
             else:
                 ox = ko[i, 0, 0] if spacetime else snap_off[i, 0]
                 oy = ko[i, 0, 1] if spacetime else snap_off[i, 1]
-                _static_pass(
+                static_pass(
                     i, ox, oy, bn, npts, path, work, cls, obs, extra, a2, margin, hits, ncol
                 )
         px, py = path[0], path[1]

@@ -9,24 +9,24 @@ import numpy as np
 from numba import njit
 
 from mawdo.planning.kernel.constants import (
-    _MOREBITS,
-    _P0,
-    _P1,
-    _P2,
-    _P3,
-    _P4,
-    _Q0,
-    _Q1,
-    _Q2,
-    _Q3,
-    _Q4,
-    _SLACK,
-    _T3P8,
+    MOREBITS,
+    P0,
+    P1,
+    P2,
+    P3,
+    P4,
+    Q0,
+    Q1,
+    Q2,
+    Q3,
+    Q4,
+    SLACK,
+    T3P8,
 )
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _abs_atan2(y, x):
+def abs_atan2(y, x):
     """``|atan2(y, x)|`` in [0, pi], branch-free so that loops over it vectorise.
 
     Within 2 ulp of the C library's ``atan2`` for finite inputs; NaN for ``(0, 0)`` or an
@@ -35,20 +35,20 @@ def _abs_atan2(y, x):
     ay = abs(y)
     ax = abs(x)
     # t = ay / ax; z is t, (t - 1) / (t + 1) or -1 / t, as one quotient
-    big = ay > _T3P8 * ax
+    big = ay > T3P8 * ax
     mid = ay > 0.66 * ax
     z = (-ax if big else (ay - ax if mid else ay)) / (ay if big else (ay + ax if mid else ax))
     base = 0.5 * math.pi if big else (0.25 * math.pi if mid else 0.0)
-    extra = _MOREBITS if big else (0.5 * _MOREBITS if mid else 0.0)
+    extra = MOREBITS if big else (0.5 * MOREBITS if mid else 0.0)
     zz = z * z
-    p = (((_P0 * zz + _P1) * zz + _P2) * zz + _P3) * zz + _P4
-    q = ((((zz + _Q0) * zz + _Q1) * zz + _Q2) * zz + _Q3) * zz + _Q4
+    p = (((P0 * zz + P1) * zz + P2) * zz + P3) * zz + P4
+    q = ((((zz + Q0) * zz + Q1) * zz + Q2) * zz + Q3) * zz + Q4
     a = base + (z * (zz * p / q) + z + extra)
     return math.pi - a if x < 0.0 else a
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _point_segment_d2(px, py, ax, ay, bx, by):
+def point_segment_d2(px, py, ax, ay, bx, by):
     """Squared distance from point p to segment ab (pixels^2).
 
     Branch-free (min/max clamps) so that loops over many segments stay fast; a zero-length
@@ -65,21 +65,21 @@ def _point_segment_d2(px, py, ax, ay, bx, by):
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _segment_reaches_origin(ax, ay, bx, by, r2):
+def segment_reaches_origin(ax, ay, bx, by, r2):
     """Segment ab comes within ``sqrt(r2)`` of the origin (pixels), up to rounding: a filter.
 
-    The distance of :func:`_point_segment_d2` without its division (which kept loops over it
+    The distance of :func:`point_segment_d2` without its division (which kept loops over it
     several times slower): the nearest point is an end unless the foot of the perpendicular
     falls inside, and then ``d^2 |ab|^2 = cross^2``. Both differ from the true distance by
     rounding only (relative to the coordinates), far below the callers' room; finite
-    coordinates only (callers with NaN or huge ones use :func:`_point_segment_d2`).
+    coordinates only (callers with NaN or huge ones use :func:`point_segment_d2`).
     """
-    return _segment_reach_levels(ax, ay, bx, by, r2, -1.0)[0]
+    return segment_reach_levels(ax, ay, bx, by, r2, -1.0)[0]
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _segment_reach_levels(ax, ay, bx, by, r2, s2):
-    """:func:`_segment_reaches_origin` for two radii at once: ``(within sqrt(r2), within
+def segment_reach_levels(ax, ay, bx, by, r2, s2):
+    """:func:`segment_reaches_origin` for two radii at once: ``(within sqrt(r2), within
     sqrt(s2))`` (a negative ``s2``: never)."""
     dx = bx - ax
     dy = by - ay
@@ -94,7 +94,7 @@ def _segment_reach_levels(ax, ay, bx, by, r2, s2):
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _orient(ax, ay, bx, by, cx, cy):
+def orient(ax, ay, bx, by, cx, cy):
     return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax)
 
 
@@ -107,10 +107,10 @@ def _on_box(ax, ay, bx, by, px, py):
 @njit(cache=True, fastmath=False, error_model="numpy")
 def _segments_touch(ax, ay, bx, by, cx, cy, dx, dy):
     """True iff closed segments ab and cd share a point."""
-    o1 = _orient(ax, ay, bx, by, cx, cy)
-    o2 = _orient(ax, ay, bx, by, dx, dy)
-    o3 = _orient(cx, cy, dx, dy, ax, ay)
-    o4 = _orient(cx, cy, dx, dy, bx, by)
+    o1 = orient(ax, ay, bx, by, cx, cy)
+    o2 = orient(ax, ay, bx, by, dx, dy)
+    o3 = orient(cx, cy, dx, dy, ax, ay)
+    o4 = orient(cx, cy, dx, dy, bx, by)
     if ((o1 > 0.0 and o2 < 0.0) or (o1 < 0.0 and o2 > 0.0)) and (
         (o3 > 0.0 and o4 < 0.0) or (o3 < 0.0 and o4 > 0.0)
     ):
@@ -127,7 +127,7 @@ def _segments_touch(ax, ay, bx, by, cx, cy, dx, dy):
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _point_in_polygon(px, py, verts, i, nv):
+def point_in_polygon(px, py, verts, i, nv):
     """Even-odd rule for polygon ``verts[i]``; the boundary is decided by the edge tests."""
     inside = False
     j = nv - 1
@@ -145,7 +145,7 @@ def _point_in_polygon(px, py, verts, i, nv):
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _segment_hits_polygon(ax, ay, bx, by, verts, i, nv, r):
+def segment_hits_polygon(ax, ay, bx, by, verts, i, nv, r):
     """Distance from segment ab to polygon ``verts[i]`` (boundary or interior) is ``<= r``."""
     r2 = r * r
     xmin = min(ax, bx) - r
@@ -165,25 +165,25 @@ def _segment_hits_polygon(ax, ay, bx, by, verts, i, nv, r):
             return True
         if r > 0.0:
             if (
-                _point_segment_d2(ax, ay, cx, cy, dx, dy) <= r2
-                or _point_segment_d2(bx, by, cx, cy, dx, dy) <= r2
-                or _point_segment_d2(cx, cy, ax, ay, bx, by) <= r2
+                point_segment_d2(ax, ay, cx, cy, dx, dy) <= r2
+                or point_segment_d2(bx, by, cx, cy, dx, dy) <= r2
+                or point_segment_d2(cx, cy, ax, ay, bx, by) <= r2
             ):
                 return True  # the edge's other end is checked as the next edge's first end
     # no edge within reach: the segment is wholly inside or wholly outside
-    return _point_in_polygon(ax, ay, verts, i, nv)
+    return point_in_polygon(ax, ay, verts, i, nv)
 
 
 @njit(cache=True, fastmath=False, error_model="numpy", inline="always")
-def _polygon_hit(ax, ay, bx, by, i, thresh, verts, nverts, hull, nhull, extra, margin):
+def polygon_hit(ax, ay, bx, by, i, thresh, verts, nverts, hull, nhull, extra, margin):
     """Segment ab (in obstacle i's frame) is within ``thresh[i]`` of polygon i.
 
     Long by design: one exact test, inlined by Numba; its cases share local state.
 
     Long because it inlines the staged filters of one hit test (Numba hot path).
 
-    ``extra`` comes from :func:`_prepare`; ``margin`` is the room (pixels) a fast decision needs
-    (``inf`` turns them off, leaving the exact test).
+    ``extra`` comes from :func:`prepare_obstacles`; ``margin`` is the room (pixels) a fast
+    decision needs (``inf`` turns them off, leaving the exact test).
     """
     convex = extra[1]
     hlo = extra[2]
@@ -218,7 +218,7 @@ def _polygon_hit(ax, ay, bx, by, i, thresh, verts, nverts, hull, nhull, extra, m
             s = nx * (verts[i, k, 0] - ax) + ny * (verts[i, k, 1] - ay)
             lo = min(lo, s)
             hi = max(hi, s)
-        if lo > r + _SLACK or hi < -r - _SLACK:
+        if lo > r + SLACK or hi < -r - SLACK:
             return False
         gap = max(gap, max(lo, -hi))
     if convex[i]:
@@ -261,4 +261,4 @@ def _polygon_hit(ax, ay, bx, by, i, thresh, verts, nverts, hull, nhull, extra, m
                 return True
             if best > (r + margin) * (r + margin):
                 return False
-    return _segment_hits_polygon(ax, ay, bx, by, verts, i, nverts[i], r)
+    return segment_hits_polygon(ax, ay, bx, by, verts, i, nverts[i], r)

@@ -34,7 +34,7 @@ import math
 import numpy as np
 from numba import njit
 
-from mawdo.planning.sipp.exact import point_in_polygon
+from mawdo.planning.kernel.primitives import point_in_polygon
 
 __all__ = ["clip_range", "cone_start", "disc_range"]
 

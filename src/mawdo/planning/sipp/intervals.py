@@ -9,9 +9,8 @@ reachable set (the shape where it is at ``t0``, growing at the walk's top speed)
 
 :func:`forbidden` gives the closed departure intervals at which a straight timed move collides
 (exact, :mod:`mawdo.planning.sipp.geometry`); :func:`segment_free` is the independent yes/no
-test of one timed move, piece by piece, with the exact primitives of
-:mod:`mawdo.planning.sipp.exact`; the search
-accepts a departure only when that test passes. :func:`safe_intervals` gives each vertex's open
+test of one timed move, piece by piece, with the cost kernel's exact primitives
+(:mod:`mawdo.planning.kernel.primitives`); the search accepts a departure only when that test passes. :func:`safe_intervals` gives each vertex's open
 safe intervals (the gaps between the forbidden intervals of a robot standing still).
 """
 
@@ -24,9 +23,13 @@ import numpy as np
 from numba import njit
 
 from mawdo.planning.geometry import FlatObstacles
+from mawdo.planning.kernel.primitives import (
+    point_in_polygon,
+    point_segment_d2,
+    segment_hits_polygon,
+)
 from mawdo.planning.motion import BoundedRandomWalk
 from mawdo.planning.scenario import Scenario
-from mawdo.planning.sipp.exact import point_in_polygon, point_segment_d2, segment_hits_polygon
 from mawdo.planning.sipp.geometry import clip_range, cone_start, disc_range
 
 __all__ = ["EPS", "Movers", "earliest_free", "forbidden", "safe_intervals", "segment_free"]

@@ -1,0 +1,354 @@
+"""Fill Numba's on-disk cache before anyone waits for it, compiling kernels in parallel processes.
+
+A first ``mawdo plan paper`` spends about 70 s of CPU compiling kernels, one after the other in
+one process, on one core. Numba caches each compiled function in its own files, so several
+processes can fill one cache at once, each compiling different functions; a later process then
+loads every kernel from the cache and compiles nothing.
+
+What to compile is a table, :data:`SIGNATURES` (package data): per kernel its module, name,
+argument types (``repr`` of Numba's types, read back with :func:`parse`) and how long it took to
+compile when recorded, written by ``python -m mawdo.jitwarm record -- ARGS`` (runs ``mawdo ARGS``
+in this process on an empty cache and keeps every compile that Numba can compile again from the
+table: the commands' entry points and the functions they call that take plain arrays, tuples
+and scalars). ``tests/test_jitwarm.py`` checks that a warmed cache leaves nothing to compile for
+``mawdo plan paper``, so a table that fell behind a kernel's arguments fails a test.
+
+Usage: ``python -m mawdo.jitwarm [--jobs N]`` (what ``make install`` and ``make demo`` run after
+installing), or :func:`warm` from a command that finds its kernels missing.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import json
+import os
+import runpy
+import subprocess
+import sys
+import threading
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+from mawdo.jitcache import numba_cache_folder
+
+_PACKAGE = Path(__file__).resolve().parent
+SIGNATURES = _PACKAGE / "data" / "jit_signatures.txt"
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One compile of the table: ``module.name`` for the argument types ``sig`` (a ``repr``)."""
+
+    module: str
+    name: str
+    seconds: float  # CPU seconds of its compile less its callees' in the table (when recorded)
+    caller: str  # "module.name" of the entry whose compile compiled it ("-": none, from Python)
+    sig: str
+
+    def line(self) -> str:
+        return f"{self.module}\t{self.name}\t{self.seconds:.2f}\t{self.caller}\t{self.sig}"
+
+    @classmethod
+    def from_line(cls, line: str) -> Entry:
+        module, name, seconds, caller, sig = line.split("\t", 4)
+        return cls(module, name, float(seconds), caller, sig)
+
+    @property
+    def key(self) -> str:
+        return f"{self.module}.{self.name}"
+
+
+def load_table(path: Path = SIGNATURES) -> list[Entry]:
+    """The entries of a signature table, in the order they were recorded (empty if none)."""
+    try:
+        text = path.read_text()
+    except OSError:
+        return []
+    return [Entry.from_line(r) for r in text.splitlines() if r and not r.startswith("#")]
+
+
+def parse(sig: str) -> tuple:
+    """Numba argument types from their ``repr`` (``"(Array(float64, 2, 'C', ...), int64)"``)."""
+    from numba.core import types
+
+    names = dict(vars(types))
+    names["bool"] = types.boolean  # repr(types.boolean) is "bool"
+    value = eval(sig, {"__builtins__": {}}, names)  # noqa: S307 - our own table, no builtins
+    return value if isinstance(value, tuple) else (value,)
+
+
+def dispatcher(entry: Entry):
+    """The Numba dispatcher an entry names."""
+    return getattr(importlib.import_module(entry.module), entry.name)
+
+
+def is_cached(entry: Entry) -> bool:
+    """Whether Numba's cache already holds ``entry`` (so a process would load, not compile it)."""
+    disp = dispatcher(entry)
+    sig = parse(entry.sig)
+    if sig in disp.overloads:
+        return True
+    cache = getattr(disp, "_cache", None)
+    if cache is None or not hasattr(cache, "_index_key"):
+        return False
+    # Numba's own check without loading the code: the index file lists (signature, machine)
+    key = cache._index_key(sig, disp.targetctx.codegen())
+    return key in cache._cache_file._load_index()
+
+
+def missing(entries: list[Entry] | None = None) -> list[Entry]:
+    """The entries of the table (by default :data:`SIGNATURES`) that are not cached."""
+    entries = load_table() if entries is None else entries
+    return [e for e in entries if not is_cached(e)]
+
+
+def looks_cached(entries: list[Entry]) -> bool:
+    """Whether every entry has an index file where Numba caches it (a few ``stat`` calls, no
+    import): in the ``__pycache__`` beside its module, or under ``NUMBA_CACHE_DIR``. False can
+    be wrong (Numba may cache elsewhere, e.g. for a read-only install): check with
+    :func:`missing`."""
+    base = os.environ.get("NUMBA_CACHE_DIR")
+    for e in entries:
+        source = _PACKAGE.parent.joinpath(*e.module.split(".")).with_suffix(".py")
+        if not source.is_file():  # a package's __init__
+            source = source.with_suffix("") / "__init__.py"
+        folder = numba_cache_folder(source.parent, Path(base)) if base else None
+        folder = folder or source.parent / "__pycache__"
+        if not any(folder.glob(f"{source.stem}.{e.name}-*.nbi")):
+            return False
+    return True
+
+
+def todo() -> list[Entry]:
+    """The table's entries a process would compile now (none when the cache is warm; the quick
+    :func:`looks_cached` first, so that a warm start pays a few ``stat`` calls only)."""
+    entries = load_table()
+    return [] if looks_cached(entries) else missing(entries)
+
+
+def shares(entries: list[Entry], jobs: int) -> list[list[Entry]]:
+    """Split ``entries`` into at most ``jobs`` lists of about equal recorded compile time
+    (longest first to the least loaded list).
+
+    Each list first compiles what another list's kernels call (so that those find it in the
+    cache instead of compiling it too), then the rest, each part in the recorded order (a
+    kernel after the kernels it calls).
+    """
+    loads = [0.0] * jobs
+    share: dict[Entry, int] = {}
+    for e in sorted(entries, key=lambda e: -e.seconds):
+        k = loads.index(min(loads))
+        share[e] = k
+        loads[k] += e.seconds
+    roots = _roots(entries)
+    where = {e.key: share[e] for e in entries}
+    parts: list[list[Entry]] = [[] for _ in range(jobs)]
+    for e in entries:  # recorded order
+        parts[share[e]].append(e)
+    for part in parts:
+        part.sort(key=lambda e: where.get(roots[e], share[e]) == share[e])  # stable
+    return [p for p in parts if p]
+
+
+def _roots(entries: list[Entry]) -> dict[Entry, str]:
+    """Per entry, the key of the outermost entry whose compile compiled it (its own if none)."""
+    caller = {e.key: e.caller for e in entries}
+    out = {}
+    for e in entries:
+        key, seen = e.key, set()
+        while caller.get(key, "-") in caller and key not in seen:
+            seen.add(key)
+            key = caller[key]
+        out[e] = key
+    return out
+
+
+def compile_entries(entries: list[Entry], done=None) -> None:
+    """Compile ``entries`` in this process (each into Numba's cache); ``done(entry)`` after each."""
+    for e in entries:
+        disp = dispatcher(e)
+        try:
+            disp.compile(parse(e.sig))
+        except Exception as exc:  # a stale row must not stop the others: the run compiles it
+            print(f"warning: {e.module}.{e.name} did not compile ({exc})", file=sys.stderr)
+        if done:
+            done(e)
+
+
+def warm(jobs: int = 2, entries: list[Entry] | None = None, tick=None, every: float = 2.0) -> int:
+    """Compile the table's missing kernels into Numba's cache, in ``jobs`` processes at once.
+
+    Parameters
+    ----------
+    jobs : int
+        Processes compiling at once, >= 1 (each compiles its share; about the number of free
+        cores).
+    entries : list of Entry, optional
+        What to compile (default: the table's entries that are not cached).
+    tick : callable, optional
+        ``tick(done, total, seconds)`` every ``every`` seconds and once at the end: how many
+        entries are compiled, of how many, after how long (for a progress line).
+    every : float
+        Seconds between ticks.
+
+    Returns
+    -------
+    int
+        Number of entries compiled.
+    """
+    pending = missing() if entries is None else entries
+    if not pending:
+        return 0
+    t0 = last = time.perf_counter()
+    counts: list[int] = []
+    procs = [_spawn(part, counts) for part in shares(pending, max(1, jobs))]
+    try:
+        while any(p.poll() is None for p, _ in procs):
+            time.sleep(0.05)
+            if tick and time.perf_counter() - last >= every:
+                last = time.perf_counter()
+                tick(len(counts), len(pending), last - t0)
+    except BaseException:  # Ctrl-C: no child goes on compiling behind the user's back
+        for p, _ in procs:
+            p.kill()
+            p.wait()
+        raise
+    for _, reader in procs:
+        reader.join()
+    if tick:
+        tick(len(counts), len(pending), time.perf_counter() - t0)
+    return len(counts)
+
+
+def _spawn(part: list[Entry], counts: list[int]):
+    """Start a process compiling ``part``; a thread appends to ``counts`` per entry it did."""
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [_src(), env.get("PYTHONPATH")]))
+    rows = json.dumps([e.line() for e in part])
+    cmd = [sys.executable, "-m", "mawdo.jitwarm", "compile", rows]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, env=env, text=True)
+
+    def read() -> None:
+        for line in proc.stdout:
+            if line.strip() == "done":
+                counts.append(1)
+
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
+    return proc, reader
+
+
+def _src() -> str:
+    """The folder this copy of mawdo is imported from (children import the same code)."""
+    return str(_PACKAGE.parent)
+
+
+def record(argv: list[str], path: Path = SIGNATURES) -> list[Entry]:
+    """Run ``mawdo ARGV`` in this process and add every compile it made to the table at ``path``.
+
+    Run it on an empty cache (``NUMBA_CACHE_DIR`` a new folder): a kernel loaded from the cache
+    is not compiled, so not seen. Compiles whose types do not read back from their ``repr``
+    (named tuples) are left out: their callers compile them.
+    """
+    from numba.core import event
+
+    seen: list[Entry] = []
+    # per compile under way: [CPU at its start, its recorded callees' CPU, its key or None]
+    stack: list[list] = []
+
+    class Recorder(event.Listener):
+        def on_start(self, ev) -> None:
+            func = ev.data["dispatcher"].py_func
+            args = ev.data["args"]
+            keep = func.__module__.startswith("mawdo.") and _reads_back(repr(tuple(args)), args)
+            stack.append([time.process_time(), 0.0, keep and f"{func.__module__}.{func.__name__}"])
+
+        def on_end(self, ev) -> None:
+            start, children, key = stack.pop()
+            spent = time.process_time() - start  # CPU: the same on a busy machine
+            if not key:
+                return  # its time counts as its caller's
+            func = ev.data["dispatcher"].py_func
+            caller = next((s[2] for s in reversed(stack) if s[2]), "-")
+            sig = repr(tuple(ev.data["args"]))
+            # its own share: less what its recorded callees took (compiled on their own)
+            seen.append(Entry(func.__module__, func.__name__, spent - children, caller, sig))
+            for s in reversed(stack):
+                if s[2]:
+                    s[1] += spent
+                    break
+
+    event.register("numba:compile", Recorder())
+    argv0 = sys.argv
+    sys.argv = ["mawdo", *argv]
+    try:  # the command as `python -m mawdo.cli ARGV` runs it (by name: commands sit above us)
+        runpy.run_module("mawdo.cli", run_name="__main__")
+    except SystemExit as exc:
+        if exc.code:
+            raise
+    finally:
+        sys.argv = argv0
+        table = _merge(load_table(path), seen)
+        path.parent.mkdir(exist_ok=True)
+        header = "# module\tfunction\tCPU s\tcaller\targument types (python -m mawdo.jitwarm)\n"
+        path.write_text(header + "".join(e.line() + "\n" for e in table))
+    return table
+
+
+def _reads_back(sig: str, args) -> bool:
+    try:
+        return parse(sig) == tuple(args)
+    except Exception:
+        return False
+
+
+def _merge(old: list[Entry], new: list[Entry]) -> list[Entry]:
+    """``old`` then the entries of ``new`` it lacks (by module, name and types), in order."""
+    keys = {(e.module, e.name, e.sig) for e in old}
+    out = list(old)
+    for e in new:
+        if (e.module, e.name, e.sig) not in keys:
+            keys.add((e.module, e.name, e.sig))
+            out.append(e)
+    return out
+
+
+def _line(done: int, total: int, seconds: float) -> None:
+    print(f"compiling kernels: {done}/{total} done after {seconds:.0f} s", flush=True)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python -m mawdo.jitwarm [--jobs N] | record -- ARGS | compile ROWS``."""
+    argv = sys.argv[1:] if argv is None else argv
+    if argv[:1] == ["compile"]:  # a child of warm(): compile these rows, say "done" after each
+        rows = [Entry.from_line(r) for r in json.loads(argv[1])]
+        compile_entries(rows, done=lambda e: print("done", flush=True))
+        return 0
+    if argv[:1] == ["record"]:
+        rest = argv[1:]
+        record(rest[1:] if rest[:1] == ["--"] else rest)
+        return 0
+    parser = argparse.ArgumentParser(
+        prog="python -m mawdo.jitwarm", description=__doc__.split("\n")[0]
+    )
+    parser.add_argument("--jobs", type=int, default=2, help="processes compiling at once (>= 1)")
+    args = parser.parse_args(argv)
+    if args.jobs < 1:
+        parser.error(f"--jobs must be an integer >= 1, got {args.jobs}")
+    t0 = time.perf_counter()
+    pending = todo()
+    if not pending:
+        print("kernels already compiled (Numba's cache is warm)")
+        return 0
+    cpu = sum(e.seconds for e in pending)
+    print(f"compiling {len(pending)} kernels into Numba's cache in {args.jobs} processes "
+          f"(once per install; about {cpu:.0f} s of CPU)", flush=True)  # fmt: skip
+    n = warm(args.jobs, pending, tick=_line)
+    print(f"{n} kernels compiled in {time.perf_counter() - t0:.1f} s", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

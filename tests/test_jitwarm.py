@@ -1,0 +1,140 @@
+"""The kernel warm-up (mawdo.jitwarm): its table reads back, its shares are fair, and a warmed
+cache leaves nothing for `mawdo plan paper` to compile."""
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numba
+import numpy as np
+import pytest
+
+from mawdo import jitwarm
+from mawdo.jitwarm import Entry, load_table, parse, shares
+
+SRC = str(Path(jitwarm.__file__).resolve().parents[1])
+
+
+def test_signatures_read_back_as_numba_types():
+    values = [
+        np.zeros((2, 3)),
+        np.zeros(4, dtype=np.int16)[::2],  # layout 'A'
+        (np.zeros(2), np.zeros((2, 2), dtype=np.int64)),
+        True,
+        3,
+        2.5,
+    ]
+    ro = np.zeros(3, dtype=np.int64)
+    ro.flags.writeable = False
+    values.append(ro)
+    types = tuple(numba.typeof(v) for v in values)
+    assert parse(repr(types)) == types
+    assert not parse(repr(types))[-1].mutable  # a read-only array stays read-only
+
+
+def test_every_table_row_names_a_kernel_and_types_it_can_compile():
+    table = load_table()
+    assert any(e.name == "population_cost" for e in table)  # the path cost, the longest
+    for e in table:
+        disp = jitwarm.dispatcher(e)
+        assert isinstance(disp, numba.core.registry.CPUDispatcher), e
+        assert len(parse(e.sig)) == disp.py_func.__code__.co_argcount, e
+
+
+def test_shares_split_the_work_evenly_and_keep_the_recorded_order():
+    secs = [40, 9, 8, 7, 6, 5, 4, 3]
+    entries = [Entry("m", f"f{k}", s, "-", "()") for k, s in enumerate(secs)]
+    parts = shares(entries, 2)
+    assert sorted(e.name for p in parts for e in p) == sorted(e.name for e in entries)
+    loads = sorted(sum(e.seconds for e in p) for p in parts)
+    assert loads == [40, 42]  # longest first to the least loaded: {40}, the rest
+    for p in parts:
+        assert p == sorted(p, key=entries.index)
+    assert shares(entries[:1], 4) == [entries[:1]]  # no empty shares
+
+
+def test_a_share_first_compiles_what_another_share_calls():
+    # recorded order: callees before their caller; c2 is called by c1, c1 by the root
+    c2 = Entry("m", "c2", 3, "m.c1", "()")
+    c1 = Entry("m", "c1", 5, "m.root", "()")
+    x = Entry("m", "x", 9, "-", "()")
+    root = Entry("m", "root", 40, "-", "()")
+    y = Entry("m", "y", 8, "-", "()")
+    a, b = shares([x, c2, c1, root, y], 2)
+    assert a == [root]
+    assert b == [c2, c1, x, y]  # the root's callees first, ready when the root needs them
+
+
+def _run(args, cache, **kw):
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(cache), "PYTHONPATH": SRC}
+    return subprocess.run(
+        [sys.executable, *args], env=env, capture_output=True, text=True, timeout=1500, **kw
+    )
+
+
+# Counts Numba's compiles in a fresh process running `mawdo plan paper` (after the warm-up,
+# every kernel must load from the cache).
+COUNT = """
+import runpy, sys
+from numba.core import event
+seen = []
+class Count(event.Listener):
+    def on_start(self, ev): seen.append(ev.data["dispatcher"].py_func.__qualname__)
+    def on_end(self, ev): pass
+event.register("numba:compile", Count())
+sys.argv = ["mawdo", "plan", "paper", "--no-figures", "--no-progress", "--out", sys.argv[1]]
+try:
+    runpy.run_module("mawdo.cli", run_name="__main__")
+finally:
+    print("COMPILED", len(seen), seen)
+"""
+
+# Two small kernels compiled by warm() in two processes, with a progress line every 0.2 s.
+SMALL = """
+import sys
+from mawdo import jitwarm
+K = "mawdo.planning.kernel.primitives"
+rows = [
+    jitwarm.Entry(K, "orient", 0.1, "-", "(" + ", ".join(["float64"] * 6) + ")"),
+    jitwarm.Entry(K, "abs_atan2", 0.2, "-", "(float64, float64)"),
+]
+if sys.argv[1] == "warm":
+    print("MISSING", len(jitwarm.missing(rows)))
+    n = jitwarm.warm(2, rows, tick=lambda d, t, s: print(f"TICK {d}/{t}"), every=0.2)
+    print("COMPILED", n)
+else:
+    print("MISSING", len(jitwarm.missing(rows)), jitwarm.looks_cached(rows))
+"""
+
+
+def test_warm_compiles_in_processes_into_the_cache_a_new_process_finds(tmp_path):
+    first = _run(["-c", SMALL, "warm"], tmp_path)
+    assert first.returncode == 0, first.stderr
+    lines = first.stdout.splitlines()
+    assert lines[0] == "MISSING 2" and lines[-1] == "COMPILED 2", first.stdout
+    assert lines[-2] == "TICK 2/2"  # the last tick: all done
+    second = _run(["-c", SMALL, "check"], tmp_path)
+    assert second.stdout.strip() == "MISSING 0 True", second.stderr
+
+
+PENDING = (
+    "from mawdo import jitwarm; print('PENDING', len(jitwarm.todo()), len(jitwarm.load_table()))"
+)
+
+
+@pytest.mark.slow
+def test_a_warmed_cache_leaves_nothing_to_compile(tmp_path):
+    cache = tmp_path / "numba"
+    cache.mkdir()
+    before = _run(["-c", PENDING], cache)
+    n = len(load_table())
+    assert f"PENDING {n} {n}" in before.stdout, before.stderr  # an empty cache: all of them
+    warm = _run(["-m", "mawdo.jitwarm", "--jobs", "2"], cache)
+    assert warm.returncode == 0, warm.stderr
+    assert f"{n} kernels compiled" in warm.stdout
+    after = _run(["-c", PENDING], cache)
+    assert f"PENDING 0 {n}" in after.stdout, after.stderr
+    run = _run(["-c", COUNT, str(tmp_path / "out")], cache)
+    assert run.returncode == 0, run.stderr
+    assert "COMPILED 0 []" in run.stdout, run.stdout[-2000:]
