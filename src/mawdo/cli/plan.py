@@ -1,7 +1,8 @@
 """``mawdo plan``: plan through a scenario and write metrics (and figures).
 
 ``mawdo plan SCENARIO ...`` runs one planning run (``run`` is the default command);
-``mawdo plan study ...`` runs the multi-algorithm study.
+``mawdo plan study ...`` and ``mawdo plan report`` are aliases of ``mawdo study run/report``
+(:mod:`mawdo.cli.study`) for one release.
 """
 
 from __future__ import annotations
@@ -171,31 +172,38 @@ def study_cmd(
     progress: bool = typer.Option(True, help="show a progress bar"),
 ):
     """Run the planning study (paper Table 6) into a resumable store."""
-    from mawdo.cli.errors import bad_input, check_output_dir
-    from mawdo.experiments import PlanError, run_plan
+    from mawdo.cli.args import names
+    from mawdo.cli.errors import check_output_dir, fail
+    from mawdo.cli.study import moved, run_study
+    from mawdo.experiments import PlanError
     from mawdo.experiments.planning import study_preset
 
+    moved("mawdo plan study", "mawdo study run")
     if report is not None:
         check_output_dir(report, "--report folder")
     # errors end at the command edge: a message on stderr (2: bad plan, 1: store ...)
     try:
         plan = study_preset(preset).with_overrides(
-            runs=runs,
-            scenario=scenario,
-            algorithms=None if algorithms is None else [a.strip() for a in algorithms.split(",")],
+            runs=runs, scenario=scenario, algorithms=names(algorithms)
         )
     except PlanError as exc:
-        raise bad_input(exc) from None
-    console.print(plan.describe())
-    summary = run_plan(
+        fail(exc)
+    run_study(
         plan, out, workers=workers, dask=dask, scheduler_file=scheduler_file,
         progress=progress, force=force, retry_failed=retry_failed,
     )  # fmt: skip
-    console.print(str(summary))
-    if summary.interrupted:
-        raise typer.Exit(130)
     if report is not None:
-        report_cmd(out, report)
+        _write_report(out, report, gif=True)
+
+
+def _write_report(store: Path, out: Path, gif: bool) -> None:
+    from mawdo.cli.errors import check_output_dir, writing_into
+    from mawdo.experiments.planning import write_study_report
+
+    check_output_dir(out, "--out folder")
+    with writing_into(out):
+        path = write_study_report(store, out, gif=gif)
+    console.print(f"report: {path}")
 
 
 @plan_app.command("report")
@@ -205,13 +213,10 @@ def report_cmd(
     gif: bool = typer.Option(True, help="write the animated GIF"),
 ):
     """Tables and figures of a planning study, read from its store (nothing is recomputed)."""
-    from mawdo.cli.errors import check_output_dir, writing_into
-    from mawdo.experiments.planning import write_study_report
+    from mawdo.cli.study import moved
 
-    check_output_dir(out, "--out folder")
-    with writing_into(out):
-        path = write_study_report(store, out, gif=gif)
-    console.print(f"report: {path}")
+    moved("mawdo plan report", "mawdo study report")
+    _write_report(store, out, gif)
 
 
 # ``mawdo plan bench``: the planning arena, in its own module

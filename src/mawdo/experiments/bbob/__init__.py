@@ -25,6 +25,9 @@ register_kind(
         row=SuiteRow,
         report=write_suite_report,
         description="standard suites (BBOB via ioh, CEC via opfunu) under COCO's protocol",
+        presets=PRESETS,
+        preset_help=PRESET_HELP,
+        report_merges_stores=True,
     )
 )
 
