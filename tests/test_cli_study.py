@@ -123,7 +123,7 @@ def test_run_resume_and_report_a_benchmark_preset(tmp_path):
     assert rep.stdout.strip() == f"report: {Path('rep') / 'report.md'}"
     table = (tmp_path / "rep" / "results_raw.csv").read_text().splitlines()
     sphere = [r.fun for r in stored_rows(tmp_path / "new.db", "sphere")]
-    assert f"F1,Ave,{float(np.mean(sphere))!r}" in table  # F1 is sphere: its mean over the stored runs
+    assert f"F1,Ave,{float(np.mean(sphere))!r}" in table  # F1 is sphere: mean of stored runs
     bad = mawdo("study", "report", "new.db", "--out", "r2", "--option", "plotz=false",
                 cwd=tmp_path)  # fmt: skip
     assert bad.returncode == 2 and "plotz" in bad.stderr and "plots, svg, reference" in bad.stderr
@@ -199,9 +199,10 @@ ALIASES = {
         ("plots=false", ("bench", "report", "old.db", "--no-plots")),
     ),
     "planning": (
-        ("study-smoke", "--set", "algorithms=gwo", "--set", "runs=1"),
-        ("plan", "study", "--preset", "study-smoke", "--algorithms", "gwo", "--runs", "1"),
-        ("seed", "route", "first_plan_curve"), 1,
+        ("study-quick", "--set", "algorithms=oracle_follower", "--set", "runs=1"),
+        ("plan", "study", "--preset", "study-quick", "--algorithms", "oracle_follower",
+         "--runs", "1"),
+        ("seed", "first_plan_curve", "plan_dim"), 1,  # the route: an npz with its times
         ("gif=false", ("plan", "report", "old.db", "--no-gif")),
     ),
     "arena": (

@@ -12,9 +12,10 @@ from pathlib import Path
 
 import typer
 
-from mawdo.cli.args import names as _names
+from mawdo.cli import study
+from mawdo.cli.args import names
 from mawdo.cli.bbob import export_cmd
-from mawdo.cli.errors import RETRY_HELP, SCHEDULER_FILE_HELP, fail
+from mawdo.cli.errors import fail
 from mawdo.cli.study import moved, run_study
 
 bench_app = typer.Typer(
@@ -32,13 +33,11 @@ def run_cmd(
         None, "--plan", help="Plan file (TOML; a suite plan also JSON).", exists=False
     ),
     out: Path = typer.Option(Path("results.db"), "--out", "-o", help="Results store (SQLite)."),
-    workers: int = typer.Option(1, "--workers", "-w", min=1, help="Local worker processes."),
-    dask: str = typer.Option(None, "--dask", help="Dask scheduler address (tcp://host:8786)."),
-    scheduler_file: Path = typer.Option(None, "--scheduler-file", help=SCHEDULER_FILE_HELP),
-    force: bool = typer.Option(
-        False, "--force", help="Discard a store made by another plan or version."
-    ),
-    retry_failed: bool = typer.Option(False, "--retry-failed", help=RETRY_HELP),
+    workers: int = study.WORKERS,
+    dask: str = study.DASK,
+    scheduler_file: Path = study.SCHEDULER_FILE,
+    force: bool = study.FORCE,
+    retry_failed: bool = study.RETRY_FAILED,
     runs: int = typer.Option(None, "--runs", help="Override: runs per (algorithm, function)."),
     iters: int = typer.Option(None, "--iters", help="Override: iterations (max_iter)."),
     pop_size: int = typer.Option(None, "--pop-size", help="Override: population size."),
@@ -66,7 +65,7 @@ def run_cmd(
         help="With --suite, repeatable: NAME.OPTION=VALUE for an algorithm or a variant "
         "(e.g. mawdo.groups=4).",
     ),
-    progress: bool = typer.Option(True, "--progress/--no-progress", help="Progress bar."),
+    progress: bool = study.PROGRESS,
 ) -> None:
     """Run (or resume) a sweep. Stored runs are skipped; Ctrl-C keeps what finished.
 
@@ -90,7 +89,7 @@ def run_cmd(
             fail("give one of --preset NAME or --plan FILE, not both")
         try:
             splan = bbob.suite_plan(
-                preset, suite, _names(algorithms), functions, instances, dims, budget,
+                preset, suite, names(algorithms), functions, instances, dims, budget,
                 plan_file=plan_file, variants=variant or [], options=option or [],
                 runs=runs, seed=seed, pop_size=pop_size, batch_size=batch_size,
             )  # fmt: skip
@@ -113,15 +112,15 @@ def run_cmd(
         else:
             # A plan from flags alone: the paper protocol's defaults for everything not given.
             plan = ExperimentPlan.from_dict(
-                {"name": "cli", "algorithms": _names(algorithms), "functions": _names(functions)}
+                {"name": "cli", "algorithms": names(algorithms), "functions": names(functions)}
             )
         plan = plan.with_overrides(
             runs=runs,
             max_iter=iters,
             pop_size=pop_size,
             seed=seed,
-            algorithms=_names(algorithms),
-            functions=_names(functions),
+            algorithms=names(algorithms),
+            functions=names(functions),
             batch_size=batch_size,
             budget=budget,
         )

@@ -13,8 +13,9 @@ from pathlib import Path
 import typer
 from rich.console import Console
 
+from mawdo.cli import study
 from mawdo.cli.args import dotted_pairs, names, pairs
-from mawdo.cli.errors import RETRY_HELP, SCHEDULER_FILE_HELP, DefaultRunGroup, fail
+from mawdo.cli.errors import DefaultRunGroup, fail
 from mawdo.cli.study import moved, run_study
 
 console = Console(width=None if sys.stdout.isatty() else 140)
@@ -66,14 +67,14 @@ def run_cmd(
     param: list[str] = typer.Option([], help="family parameter, e.g. --param forest.n=12"),
     option: list[str] = typer.Option([], help="planner setting, e.g. --option max_steps=200"),
     batch_size: int = typer.Option(None, help="scenes per task"),
-    workers: int = typer.Option(1, help="local worker processes"),
-    dask: str = typer.Option(None, help="Dask scheduler address, e.g. tcp://host:8786"),
-    scheduler_file: Path = typer.Option(None, help=SCHEDULER_FILE_HELP),
+    workers: int = study.WORKERS,
+    dask: str = study.DASK,
+    scheduler_file: Path = study.SCHEDULER_FILE,
     out: Path = typer.Option(Path("results/arena.db"), help="SQLite results store"),
-    force: bool = typer.Option(False, help="discard a store made by another plan or version"),
-    retry_failed: bool = typer.Option(False, help=RETRY_HELP),
+    force: bool = study.FORCE,
+    retry_failed: bool = study.RETRY_FAILED,
     report: Path = typer.Option(None, help="also write the report to this folder"),
-    progress: bool = typer.Option(True, help="show a progress bar"),
+    progress: bool = study.PROGRESS,
 ):
     """Run the arena into a resumable store (the same command resumes it)."""
     from mawdo.cli.errors import check_output_dir

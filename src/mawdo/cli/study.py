@@ -26,6 +26,14 @@ study_app = typer.Typer(
     add_completion=False,
 )
 
+# the flags every study-running command shares (one declaration, reused by the aliases)
+WORKERS = typer.Option(1, "--workers", "-w", min=1, help="local worker processes")
+DASK = typer.Option(None, "--dask", help="Dask scheduler address, e.g. tcp://host:8786")
+SCHEDULER_FILE = typer.Option(None, "--scheduler-file", help=SCHEDULER_FILE_HELP)
+FORCE = typer.Option(False, "--force", help="discard a store made by another plan or version")
+RETRY_FAILED = typer.Option(False, "--retry-failed", help=RETRY_HELP)
+PROGRESS = typer.Option(True, "--progress/--no-progress", help="show a progress bar (stderr)")
+
 ALIAS_RELEASE = "0.9"
 """The release that drops the older per-kind study commands."""
 
@@ -102,12 +110,12 @@ def run_cmd(
         None, "--set", help="plan field override, repeatable: --set runs=3 --set algorithms=a,b"
     ),
     out: Path = typer.Option(..., "--out", "-o", help="results store (SQLite)"),
-    workers: int = typer.Option(1, "--workers", "-w", min=1, help="local worker processes"),
-    dask: str = typer.Option(None, help="Dask scheduler address, e.g. tcp://host:8786"),
-    scheduler_file: Path = typer.Option(None, help=SCHEDULER_FILE_HELP),
-    force: bool = typer.Option(False, help="discard a store made by another plan or version"),
-    retry_failed: bool = typer.Option(False, help=RETRY_HELP),
-    progress: bool = typer.Option(True, help="show a progress bar (stderr)"),
+    workers: int = WORKERS,
+    dask: str = DASK,
+    scheduler_file: Path = SCHEDULER_FILE,
+    force: bool = FORCE,
+    retry_failed: bool = RETRY_FAILED,
+    progress: bool = PROGRESS,
 ) -> None:
     """Run (or resume) a study: stored runs are skipped, Ctrl-C keeps what finished."""
     study = load_plan(plan, sets)
