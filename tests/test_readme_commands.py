@@ -23,17 +23,16 @@ README = Path(__file__).resolve().parents[1] / "README.md"
 # iterations, scenes or functions; every flag the README shows is kept.
 SMALL = {
     "--runs 30 --seed 0 --iters 500 --pop 50": "--runs 2 --seed 0 --iters 20 --pop 10",
-    "--preset paper-table3 --out results/t3.db": "--preset paper-table3 --runs 2 --iters 20 "
-    "--functions F1,F7 --out results/t3.db",
-    "--preset paper-table6 --out results/t6.db": "--preset study-quick --runs 1 "
-    "--algorithms mawdo --out results/t6.db",
-    "--n 100 --algorithms mawdo,woa": "--n 1 --algorithms mawdo,woa",
+    "paper-table3 --out results/t3.db": "paper-table3 --set runs=2 --set max_iter=20 "
+    "--set functions=F1,F7 --out results/t3.db",
+    "paper-table6 --out results/t6.db": "study-quick --set runs=1 --set algorithms=mawdo "
+    "--out results/t6.db",
+    "--set n=100": "--set n=1",
     "--out report/ [--quick]": "--out report/ --quick",
-    "--functions 1-24 --instances 1-5 --dims 5,20 --budget 1e4": "--functions 1,2 --instances 1 "
-    "--dims 5 --budget 50",
-    "--runs 5 --algorithms mawdo,gwo,woa,cmaes,random": "--runs 2 --algorithms mawdo,random",
-    "--functions 1-5 --dims 5 --algorithms mawdo": "--functions 1 --instances 1 --dims 5 "
-    "--budget 50 --runs 2 --algorithms mawdo",
+    "bbob-full --set algorithms=mawdo,gwo,woa,cmaes,random": "bbob-full --set functions=1,2 "
+    "--set instances=1 --set dims=5 --set budget=50 --set runs=2 --set algorithms=mawdo,random",
+    "--set functions=1,2,3,4,5 --set dims=5": "--set functions=1 --set instances=1 --set dims=5 "
+    "--set budget=50 --set runs=2",
 }
 
 
@@ -59,7 +58,7 @@ def test_the_block_is_read_and_every_long_command_has_a_small_form():
     unused = [long for long in SMALL if long not in joined]
     assert not unused, f"README commands changed; update SMALL for: {unused}"
     for c in map(small_form, commands):
-        assert "[" not in c and "--n 100" not in c and "1-24" not in c, c
+        assert "[" not in c and "n=100" not in c and "bbob-full --set algorithms" not in c, c
 
 
 @pytest.mark.slow

@@ -1,5 +1,5 @@
-"""``mawdo bench`` for standard suites: ``run --suite bbob|cec2017|cec2022``, ``export``, and the
-report of a suite-study store.
+"""``mawdo bench`` for standard suites: the plan of ``run --suite bbob|cec2017|cec2022``,
+``export``, and the report of a suite-study store.
 
 Mounted by :mod:`mawdo.cli.bench`: ``run`` hands over here when ``--suite`` or a ``bbob-*``
 preset is given, ``report`` when the store holds a suite study. Every decision lives in
@@ -11,6 +11,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import typer
+
+from mawdo.cli.errors import fail
 
 
 def is_suite_preset(name: str | None) -> bool:
@@ -113,30 +115,6 @@ def suite_plan(
     return SuitePlan.from_dict({"name": "cli", **given})
 
 
-def run_suite(plan, out: Path, **run_options) -> None:
-    """Check the suite's library, then run (or resume) ``plan`` into ``out``."""
-    from mawdo.experiments import run_plan
-    from mawdo.suites import MissingExtraError
-
-    try:
-        plan.check_libraries()
-    except MissingExtraError as exc:
-        typer.echo(f"error: {exc}", err=True)
-        raise typer.Exit(1) from None
-    per_run = f"{plan.total_evaluations / plan.total_runs:.3g}"
-    typer.echo(
-        f"{plan.describe()}; {plan.total_runs} runs, up to {per_run} evaluations each; "
-        f"plan {plan.plan_hash[:12]} -> {out}",
-        err=True,
-    )
-    summary = run_plan(plan, out, **run_options)
-    typer.echo(str(summary))
-    if summary.interrupted:
-        raise typer.Exit(130)
-    if summary.lost:
-        raise typer.Exit(1)
-
-
 def report_suite(
     stores: list[Path], out: Path, plots: bool, svg: bool, reference: str | None = None
 ) -> None:
@@ -147,8 +125,7 @@ def report_suite(
     try:
         report = write_suite_report(stores, out, plots=plots, svg=svg, reference=reference)
     except (StoreError, ValueError) as exc:
-        typer.echo(f"error: {exc}", err=True)
-        raise typer.Exit(1) from None
+        fail(exc, code=1)
     typer.echo(f"wrote the suite report to {out}/ (start with {report})")
 
 
@@ -166,12 +143,3 @@ def export_cmd(
     check_output_dir(folder, "export folder")
     files = export_ioh(store, folder)
     typer.echo(f"wrote IOHanalyzer logs of {len(files)} (algorithm, function) pairs to {folder}/")
-
-
-def list_presets() -> None:
-    """Print the suite-study presets (for ``mawdo bench presets``)."""
-    from mawdo.experiments.bbob import PRESET_HELP, preset_plan
-
-    for name, text in PRESET_HELP.items():
-        p = preset_plan(name)
-        typer.echo(f"{name:22s} {text}\n{'':22s} {p.total_runs} runs, plan {p.plan_hash[:12]}")

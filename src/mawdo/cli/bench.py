@@ -1,7 +1,9 @@
 """``mawdo bench``: run benchmark plans into a results store and report from it.
 
 A thin Typer layer over :mod:`mawdo.experiments`; every decision lives in the library.
-Mounted by the main CLI as ``mawdo bench``.
+Mounted by the main CLI as ``mawdo bench``. ``run``, ``report`` and ``presets`` are aliases of
+``mawdo study run/report/presets`` (:mod:`mawdo.cli.study`) for one release: each says so in
+one line on stderr, turns its flags into plan fields and runs through :func:`run_study`.
 """
 
 from __future__ import annotations
@@ -10,8 +12,11 @@ from pathlib import Path
 
 import typer
 
+from mawdo.cli import study
+from mawdo.cli.args import names
 from mawdo.cli.bbob import export_cmd
-from mawdo.cli.errors import RETRY_HELP, SCHEDULER_FILE_HELP
+from mawdo.cli.errors import fail
+from mawdo.cli.study import moved, run_study
 
 bench_app = typer.Typer(
     name="bench",
@@ -21,17 +26,6 @@ bench_app = typer.Typer(
 )
 
 
-def _names(text: str | None) -> list[str] | None:
-    if text is None:
-        return None
-    return [t.strip() for t in text.split(",") if t.strip()]
-
-
-def _fail(msg: str, code: int = 2) -> None:
-    typer.echo(f"error: {msg}", err=True)
-    raise typer.Exit(code)
-
-
 @bench_app.command("run")
 def run_cmd(
     preset: str = typer.Option(None, "--preset", help="Named plan (see `presets`)."),
@@ -39,13 +33,11 @@ def run_cmd(
         None, "--plan", help="Plan file (TOML; a suite plan also JSON).", exists=False
     ),
     out: Path = typer.Option(Path("results.db"), "--out", "-o", help="Results store (SQLite)."),
-    workers: int = typer.Option(1, "--workers", "-w", min=1, help="Local worker processes."),
-    dask: str = typer.Option(None, "--dask", help="Dask scheduler address (tcp://host:8786)."),
-    scheduler_file: Path = typer.Option(None, "--scheduler-file", help=SCHEDULER_FILE_HELP),
-    force: bool = typer.Option(
-        False, "--force", help="Discard a store made by another plan or version."
-    ),
-    retry_failed: bool = typer.Option(False, "--retry-failed", help=RETRY_HELP),
+    workers: int = study.WORKERS,
+    dask: str = study.DASK,
+    scheduler_file: Path = study.SCHEDULER_FILE,
+    force: bool = study.FORCE,
+    retry_failed: bool = study.RETRY_FAILED,
     runs: int = typer.Option(None, "--runs", help="Override: runs per (algorithm, function)."),
     iters: int = typer.Option(None, "--iters", help="Override: iterations (max_iter)."),
     pop_size: int = typer.Option(None, "--pop-size", help="Override: population size."),
@@ -73,7 +65,7 @@ def run_cmd(
         help="With --suite, repeatable: NAME.OPTION=VALUE for an algorithm or a variant "
         "(e.g. mawdo.groups=4).",
     ),
-    progress: bool = typer.Option(True, "--progress/--no-progress", help="Progress bar."),
+    progress: bool = study.PROGRESS,
 ) -> None:
     """Run (or resume) a sweep. Stored runs are skipped; Ctrl-C keeps what finished.
 
@@ -83,33 +75,35 @@ def run_cmd(
     defaults: 30 runs, pop 50, 500 iterations); the other flags override its fields.
     """
     from mawdo.cli import bbob
-    from mawdo.experiments import ExperimentPlan, PlanError, StoreError, preset_plan, run_plan
+    from mawdo.experiments import ExperimentPlan, PlanError, preset_plan
 
+    moved("mawdo bench run", "mawdo study run")
+    backend = dict(
+        workers=workers, dask=dask, scheduler_file=scheduler_file, progress=progress,
+        force=force, retry_failed=retry_failed,
+    )  # fmt: skip
     if suite is not None or bbob.is_suite_preset(preset) or bbob.is_suite_plan_file(plan_file):
         if iters is not None:
-            _fail("--iters does not apply to --suite studies (budget: --budget 1e4)")
+            fail("--iters does not apply to --suite studies (budget: --budget 1e4)")
         if preset is not None and plan_file is not None:
-            _fail("give one of --preset NAME or --plan FILE, not both")
+            fail("give one of --preset NAME or --plan FILE, not both")
         try:
             splan = bbob.suite_plan(
-                preset, suite, _names(algorithms), functions, instances, dims, budget,
+                preset, suite, names(algorithms), functions, instances, dims, budget,
                 plan_file=plan_file, variants=variant or [], options=option or [],
                 runs=runs, seed=seed, pop_size=pop_size, batch_size=batch_size,
             )  # fmt: skip
         except PlanError as exc:
-            _fail(f"invalid plan:\n{exc}")
+            fail(f"invalid plan:\n{exc}")
         except ValueError as exc:  # a malformed flag (--variant, --budget ...)
-            _fail(str(exc))
-        run_opts = dict(
-            workers=workers, dask=dask, scheduler_file=scheduler_file, progress=progress
-        )
-        return bbob.run_suite(splan, out, **run_opts, force=force, retry_failed=retry_failed)
+            fail(str(exc))
+        return run_study(splan, out, **backend)
     if instances is not None or dims is not None or variant or option:
-        _fail("--instances, --dims, --variant and --option need --suite bbob|cec2017|cec2022")
+        fail("--instances, --dims, --variant and --option need --suite bbob|cec2017|cec2022")
     if preset is not None and plan_file is not None:
-        _fail("give one of --preset NAME or --plan FILE.toml, not both")
+        fail("give one of --preset NAME or --plan FILE.toml, not both")
     if preset is None and plan_file is None and (algorithms is None or functions is None):
-        _fail("give --preset NAME, --plan FILE.toml, or at least --algorithms and --functions")
+        fail("give --preset NAME, --plan FILE.toml, or at least --algorithms and --functions")
     try:
         if preset is not None:
             plan = preset_plan(preset)
@@ -118,41 +112,21 @@ def run_cmd(
         else:
             # A plan from flags alone: the paper protocol's defaults for everything not given.
             plan = ExperimentPlan.from_dict(
-                {"name": "cli", "algorithms": _names(algorithms), "functions": _names(functions)}
+                {"name": "cli", "algorithms": names(algorithms), "functions": names(functions)}
             )
         plan = plan.with_overrides(
             runs=runs,
             max_iter=iters,
             pop_size=pop_size,
             seed=seed,
-            algorithms=_names(algorithms),
-            functions=_names(functions),
+            algorithms=names(algorithms),
+            functions=names(functions),
             batch_size=batch_size,
             budget=budget,
         )
     except PlanError as exc:
-        _fail(f"invalid plan:\n{exc}")
-    typer.echo(f"{plan.describe()}; plan {plan.plan_hash[:12]} -> {out}", err=True)
-    try:
-        summary = run_plan(
-            plan,
-            out,
-            workers=workers,
-            dask=dask,
-            scheduler_file=scheduler_file,
-            progress=progress,
-            force=force,
-            retry_failed=retry_failed,
-        )
-    except StoreError as exc:
-        _fail(str(exc), code=1)
-    except (ValueError, RuntimeError) as exc:
-        _fail(str(exc), code=1)
-    typer.echo(str(summary))
-    if summary.interrupted:
-        raise typer.Exit(130)
-    if summary.lost:
-        raise typer.Exit(1)
+        fail(f"invalid plan:\n{exc}")
+    run_study(plan, out, **backend)
 
 
 @bench_app.command("report")
@@ -173,6 +147,7 @@ def report_cmd(
     from mawdo.cli.errors import check_output_dir, writing_into
     from mawdo.experiments import StoreError, write_report
 
+    moved("mawdo bench report", "mawdo study report")
     check_output_dir(out, "--out folder")
     from mawdo.cli.bbob import is_suite_store, report_suite
 
@@ -183,9 +158,9 @@ def report_cmd(
     if len(stores) > 1:
         missing = [str(s) for s in stores if not s.exists()]
         if missing:
-            _fail(f"no such results store: {', '.join(missing)}", code=1)
+            fail(f"no such results store: {', '.join(missing)}", code=1)
         others = ", ".join(str(s) for s, ok in zip(stores, suite, strict=True) if not ok)
-        _fail(
+        fail(
             f"several stores are reported together only for suite studies (`run --suite`); "
             f"{others} is not one: report each store on its own",
             code=1,
@@ -194,21 +169,23 @@ def report_cmd(
         with writing_into(out):
             files = write_report(stores[0], out, plots=plots, svg=svg, reference=reference)
     except (StoreError, ValueError) as exc:
-        _fail(str(exc), code=1)
+        fail(str(exc), code=1)
     typer.echo(f"wrote {len(files)} files to {out}/ (start with {out / 'report.md'})")
 
 
 @bench_app.command("presets")
 def presets_cmd() -> None:
-    """List the named plans."""
-    from mawdo.experiments.benchmark import PRESET_HELP, preset_plan
+    """List the named plans of the function benchmark and the suite study."""
+    from mawdo.experiments import STUDY_KINDS
 
-    for name, text in PRESET_HELP.items():
-        p = preset_plan(name)
-        typer.echo(f"{name:22s} {text}\n{'':22s} {p.total_runs} runs, plan {p.plan_hash[:12]}")
-    from mawdo.cli.bbob import list_presets
-
-    list_presets()
+    moved("mawdo bench presets", "mawdo study presets")
+    for kind in (STUDY_KINDS["benchmark"], STUDY_KINDS["bbob"]):
+        for name in kind.presets:
+            p = kind.preset_plan(name)
+            typer.echo(
+                f"{name:22s} {kind.preset_line(name)}\n"
+                f"{'':22s} {p.total_runs} runs, plan {p.plan_hash[:12]}"
+            )
 
 
 bench_app.command("export")(export_cmd)

@@ -9,9 +9,11 @@ traceback; anything else is a bug and keeps its traceback. Output paths are chec
 from __future__ import annotations
 
 import os
+import sys
 import tempfile
 from contextlib import contextmanager
 from pathlib import Path
+from typing import NoReturn
 
 import typer
 from typer.core import TyperGroup
@@ -20,6 +22,7 @@ from mawdo.interrupts import INTERRUPT_EXIT, is_interrupt
 
 # Typer vendors its own click; its ClickException is what Typer's main loop shows and exits on.
 _ClickException = next(c for c in typer.BadParameter.__mro__ if c.__name__ == "ClickException")
+_Abort = typer.Abort
 
 
 class CommandError(_ClickException):
@@ -31,13 +34,19 @@ class CommandError(_ClickException):
         typer.echo(f"error: {self.format_message()}", err=True)
 
 
-def bad_input(exc_or_msg: BaseException | str) -> CommandError:
+def bad_input(exc_or_msg: BaseException | str, code: int = 2) -> CommandError:
     """A :class:`CommandError` for a bad argument value: exit code 2, as click gives for
     any other bad argument (1 stays for a failure while running: a store, a file ...)."""
     text = exc_or_msg if isinstance(exc_or_msg, str) else message(exc_or_msg)
     err = CommandError(text)
-    err.exit_code = 2
+    err.exit_code = code
     return err
+
+
+def fail(exc_or_msg: BaseException | str, code: int = 2) -> NoReturn:
+    """End the command: ``error: <message>`` on stderr and exit ``code`` (2: bad input,
+    1: a failure while running)."""
+    raise bad_input(exc_or_msg, code)
 
 
 def _expected() -> tuple[type[BaseException], ...]:
@@ -65,9 +74,36 @@ class Interrupted(_ClickException):
         typer.echo(f"interrupted: {self.format_message()}", err=True)
 
 
+def show_error(exc) -> None:
+    """Print a click error as ``error: <message>`` on stderr (never a rich box), with the
+    usage line of a mistyped command after it."""
+    if type(exc).__name__ == "NoArgsIsHelpError" or isinstance(exc, CommandError | Interrupted):
+        exc.show()
+        return
+    typer.echo(f"error: {exc.format_message()}", err=True)
+    ctx = getattr(exc, "ctx", None)
+    if ctx is not None:
+        typer.echo(f"{ctx.get_usage()}\nTry '{ctx.command_path} --help' for help.", err=True)
+
+
 class GuardedGroup(TyperGroup):
     """A Typer group whose commands (sub-groups included) end in :class:`CommandError` on an
-    expected error, and in :class:`Interrupted` on Ctrl-C."""
+    expected error, and in :class:`Interrupted` on Ctrl-C; every error, click's own bad
+    parameters included, is shown by :func:`show_error`."""
+
+    def main(self, *args, standalone_mode: bool = True, **extra):
+        if not standalone_mode:
+            return super().main(*args, standalone_mode=False, **extra)
+        try:
+            code = super().main(*args, standalone_mode=False, **extra)
+        except _ClickException as exc:
+            show_error(exc)
+            sys.exit(exc.exit_code)
+        except _Abort:
+            typer.echo("Aborted!", err=True)
+            sys.exit(1)
+        # non-standalone click returns an Exit's code, or the command's return value
+        sys.exit(code if isinstance(code, int) else 0)
 
     def invoke(self, ctx):
         try:

@@ -1,7 +1,8 @@
 """The ``mawdo`` command: a thin layer over the library.
 
-``mawdo list``, ``optimize``, ``demo`` and ``reproduce`` live here; ``mawdo bench``
-(:mod:`mawdo.cli.bench`) and ``mawdo plan`` (:mod:`mawdo.cli.plan`) are sub-apps mounted below.
+``mawdo list``, ``optimize``, ``demo`` and ``reproduce`` live here; ``mawdo study``
+(:mod:`mawdo.cli.study`), ``mawdo bench`` (:mod:`mawdo.cli.bench`) and ``mawdo plan``
+(:mod:`mawdo.cli.plan`) are sub-apps mounted below.
 The command layer is the top floor: it calls the library and nothing imports it.
 """
 
@@ -16,14 +17,15 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from mawdo.cli.args import pairs
 from mawdo.cli.errors import (
     IMAGE_SUFFIXES,
     RETRY_HELP,
     SCHEDULER_FILE_HELP,
     GuardedGroup,
-    bad_input,
     check_output_dir,
     check_output_file,
+    fail,
 )
 
 app = typer.Typer(
@@ -36,25 +38,14 @@ app = typer.Typer(
 console = Console(width=None if sys.stdout.isatty() else 140)
 
 
-def _fail(msg: str) -> None:
-    # stderr, through the one error edge (never stdout, where results go)
-    raise bad_input(msg)
-
-
-def _parse_options(pairs: list[str]) -> dict:
-    """``key=value`` strings -> dict, values parsed as JSON when possible (numbers, bools)."""
-    out = {}
-    for pair in pairs:
-        if "=" not in pair:
-            _fail(f"--option {pair!r} must look like key=value, e.g. --option groups=4")
-        k, v = pair.split("=", 1)
-        try:
-            out[k.strip()] = json.loads(v)
-        except json.JSONDecodeError:
-            out[k.strip()] = v
-        if isinstance(out[k.strip()], list):
-            out[k.strip()] = tuple(out[k.strip()])
-    return out
+def _parse_options(items: list[str]) -> dict:
+    """``key=value`` strings -> dict, values parsed as JSON when possible (numbers, bools);
+    lists become tuples (option values are hashable)."""
+    try:
+        out = pairs(items, "--option", "--option groups=4")
+    except ValueError as exc:
+        fail(exc)
+    return {k: tuple(v) if isinstance(v, list) else v for k, v in out.items()}
 
 
 @app.command("list")
@@ -66,7 +57,7 @@ def list_cmd(
     from mawdo.optimizers import OPTIMIZERS
 
     if what not in ("all", "algorithms", "functions", "scenarios", "families"):
-        _fail(f"unknown listing {what!r}; use algorithms, functions, scenarios, families or all")
+        fail(f"unknown listing {what!r}; use algorithms, functions, scenarios, families or all")
     if what in ("all", "algorithms"):
         t = Table(title="algorithms")
         for col in ("name", "label", "description", "reference"):
@@ -119,15 +110,15 @@ def _algorithms(text: str, options: dict) -> list[str]:
 
     names = [a.strip() for a in text.split(",") if a.strip()]
     if not names:
-        _fail(f"--algorithm {text!r} names no algorithm; give e.g. -a mawdo or -a wdo,gwo")
+        fail(f"--algorithm {text!r} names no algorithm; give e.g. -a mawdo or -a wdo,gwo")
     seen: dict[str, str] = {}
     for name in names:
         try:
             key = OPTIMIZERS[name].name
         except KeyError as exc:
-            _fail(f"--algorithm: {exc}")
+            fail(f"--algorithm: {exc}")
         if key in seen:
-            _fail(
+            fail(
                 f"--algorithm lists {key!r} twice ({seen[key]!r} and {name!r}); each algorithm "
                 "is one row of the table: list it once"
             )
@@ -136,7 +127,7 @@ def _algorithms(text: str, options: dict) -> list[str]:
         try:
             make_optimizer(name, **options)
         except (ValueError, TypeError) as exc:
-            _fail(f"{name} (--pop, --option): {exc}")
+            fail(f"{name} (--pop, --option): {exc}")
     return names
 
 
@@ -187,7 +178,7 @@ def optimize(
                 **opts,
             )
         except (KeyError, ValueError, TypeError) as exc:
-            _fail(str(exc.args[0]) if isinstance(exc, KeyError) else str(exc))
+            fail(str(exc.args[0]) if isinstance(exc, KeyError) else str(exc))
         results[res.metadata.get("label", algo)] = res
     _print_table(function, results)
     if plot:
@@ -308,7 +299,9 @@ def reproduce(
 def _mount_subapps() -> None:
     from mawdo.cli.bench import bench_app
     from mawdo.cli.plan import plan_app
+    from mawdo.cli.study import study_app
 
+    app.add_typer(study_app, name="study")
     app.add_typer(bench_app, name="bench", help="Benchmark study: run plans, make reports.")
     app.add_typer(plan_app, name="plan", help="Path planning among moving obstacles.")
 

@@ -1,7 +1,8 @@
 """``mawdo plan``: plan through a scenario and write metrics (and figures).
 
 ``mawdo plan SCENARIO ...`` runs one planning run (``run`` is the default command);
-``mawdo plan study ...`` runs the multi-algorithm study.
+``mawdo plan study ...`` and ``mawdo plan report`` are aliases of ``mawdo study run/report``
+(:mod:`mawdo.cli.study`) for one release.
 """
 
 from __future__ import annotations
@@ -13,7 +14,8 @@ from pathlib import Path
 import typer
 from rich.console import Console
 
-from mawdo.cli.errors import RETRY_HELP, SCHEDULER_FILE_HELP, DefaultRunGroup
+from mawdo.cli import study
+from mawdo.cli.errors import DefaultRunGroup
 from mawdo.cli.progress import ERR, notice_compiles, step
 
 console = Console(width=None if sys.stdout.isatty() else 140)
@@ -62,25 +64,12 @@ class _StepBar:
         self.progress = self.task = None
         if not enabled:
             return
-        from rich.progress import (
-            BarColumn,
-            MofNCompleteColumn,
-            Progress,
-            TextColumn,
-            TimeElapsedColumn,
-        )
+        from rich.progress import TimeElapsedColumn
 
-        self.progress = Progress(
-            TextColumn("[bold]{task.description}"),
-            BarColumn(),
-            MofNCompleteColumn(),
-            TextColumn("steps, {task.fields[replans]} replans"),
-            TimeElapsedColumn(),
-            console=ERR,
-            transient=True,
-        )
-        self.task = self.progress.add_task(label, total=None, replans=0)
-        self.progress.start()
+        from mawdo.experiments.progress import start_bar
+
+        columns = ["steps, {task.fields[replans]} replans", TimeElapsedColumn()]
+        self.progress, self.task = start_bar(label, columns, console=ERR, transient=True, replans=0)
 
     def __call__(self, step: int, max_steps: int, replans: int) -> None:
         if self.progress is not None:
@@ -163,40 +152,48 @@ def study_cmd(
     runs: int = typer.Option(None, help="runs per algorithm (override)"),
     algorithms: str = typer.Option(None, help="comma-separated algorithms (override)"),
     scenario: str = typer.Option(None, help="scenario name or file (override)"),
-    workers: int = typer.Option(1, help="local worker processes"),
-    dask: str = typer.Option(None, help="Dask scheduler address, e.g. tcp://host:8786"),
-    scheduler_file: Path = typer.Option(None, help=SCHEDULER_FILE_HELP),
-    force: bool = typer.Option(False, help="discard a store made by another plan or version"),
-    retry_failed: bool = typer.Option(False, help=RETRY_HELP),
+    workers: int = study.WORKERS,
+    dask: str = study.DASK,
+    scheduler_file: Path = study.SCHEDULER_FILE,
+    force: bool = study.FORCE,
+    retry_failed: bool = study.RETRY_FAILED,
     report: Path = typer.Option(None, help="also write the report to this folder"),
-    progress: bool = typer.Option(True, help="show a progress bar"),
+    progress: bool = study.PROGRESS,
 ):
     """Run the planning study (paper Table 6) into a resumable store."""
-    from mawdo.cli.errors import bad_input, check_output_dir
-    from mawdo.experiments import PlanError, run_plan
-    from mawdo.experiments.planning import study_preset
+    from mawdo.cli.args import names
+    from mawdo.cli.errors import check_output_dir, fail
+    from mawdo.cli.study import moved, run_study
+    from mawdo.experiments import STUDY_KINDS, PlanError
 
+    moved("mawdo plan study", "mawdo study run")
     if report is not None:
         check_output_dir(report, "--report folder")
     # errors end at the command edge: a message on stderr (2: bad plan, 1: store ...)
     try:
-        plan = study_preset(preset).with_overrides(
-            runs=runs,
-            scenario=scenario,
-            algorithms=None if algorithms is None else [a.strip() for a in algorithms.split(",")],
+        plan = (
+            STUDY_KINDS["planning"]
+            .preset_plan(preset)
+            .with_overrides(runs=runs, scenario=scenario, algorithms=names(algorithms))
         )
     except PlanError as exc:
-        raise bad_input(exc) from None
-    console.print(plan.describe())
-    summary = run_plan(
+        fail(exc)
+    run_study(
         plan, out, workers=workers, dask=dask, scheduler_file=scheduler_file,
         progress=progress, force=force, retry_failed=retry_failed,
     )  # fmt: skip
-    console.print(str(summary))
-    if summary.interrupted:
-        raise typer.Exit(130)
     if report is not None:
-        report_cmd(out, report)
+        _write_report(out, report, gif=True)
+
+
+def _write_report(store: Path, out: Path, gif: bool) -> None:
+    from mawdo.cli.errors import check_output_dir, writing_into
+    from mawdo.experiments.planning import write_study_report
+
+    check_output_dir(out, "--out folder")
+    with writing_into(out):
+        path = write_study_report(store, out, gif=gif)
+    console.print(f"report: {path}")
 
 
 @plan_app.command("report")
@@ -206,13 +203,10 @@ def report_cmd(
     gif: bool = typer.Option(True, help="write the animated GIF"),
 ):
     """Tables and figures of a planning study, read from its store (nothing is recomputed)."""
-    from mawdo.cli.errors import check_output_dir, writing_into
-    from mawdo.experiments.planning import write_study_report
+    from mawdo.cli.study import moved
 
-    check_output_dir(out, "--out folder")
-    with writing_into(out):
-        path = write_study_report(store, out, gif=gif)
-    console.print(f"report: {path}")
+    moved("mawdo plan report", "mawdo study report")
+    _write_report(store, out, gif)
 
 
 # ``mawdo plan bench``: the planning arena, in its own module

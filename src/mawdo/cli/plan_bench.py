@@ -1,19 +1,22 @@
 """``mawdo plan bench``: the planning arena (generated scene families x planners).
 
 ``mawdo plan bench --suite forest,maze --n 100 ...`` runs (``run`` is the default command);
-``mawdo plan bench report STORE --out DIR`` writes the report from the store.
+``mawdo plan bench report STORE --out DIR`` writes the report from the store. Both are aliases
+of ``mawdo study run/report`` (:mod:`mawdo.cli.study`) for one release.
 """
 
 from __future__ import annotations
 
-import json
 import sys
 from pathlib import Path
 
 import typer
 from rich.console import Console
 
-from mawdo.cli.errors import RETRY_HELP, SCHEDULER_FILE_HELP, DefaultRunGroup
+from mawdo.cli import study
+from mawdo.cli.args import dotted_pairs, names, pairs
+from mawdo.cli.errors import DefaultRunGroup, fail
+from mawdo.cli.study import moved, run_study
 
 console = Console(width=None if sys.stdout.isatty() else 140)
 
@@ -26,59 +29,25 @@ bench_app = typer.Typer(
 )
 
 
-def _names(text: str | None) -> list[str] | None:
-    return None if text is None else [t.strip() for t in text.split(",") if t.strip()]
-
-
-def _params(pairs: list[str]) -> dict[str, dict]:
-    """``family.key=value`` -> ``{family: {key: value}}`` (values parsed as JSON numbers)."""
-    out: dict[str, dict] = {}
-    for pair in pairs:
-        head, sep, value = pair.partition("=")
-        fam, dot, key = head.partition(".")
-        if not sep or not dot or not fam or not key:
-            raise ValueError(f"--param {pair!r} must look like family.name=value, e.g. forest.n=12")
-        try:
-            v = json.loads(value)
-        except json.JSONDecodeError:
-            v = value
-        out.setdefault(fam.strip().lower(), {})[key.strip()] = v
-    return out
-
-
-def _options(pairs: list[str]) -> dict:
-    """``key=value`` planner overrides (values parsed as JSON when possible)."""
-    out = {}
-    for pair in pairs:
-        key, sep, value = pair.partition("=")
-        if not sep or not key.strip():
-            raise ValueError(f"--option {pair!r} must look like key=value, e.g. max_steps=200")
-        try:
-            out[key.strip()] = json.loads(value)
-        except json.JSONDecodeError:
-            out[key.strip()] = value
-    return out
-
-
 def _plan(suite, n, algorithms, baselines, seed, planner, params, batch_size, options=()):
     from mawdo.experiments.arena import ARENA_PRESETS, arena_preset
 
-    names = _names(suite) or ["arena-default"]
-    if len(names) == 1 and names[0] in ARENA_PRESETS:
-        plan, fams = arena_preset(names[0]), None
+    given = names(suite) or ["arena-default"]
+    if len(given) == 1 and given[0] in ARENA_PRESETS:
+        plan, fams = arena_preset(given[0]), None
     else:
-        plan, fams = arena_preset("arena-default"), names
+        plan, fams = arena_preset("arena-default"), given
     return plan.with_overrides(
         name=None if fams is None else "arena",
         families=fams,
         n=n,
-        algorithms=_names(algorithms),
-        baselines=_names(baselines),
+        algorithms=names(algorithms),
+        baselines=names(baselines),
         seed=seed,
         planner=planner,
-        params=_params(params) or None,
+        params=dotted_pairs(params, "--param", "forest.n=12", group="family") or None,
         batch_size=batch_size,
-        overrides=_options(options) or None,
+        overrides=pairs(options, "--option", "max_steps=200") or None,
     )
 
 
@@ -98,40 +67,32 @@ def run_cmd(
     param: list[str] = typer.Option([], help="family parameter, e.g. --param forest.n=12"),
     option: list[str] = typer.Option([], help="planner setting, e.g. --option max_steps=200"),
     batch_size: int = typer.Option(None, help="scenes per task"),
-    workers: int = typer.Option(1, help="local worker processes"),
-    dask: str = typer.Option(None, help="Dask scheduler address, e.g. tcp://host:8786"),
-    scheduler_file: Path = typer.Option(None, help=SCHEDULER_FILE_HELP),
+    workers: int = study.WORKERS,
+    dask: str = study.DASK,
+    scheduler_file: Path = study.SCHEDULER_FILE,
     out: Path = typer.Option(Path("results/arena.db"), help="SQLite results store"),
-    force: bool = typer.Option(False, help="discard a store made by another plan or version"),
-    retry_failed: bool = typer.Option(False, help=RETRY_HELP),
+    force: bool = study.FORCE,
+    retry_failed: bool = study.RETRY_FAILED,
     report: Path = typer.Option(None, help="also write the report to this folder"),
-    progress: bool = typer.Option(True, help="show a progress bar"),
+    progress: bool = study.PROGRESS,
 ):
     """Run the arena into a resumable store (the same command resumes it)."""
     from mawdo.cli.errors import check_output_dir
-    from mawdo.experiments import PlanError, StoreError, run_plan
+    from mawdo.experiments import PlanError
 
+    moved("mawdo plan bench", "mawdo study run")
     if report is not None:
         check_output_dir(report, "--report folder")
     try:
         plan = _plan(suite, n, algorithms, baselines, seed, planner, param, batch_size, option)
     except (PlanError, ValueError) as exc:
-        console.print(f"[bold red]error:[/] {exc}")
-        raise typer.Exit(2) from None
-    console.print(plan.describe())
-    try:
-        summary = run_plan(
-            plan, out, workers=workers, dask=dask, scheduler_file=scheduler_file,
-            progress=progress, force=force, retry_failed=retry_failed,
-        )  # fmt: skip
-    except (StoreError, ValueError) as exc:
-        console.print(f"[bold red]error:[/] {exc}")
-        raise typer.Exit(1) from None
-    console.print(str(summary))
-    if summary.interrupted:
-        raise typer.Exit(130)
+        fail(exc)
+    run_study(
+        plan, out, workers=workers, dask=dask, scheduler_file=scheduler_file,
+        progress=progress, force=force, retry_failed=retry_failed,
+    )  # fmt: skip
     if report is not None:
-        report_cmd(out, report, gallery=200, figures=True)
+        _write_report(out, report, gallery=200, figures=True)
 
 
 @bench_app.command("report")
@@ -142,6 +103,11 @@ def report_cmd(
     figures: bool = typer.Option(True, help="write the ECDFs and the failure gallery"),
 ):
     """Tables, ECDFs and the failure gallery of an arena, read from its store."""
+    moved("mawdo plan bench report", "mawdo study report")
+    _write_report(store, out, gallery, figures)
+
+
+def _write_report(store: Path, out: Path, gallery: int, figures: bool) -> None:
     from mawdo.cli.errors import check_output_dir
     from mawdo.experiments import StoreError
     from mawdo.experiments.arena import write_arena_report
@@ -150,6 +116,5 @@ def report_cmd(
     try:
         path = write_arena_report(store, out, figures=figures, gallery_limit=gallery)
     except (StoreError, ValueError) as exc:
-        console.print(f"[bold red]error:[/] {exc}")
-        raise typer.Exit(1) from None
+        fail(exc, code=1)
     console.print(f"report: {path}")

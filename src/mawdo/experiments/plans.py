@@ -13,7 +13,7 @@ import difflib
 import hashlib
 import json
 import tomllib
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any, ClassVar
 
@@ -62,16 +62,7 @@ class StudyPlanBase(BaseModel):
         key starts from that preset (:meth:`preset`) and the other keys override it. Errors
         are :class:`PlanError` naming the file.
         """
-        data = read_plan_file(path)
-        preset = data.pop("preset", None)
-        try:
-            if preset is not None:
-                if not isinstance(preset, str):
-                    raise PlanError(f"preset: must be a string, got {preset!r}")
-                return cls.preset(preset).with_overrides(**data)
-            return cls.from_dict(data)
-        except PlanError as exc:
-            raise PlanError(f"{path}: {exc}") from None
+        return plan_from_data(path, read_plan_file(path), cls.preset, cls.from_dict)
 
     @classmethod
     def preset(cls, name: str):
@@ -118,6 +109,22 @@ class StudyPlanBase(BaseModel):
         """SHA-256 of the canonical JSON of :meth:`numbers_spec` (hex)."""
         blob = json.dumps(self.numbers_spec(), sort_keys=True, separators=(",", ":"))
         return hashlib.sha256(blob.encode("utf-8")).hexdigest()
+
+
+def plan_from_data(path, data: dict[str, Any], preset: Callable, build: Callable):
+    """The plan of a plan file's fields ``data``: ``preset(name)`` with the other fields as
+    overrides when ``data`` has a ``preset`` key, else ``build(data)``; a :class:`PlanError`
+    names the file ``path``."""
+    data = dict(data)
+    name = data.pop("preset", None)
+    try:
+        if name is None:
+            return build(data)
+        if not isinstance(name, str):
+            raise PlanError(f"preset: must be a string, got {name!r}")
+        return preset(name).with_overrides(**data)
+    except PlanError as exc:
+        raise PlanError(f"{path}: {exc}") from None
 
 
 def read_plan_file(path) -> dict[str, Any]:

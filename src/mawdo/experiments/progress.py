@@ -1,38 +1,51 @@
-"""The sweep's progress bar: runs done of the runs to compute, with an ETA (rich, stderr)."""
+"""Progress bars on stderr (rich): the sweep's runs with an ETA, and the one shape every bar of
+the package shares (:func:`start_bar`, also used by the planner's step bar in the commands)."""
 
 from __future__ import annotations
+
+from typing import Any
+
+
+def start_bar(label: str, columns: list, *, total=None, console=None, transient=False, **fields):
+    """A started rich progress bar: ``label``, the bar, ``done/total``, then ``columns`` (text
+    templates or rich columns); returns ``(progress, task)``.
+
+    Parameters
+    ----------
+    label : str
+        The bar's description.
+    columns : list of str or rich column
+        What follows the count; a string is a ``TextColumn`` template
+        (``"{task.fields[note]}"`` reads a field given in ``fields``).
+    total : int or None
+        The count to reach (None: unknown yet).
+    console : rich Console or None
+        Where to draw (default: a new stderr console).
+    transient : bool
+        Remove the bar when it stops.
+    """
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
+
+    head = [TextColumn("[bold]{task.description}"), BarColumn(), MofNCompleteColumn()]
+    tail = [TextColumn(c) if isinstance(c, str) else c for c in columns]
+    progress = Progress(*head, *tail, console=console or Console(stderr=True), transient=transient)
+    task = progress.add_task(label, total=total, **fields)
+    progress.start()
+    return progress, task
 
 
 class RunBar:
     """A progress bar over a sweep's runs with an ETA, on stderr (nothing when disabled)."""
 
     def __init__(self, enabled: bool, total: int, label: str) -> None:
-        self.progress = None
+        self.progress: Any = None
         if not enabled or total == 0:
             return
-        from rich.console import Console
-        from rich.progress import (
-            BarColumn,
-            MofNCompleteColumn,
-            Progress,
-            TextColumn,
-            TimeElapsedColumn,
-            TimeRemainingColumn,
-        )
+        from rich.progress import TimeElapsedColumn, TimeRemainingColumn
 
-        self.progress = Progress(
-            TextColumn("[bold]{task.description}"),
-            BarColumn(),
-            MofNCompleteColumn(),
-            TextColumn("runs"),
-            TimeElapsedColumn(),
-            TextColumn("ETA"),
-            TimeRemainingColumn(),
-            TextColumn("{task.fields[note]}"),
-            console=Console(stderr=True),
-        )
-        self.task = self.progress.add_task(label, total=total, note="")
-        self.progress.start()
+        columns = ["runs", TimeElapsedColumn(), "ETA", TimeRemainingColumn(), "{task.fields[note]}"]
+        self.progress, self.task = start_bar(label, columns, total=total, note="")
 
     def advance(self, n: int, note: str) -> None:
         if self.progress is not None:

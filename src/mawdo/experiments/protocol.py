@@ -11,20 +11,23 @@ A *study kind* (the function benchmark, the planning study, ...) is a package un
   worker (pickled by reference, so the worker imports the kind's module and registers it);
 - ``row``: the kind's typed row (:class:`~mawdo.experiments.rows.RunRow` subclass), which fixes
   the columns of the store's ``runs`` table;
-- ``report`` (optional): ``(store_path, out_dir, **options) -> Path``.
+- ``report`` (optional): ``(store_path, out_dir, **options) -> Path``;
+- ``presets``: the kind's named plans (``name -> plan fields``), unique across kinds, so that
+  ``mawdo study run NAME`` finds the kind from the name alone (:func:`find_preset`).
 
 The runner and the store know only this module; they never import a concrete kind.
 """
 
 from __future__ import annotations
 
+import difflib
 import json
-from collections.abc import Callable, Iterable
-from dataclasses import dataclass
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Protocol, runtime_checkable
 
-from mawdo.experiments.plans import PlanError
+from mawdo.experiments.plans import PlanError, plan_from_data, read_plan_file
 from mawdo.experiments.rows import RunRow, schema
 from mawdo.registry import Registry
 
@@ -152,6 +155,15 @@ class StudyKind:
         One line for listings.
     aliases : tuple of str
         Former names of the kind: stores and plans that name it so are read as this kind.
+    presets : mapping of str to mapping
+        Named plans: preset name -> the plan's fields (``plan.from_dict`` reads them). Names are
+        unique across every registered kind (checked by :func:`register_kind`).
+    preset_help : mapping of str to str
+        One line per preset for listings; a preset without one is described by its plan's
+        ``describe()``.
+    report_merges_stores : bool
+        True: ``report`` takes a list of stores of one study (e.g. one per dimension) and
+        reports them together; False: one store.
     """
 
     name: str
@@ -161,6 +173,9 @@ class StudyKind:
     report: Callable[..., Path] | None = None
     description: str = ""
     aliases: tuple[str, ...] = ()
+    presets: Mapping[str, Mapping[str, Any]] = field(default_factory=dict)
+    preset_help: Mapping[str, str] = field(default_factory=dict)
+    report_merges_stores: bool = False
 
     def __post_init__(self) -> None:
         schema(self.row)  # fails now, at registration, on an undeclared field
@@ -169,7 +184,24 @@ class StudyKind:
                 f"study kind {self.name!r}: its plan class {self.plan.__name__} must set "
                 f"study_kind = {self.name!r}"
             )
+        unknown = sorted(set(self.preset_help) - set(self.presets))
+        if unknown:
+            raise ValueError(f"study kind {self.name!r}: help for unknown presets {unknown}")
 
+    def preset_plan(self, name: str) -> Any:
+        """The plan of the preset ``name`` (validated); an unknown name raises
+        :class:`PlanError` with the closest names."""
+        if name not in self.presets:
+            raise PlanError(_unknown_preset(name, self.presets))
+        return self.plan.from_dict(self.presets[name])
+
+    def preset_line(self, name: str) -> str:
+        """One line describing the preset ``name``."""
+        return self.preset_help.get(name) or self.preset_plan(name).describe()
+
+
+DEFAULT_KIND = "benchmark"
+"""The kind of a plan that names none (plans and stores written before kinds existed)."""
 
 STUDY_KINDS: Registry[StudyKind] = Registry("study kind")
 """Every registered study kind. The built-in kinds register when :mod:`mawdo.experiments` is
@@ -180,7 +212,9 @@ def register_kind(kind: StudyKind) -> StudyKind:
     """Add ``kind`` to :data:`STUDY_KINDS` and return the registered kind.
 
     Registering again under a name the same plan class already holds (a reload of the kind's
-    module) keeps the first registration; a different plan class under a taken name is an error.
+    module) keeps the first registration; a different plan class under a taken name is an error,
+    and so is a preset name another kind already has (``mawdo study run NAME`` must know which
+    kind NAME means).
     """
     if kind.name in STUDY_KINDS:
         old = STUDY_KINDS[kind.name]
@@ -188,10 +222,75 @@ def register_kind(kind: StudyKind) -> StudyKind:
             f"{kind.plan.__module__}.{kind.plan.__qualname__}"
         ):
             return old
+    taken = all_presets()
+    for name in kind.presets:
+        if name in taken:
+            raise ValueError(
+                f"study kind {kind.name!r}: preset {name!r} is already a preset of the "
+                f"{taken[name].name!r} kind; preset names are unique across kinds, rename it"
+            )
     STUDY_KINDS.register(kind.name, kind)
     for old_name in kind.aliases:
         STUDY_KINDS.add_alias(old_name, kind.name)
     return kind
+
+
+def all_presets() -> dict[str, StudyKind]:
+    """Every registered preset name -> the kind it belongs to, in registration order."""
+    return {name: kind for kind in STUDY_KINDS.values() for name in kind.presets}
+
+
+def _unknown_preset(name: str, known: Iterable[str]) -> str:
+    known = list(known)
+    close = difflib.get_close_matches(name, known, n=2, cutoff=0.5)
+    hint = f" Did you mean {' or '.join(map(repr, close))}?" if close else ""
+    return f"preset: unknown preset {name!r}.{hint} Presets: {', '.join(known)}"
+
+
+def find_preset(name: str) -> Any:
+    """The plan of the preset ``name``, whichever registered kind has it.
+
+    Raises
+    ------
+    PlanError
+        No kind has a preset of that name; the message gives the closest names and the list.
+    """
+    presets = all_presets()
+    if name not in presets:
+        raise PlanError(_unknown_preset(name, presets))
+    return presets[name].preset_plan(name)
+
+
+def load_plan_file(path: str | Path) -> Any:
+    """The plan in a TOML (or ``.json``) plan file, of whichever registered kind it names.
+
+    A ``preset`` key decides the kind (the other keys override the preset's fields; a ``kind``
+    key must agree); else the file's ``kind`` field, else the one kind whose plan has every
+    field the file sets, else ``benchmark`` (plan files written before kinds existed).
+
+    Raises
+    ------
+    PlanError
+        An unreadable file, an unknown kind or preset, or an invalid field; the message names
+        the file.
+    """
+    return plan_from_data(path, read_plan_file(path), find_preset, _plan_of_fields)
+
+
+def _plan_of_fields(data: dict[str, Any]) -> Any:
+    kind = data.get("kind") or _kind_by_fields(data)
+    if not isinstance(kind, str) or kind not in STUDY_KINDS:
+        raise PlanError(f"kind: unknown study kind {kind!r}; kinds: {', '.join(STUDY_KINDS)}")
+    return STUDY_KINDS[kind].plan.from_dict(data)
+
+
+def _kind_by_fields(data: Mapping[str, Any]) -> str:
+    fits = [
+        k.name
+        for k in STUDY_KINDS.values()
+        if set(data) <= set(getattr(k.plan, "model_fields", ()))
+    ]
+    return fits[0] if len(fits) == 1 else DEFAULT_KIND
 
 
 def kind_of(plan: Any) -> StudyKind:
@@ -219,7 +318,7 @@ def plan_from_json(text: str, stored: bool = False) -> Any:
         raise PlanError(f"stored plan is not valid JSON: {exc}") from None
     if not isinstance(data, dict):
         raise PlanError("stored plan is not a table of fields")
-    name = data.get("kind", "benchmark")
+    name = data.get("kind", DEFAULT_KIND)
     try:
         kind = STUDY_KINDS[name]
     except KeyError as exc:

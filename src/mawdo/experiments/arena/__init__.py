@@ -26,6 +26,7 @@ register_kind(
         row=ArenaRow,
         report=write_arena_report,
         description="planning arena: generated scene families x planners (issue 14)",
+        presets=ARENA_PRESETS,
     )
 )
 

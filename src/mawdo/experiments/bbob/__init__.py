@@ -33,6 +33,9 @@ register_kind(
         report=write_suite_report,
         description="standard suites (BBOB via ioh, CEC via opfunu) under COCO's protocol",
         aliases=OLD_KIND_NAMES,
+        presets=PRESETS,
+        preset_help=PRESET_HELP,
+        report_merges_stores=True,
     )
 )
 

@@ -29,6 +29,8 @@ register_kind(
         row=BenchmarkRow,
         report=write_report,
         description="benchmark functions: algorithms x functions x runs (Tables 3, 5)",
+        presets=PRESETS,
+        preset_help=PRESET_HELP,
     )
 )
 

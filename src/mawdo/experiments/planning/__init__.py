@@ -26,6 +26,7 @@ register_kind(
         row=PlanningRow,
         report=write_study_report,
         description="path planning: algorithms x runs on a scenario (Table 6)",
+        presets=STUDY_PRESETS,
     )
 )
 
