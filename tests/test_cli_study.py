@@ -68,7 +68,7 @@ def stored_rows(db: Path, problem: str) -> list:
 def test_presets_lists_every_kinds_presets_with_their_runs():
     res = mawdo("study", "presets")
     assert res.returncode == 0, res.stderr
-    for kind in ("benchmark", "planning", "bbob", "arena"):
+    for kind in ("benchmark", "planning", "suite", "arena"):
         assert f"{kind}: {STUDY_KINDS[kind].description}" in res.stdout
         for name in STUDY_KINDS[kind].presets:
             assert re.search(rf"^  {re.escape(name)} ", res.stdout, re.M), name
@@ -94,7 +94,7 @@ def test_a_plan_file_finds_its_kind_by_preset_kind_or_fields(tmp_path):
     (tmp_path / "c.toml").write_text('kind = "arena"\nfamilies = ["forest"]\nn = 2\n')
     a, b, c = (load_plan_file(tmp_path / f"{x}.toml") for x in "abc")
     assert (a.kind, a.runs, a.algorithms) == ("planning", 1, find_preset("study-smoke").algorithms)
-    assert (b.kind, b.functions, c.kind, c.n) == ("bbob", (1,), "arena", 2)
+    assert (b.kind, b.functions, c.kind, c.n) == ("suite", (1,), "arena", 2)
     (tmp_path / "d.toml").write_text('preset = "smoke"\nkind = "arena"\n')
     with pytest.raises(PlanError, match="d.toml: kind: must be one of 'benchmark' .got 'arena'"):
         load_plan_file(tmp_path / "d.toml")
@@ -137,7 +137,7 @@ def test_run_and_report_a_suite_study_of_two_stores(tmp_path):
         assert res.returncode == 0, res.stderr
         assert "complete: 2 runs computed" in res.stdout
     with Store.read(tmp_path / "d3.db") as store:
-        assert (store.plan.kind, store.plan.dims, store.plan.budget) == ("bbob", (3,), 20.0)
+        assert (store.plan.kind, store.plan.dims, store.plan.budget) == ("suite", (3,), 20.0)
         assert {r.nfev for _, _, r in store.rows()} == {60}  # ceil(20 x D) evaluations
     rep = mawdo("study", "report", "d2.db", "d3.db", "--out", "rep", "--option", "plots=false",
                 cwd=tmp_path)  # fmt: skip
@@ -148,7 +148,7 @@ def test_run_and_report_a_suite_study_of_two_stores(tmp_path):
                   cwd=tmp_path)  # fmt: skip
     assert mixed.returncode == 0, mixed.stderr
     both = mawdo("study", "report", "d2.db", "b.db", "--out", "r2", cwd=tmp_path)
-    assert both.returncode == 1 and "these hold bbob, benchmark" in both.stderr
+    assert both.returncode == 1 and "these hold benchmark, suite" in both.stderr
 
 
 # ---------------------------------------------------------------------- bad input
@@ -185,7 +185,7 @@ def test_old_presets_alias_still_lists_its_presets():
     assert res.returncode == 0 and notes(res.stderr) == [
         ("mawdo bench presets", "mawdo study presets")
     ]
-    for name in (*STUDY_KINDS["benchmark"].presets, *STUDY_KINDS["bbob"].presets):
+    for name in (*STUDY_KINDS["benchmark"].presets, *STUDY_KINDS["suite"].presets):
         assert re.search(rf"^{re.escape(name)} ", res.stdout, re.M), name
 
 
