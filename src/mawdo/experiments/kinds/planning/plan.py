@@ -2,7 +2,8 @@
 
 A :class:`StudyPlan` is a :class:`~mawdo.experiments.protocol.Study` of kind ``planning``; its
 tasks are computed by
-:func:`~mawdo.experiments.kinds.planning.execute.execute_planning_task` through the same runner and store as every other kind (resume, local pool, Dask).
+:func:`~mawdo.experiments.kinds.planning.execute.execute_planning_task` through the same runner
+and store as every other kind (resume, local pool, Dask).
 
 Seeding: run ``k`` of every algorithm plans with the seed
 ``seed_word([seed, name_word(scenario), k])`` (:mod:`mawdo.streams`), so all algorithms face
