@@ -8,6 +8,7 @@ against were lazy ones). A module may import its own floor or lower floors, neve
 from __future__ import annotations
 
 import ast
+import re
 from pathlib import Path
 
 import pytest
@@ -204,3 +205,22 @@ def test_the_checks_catch_what_they_claim():
     with pytest.raises(AssertionError, match="has no floor"):
         floor_of("mawdo.newcomer")  # a module nobody placed fails, not the facade's floor
     assert floor_of("mawdo.experiments.__init__") > floor_of("mawdo.experiments.kinds.planning")
+
+
+def test_the_module_map_names_every_package_and_the_recipes_name_real_files():
+    # docs/architecture.md is drawn from the code: every package appears in its tree, and every
+    # file or folder a recipe sends a contributor to exists
+    doc = (SRC.parents[1] / "docs" / "architecture.md").read_text(encoding="utf-8")
+    tree = doc.split("```")[1]
+    packages = sorted(p.parent for p in SRC.rglob("__init__.py") if p.parent != SRC)
+    missing = [str(p.relative_to(SRC)) for p in packages if f" {p.name}/" not in tree]
+    assert not missing, f"packages missing from the module map: {missing}"
+    recipes = doc.split("## Recipes")[1].split("\n## ")[0]
+    named = set(
+        re.findall(r"`((?:optimizers|planning|suites|experiments|tests)/[\w/.*]+)`", recipes)
+    )
+    assert len(named) >= 8
+    root = SRC.parents[1]
+    for rel in named:
+        base = root / "src" / "mawdo" if not rel.startswith("tests/") else root
+        assert list(base.glob(rel.rstrip("/"))), f"architecture.md recipe names {rel}: no such path"
