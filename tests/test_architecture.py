@@ -224,3 +224,17 @@ def test_the_module_map_names_every_package_and_the_recipes_name_real_files():
     for rel in named:
         base = root / "src" / "mawdo" if not rel.startswith("tests/") else root
         assert list(base.glob(rel.rstrip("/"))), f"architecture.md recipe names {rel}: no such path"
+
+
+def test_no_private_name_is_imported_from_another_module():
+    # issue 26: what crosses a module boundary is public; a leading underscore means "mine"
+    leaks = []
+    for path in sorted(SRC.rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ImportFrom) and (node.level or node.module.startswith("mawdo")):
+                leaks += [
+                    f"{path.relative_to(SRC)}:{node.lineno} imports {a.name}"
+                    for a in node.names
+                    if a.name.startswith("_") and not a.name.startswith("__")
+                ]
+    assert not leaks, "\n".join(leaks)
