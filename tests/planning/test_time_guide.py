@@ -118,3 +118,17 @@ def test_time_routes_must_be_positive():
 
     with pytest.raises(ValueError, match="time_routes"):
         PlannerConfig(time_routes=0)
+
+
+def test_timed_route_clock_and_path_by_hand():
+    from mawdo.planning.sipp.guide import TimedRoute
+    from mawdo.planning.timeguide import passed_between, position_at, route_geometry
+
+    # wait at the origin until t = 2, then drive to (3, 4) by t = 3
+    r = TimedRoute(np.array([[0.0, 0.0], [0.0, 0.0], [3.0, 4.0]]), np.array([0.0, 2.0, 3.0]), ())
+    assert np.array_equal(position_at(r, 1.0), [0.0, 0.0])  # waiting holds the position
+    assert np.allclose(position_at(r, 2.5), [1.5, 2.0])
+    assert np.array_equal(position_at(r, 9.0), [3.0, 4.0])
+    assert np.array_equal(route_geometry(r), [[0.0, 0.0], [3.0, 4.0]])
+    pts, frac = passed_between(r, 1.5, 2.5)
+    assert np.array_equal(pts, [[0.0, 0.0]]) and np.allclose(frac, [0.5])

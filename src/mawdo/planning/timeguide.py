@@ -85,7 +85,10 @@ def passed_between(route, t0: float, t1: float):
 def route_geometry(route, pos=None) -> np.ndarray:
     """A timed route's path without its waits (repeated points dropped), optionally from
     ``pos`` instead of its first point; pixels, shape (j, 2)."""
-    pts = route.points if pos is None else np.vstack([pos, route.points[1:]])
+    return _without_waits(route.points if pos is None else np.vstack([pos, route.points[1:]]))
+
+
+def _without_waits(pts: np.ndarray) -> np.ndarray:
     keep = np.ones(len(pts), bool)
     keep[1:] = np.any(np.abs(np.diff(pts, axis=0)) > 1e-12, axis=1)
     out = pts[keep]
@@ -122,7 +125,7 @@ class TimedRun:
         pos = position_at(route, step + 1.0)
         passed, frac = passed_between(route, float(step), step + 1.0)
         ahead = route.times > step + 1.0
-        rest = route_geometry(type(route)(route.points[ahead], route.times[ahead], ()), pos)
+        rest = _without_waits(np.vstack([pos, route.points[ahead]]))
         if not ahead.any():  # the route ends within this step: at the goal
             self.following = None
         return pos, rest, passed, frac
