@@ -73,8 +73,9 @@ def test_parked_mover_robot_waits_then_goes():
 
 def test_doorway_patrol_is_timed_through_the_door():
     scene, res = _timed_success("doorway", 2)
-    # the door is passed when the patrol leaves it open: within 5 % of the earliest arrival
-    assert scene.t_star <= res.steps + 1e-9 <= 1.05 * scene.t_star + 1
+    # the door is passed when the patrol leaves it open: within 5 % of the roadmap's earliest
+    # arrival T* (an upper bound of the free-space optimum, so no lower bound from it)
+    assert res.steps <= 1.05 * scene.t_star
 
 
 def test_default_run_never_consults_the_time_guide(monkeypatch):
@@ -106,7 +107,8 @@ def test_run_metrics_time_gap_and_collision_split():
     res = run_planner("guide_only", scene.scenario, seed=0)
     m = run_metrics(res, l_star=scene.l_star, snapshots=0, t_star=scene.t_star)
     assert m["time_gap"] == pytest.approx((len(res.trajectory) - 1) / scene.t_star)
-    assert m["time_gap"] >= 1.0 - 1e-9  # nothing arrives before the earliest arrival
+    # the static optimum's time L* / v is a lower bound of any arrival
+    assert res.steps >= scene.l_star / scene.scenario.robot_speed - 1e-9
     assert m["active_collisions"] == 0 and m["passive_collisions"] == 0
     assert "time_gap" not in run_metrics(res, l_star=scene.l_star, snapshots=0)
     with pytest.raises(ValueError, match="t_star"):
