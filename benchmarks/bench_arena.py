@@ -19,7 +19,7 @@ TARGET_MIN = 15.0
 
 def arena_sample(n: int = 2, workers: int = 2) -> None:
     from mawdo.experiments import Store, run_plan
-    from mawdo.experiments.arena import arena_preset
+    from mawdo.experiments.kinds.arena import arena_preset
 
     suite = arena_preset("arena-default")
     plan = suite.with_overrides(n=n, batch_size=1, name="arena-sample")

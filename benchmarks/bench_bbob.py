@@ -21,7 +21,7 @@ import time
 
 import numpy as np
 
-from mawdo.experiments.bbob import preset_plan
+from mawdo.experiments.kinds.suite import preset_plan
 from mawdo.suites import evaluation_budget
 
 DIM, RUNS, POP, BUDGET = 20, 10, 50, 1000  # 1000 x D = 20 000 evaluations per run
@@ -90,8 +90,8 @@ PROBE_BUDGET, PROBE_RUNS = 1000, 2
 
 def _run_task(plan, algo: str, fid: int, dim: int) -> tuple[list[int], float, float]:
     """Each run's evaluations, CPU and wall seconds of one study task (``plan.runs`` runs)."""
-    from mawdo.experiments.bbob import execute_suite_task
-    from mawdo.experiments.bbob.plan import problem_key
+    from mawdo.experiments.kinds.suite import execute_suite_task
+    from mawdo.experiments.kinds.suite.plan import problem_key
     from mawdo.experiments.protocol import Task
 
     spec = plan.task_spec(Task(algo, problem_key(fid, 1, dim), 0, plan.runs))

@@ -47,8 +47,8 @@ def bbob_stores(tmp_path_factory) -> list[Path]:
 
 def test_bbob_sentences_are_those_of_the_committed_store(bbob_stores):
     """The committed BBOB stores (xz, one per dimension) give exactly the committed sentences."""
-    from mawdo.experiments.bbob.data import load_runs
-    from mawdo.experiments.bbob.summary import headline
+    from mawdo.experiments.kinds.suite.data import load_runs
+    from mawdo.experiments.kinds.suite.summary import headline
 
     summary = (BBOB / "summary.md").read_text(encoding="utf-8")
     assert headline(load_runs(bbob_stores)) == summary.splitlines()
@@ -174,7 +174,7 @@ def test_the_committed_stores_report_through_the_command(bbob_stores, tmp_path):
 def test_arena_sentences_are_those_of_the_committed_store(tmp_path):
     """The committed arena store (xz) gives exactly the committed headline sentences."""
     from mawdo.experiments import Store
-    from mawdo.experiments.arena.summary import headline
+    from mawdo.experiments.kinds.arena.summary import headline
 
     db = unpack(ROOT / "docs" / "results" / "arena-default" / "store.db.xz", tmp_path)
     with Store.read(db) as store:

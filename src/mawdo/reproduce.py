@@ -12,10 +12,10 @@ from contextlib import nullcontext
 from pathlib import Path
 
 from mawdo.experiments import run_plan
-from mawdo.experiments.benchmark import preset_plan, write_report
-from mawdo.experiments.benchmark.report import PAPER_PROTOCOL, comparability_notes
-from mawdo.experiments.planning import study_preset, write_study_report
-from mawdo.experiments.planning.findings import planner_differences
+from mawdo.experiments.kinds.benchmark import preset_plan, write_report
+from mawdo.experiments.kinds.benchmark.report import PAPER_PROTOCOL, comparability_notes
+from mawdo.experiments.kinds.planning import study_preset, write_study_report
+from mawdo.experiments.kinds.planning.findings import planner_differences
 
 # --quick: the same protocol on a reduced budget (minutes, not an hour).
 QUICK_BENCH = {"runs": 5, "max_iter": 100}

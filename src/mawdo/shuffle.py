@@ -14,14 +14,14 @@ _LOW32 = np.uint64(0xFFFFFFFF)
 _SHIFT32 = np.uint64(32)
 
 
-_BATCH = 1 << 32  # product of the ranges drawn from one 64-bit word: bias <= 2**-32
+SHUFFLE_BATCH = 1 << 32  # product of the ranges drawn from one 64-bit word: bias <= 2**-32
 
 
 def words_per_permutation(d: int) -> int:
     """Raw 64-bit words one permutation of ``range(d)`` consumes in :func:`shuffle_from_words`."""
     words, prod = (1 if d > 1 else 0), 1
     for k in range(d - 1, 0, -1):
-        if prod * (k + 1) > _BATCH:
+        if prod * (k + 1) > SHUFFLE_BATCH:
             words, prod = words + 1, 1
         prod *= k + 1
     return words
@@ -49,7 +49,7 @@ def shuffle_values_from_words(words, base, vals):  # pragma: no cover - compiled
     prod = 1
     for k in range(d - 1, 0, -1):
         n = k + 1
-        if prod * n > _BATCH:
+        if prod * n > SHUFFLE_BATCH:
             w += 1
             x = words[w]
             prod = 1

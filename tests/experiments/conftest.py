@@ -80,7 +80,7 @@ def wait_for_tasks(db: Path, proc: subprocess.Popen, at_least: int, timeout: flo
 def gwo_fails_on_camel(monkeypatch):
     """Make the benchmark kind's ``minimize`` raise for gwo on six_hump_camel (an error row);
     returns the real ``minimize`` so a test can put it back."""
-    from mawdo.experiments.benchmark import execute as bench_exec_mod
+    from mawdo.experiments.kinds.benchmark import execute as bench_exec_mod
 
     real = bench_exec_mod.minimize
 

@@ -14,7 +14,7 @@ import signal
 import pytest
 
 from mawdo.experiments import Store, execute_task, run_plan
-from mawdo.experiments.benchmark import execute as bench_exec_mod
+from mawdo.experiments.kinds.benchmark import execute as bench_exec_mod
 from mawdo.interrupts import SigintWatch, is_interrupt
 
 from .conftest import small_plan, stored_values

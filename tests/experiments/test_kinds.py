@@ -31,8 +31,8 @@ from mawdo.experiments import (
     register_kind,
     run_plan,
 )
-from mawdo.experiments.benchmark import BenchmarkRow
-from mawdo.experiments.planning import PlanningRow
+from mawdo.experiments.kinds.benchmark import BenchmarkRow
+from mawdo.experiments.kinds.planning import PlanningRow
 from mawdo.experiments.rows import schema
 from mawdo.streams import name_word, seed_word
 

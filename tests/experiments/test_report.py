@@ -12,8 +12,8 @@ import pytest
 
 from mawdo.experiments import Store, run_plan, write_report
 from mawdo.experiments import runner as runner_mod
-from mawdo.experiments.benchmark import execute as bench_exec_mod
-from mawdo.experiments.benchmark.paper_values import TABLE3, TABLE5, paper_entry
+from mawdo.experiments.kinds.benchmark import execute as bench_exec_mod
+from mawdo.experiments.kinds.benchmark.paper_values import TABLE3, TABLE5, paper_entry
 from mawdo.experiments.stats import ranksum
 
 from .conftest import small_plan
@@ -138,7 +138,7 @@ def test_paper_comparison_marks_f12_to_f16_not_comparable(report_dir):
 
 
 def test_comparability_notes_sort_paper_ids_by_what_we_run():
-    from mawdo.experiments.benchmark.report import comparability_notes
+    from mawdo.experiments.kinds.benchmark.report import comparability_notes
 
     same, other, nc = comparability_notes(["F1", "F9", "F12", "F7", "F11", "sphere_x"])
     # F1-F7 run the printed formula; F8-F11 a standard one (docs/functions.md); F12-F16 n.c.

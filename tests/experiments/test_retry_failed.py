@@ -12,7 +12,7 @@ import sys
 from pathlib import Path
 
 from mawdo.experiments import Store, run_plan
-from mawdo.experiments.benchmark import execute as bench_exec_mod
+from mawdo.experiments.kinds.benchmark import execute as bench_exec_mod
 
 from .conftest import SMALL, gwo_fails_on_camel, small_plan, stored_values
 

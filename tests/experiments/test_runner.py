@@ -15,7 +15,7 @@ import pytest
 from mawdo import minimize
 from mawdo.experiments import ExperimentPlan, Store, Task, execute_task, run_plan
 from mawdo.experiments import runner as runner_mod
-from mawdo.experiments.benchmark import execute as bench_exec_mod
+from mawdo.experiments.kinds.benchmark import execute as bench_exec_mod
 
 from .conftest import gwo_fails_on_camel, small_plan, stored_values, wait_for_tasks
 

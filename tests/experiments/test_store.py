@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from mawdo.experiments import Store, StoreError, Task, run_plan
-from mawdo.experiments.benchmark import BenchmarkRow
-from mawdo.experiments.benchmark.data import curves
+from mawdo.experiments.kinds.benchmark import BenchmarkRow
+from mawdo.experiments.kinds.benchmark.data import curves
 
 from .conftest import small_plan
 

@@ -7,8 +7,8 @@ import pytest
 from PIL import Image
 
 from mawdo.experiments import PlanError, Store, StoreError, run_plan
-from mawdo.experiments.planning import BASELINE, StudyPlan, study_preset, write_study_report
-from mawdo.experiments.planning.report import study_runs
+from mawdo.experiments.kinds.planning import BASELINE, StudyPlan, study_preset, write_study_report
+from mawdo.experiments.kinds.planning.report import study_runs
 from mawdo.planning import check_trajectory, get_scenario
 from mawdo.planning.planner import result_from_bytes
 
@@ -201,7 +201,7 @@ def _run(length, smooth=1.0, first=1.0, success=True):
 
 
 def test_generated_sentences_state_what_the_runs_say():
-    from mawdo.experiments.planning.findings import generated_findings
+    from mawdo.experiments.kinds.planning.findings import generated_findings
 
     by = {
         "mawdo": [_run(470.0), _run(474.0)],  # mean 472, std 2.83
@@ -230,7 +230,7 @@ def test_generated_sentences_state_what_the_runs_say():
 
 
 def test_table6_title_and_notes_name_the_planner_departures():
-    from mawdo.experiments.planning.findings import planner_differences
+    from mawdo.experiments.kinds.planning.findings import planner_differences
 
     text = planner_differences(study_preset("paper-table6"))
     # docs/deviations.md#d-replan-budget: first plan 1360 x 300, replans 240 x 15

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from mawdo.experiments import PlanError
-from mawdo.experiments.planning import StudyPlan, execute_planning_task, study_preset
+from mawdo.experiments.kinds.planning import StudyPlan, execute_planning_task, study_preset
 from mawdo.planning import get_scenario
 
 SMOKE = study_preset("study-smoke")

@@ -101,3 +101,33 @@ def test_its_option_is_checked_by_the_constraint_on_its_field(
         minimize("sphere", dim=3, algorithm="shrink", max_iter=2, pop_size=1)
     with pytest.raises(ValueError, match="shrink has no option 'shrinc'. Did you mean 'shrink'"):
         minimize("sphere", dim=3, algorithm="shrink", max_iter=2, shrinc=0.5)
+
+
+def test_the_throwaway_optimizer_is_a_planner_in_the_arena_by_its_name(shrink_registered, tmp_path):
+    # issue 26: no planner file, no arena edit: a registered optimizer drives the receding
+    # horizon under its own name, and its runs are stored and judged like the built-in ones
+    from mawdo.experiments import Store, run_plan
+    from mawdo.experiments.kinds.arena import ArenaPlan
+    from mawdo.planning import PLANNERS
+    from mawdo.planning.check import check_trajectory
+    from mawdo.planning.config import resolve_config
+    from mawdo.planning.scenes import generate_scene
+
+    assert PLANNERS["shrink"].optimizer == "shrink"
+    plan_ = ArenaPlan.from_dict({
+        "name": "shrink", "families": ["forest"], "n": 2, "algorithms": ["shrink"],
+        "baselines": [], "planner": "quick", "overrides": {"max_steps": 300}, "seed": 5,
+    })  # fmt: skip
+    db = tmp_path / "arena.db"
+    assert run_plan(plan_, db, progress=False).done == 2
+    with Store.read(db) as store:
+        rows = [r for alg, _, r in store.rows() if alg == "shrink"]
+    assert len(rows) == 2 and all(r.error_text is None for r in rows)
+    for r in rows:
+        # the stored verdict is the independent checker's on the same scene's executed route
+        scene = generate_scene("forest", r.run, seed=5, params={})
+        cfg = resolve_config("quick", {"max_steps": 300})
+        res = PLANNERS["shrink"].run(scene.scenario, r.planner_seed, cfg)
+        rep = check_trajectory(res.route, scene.scenario, times=res.route_times)
+        assert r.collision_free == int(rep.ok) and r.success == int(res.success)
+        assert r.l_star == pytest.approx(scene.l_star)

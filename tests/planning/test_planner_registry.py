@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from mawdo.experiments import PlanError, Store, run_plan
-from mawdo.experiments.arena import ArenaPlan, arena_tables, write_arena_report
+from mawdo.experiments.kinds.arena import ArenaPlan, arena_tables, write_arena_report
 from mawdo.planning import (
     PLANNERS,
     PlannerConfig,
@@ -79,7 +79,7 @@ def test_a_planner_registered_here_runs_through_the_arena_and_its_report(registe
     # the report (tables, figures, the failure gallery drawn from stored traces) takes it too
     report = write_arena_report(db, tmp_path / "report", gallery_limit=2).read_text()
     assert sum(line.startswith("|") and NAME in line for line in report.splitlines()) == 2
-    from mawdo.experiments.arena.execute import scenario_from_toml
+    from mawdo.experiments.kinds.arena.execute import scenario_from_toml
     from mawdo.planning.baselines import route_times
 
     for r in rows:

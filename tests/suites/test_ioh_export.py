@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from mawdo import minimize
-from mawdo.experiments.bbob.ioh_logs import (
+from mawdo.experiments.kinds.suite.ioh_logs import (
     IOHRun,
     read_analyzer_logs,
     runs_from_result,

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from iohinspector import DataManager
 
-from mawdo.experiments.bbob.ioh_logs import IOHRun, write_analyzer_logs
+from mawdo.experiments.kinds.suite.ioh_logs import IOHRun, write_analyzer_logs
 
 
 def run(fid, dim, instance, evals, best_y, total, f_opt=0.0):

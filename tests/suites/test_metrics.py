@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from mawdo.experiments.bbob.metrics import (
+from mawdo.experiments.kinds.suite.metrics import (
     BBOB_GROUPS,
     aggregate_runtime,
     fixed_budget,

@@ -3,7 +3,7 @@
 
 Mounted by :mod:`mawdo.cli.bench`: ``run`` hands over here when ``--suite`` or a ``bbob-*``
 preset is given, ``report`` when the store holds a suite study. Every decision lives in
-:mod:`mawdo.experiments.bbob`.
+:mod:`mawdo.experiments.kinds.suite`.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ from mawdo.cli.errors import fail
 
 def is_suite_preset(name: str | None) -> bool:
     """Whether ``name`` is a preset of the suite study (``bbob-quick``, ``bbob-full``)."""
-    from mawdo.experiments.bbob import PRESETS
+    from mawdo.experiments.kinds.suite import PRESETS
 
     return name is not None and (name in PRESETS or name.startswith("bbob"))
 
@@ -35,7 +35,7 @@ def is_suite_plan_file(path: Path | None) -> bool:
         data = read_plan_file(path)
     except PlanError:
         return False
-    from mawdo.experiments.bbob import KIND, OLD_KIND_NAMES
+    from mawdo.experiments.kinds.suite import KIND, OLD_KIND_NAMES
 
     kind = data.get("kind")
     return kind in (KIND, *OLD_KIND_NAMES) or "suite" in data or is_suite_preset(data.get("preset"))
@@ -45,7 +45,7 @@ def is_suite_store(path: Path) -> bool:
     """Whether the store at ``path`` holds a suite study (False if it is not a store at all:
     the caller's own reading then reports what is wrong)."""
     from mawdo.experiments import Store, StoreError
-    from mawdo.experiments.bbob import KIND
+    from mawdo.experiments.kinds.suite import KIND
 
     try:
         with Store.read(path) as store:
@@ -55,7 +55,7 @@ def is_suite_store(path: Path) -> bool:
 
 
 def _ids(text: str | None, what: str) -> list | None:
-    from mawdo.experiments.bbob import parse_ids
+    from mawdo.experiments.kinds.suite import parse_ids
 
     return None if text is None else parse_ids(text, what)
 
@@ -87,8 +87,8 @@ def suite_plan(
     ValueError
         A malformed ``--variant``/``--option`` or missing flags.
     """
-    from mawdo.experiments.bbob import SuitePlan, preset_plan
-    from mawdo.experiments.bbob.variants import cli_fields
+    from mawdo.experiments.kinds.suite import SuitePlan, preset_plan
+    from mawdo.experiments.kinds.suite.variants import cli_fields
 
     fields = {
         "suite": suite,
@@ -120,7 +120,7 @@ def report_suite(
 ) -> None:
     """Write the suite study's report from ``stores`` (one study, merged) into ``out``."""
     from mawdo.experiments import StoreError
-    from mawdo.experiments.bbob import write_suite_report
+    from mawdo.experiments.kinds.suite import write_suite_report
 
     try:
         report = write_suite_report(stores, out, plots=plots, svg=svg, reference=reference)
@@ -136,7 +136,7 @@ def export_cmd(
 ) -> None:
     """Export a suite study's runs as IOHanalyzer logs (zip a folder and upload it)."""
     from mawdo.cli.errors import check_output_dir
-    from mawdo.experiments.bbob import export_ioh
+    from mawdo.experiments.kinds.suite import export_ioh
 
     if fmt.lower() != "ioh":
         raise ValueError(f"--format {fmt!r}: the only export format is 'ioh' (IOHanalyzer)")

@@ -188,7 +188,7 @@ def study_cmd(
 
 def _write_report(store: Path, out: Path, gif: bool) -> None:
     from mawdo.cli.errors import check_output_dir, writing_into
-    from mawdo.experiments.planning import write_study_report
+    from mawdo.experiments.kinds.planning import write_study_report
 
     check_output_dir(out, "--out folder")
     with writing_into(out):

@@ -30,7 +30,7 @@ bench_app = typer.Typer(
 
 
 def _plan(suite, n, algorithms, baselines, seed, planner, params, batch_size, options=()):
-    from mawdo.experiments.arena import ARENA_PRESETS, arena_preset
+    from mawdo.experiments.kinds.arena import ARENA_PRESETS, arena_preset
 
     given = names(suite) or ["arena-default"]
     if len(given) == 1 and given[0] in ARENA_PRESETS:
@@ -110,7 +110,7 @@ def report_cmd(
 def _write_report(store: Path, out: Path, gallery: int, figures: bool) -> None:
     from mawdo.cli.errors import check_output_dir
     from mawdo.experiments import StoreError
-    from mawdo.experiments.arena import write_arena_report
+    from mawdo.experiments.kinds.arena import write_arena_report
 
     check_output_dir(out, "--out folder")
     try:

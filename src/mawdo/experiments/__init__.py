@@ -12,18 +12,15 @@ transaction; reports and plots read the store only.
 
 Layout: the harness (:mod:`.protocol` with the study-kind registry, :mod:`.plans`, :mod:`.rows`,
 :mod:`.runner`, :mod:`.store`, :mod:`.stats`, :mod:`.tables`) knows no concrete kind; each kind
-is a package that registers itself (:mod:`.benchmark`, :mod:`.planning`, :mod:`.bbob`).
+is a package under :mod:`.kinds` that registers itself (``benchmark``, ``planning``, ``suite``,
+``arena``).
 Importing this package registers the built-in kinds.
 """
 
-from mawdo.experiments import (  # noqa: F401 - registers the built-in kinds
-    arena,
-    bbob,
-    benchmark,
-    planning,
-)
-from mawdo.experiments.benchmark import ExperimentPlan, preset_plan, write_report
-from mawdo.experiments.benchmark.plan import PRESETS
+# one line per study kind: importing its package registers it
+from mawdo.experiments.kinds import arena, benchmark, planning, suite  # noqa: F401
+from mawdo.experiments.kinds.benchmark import ExperimentPlan, preset_plan, write_report
+from mawdo.experiments.kinds.benchmark.plan import PRESETS
 from mawdo.experiments.plans import PlanError, StudyPlanBase
 from mawdo.experiments.protocol import STUDY_KINDS, Study, StudyKind, Task, register_kind
 from mawdo.experiments.rows import RunRow, column

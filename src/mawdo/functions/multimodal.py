@@ -56,7 +56,7 @@ def _power(T: np.ndarray, m: float) -> np.ndarray:
     return T**m
 
 
-def _penalized_1_core(X: np.ndarray) -> np.ndarray:
+def penalized_1_core(X: np.ndarray) -> np.ndarray:
     """The braces of penalized 1 with ``y = 1 + (x + 1)/4``.
 
     ``10 sin^2(pi y_1) + sum_{i<n} (y_i - 1)^2 [1 + 10 sin^2(pi y_{i+1})] + (y_n - 1)^2``
@@ -74,7 +74,7 @@ def penalized_1(X: np.ndarray) -> np.ndarray:
     ``f(x) = (pi/n) {core(y)} + sum_i u(x_i, 10, 100, 4)``, ``y = 1 + (x + 1)/4``.
     """
     n = X.shape[1]
-    return (np.pi / n) * _penalized_1_core(X) + np.sum(penalty_u(X, 10.0, 100.0, 4.0), axis=1)
+    return (np.pi / n) * penalized_1_core(X) + np.sum(penalty_u(X, 10.0, 100.0, 4.0), axis=1)
 
 
 def penalized_2(X: np.ndarray) -> np.ndarray:

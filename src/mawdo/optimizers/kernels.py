@@ -16,7 +16,7 @@ import numpy as np
 from numba import njit
 
 from mawdo.shuffle import (  # noqa: F401  (re-exported)
-    _BATCH,
+    SHUFFLE_BATCH,
     fisher_yates_batch,
     shuffle_from_words,
     shuffle_values_from_words,
@@ -25,8 +25,8 @@ from mawdo.shuffle import (  # noqa: F401  (re-exported)
 
 _LOW32 = np.uint64(0xFFFFFFFF)
 _SHIFT32 = np.uint64(32)
-_SHIFT11 = np.uint64(11)
-_U53 = 1.0 / 9007199254740992.0
+SHIFT11 = np.uint64(11)
+U53 = 1.0 / 9007199254740992.0
 
 
 @njit(cache=True, nogil=True)

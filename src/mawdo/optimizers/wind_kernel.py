@@ -11,8 +11,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from mawdo.optimizers.kernels import _SHIFT11, _U53, xoshiro_step
-from mawdo.shuffle import _BATCH, bounded_draw
+from mawdo.optimizers.kernels import SHIFT11, U53, xoshiro_step
+from mawdo.shuffle import SHUFFLE_BATCH, bounded_draw
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
@@ -102,7 +102,7 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
         if coef_draw == 1:
             for k in range(4):
                 wd, s0, s1, s2, s3 = xoshiro_step(s0, s1, s2, s3)
-                cw[k] = np.float64(wd >> _SHIFT11) * _U53
+                cw[k] = np.float64(wd >> SHIFT11) * U53
         for g in range(G):
             gb = gbest[g]  # a local: the compiler cannot tell that Bv's stores leave gbest alone
             lead = tb if guidance == 0 else gb
@@ -113,7 +113,7 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
                 if coef_draw == 2:
                     for k in range(4):
                         wd, s0, s1, s2, s3 = xoshiro_step(s0, s1, s2, s3)
-                        cw[k] = np.float64(wd >> _SHIFT11) * _U53
+                        cw[k] = np.float64(wd >> SHIFT11) * U53
                 if coef_draw == 0:
                     ci = i if per_parcel else 0
                     for k in range(4):
@@ -217,7 +217,7 @@ def shuffle_values(vals, s0, s1, s2, s3):  # pragma: no cover - compiled
     prod = 1
     for k in range(d - 1, 0, -1):
         n = k + 1
-        if prod * n > _BATCH:
+        if prod * n > SHUFFLE_BATCH:
             x, s0, s1, s2, s3 = xoshiro_step(s0, s1, s2, s3)
             prod = 1
         prod *= n

@@ -102,6 +102,16 @@ class PlannerConfig:
         the result is the same whatever the count, except that a ``replan_time`` budget fits
         more iterations. Leave it at 1 where several planners share the cores (a study with
         several workers).
+    time_guide : bool
+        Receding horizon: consult the safe-interval guide (:mod:`mawdo.planning.timeguide`).
+        Its timed routes from the robot's position and time join the seeds at the first plan
+        and while the robot follows one; at each replan whose chosen candidate is not
+        collision-free to the goal (driven at full speed from now), the robot follows the
+        earliest-arrival timed route instead, waits included (it holds its position for the
+        steps the route waits). Off by default (the ``mawdo_time`` planner turns it on).
+    time_routes : int
+        Timed routes per query of that guide (>= 1): the earliest arrival and up to
+        ``time_routes - 1`` time-diverse alternatives, all seeds.
     """
 
     pop_size: int = 240
@@ -130,6 +140,8 @@ class PlannerConfig:
     polish_rounds: int = 5
     polish_steps: tuple = (0.5, 1.0)
     threads: int = 1
+    time_guide: bool = False
+    time_routes: int = 2
 
     def __post_init__(self) -> None:
         # every optimizer needs two candidates; checked first, so pop_size=1 is named for itself
@@ -162,6 +174,9 @@ class PlannerConfig:
             raise ValueError(f"PlannerConfig.hold_gap={self.hold_gap!r} must be finite and >= 0")
         check_int("PlannerConfig.polish_rounds", self.polish_rounds, 0)
         check_int("PlannerConfig.threads", self.threads, 1)
+        check_int("PlannerConfig.time_routes", self.time_routes, 1)
+        if not isinstance(self.time_guide, bool | np.bool_):
+            raise ValueError(f"PlannerConfig.time_guide={self.time_guide!r} must be True or False")
         steps = np.asarray(self.polish_steps, float)
         if steps.ndim != 1 or steps.size == 0 or not np.all((steps > 0) & (steps <= 1)):
             raise ValueError(

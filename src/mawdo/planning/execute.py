@@ -23,6 +23,7 @@ from mawdo.planning.polish import polish
 from mawdo.planning.result import Drive, PlanResult, Replan
 from mawdo.planning.scenario import Scenario
 from mawdo.planning.seeding import via_paths, warm_seeds
+from mawdo.planning.timeguide import TimedRun, TimeGuide
 from mawdo.streams import replan_seed_sequences
 
 NO_ROUTE = "no collision-free route found"
@@ -73,7 +74,7 @@ class _Watched:
         return self.elite.add(X, self.cost(X, start=start, t0=t0))
 
 
-class Run:
+class Run(TimedRun):
     """State of one run (see :func:`mawdo.planning.planner.plan` for the parameters)."""
 
     def __init__(self, sc: Scenario, algorithm: str, seed, cfg: PlannerConfig, dynamic: bool):
@@ -96,13 +97,26 @@ class Run:
             threads=cfg.threads,
         )
         self.guard = Guard(sc, cfg.clearance)
-        self.optimizers = _optimizers(algorithm, cfg)
+        self.optimizers = self._make_optimizers()
         self.replans: list[Replan] = []
         self.counts = {"waits": 0, "evasions": 0, "fallbacks": 0, "holds": 0}
         self.stalled = False  # the last search found nothing cheaper than its warm start
         self.chosen_index = 0  # which candidate the guard accepted at the last replan
         self._reach = None  # the oracle's answer, when the guide found no route
         self._per_pop = None  # seconds of one population's cost (estimate_seconds)
+        # the safe-interval guide (time_guide): the timed route being followed, and the last
+        # query's (step, routes), asked at most once per replan
+        self.timer = (
+            TimeGuide(sc, cfg.clearance, cfg.time_routes, self.routes)
+            if cfg.time_guide and dynamic
+            else None
+        )
+        self.following = None
+        self.timed_follows = 0  # replans at which the guard chose a timed route
+        self._timed = (-1, [])
+
+    def _make_optimizers(self) -> dict:
+        return _optimizers(self.algorithm, self.cfg)
 
     # -- seeds ---------------------------------------------------------------------------------
 
@@ -116,9 +130,12 @@ class Run:
             rows.append(np.vstack([base, base + noise]))
         return np.clip(np.vstack(rows), lb, ub) if rows else np.empty((0, 2 * self.m))
 
-    def _x0(self, pos, remainder, rng, pop) -> np.ndarray:
+    def _x0(self, pos, remainder, rng, pop, step: int = 0) -> np.ndarray:
         cfg, lb, ub = self.cfg, *self.cost.bounds
         guide = self._guide_seeds(pos, rng, lb, ub)
+        if self.timer is not None:
+            timed = np.clip(self._timed_seeds(pos, step, remainder is None), lb, ub)
+            guide = np.vstack([timed, guide])
         if remainder is None:
             n_via = max(0, int(cfg.seed_fraction * pop) - 1 - len(guide))
             line = densify(np.array([pos, self.sc.goal]), self.m).reshape(1, -1)
@@ -142,7 +159,7 @@ class Run:
         first = remainder is None
         pop = (cfg.first_pop_size or cfg.pop_size) if first else cfg.pop_size
         t_start = time.perf_counter()
-        x0 = self._x0(pos, remainder, rng, pop)
+        x0 = self._x0(pos, remainder, rng, pop, step)
         elite = Elite(cfg.elite_size)
         watched = _Watched(self.cost, elite)
         t = float(step)
@@ -246,6 +263,8 @@ class Run:
                 cands, _ = self.optimise(pos, step, remainder)
                 left = cfg.replan_every - step % cfg.replan_every if self.dynamic else 0
                 chosen = self.choose(cands, pos, step, v * left)
+                if self.timer is not None:
+                    chosen = self._timed_choice(chosen, pos, step)
                 if chosen is None and not self.dynamic:
                     n = self.replans[-1].collisions
                     reason = f"{NO_ROUTE}: the best plan hits obstacles {n} times"
@@ -260,7 +279,7 @@ class Run:
                     continue
                 self.stalled = self.stalled and self.chosen_index == 0
                 stuck, remainder, force = 0, chosen, False
-            pos, remainder, passed, frac = advance(remainder, v)
+            pos, remainder, passed, frac = self._drive(remainder, step)
             drive.move(step, pos, passed, frac)
         return self._finish(drive, reason)
 
@@ -297,7 +316,7 @@ class Run:
         distance, its lower bound, and C2 = C3 = 0. The predictions a plan was verified against
         are the same at every later step, so it stays verified until the goal.
         """
-        if remainder is None or force or not self.dynamic:
+        if remainder is None or force or not self.dynamic or self.following is not None:
             return False
         if self.cfg.mode != "spacetime":  # the frozen-map planner judges by another model
             return False

@@ -75,7 +75,9 @@ def _stat(values: np.ndarray, fn) -> float:
     return float(fn(values)) if values.size else float("nan")
 
 
-def run_metrics(result: PlanResult, l_star: float | None = None, snapshots: int = 8) -> dict:
+def run_metrics(
+    result: PlanResult, l_star: float | None = None, snapshots: int = 8, t_star: float | None = None
+) -> dict:
     """Every metric of one run of any planner, as a flat dict (see :data:`METRICS`).
 
     Parameters
@@ -86,6 +88,12 @@ def run_metrics(result: PlanResult, l_star: float | None = None, snapshots: int 
     snapshots : int
         How many replans get the per-snapshot optimality ratio (each needs an oracle call);
         0: none (``snapshot_gap_*`` are NaN).
+    t_star : float, optional
+        The scene's earliest arrival ``T*`` (time steps, > 0;
+        :func:`~mawdo.planning.sipp.optimum.scenario_time_optimum`). Given, the dict also has
+        ``t_star`` and ``time_gap`` = ``steps / t_star`` (NaN unless the run succeeded), and,
+        for a run with a route, ``active_collisions`` and ``passive_collisions``: the checker's
+        collisions split by whether the robot moved (:mod:`mawdo.planning.check`).
 
     Returns
     -------
@@ -97,6 +105,8 @@ def run_metrics(result: PlanResult, l_star: float | None = None, snapshots: int 
         checker verdict; one without a guard (``result.guarded`` False) has None for the
         guard's counts.
     """
+    if t_star is not None and not (np.isfinite(t_star) and t_star > 0):
+        raise ValueError(f"t_star must be a finite number of time steps > 0, got {t_star!r}")
     l_star = static_optimum(result.scenario) if l_star is None else l_star
     route = result.route if result.route is not None else result.trajectory
     turns = turning_angles(route)
@@ -131,7 +141,21 @@ def run_metrics(result: PlanResult, l_star: float | None = None, snapshots: int 
               "elite_fallbacks": result.fallbacks, "near_misses": result.near_misses,
               "holds": result.holds}  # fmt: skip
     out |= {k: int(v) if result.guarded else None for k, v in counts.items()}
+    if t_star is not None:
+        out |= time_metrics(result, float(t_star))
     return out
+
+
+def time_metrics(result: PlanResult, t_star: float) -> dict:
+    """``t_star``, ``time_gap`` (``steps / t_star``, NaN unless the run succeeded) and the
+    checker's ``active_collisions`` / ``passive_collisions`` (None without a route)."""
+    from mawdo.planning.check import check_trajectory
+
+    out = {"t_star": t_star, "time_gap": result.steps / t_star if result.success else float("nan")}
+    if not result.solved or result.route_times is None:
+        return out | {"active_collisions": None, "passive_collisions": None}
+    rep = check_trajectory(result.route, result.scenario, times=result.route_times)
+    return out | {"active_collisions": len(rep.active), "passive_collisions": len(rep.passive)}
 
 
 def run_metrics_kept(

@@ -6,6 +6,8 @@ name               sees time               what
 =================  ======================  ==========================================
 any optimizer      yes (predicted motion)  the receding-horizon planner driven by it
 mawdo_literal      yes (predicted motion)  MAWDO with the paper's D <= 3 threshold
+mawdo_time         yes (+ safe intervals)  MAWDO with the safe-interval guide on
+guide_only         yes (+ safe intervals)  the guides' best seed, no optimizer
 oracle_follower    positions each step     exact shortest path on the frozen map
 straight           no                      the segment start -> goal
 rrtstar, bitstar,  no                      OMPL, single shot on the static obstacles
@@ -35,6 +37,7 @@ from mawdo.planning.baselines import BASELINES, BaselineSpec, as_plan_result
 from mawdo.planning.config import PlannerConfig, resolve_config, resolve_scenario
 from mawdo.planning.follower import ORACLE_FOLLOWER, follow_oracle
 from mawdo.planning.result import PlanResult
+from mawdo.planning.timed_planners import guide_only_run, mawdo_time_run
 from mawdo.registry import Registry, UnknownNameError, unknown_name_message
 
 __all__ = ["PLANNERS", "PlannerSpec", "run_planner"]
@@ -164,6 +167,10 @@ PLANNERS.register(
     optimizer_planner("mawdo", "mawdo_literal", {"low_dim": 3}, "MAWDO with the paper's D <= 3 "
                       "threshold (docs/deviations.md#d-planning-low-dim)"),
 )  # fmt: skip
+PLANNERS.register("mawdo_time", PlannerSpec("mawdo_time", mawdo_time_run, PREDICTED,
+                  "MAWDO, safe-interval guide on (time_guide)", optimizer="mawdo"))  # fmt: skip
+PLANNERS.register("guide_only", PlannerSpec("guide_only", guide_only_run, PREDICTED,
+                  "the guides' best seed, no optimizer (time_guide on)", seeded=False))  # fmt: skip
 PLANNERS.register(
     ORACLE_FOLLOWER,
     PlannerSpec(ORACLE_FOLLOWER, _follow, "positions each step",

@@ -16,8 +16,8 @@ import numpy as np
 import pytest
 
 from mawdo.experiments import PlanError, Store, run_plan
-from mawdo.experiments.arena import ArenaPlan, arena_tables, write_arena_report
-from mawdo.experiments.arena.report import COLUMNS
+from mawdo.experiments.kinds.arena import ArenaPlan, arena_tables, write_arena_report
+from mawdo.experiments.kinds.arena.report import COLUMNS
 
 from ..conftest import wait_for_tasks
 

@@ -9,7 +9,7 @@ import sqlite3
 import statistics
 
 from mawdo.experiments import Store
-from mawdo.experiments.arena.summary import headline, render_worst, strengths, worst_runs
+from mawdo.experiments.kinds.arena.summary import headline, render_worst, strengths, worst_runs
 
 from .test_arena import reference  # noqa: F401 - the module's tiny study, as a fixture
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from mawdo.experiments import run_plan
-from mawdo.experiments.bbob import SuitePlan
+from mawdo.experiments.kinds.suite import SuitePlan
 
 from ..conftest import stored_values as stored_columns
 

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from mawdo.experiments import Store
-from mawdo.experiments.bbob.ioh_logs import read_analyzer_logs
+from mawdo.experiments.kinds.suite.ioh_logs import read_analyzer_logs
 
 HOURS = ("--runs", "1000", "--budget", "1e7", "--algorithms", "mawdo", "--no-progress")
 

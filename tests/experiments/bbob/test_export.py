@@ -8,8 +8,8 @@ import json
 import numpy as np
 
 from mawdo.experiments import Store
-from mawdo.experiments.bbob import export_ioh
-from mawdo.experiments.bbob.ioh_logs import read_analyzer_logs
+from mawdo.experiments.kinds.suite import export_ioh
+from mawdo.experiments.kinds.suite.ioh_logs import read_analyzer_logs
 
 from .conftest import TINY
 

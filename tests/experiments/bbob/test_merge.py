@@ -11,8 +11,8 @@ import pytest
 
 import mawdo
 from mawdo.experiments import StoreError, run_plan
-from mawdo.experiments.bbob import write_suite_report
-from mawdo.experiments.bbob.data import load_runs
+from mawdo.experiments.kinds.suite import write_suite_report
+from mawdo.experiments.kinds.suite.data import load_runs
 
 from .conftest import tiny_plan
 

@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from mawdo.experiments import STUDY_KINDS, Store, StoreError, run_plan
-from mawdo.experiments.bbob import KIND, SuitePlan
+from mawdo.experiments.kinds.suite import KIND, SuitePlan
 from mawdo.experiments.protocol import plan_from_json
 
 from .conftest import TINY, stored_values, tiny_plan

@@ -5,8 +5,8 @@ from __future__ import annotations
 import pytest
 
 from mawdo.experiments import PlanError
-from mawdo.experiments.bbob import SuitePlan, parse_ids, preset_plan
-from mawdo.experiments.bbob.plan import parse_key, problem_key
+from mawdo.experiments.kinds.suite import SuitePlan, parse_ids, preset_plan
+from mawdo.experiments.kinds.suite.plan import parse_key, problem_key
 
 BASE = {"algorithms": ["mawdo"], "functions": [1]}
 

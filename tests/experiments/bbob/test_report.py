@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 from scipy.stats import rankdata
 
-from mawdo.experiments.bbob import write_suite_report
-from mawdo.experiments.bbob.data import load_runs
-from mawdo.experiments.bbob.measures import ecdf_curves
+from mawdo.experiments.kinds.suite import write_suite_report
+from mawdo.experiments.kinds.suite.data import load_runs
+from mawdo.experiments.kinds.suite.measures import ecdf_curves
 
 from .conftest import TINY
 
@@ -156,7 +156,7 @@ def _line_look(line) -> tuple:
 
 def test_every_algorithm_differs_in_colour_dash_and_marker(tiny_store, tmp_path, monkeypatch):
     """Issue 28: the ECDFs of MAWDO, AWDO and random overlapped in look-alike colours."""
-    from mawdo.experiments.bbob import plots
+    from mawdo.experiments.kinds.suite import plots
 
     drawn = []
     monkeypatch.setattr(plots, "_save", lambda fig, path, svg: drawn.append(fig) or [path])

@@ -11,7 +11,7 @@ import numpy as np
 
 from mawdo.experiments import Store, run_plan
 from mawdo.experiments import runner as runner_mod
-from mawdo.experiments.bbob.plan import parse_key
+from mawdo.experiments.kinds.suite.plan import parse_key
 from mawdo.suites import evaluation_budget, get_problem, run_problem
 
 from .conftest import stored_values, tiny_plan

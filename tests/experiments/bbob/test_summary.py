@@ -7,8 +7,8 @@ import re
 import numpy as np
 import pytest
 
-from mawdo.experiments.bbob import write_suite_report
-from mawdo.experiments.bbob.summary import function_list
+from mawdo.experiments.kinds.suite import write_suite_report
+from mawdo.experiments.kinds.suite.summary import function_list
 
 from .conftest import TINY
 from .test_report import raw_runs, runtime

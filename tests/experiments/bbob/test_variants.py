@@ -9,8 +9,8 @@ import json
 import pytest
 
 from mawdo.experiments import PlanError, Store, run_plan
-from mawdo.experiments.bbob import SuitePlan
-from mawdo.experiments.bbob.variants import parse_option, parse_variant
+from mawdo.experiments.kinds.suite import SuitePlan
+from mawdo.experiments.kinds.suite.variants import parse_option, parse_variant
 
 from .conftest import stored_values
 from .test_cli import mawdo

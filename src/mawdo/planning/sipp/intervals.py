@@ -10,8 +10,9 @@ reachable set (the shape where it is at ``t0``, growing at the walk's top speed)
 :func:`forbidden` gives the closed departure intervals at which a straight timed move collides
 (exact, :mod:`mawdo.planning.sipp.geometry`); :func:`segment_free` is the independent yes/no
 test of one timed move, piece by piece, with the cost kernel's exact primitives
-(:mod:`mawdo.planning.kernel.primitives`); the search accepts a departure only when that test passes. :func:`safe_intervals` gives each vertex's open
-safe intervals (the gaps between the forbidden intervals of a robot standing still).
+(:mod:`mawdo.planning.kernel.primitives`); the search accepts a departure only when that
+test passes. :func:`safe_intervals` gives each vertex's open safe intervals (the gaps between
+the forbidden intervals of a robot standing still).
 """
 
 from __future__ import annotations

@@ -10,10 +10,10 @@ package registers the ``suite`` study kind (called ``bbob`` before: stores and p
 ``kind = "bbob"`` are read as it).
 """
 
-from mawdo.experiments.bbob.execute import SuiteRow, execute_suite_task
-from mawdo.experiments.bbob.export import export_ioh
-from mawdo.experiments.bbob.keys import parse_ids
-from mawdo.experiments.bbob.plan import (
+from mawdo.experiments.kinds.suite.execute import SuiteRow, execute_suite_task
+from mawdo.experiments.kinds.suite.export import export_ioh
+from mawdo.experiments.kinds.suite.keys import parse_ids
+from mawdo.experiments.kinds.suite.plan import (
     KIND,
     OLD_KIND_NAMES,
     PRESET_HELP,
@@ -21,7 +21,7 @@ from mawdo.experiments.bbob.plan import (
     SuitePlan,
     preset_plan,
 )
-from mawdo.experiments.bbob.report import write_suite_report
+from mawdo.experiments.kinds.suite.report import write_suite_report
 from mawdo.experiments.protocol import StudyKind, register_kind
 
 register_kind(

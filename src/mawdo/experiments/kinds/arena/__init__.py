@@ -6,14 +6,14 @@ metrics) and the report (:func:`write_arena_report`: per family and planner tabl
 gap ECDFs, a failure gallery). Importing this package registers the ``arena`` study kind.
 """
 
-from mawdo.experiments.arena.execute import ArenaRow, execute_arena_task
-from mawdo.experiments.arena.plan import (
+from mawdo.experiments.kinds.arena.execute import ArenaRow, execute_arena_task
+from mawdo.experiments.kinds.arena.plan import (
     ARENA_PRESETS,
     ORACLE,
     ArenaPlan,
     arena_preset,
 )
-from mawdo.experiments.arena.report import arena_tables, write_arena_report
+from mawdo.experiments.kinds.arena.report import arena_tables, write_arena_report
 from mawdo.experiments.protocol import StudyKind, register_kind
 
 KIND = "arena"

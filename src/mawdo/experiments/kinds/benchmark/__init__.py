@@ -8,15 +8,15 @@ rows :class:`BenchmarkRow`), reading values back (:mod:`.data`), tables and repo
 Importing this package registers the ``benchmark`` study kind.
 """
 
-from mawdo.experiments.benchmark.execute import BenchmarkRow, execute_benchmark_task
-from mawdo.experiments.benchmark.plan import (
+from mawdo.experiments.kinds.benchmark.execute import BenchmarkRow, execute_benchmark_task
+from mawdo.experiments.kinds.benchmark.plan import (
     PAPER_SEED,
     PRESET_HELP,
     PRESETS,
     ExperimentPlan,
     preset_plan,
 )
-from mawdo.experiments.benchmark.report import write_report
+from mawdo.experiments.kinds.benchmark.report import write_report
 from mawdo.experiments.protocol import StudyKind, register_kind
 
 KIND = "benchmark"

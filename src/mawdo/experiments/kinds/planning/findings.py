@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mawdo.experiments.planning.plan import BASELINE, StudyPlan
+from mawdo.experiments.kinds.planning.plan import BASELINE, StudyPlan
 
 NAN = float("nan")
 DEVIATIONS = "docs/deviations.md"

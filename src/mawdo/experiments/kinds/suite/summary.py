@@ -15,8 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from mawdo.experiments.bbob.data import StudyRuns
-from mawdo.experiments.bbob.measures import RANK_FLOOR, ecdf_curves, friedman_final
+from mawdo.experiments.kinds.suite.data import StudyRuns
+from mawdo.experiments.kinds.suite.measures import RANK_FLOOR, ecdf_curves, friedman_final
 
 
 def final_ecdf(study: StudyRuns, dim: int) -> dict[str, float]:
@@ -73,7 +73,7 @@ def headline(study: StudyRuns, reference: str = "mawdo", baseline: str = "random
     Parameters
     ----------
     study : StudyRuns
-        The study, from :func:`mawdo.experiments.bbob.data.load_runs`.
+        The study, from :func:`mawdo.experiments.kinds.suite.data.load_runs`.
     reference : str
         The algorithm the sentences are about (MAWDO by default).
     baseline : str

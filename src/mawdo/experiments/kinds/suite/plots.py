@@ -15,9 +15,9 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.ticker import NullFormatter
 
-from mawdo.experiments.bbob.data import StudyRuns, precision_at
-from mawdo.experiments.bbob.measures import ecdf_curves, groups
-from mawdo.experiments.bbob.summary import function_list
+from mawdo.experiments.kinds.suite.data import StudyRuns, precision_at
+from mawdo.experiments.kinds.suite.measures import ecdf_curves, groups
+from mawdo.experiments.kinds.suite.summary import function_list
 
 DPI = 110
 PRECISION_FLOOR = 1e-9

@@ -1,6 +1,6 @@
 """The numbers of a suite-study report, as arrays: aRT, fixed-budget precision, Friedman ranks,
-runtime ECDFs. Pure functions of :class:`~mawdo.experiments.bbob.data.StudyRuns`; the tables and
-figures only format them (tests compare these with values recomputed from the raw store).
+runtime ECDFs. Pure functions of :class:`~mawdo.experiments.kinds.suite.data.StudyRuns`; the
+tables and figures only format them (tests compare these with values recomputed from the raw store).
 """
 
 from __future__ import annotations
@@ -9,8 +9,8 @@ import math
 
 import numpy as np
 
-from mawdo.experiments.bbob.data import StudyRuns, precision_at, runtime_table
-from mawdo.experiments.bbob.metrics import (
+from mawdo.experiments.kinds.suite.data import StudyRuns, precision_at, runtime_table
+from mawdo.experiments.kinds.suite.metrics import (
     aggregate_runtime,
     friedman_ranks,
     runtime_ecdf,

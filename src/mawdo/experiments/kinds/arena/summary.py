@@ -133,7 +133,7 @@ def render_worst(store_path, out_dir, planner: str = "mawdo", k: int = 3) -> lis
     ``success``, ``collision_free``, ``gap``. Raises ``RuntimeError`` if a re-run does not
     reproduce the stored verdict and gap (the scene or the planner changed since the study).
     """
-    from mawdo.experiments.arena.execute import plan_scene, scenario_from_toml
+    from mawdo.experiments.kinds.arena.execute import plan_scene, scenario_from_toml
     from mawdo.planning import render
 
     out = Path(out_dir)

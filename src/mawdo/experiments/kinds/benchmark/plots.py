@@ -23,9 +23,9 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from mawdo.experiments.benchmark.data import curves as read_curves
-from mawdo.experiments.benchmark.data import finals as read_finals
-from mawdo.experiments.benchmark.labels import function_label, label
+from mawdo.experiments.kinds.benchmark.data import curves as read_curves
+from mawdo.experiments.kinds.benchmark.data import finals as read_finals
+from mawdo.experiments.kinds.benchmark.labels import function_label, label
 from mawdo.experiments.store import Store
 from mawdo.viz import band
 from mawdo.viz import log_floor as _floor

@@ -1,8 +1,9 @@
 """Plan of the path-planning study (paper Table 6): algorithms x runs on a scenario.
 
 A :class:`StudyPlan` is a :class:`~mawdo.experiments.protocol.Study` of kind ``planning``; its
-tasks are computed by :func:`~mawdo.experiments.planning.execute.execute_planning_task` through
-the same runner and store as every other kind (resume, local pool, Dask).
+tasks are computed by
+:func:`~mawdo.experiments.kinds.planning.execute.execute_planning_task` through the same runner
+and store as every other kind (resume, local pool, Dask).
 
 Seeding: run ``k`` of every algorithm plans with the seed
 ``seed_word([seed, name_word(scenario), k])`` (:mod:`mawdo.streams`), so all algorithms face

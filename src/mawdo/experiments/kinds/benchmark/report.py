@@ -33,10 +33,14 @@ from pathlib import Path
 import numpy as np
 
 from mawdo.experiments import stats
-from mawdo.experiments.benchmark.data import finals as read_finals
-from mawdo.experiments.benchmark.labels import function_label, label
-from mawdo.experiments.benchmark.paper_values import NOT_COMPARABLE, OTHER_FORMULA, paper_entry
-from mawdo.experiments.benchmark.plan import ExperimentPlan
+from mawdo.experiments.kinds.benchmark.data import finals as read_finals
+from mawdo.experiments.kinds.benchmark.labels import function_label, label
+from mawdo.experiments.kinds.benchmark.paper_values import (
+    NOT_COMPARABLE,
+    OTHER_FORMULA,
+    paper_entry,
+)
+from mawdo.experiments.kinds.benchmark.plan import ExperimentPlan
 from mawdo.experiments.store import Store
 from mawdo.experiments.tables import Table, to_csv, to_latex, to_markdown
 from mawdo.optimizers import ABLATION_ALGORITHMS
@@ -319,7 +323,7 @@ def paper_table(data: SweepData) -> Table | None:
             t.rows.append(row)
     t.notes.append(
         "Paper values from Tables 3 and 5 of arXiv 2511.20394 "
-        "(src/mawdo/experiments/benchmark/paper_values.py)."
+        "(src/mawdo/experiments/kinds/benchmark/paper_values.py)."
     )
     t.notes += comparability_notes([function_label(f) for f in data.functions])
     diffs = [
@@ -485,7 +489,7 @@ def write_report(
         tables = build_tables(data)
         figures: list[Path] = []
         if plots and data.algorithms:
-            from mawdo.experiments.benchmark import plots as plotting
+            from mawdo.experiments.kinds.benchmark import plots as plotting
 
             formats = ("png", "svg") if svg else ("png",)
             figures += plotting.convergence_figure(store, out / "convergence", formats)

@@ -20,8 +20,8 @@ from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import Field, field_validator, model_validator
 
-from mawdo.experiments.bbob.keys import parse_key, problem_key
-from mawdo.experiments.bbob.variants import canonical_name, check_variants, describe_setup
+from mawdo.experiments.kinds.suite.keys import parse_key, problem_key
+from mawdo.experiments.kinds.suite.variants import canonical_name, check_variants, describe_setup
 from mawdo.experiments.plans import PlanError, StudyPlanBase
 from mawdo.experiments.protocol import Task, missing_run_tasks
 from mawdo.optimizers import PAPER_ALGORITHMS, make_optimizer

@@ -15,8 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
-from mawdo.experiments.arena.execute import scenario_from_toml
-from mawdo.experiments.arena.plan import ArenaPlan
+from mawdo.experiments.kinds.arena.execute import scenario_from_toml
+from mawdo.experiments.kinds.arena.plan import ArenaPlan
 from mawdo.experiments.store import Store
 from mawdo.experiments.tables import Table, to_csv, to_latex, to_markdown
 
@@ -266,9 +266,9 @@ def write_arena_report(
 ) -> Path:
     """Tables (Markdown, LaTeX, CSV), headline sentences (``summary.md``), ECDFs, the failure
     gallery and the ``worst`` worst scenes of MAWDO (re-run, see
-    :func:`mawdo.experiments.arena.summary.render_worst`) into ``out_dir``; returns the Markdown
-    report's path."""
-    from mawdo.experiments.arena.summary import headline, render_worst
+    :func:`mawdo.experiments.kinds.arena.summary.render_worst`) into ``out_dir``; returns the
+    Markdown report's path."""
+    from mawdo.experiments.kinds.arena.summary import headline, render_worst
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

@@ -2,7 +2,7 @@
 
 Everything a report or an export shows comes from here: the store's best-so-far records, read
 through :func:`load_runs`, turned into runtimes to targets (:func:`runtime_table`) and values at
-budgets (:func:`precision_at`) with :mod:`mawdo.experiments.bbob.metrics`.
+budgets (:func:`precision_at`) with :mod:`mawdo.experiments.kinds.suite.metrics`.
 """
 
 from __future__ import annotations
@@ -13,8 +13,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mawdo.experiments.bbob.metrics import fixed_budget, runtimes
-from mawdo.experiments.bbob.plan import KIND
+from mawdo.experiments.kinds.suite.metrics import fixed_budget, runtimes
+from mawdo.experiments.kinds.suite.plan import KIND
 from mawdo.experiments.store import Store
 
 

@@ -15,14 +15,14 @@ from pathlib import Path
 import numpy as np
 
 from mawdo.experiments import stats
-from mawdo.experiments.planning.findings import (
+from mawdo.experiments.kinds.planning.findings import (
     PAPER_TABLE6,
     label,
     plan_dims,
     short,
     table6_notes,
 )
-from mawdo.experiments.planning.plan import BASELINE, StudyPlan
+from mawdo.experiments.kinds.planning.plan import BASELINE, StudyPlan
 from mawdo.experiments.store import Store
 from mawdo.experiments.tables import Table, to_csv, to_latex, to_markdown
 

@@ -6,14 +6,14 @@ registers the ``planning`` study kind. (The planner itself is :mod:`mawdo.planni
 below.)
 """
 
-from mawdo.experiments.planning.execute import PlanningRow, execute_planning_task
-from mawdo.experiments.planning.plan import (
+from mawdo.experiments.kinds.planning.execute import PlanningRow, execute_planning_task
+from mawdo.experiments.kinds.planning.plan import (
     BASELINE,
     STUDY_PRESETS,
     StudyPlan,
     study_preset,
 )
-from mawdo.experiments.planning.report import write_study_report
+from mawdo.experiments.kinds.planning.report import write_study_report
 from mawdo.experiments.protocol import StudyKind, register_kind
 
 KIND = "planning"

@@ -4,16 +4,16 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from mawdo.experiments.bbob.data import load_runs
-from mawdo.experiments.bbob.ioh_logs import IOHRun, write_analyzer_logs
+from mawdo.experiments.kinds.suite.data import load_runs
+from mawdo.experiments.kinds.suite.ioh_logs import IOHRun, write_analyzer_logs
 from mawdo.suites import SUITES
 
 
 def export_ioh(store_path, folder) -> list[Path]:
     """Write every stored run as IOHanalyzer data: ``folder/<algorithm>/IOHprofiler_f*.json``
     and ``data_f*/IOHprofiler_f*_DIM*.dat`` (ioh's ``Analyzer`` format, see
-    :mod:`mawdo.experiments.bbob.ioh_logs`). Zip ``folder`` (or one algorithm's folder) and upload
-    it to IOHanalyzer.
+    :mod:`mawdo.experiments.kinds.suite.ioh_logs`). Zip ``folder`` (or one algorithm's folder)
+    and upload it to IOHanalyzer.
 
     Parameters
     ----------

@@ -7,8 +7,8 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from mawdo.experiments.bbob.data import StudyRuns, load_runs
-from mawdo.experiments.bbob.measures import (
+from mawdo.experiments.kinds.suite.data import StudyRuns, load_runs
+from mawdo.experiments.kinds.suite.measures import (
     ART_TARGETS,
     RANK_FLOOR,
     art,
@@ -17,7 +17,7 @@ from mawdo.experiments.bbob.measures import (
     median_precision,
     success_counts,
 )
-from mawdo.experiments.bbob.summary import headline
+from mawdo.experiments.kinds.suite.summary import headline
 from mawdo.experiments.tables import Table, to_csv, to_latex, to_markdown
 
 
@@ -118,7 +118,8 @@ def write_suite_report(
     ----------
     store_path : str, Path or sequence of them
         A store of a suite study (``mawdo bench run --suite ...``), or several stores of one
-        study (e.g. one per dimension), merged by :func:`~mawdo.experiments.bbob.data.load_runs`.
+        study (e.g. one per dimension), merged by
+        :func:`~mawdo.experiments.kinds.suite.data.load_runs`.
     out_dir : str or Path
         Output folder (created).
     plots, svg : bool
@@ -159,7 +160,7 @@ def write_suite_report(
         _write(t, out)
         lines += [to_markdown(t), ""]
     if plots:
-        from mawdo.experiments.bbob.plots import plot_convergence, plot_ecdfs
+        from mawdo.experiments.kinds.suite.plots import plot_convergence, plot_ecdfs
 
         for dim in study.dims:
             for p in plot_ecdfs(study, dim, out, svg) + plot_convergence(study, dim, out, svg):

@@ -1,0 +1,82 @@
+"""Timed families (issue 27): MAWDO with and without the safe-interval guide, and the guides
+alone, against the issue's targets.
+
+``python -m benchmarks timed`` (or ``python benchmarks/bench_timed.py [--scenes N]
+[--families a,b] [--planners p,q] [--workers W] [--no-paper]``). For each timed family, scenes
+``0 .. N-1`` of seed 0, each planner once (seed 0, ``realtime`` preset): success share, active
+collisions (checker, every run), and the median and p95 of ``T / T*`` over the successful runs;
+then the paper scenario with ``mawdo_time`` against ``mawdo`` (success, ``L / L*``).
+Targets: success >= 99 %, 0 active collisions, ``T / T*`` median <= 1.05 and p95 <= 1.15.
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+from concurrent.futures import ProcessPoolExecutor
+
+import numpy as np
+
+FAMILIES = ("corridor", "doorway", "chaser", "crowd", "parked", "slalom")
+PLANNERS = ("mawdo", "mawdo_time", "guide_only")
+
+
+def _one(args):
+    family, index, planner = args
+    from mawdo.planning.metrics import run_metrics
+    from mawdo.planning.planners import run_planner
+    from mawdo.planning.scenes import generate_scene
+
+    scene = generate_scene(family, index, seed=0)
+    t0 = time.perf_counter()
+    res = run_planner(planner, scene.scenario, seed=0)
+    wall = time.perf_counter() - t0
+    m = run_metrics(res, l_star=scene.l_star, snapshots=0, t_star=scene.t_star)
+    return family, index, planner, m, wall
+
+
+def _paper(planner):
+    from mawdo.planning.metrics import run_metrics
+    from mawdo.planning.planners import run_planner
+
+    res = run_planner(planner, "paper", seed=0)
+    return planner, run_metrics(res, snapshots=0)
+
+
+def _row(name, runs) -> str:
+    ok = [m for m in runs if m["success"]]
+    act = sum(m["active_collisions"] or 0 for m in runs)
+    gaps = np.array([m["time_gap"] for m in ok])
+    med, p95 = (np.median(gaps), np.percentile(gaps, 95)) if gaps.size else (np.nan, np.nan)
+    return (f"{name:24s} success {len(ok)}/{len(runs)} (target >= 99 %)  active {act} "
+            f"(target 0)  T/T* median {med:.3f} (<= 1.05)  p95 {p95:.3f} (<= 1.15)")  # fmt: skip
+
+
+def main(argv=None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--scenes", type=int, default=5)
+    ap.add_argument("--families", default=",".join(FAMILIES))
+    ap.add_argument("--planners", default=",".join(PLANNERS))
+    ap.add_argument("--workers", type=int, default=1)
+    ap.add_argument("--no-paper", action="store_true")
+    a = ap.parse_args([] if argv is None else argv)
+    fams, plans = a.families.split(","), a.planners.split(",")
+    jobs = [(f, i, p) for f in fams for i in range(a.scenes) for p in plans]
+    with ProcessPoolExecutor(a.workers) as pool:
+        out = list(pool.map(_one, jobs))
+        paper = [] if a.no_paper else list(pool.map(_paper, ["mawdo", "mawdo_time"]))
+    for f, i, p, m, wall in out:
+        print(f"  {f}-{i} {p:11s} ok={m['success']!s:5s} active={m['active_collisions']} "
+              f"passive={m['passive_collisions']} T/T*={m['time_gap']:.3f} {wall:.0f}s "
+              f"{'' if m['success'] else m['reason'][:70]}")  # fmt: skip
+    for f in fams:
+        for p in plans:
+            print(_row(f"{f} {p}", [m for ff, _, pp, m, _ in out if ff == f and pp == p]))
+    for p, m in paper:
+        print(f"paper {p:11s} success {m['success']}  L/L* {m['gap']:.4f}  steps {m['steps']}")
+
+
+if __name__ == "__main__":
+    import sys
+
+    main(sys.argv[1:])

@@ -1,0 +1,147 @@
+"""The safe-interval guide inside the run loop (``PlannerConfig.time_guide``, issue 27).
+
+At every (re)plan the run asks the :class:`~mawdo.planning.sipp.guide.SafeIntervalGuide` for
+the earliest-arrival timed route from the robot's position and time, and up to
+``time_routes - 1`` time-diverse alternatives. Their geometry joins the seeds; the guard
+follows the earliest one (waits included) when no static candidate is safe to the goal or
+when it arrives earlier than the best safe one (:mod:`mawdo.planning.execute`).
+
+A candidate of the optimizer is a path driven at the robot's full speed: it cannot wait. A
+timed route can, so the run drives it step by step from its clock (:func:`position_at`): a
+wait is the robot holding its position for the steps the route says.
+
+Waiting spots: the guide's roadmap has the static visibility graph's corners plus
+:func:`~mawdo.planning.sipp.optimum.dodge_spots` along each static guide route (points on the
+route and beside it every few robot radii), where the robot may wait or step aside.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mawdo.planning.path import advance, densify, polyline_length
+from mawdo.planning.scenario import Scenario
+
+__all__ = ["TimeGuide", "TimedRun", "position_at", "route_geometry"]
+
+
+class TimeGuide:
+    """Timed routes of a scenario from any state of a run.
+
+    Parameters
+    ----------
+    scenario : Scenario
+    clearance : float
+        Margin (px, >= 0) added to the robot radius, as in the guard.
+    k : int
+        Most timed routes per query (>= 1): the earliest and ``k - 1`` time-diverse ones.
+    static_routes : sequence of numpy.ndarray
+        Static guide routes (pixels) along which waiting spots are placed.
+    """
+
+    def __init__(self, scenario: Scenario, clearance: float, k: int, static_routes=()) -> None:
+        from mawdo.planning.sipp.optimum import dodge_spots
+
+        self.scenario, self.clearance, self.k = scenario, float(clearance), int(k)
+        spots = [dodge_spots(r, scenario) for r in static_routes]
+        self.spots = np.unique(np.vstack(spots), axis=0) if spots else np.zeros((0, 2))
+
+    def routes(self, pos, t: float) -> list:
+        """Timed routes (:class:`~mawdo.planning.sipp.guide.TimedRoute`) from ``pos``
+        (pixels) at time ``t`` (time steps), earliest arrival first; empty when none reaches
+        the goal within the guide's horizon or the robot stands inside a grown mover (the
+        guard then has only its old fallbacks)."""
+        from mawdo.planning.sipp.guide import SafeIntervalGuide
+
+        try:
+            guide = SafeIntervalGuide(
+                self.scenario, start=pos, t0=float(t), clearance=self.clearance, spots=self.spots
+            )
+            return guide.routes(self.k)
+        except ValueError:  # the start inside a grown obstacle: no safe timed route
+            return []
+
+
+def position_at(route, t: float) -> np.ndarray:
+    """Where a timed route is at time ``t`` (time steps; clamped to its ends), pixels."""
+    times, pts = route.times, route.points
+    if t <= times[0]:
+        return pts[0].copy()
+    if t >= times[-1]:
+        return pts[-1].copy()
+    i = int(np.searchsorted(times, t, side="right")) - 1
+    span = times[i + 1] - times[i]
+    w = 0.0 if span <= 0 else (t - times[i]) / span
+    return pts[i] + w * (pts[i + 1] - pts[i])
+
+
+def passed_between(route, t0: float, t1: float):
+    """Vertices of a timed route strictly between times ``t0`` and ``t1`` (a step), with the
+    fractions of the step at which they are reached: ``(points (j, 2), fractions (j,))``."""
+    inside = (route.times > t0) & (route.times < t1)
+    return route.points[inside], (route.times[inside] - t0) / (t1 - t0)
+
+
+def route_geometry(route, pos=None) -> np.ndarray:
+    """A timed route's path without its waits (repeated points dropped), optionally from
+    ``pos`` instead of its first point; pixels, shape (j, 2)."""
+    return _without_waits(route.points if pos is None else np.vstack([pos, route.points[1:]]))
+
+
+def _without_waits(pts: np.ndarray) -> np.ndarray:
+    keep = np.ones(len(pts), bool)
+    keep[1:] = np.any(np.abs(np.diff(pts, axis=0)) > 1e-12, axis=1)
+    out = pts[keep]
+    return out if len(out) >= 2 else np.vstack([out, out])
+
+
+class TimedRun:
+    """The run loop's use of a :class:`TimeGuide` (mixed into
+    :class:`~mawdo.planning.execute.Run`, which sets ``timer``, ``following``, ``_timed`` and
+    ``timed_follows``)."""
+
+    def _timed_seeds(self, pos, step: int, first: bool) -> np.ndarray:
+        """The timed routes' paths (waits dropped) as seeds: at the first plan and while the
+        robot follows a timed route (elsewhere the guide is asked only when the guard needs
+        it, :meth:`_timed_choice`)."""
+        if self.timer is None or not (first or self.following is not None):
+            return np.empty((0, 2 * self.m))
+        rows = [densify(route_geometry(r, pos), self.m).reshape(-1)
+                for r in self._timed_routes(pos, step)]  # fmt: skip
+        return np.array(rows).reshape(-1, 2 * self.m)
+
+    def _timed_routes(self, pos, step: int) -> list:
+        if self._timed[0] != step:
+            self._timed = (step, self.timer.routes(pos, float(step)))
+        return self._timed[1]
+
+    def _drive(self, remainder, step: int):
+        """One step along the plan: ``(pos, remainder, passed, frac)`` (see
+        :func:`~mawdo.planning.path.advance`); a followed timed route is driven by its clock,
+        so that its waits hold the robot in place."""
+        if self.following is None:
+            return advance(remainder, self.sc.robot_speed)
+        route = self.following
+        pos = position_at(route, step + 1.0)
+        passed, frac = passed_between(route, float(step), step + 1.0)
+        ahead = route.times > step + 1.0
+        rest = _without_waits(np.vstack([pos, route.points[ahead]]))
+        if not ahead.any():  # the route ends within this step: at the goal
+            self.following = None
+        return pos, rest, passed, frac
+
+    def _timed_choice(self, chosen, pos, step: int):
+        """The guard's use of the safe-interval guide: a candidate the guard accepted is kept
+        when it is collision-free to the goal (driven at full speed from now); else the robot
+        follows the earliest timed route, when there is one (else the old fallbacks)."""
+        self.following = None
+        if chosen is not None:
+            length = polyline_length(chosen)
+            if self.guard.stretch_hits(chosen, float(step), length) == 0:
+                return chosen
+        timed = self._timed_routes(pos, step)
+        if not timed:
+            return chosen
+        self.following = timed[0]
+        self.timed_follows += 1
+        return route_geometry(timed[0], pos)
