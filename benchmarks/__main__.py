@@ -19,6 +19,7 @@ SUITES = [
     "bench_arena",
     "bench_bbob",
     "bench_sipp",
+    "bench_timed",
     "bench_startup",
     "bench_threads",
 ]
