@@ -15,9 +15,13 @@ import json
 import tomllib
 from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import Annotated, Any, ClassVar
 
-from pydantic import BaseModel, ConfigDict, ValidationError
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
+
+#: A plan's count field: an int >= 1, strictly (a TOML ``runs = 3.5`` or ``true`` is an error,
+#: not silently 3 or 1). Shared by the kinds' plans.
+PositiveInt = Annotated[int, Field(strict=True, ge=1)]
 
 
 class PlanError(ValueError):

@@ -28,7 +28,7 @@ from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import AfterValidator, Field, field_validator
 
-from mawdo.experiments.plans import PlanError, StudyPlanBase
+from mawdo.experiments.plans import PlanError, PositiveInt, StudyPlanBase
 from mawdo.experiments.protocol import Task, missing_run_tasks
 from mawdo.functions import FUNCTIONS, PAPER_SUITE
 from mawdo.optimizers import ABLATION_ALGORITHMS, OPTIMIZERS, PAPER_ALGORITHMS, make_optimizer
@@ -56,8 +56,6 @@ def _check_function(name: str) -> str:
 
 AlgorithmName = Annotated[str, AfterValidator(_check_algorithm)]
 FunctionName = Annotated[str, AfterValidator(_check_function)]
-# strict: a TOML ``runs = 3.5`` or ``runs = true`` is an error, not silently 3 or 1.
-PositiveInt = Annotated[int, Field(strict=True, ge=1)]
 
 
 class ExperimentPlan(StudyPlanBase):

@@ -22,7 +22,7 @@ from pydantic import Field, field_validator, model_validator
 
 from mawdo.experiments.kinds.suite.keys import parse_key, problem_key
 from mawdo.experiments.kinds.suite.variants import canonical_name, check_variants, describe_setup
-from mawdo.experiments.plans import PlanError, StudyPlanBase
+from mawdo.experiments.plans import PlanError, PositiveInt, StudyPlanBase
 from mawdo.experiments.protocol import Task, missing_run_tasks
 from mawdo.optimizers import PAPER_ALGORITHMS, make_optimizer
 from mawdo.streams import name_word
@@ -41,9 +41,6 @@ KIND = "suite"
 OLD_KIND_NAMES = ("bbob",)
 """Names the kind had before (stores and plan files made then say ``kind = "bbob"``): read as
 :data:`KIND`. The plan hash never held the kind, so their hashes stay valid."""
-
-
-PositiveInt = Annotated[int, Field(strict=True, ge=1)]
 
 
 class SuitePlan(StudyPlanBase):
