@@ -20,6 +20,15 @@ from mawdo.interrupts import SigintWatch, is_interrupt
 from .conftest import small_plan, stored_values
 
 
+@pytest.fixture(autouse=True)
+def _sigint_raises_keyboard_interrupt():
+    """Python's own SIGINT handler, whatever this process inherited: a run started in the
+    background of a non-interactive shell ignores SIGINT, and these tests need it raised."""
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, before)
+
+
 def _sigint_self() -> None:
     os.kill(os.getpid(), signal.SIGINT)
 

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 import shapely
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from mawdo.planning import check_static_path, check_trajectory, scenario_from_dict
@@ -30,6 +30,7 @@ boxes = st.tuples(
 
 
 @given(box=boxes, margin=st.floats(0.05, 5))
+@example(box=(136.0, 40.0, 40.0, 5.0, 5.0), margin=1.0)  # the around path's end near the border
 @settings(max_examples=60, deadline=None)
 def test_flags_a_path_through_an_obstacle_and_passes_one_around_it(box, margin):
     x, y, w, h, r = box
@@ -47,8 +48,9 @@ def test_flags_a_path_through_an_obstacle_and_passes_one_around_it(box, margin):
     around = np.array([[x - 20, cy], [x - d, y - d], [x + w + d, y - d], [x + w + 20, cy]])
     ok = check_static_path(around, [poly], radius=r)
     assert ok.ok and ok.min_clearance == pytest.approx(margin, abs=1e-9)
-    # the same through the scenario/trajectory checker (static obstacle, any timing)
-    sc = scenario([{"shape": "polygon", "vertices": poly.vertices}], radius=r)
+    # the same through the scenario/trajectory checker (static obstacle, any timing); the map
+    # is wide enough that the paths' ends (up to x + w + 20 = 200 px) keep r off its border
+    sc = scenario([{"shape": "polygon", "vertices": poly.vertices}], radius=r, width=240.0)
     assert not check_trajectory(np.linspace(*through, 30), sc).ok
     assert check_trajectory(around, sc, t0=3.0).ok
 
