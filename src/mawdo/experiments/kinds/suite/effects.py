@@ -157,7 +157,8 @@ def _fmt_art(v) -> str:
 
 def effect_tables(study: StudyRuns, dim: int) -> list[Table]:
     """The effect tables of one dimension: ECDF-area effects, aRT ratios, the bases' own areas
-    and, for pairs of switches, the interaction (pair effect minus the two single effects)."""
+    and, for pairs of switches, the interaction (pair effect minus the two single effects).
+    Empty when the study holds no component variant beside its base."""
     pairs = component_pairs(study)
     if not pairs:
         return []
@@ -165,61 +166,65 @@ def effect_tables(study: StudyRuns, dim: int) -> list[Table]:
     data = EffectData(study, dim, [*bases, *(v for v, _ in pairs)])
     grp = groups(study)
     cols = list(grp)
-    n_units = len(data.units)
     note = (
-        f"Bootstrap 95 % CI over {n_units} (instance, run) units, {BOOTSTRAP} resamples; the "
-        "variant shares every seed with its base."
+        f"Bootstrap 95 % CI over {len(data.units)} (instance, run) units, {BOOTSTRAP} "
+        "resamples; the variant shares every seed with its base."
     )
+    head = f"{study.suite} D={dim}: "
     area_rows = [[v, b, *(_fmt_area(data.area_effect(v, b, f)) for f in grp.values())]
                  for v, b in pairs]  # fmt: skip
     art_rows = [[v, b, *(_fmt_art(data.art_ratio(v, b, f)) for f in grp.values())]
                 for v, b in pairs]  # fmt: skip
-    level_rows = [
-        [b, *(100 * np.mean([data.area[b, f].mean() for f in fids]) for fids in grp.values())]
-        for b in bases
-    ]
+    targets = ", ".join(f"{t:g}" for t in ART_TARGETS)
     tables = [
         Table(
             name=f"effects_area_d{dim}",
-            title=f"{study.suite} D={dim}: effect of each component switch on the ECDF area "
-            "(percentage points, variant - base; > 0: the switch helps)",
+            title=head + "effect of each component switch on the ECDF area (percentage "
+            "points, variant - base; > 0: the switch helps)",
             columns=["variant", "base", *cols],
             rows=area_rows,
             notes=[note, "ECDF area: 51 targets 1e2..1e-8, log budget from D to the budget."],
         ),
         Table(
             name=f"effects_art_d{dim}",
-            title=f"{study.suite} D={dim}: aRT(variant) / aRT(base), geometric mean over the "
-            "(function, target) cells both solve (< 1: the switch helps)",
+            title=head + "aRT(variant) / aRT(base), geometric mean over the (function, target) "
+            "cells both solve (< 1: the switch helps)",
             columns=["variant", "base", *cols],
             rows=art_rows,
             notes=[
                 note,
-                f"Targets {', '.join(f'{t:g}' for t in ART_TARGETS)}; (cells; "
-                "+solved only by the variant/-only by the base).",
+                f"Targets {targets}; (cells; +solved only by the variant/-only by the base).",
             ],  # fmt: skip
         ),
-        Table(
-            name=f"effects_bases_d{dim}",
-            title=f"{study.suite} D={dim}: ECDF area of the bases (percent)",
-            columns=["algorithm", *cols],
-            rows=level_rows,
-            formats=dict.fromkeys(cols, ".1f"),
-        ),
+        _bases_table(data, bases, grp, head, f"effects_bases_d{dim}"),
     ]
     inter = _interaction_rows(data, pairs, grp)
     if inter:
         tables.append(
             Table(
                 name=f"effects_pairs_d{dim}",
-                title=f"{study.suite} D={dim}: interaction of two switches on the ECDF area "
-                "(pair effect - sum of the single effects, percentage points)",
+                title=head + "interaction of two switches on the ECDF area (pair effect - sum "
+                "of the single effects, percentage points)",
                 columns=["pair", *cols],
                 rows=inter,
                 notes=[note],
             )
         )
     return tables
+
+
+def _bases_table(data: EffectData, bases, grp, head: str, name: str) -> Table:
+    rows = [
+        [b, *(100 * np.mean([data.area[b, f].mean() for f in fids]) for fids in grp.values())]
+        for b in bases
+    ]
+    return Table(
+        name=name,
+        title=head + "ECDF area of the bases (percent)",
+        columns=["algorithm", *grp],
+        rows=rows,
+        formats=dict.fromkeys(grp, ".1f"),
+    )
 
 
 def _interaction_rows(data: EffectData, pairs, grp) -> list[list]:
