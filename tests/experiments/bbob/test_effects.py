@@ -88,6 +88,7 @@ def test_effects_by_hand_on_a_two_unit_study():
         runs += [_run("wdo-flat", 1, inst, run, [20], [0.0])]
         f2 = ([1, 10], [500.0, 1.0]) if inst == 1 else ([1], [500.0])
         runs += [_run("wdo-flat", 2, inst, run, *f2)]
+    runs += [_run("random", f, i, 0, [1], [500.0]) for f in (1, 2) for i in (1, 2)]
     study = _study(runs)
     data = EffectData(study, 2, ["wdo", "wdo-flat"])
     budget, dim = 50.0, 2
@@ -109,7 +110,11 @@ def test_effects_by_hand_on_a_two_unit_study():
     assert (cells, gained, lost) == (5, 1, 0)  # f1 at its 5 targets; f2 at 1e1 by the variant
     tables = {t.name: t for t in effect_tables(study, 2)}
     assert set(tables) == {"effects_area_d2", "effects_art_d2", "effects_bases_d2"}
+    assert tables["effects_area_d2"].rows == [tables["effects_area_d2"].rows[0]]
     assert tables["effects_area_d2"].rows[0][:2] == ["wdo-flat", "wdo"]
+    levels = tables["effects_bases_d2"].rows  # the base and the other algorithms, not variants
+    assert [row[0] for row in levels] == ["wdo", "random"]
+    assert levels[0][1] == pytest.approx(100 * a_base / 2) and levels[1][1] == 0.0
 
 
 @pytest.mark.slow

@@ -98,11 +98,12 @@ def _ci(samples: np.ndarray) -> tuple[float, float]:
 
 
 class EffectData:
-    """Per-unit measures of the algorithms of one dimension, computed once for all tables."""
+    """Per-unit measures of the algorithms of one dimension, computed once for all tables; the
+    units are the (instance, run) pairs of ``unit_source`` (default: the first algorithm)."""
 
-    def __init__(self, study: StudyRuns, dim: int, algorithms):
+    def __init__(self, study: StudyRuns, dim: int, algorithms, unit_source: str | None = None):
         self.study, self.dim = study, dim
-        self.units = _units(study, algorithms[0], dim)
+        self.units = _units(study, unit_source or algorithms[0], dim)
         rng = np.random.default_rng(BOOT_SEED)
         self.idx = rng.integers(0, len(self.units), (BOOTSTRAP, len(self.units)))
         ecdf_t = standard_targets()
@@ -162,8 +163,10 @@ def effect_tables(study: StudyRuns, dim: int) -> list[Table]:
     pairs = component_pairs(study)
     if not pairs:
         return []
-    bases = sorted({b for _, b in pairs}, key=study.algorithms.index)
-    data = EffectData(study, dim, [*bases, *(v for v, _ in pairs)])
+    variants = {v for v, _ in pairs}
+    # the bases and every other algorithm of the study (references such as cmaes, random)
+    levels = [a for a in study.algorithms if a not in variants]
+    data = EffectData(study, dim, [*levels, *(v for v, _ in pairs)], unit_source=pairs[0][1])
     grp = groups(study)
     cols = list(grp)
     note = (
@@ -196,7 +199,7 @@ def effect_tables(study: StudyRuns, dim: int) -> list[Table]:
                 f"Targets {targets}; (cells; +solved only by the variant/-only by the base).",
             ],  # fmt: skip
         ),
-        _bases_table(data, bases, grp, head, f"effects_bases_d{dim}"),
+        _bases_table(data, levels, grp, head, f"effects_bases_d{dim}"),
     ]
     inter = _interaction_rows(data, pairs, grp)
     if inter:
@@ -213,14 +216,14 @@ def effect_tables(study: StudyRuns, dim: int) -> list[Table]:
     return tables
 
 
-def _bases_table(data: EffectData, bases, grp, head: str, name: str) -> Table:
+def _bases_table(data: EffectData, levels, grp, head: str, name: str) -> Table:
     rows = [
-        [b, *(100 * np.mean([data.area[b, f].mean() for f in fids]) for fids in grp.values())]
-        for b in bases
+        [a, *(100 * np.mean([data.area[a, f].mean() for f in fids]) for fids in grp.values())]
+        for a in levels
     ]
     return Table(
         name=name,
-        title=head + "ECDF area of the bases (percent)",
+        title=head + "ECDF area of the bases and the other algorithms (percent)",
         columns=["algorithm", *grp],
         rows=rows,
         formats=dict.fromkeys(grp, ".1f"),
