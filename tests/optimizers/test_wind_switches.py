@@ -126,6 +126,8 @@ SWITCHES = [
     ("mawdo2", {"groups": 2, "guidance": "group"}, {"guidance": "global"}, "pressure"),
     ("mawdo2", {"groups": 2}, {"gate": False}, "pressure"),
     ("mawdo2", {"groups": 2}, {"guidance": "global"}, "pressure"),
+    # groups off: one group (its best is tbest) and ranks over the whole population
+    ("mawdo2", {"groups": 2}, {"groups": 1, "rank_scope": "population"}, ("pressure", "coriolis")),
 ]
 
 
