@@ -19,7 +19,12 @@ from mawdo.experiments.kinds.suite.components import (
     switch_options,
 )
 from mawdo.experiments.kinds.suite.data import StoredRun, StudyRuns
-from mawdo.experiments.kinds.suite.effects import EffectData, effect_tables, run_area
+from mawdo.experiments.kinds.suite.effects import (
+    EffectData,
+    centre_pull,
+    effect_tables,
+    run_area,
+)
 from mawdo.experiments.kinds.suite.metrics import aggregate_runtime, runtime_ecdf
 
 
@@ -69,9 +74,9 @@ def test_stacked_aggregate_runtime_equals_one_call_per_sample():
         np.testing.assert_array_equal(stacked[k], aggregate_runtime(rt[k], spent[k]))
 
 
-def _run(algo, fid, inst, run, evals, values, budget=100):
+def _run(algo, fid, inst, run, evals, values, budget=100, best_x=(0.0, 0.0)):
     return StoredRun(algo, fid, inst, 2, run, "f", 0.0, np.array(evals), np.array(values),
-                     budget, budget, np.zeros(2))  # fmt: skip
+                     budget, budget, np.array(best_x))  # fmt: skip
 
 
 def _study(runs) -> StudyRuns:
@@ -109,12 +114,28 @@ def test_effects_by_hand_on_a_two_unit_study():
     assert ratio == pytest.approx(0.5) and rlo == pytest.approx(0.5) == rhi
     assert (cells, gained, lost) == (5, 1, 0)  # f1 at its 5 targets; f2 at 1e1 by the variant
     tables = {t.name: t for t in effect_tables(study, 2)}
-    assert set(tables) == {"effects_area_d2", "effects_art_d2", "effects_bases_d2"}
+    assert set(tables) == {"effects_area_d2", "effects_art_d2", "effects_bases_d2",
+                           "effects_centre_d2"}  # fmt: skip
+    assert tables["effects_centre_d2"].rows[0][1:] == [0.0, 0.0]  # every best_x at the centre
     assert tables["effects_area_d2"].rows == [tables["effects_area_d2"].rows[0]]
     assert tables["effects_area_d2"].rows[0][:2] == ["wdo-flat", "wdo"]
     levels = tables["effects_bases_d2"].rows  # the base and the other algorithms, not variants
     assert [row[0] for row in levels] == ["wdo", "random"]
     assert levels[0][1] == pytest.approx(100 * a_base / 2) and levels[1][1] == 0.0
+
+
+def test_centre_pull_is_the_position_along_centre_to_optimum():
+    ioh = pytest.importorskip("ioh")
+    x1 = np.asarray(ioh.get_problem(1, 1, 2, ioh.ProblemClass.REAL).optimum.x)
+    x2 = np.asarray(ioh.get_problem(1, 2, 2, ioh.ProblemClass.REAL).optimum.x)
+    ortho = np.array([-x1[1], x1[0]])  # a step across the line does not count
+    runs = [
+        _run("wdo", 1, 1, 0, [1], [1.0], best_x=0.25 * x1 + ortho),
+        _run("wdo", 1, 1, 1, [1], [1.0], best_x=x1),
+        _run("wdo", 1, 2, 0, [1], [1.0], best_x=0.5 * x2),
+    ]
+    study = StudyRuns("bbob", ("wdo",), (1,), (2,), 50.0, runs, 0)
+    assert centre_pull(study, "wdo", (1,), 2) == pytest.approx(0.5)  # median of 0.25, 1, 0.5
 
 
 @pytest.mark.slow

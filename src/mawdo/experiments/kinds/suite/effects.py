@@ -20,6 +20,7 @@ with replacement, one resample shared by every function of a group (and by base 
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
 
@@ -30,6 +31,7 @@ from mawdo.experiments.kinds.suite.data import StudyRuns, runtime_table
 from mawdo.experiments.kinds.suite.measures import ART_TARGETS, groups
 from mawdo.experiments.kinds.suite.metrics import aggregate_runtime, standard_targets
 from mawdo.experiments.tables import Table
+from mawdo.suites import SUITES
 
 BOOTSTRAP = 1000
 """Bootstrap samples of the confidence intervals."""
@@ -200,6 +202,7 @@ def effect_tables(study: StudyRuns, dim: int) -> list[Table]:
             ],  # fmt: skip
         ),
         _bases_table(data, levels, grp, head, f"effects_bases_d{dim}"),
+        _centre_table(study, dim, [*levels, *(v for v, _ in pairs)], grp, head),
     ]
     inter = _interaction_rows(data, pairs, grp)
     if inter:
@@ -227,6 +230,35 @@ def _bases_table(data: EffectData, levels, grp, head: str, name: str) -> Table:
         columns=["algorithm", *grp],
         rows=rows,
         formats=dict.fromkeys(grp, ".1f"),
+    )
+
+
+def centre_pull(study: StudyRuns, algo: str, fids, dim: int) -> float:
+    """Median over the runs of ``algo`` on ``fids`` of ``best_x . x* / |x*|^2``: where the final
+    best point lies along the line from the box centre (0) to the optimum ``x*`` (1)."""
+    vals = []
+    for fid in fids:
+        for r in study.select(algo, fid, dim):
+            x_star = _optimum(study.suite, fid, r.instance, dim)
+            vals.append(float(r.best_x @ x_star / (x_star @ x_star)))
+    return float(np.median(vals)) if vals else math.nan
+
+
+@functools.cache
+def _optimum(suite: str, fid: int, iid: int, dim: int) -> np.ndarray:
+    return np.asarray(SUITES[suite].build(fid, iid, dim).x_star, dtype=float)
+
+
+def _centre_table(study: StudyRuns, dim: int, algorithms, grp, head: str) -> Table:
+    rows = [[a, *(centre_pull(study, a, fids, dim) for fids in grp.values())] for a in algorithms]
+    return Table(
+        name=f"effects_centre_d{dim}",
+        title=head + "where the final best point lies: median of best_x . x* / |x*|^2 (1: at "
+        "the optimum x*, 0: at the centre of the box)",
+        columns=["algorithm", *grp],
+        rows=rows,
+        notes=["A diagnostic of the pull toward the box centre (gravity); no interval."],
+        formats=dict.fromkeys(grp, ".2f"),
     )
 
 
