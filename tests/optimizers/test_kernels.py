@@ -141,8 +141,8 @@ def test_wind_step_equals_the_numpy_equations(guidance, gate, centre_on, awdo, r
     X = np.empty((R, N, D))
     P, U = p.copy(), u.copy()
     wind_step(P, U, pbest, pbest_f, rank, perm, np.ones((1, 4), np.uint64), False, 0, coef,
-              group_starts(N, G), guidance, w, gate, 2 * np.sqrt(D), centre_on, awdo, vmax,
-              reflect, eta, lb, ub - lb, X)  # fmt: skip
+              group_starts(N, G), guidance, w, gate, 2 * np.sqrt(D), int(centre_on), int(awdo),
+              vmax, reflect, eta, lb, ub - lb, X)  # fmt: skip
     np.testing.assert_allclose(P, ep, rtol=0, atol=1e-14)
     np.testing.assert_allclose(U, eu, rtol=0, atol=1e-14)
     np.testing.assert_allclose(X, lb + (ep + 1) / 2 * (ub - lb), rtol=1e-14, atol=1e-13)
@@ -269,7 +269,7 @@ def test_wind_step_draws_each_parcels_permutation_from_its_runs_xoshiro():
         final.append(s)
         for i in range(N):
             perm[r, i] = python_shuffle(words[i * W : (i + 1) * W], D)[0]
-    args = (coef, group_starts(N, 1), 0, np.zeros(3), False, 1.0, False, False, 0.3, False, 0.5,
+    args = (coef, group_starts(N, 1), 0, np.zeros(3), False, 1.0, 0, 0, 0.3, False, 0.5,
             np.zeros(D), np.ones(D))  # fmt: skip
     out = []
     for mode in ("perm", "rng"):
@@ -302,7 +302,7 @@ def test_wind_step_draws_awdo_coefficients_before_the_permutations(coef_draw):
             else:
                 coef[r, i], start = unif[i * (4 + W) : i * (4 + W) + 4], i * (4 + W) + 4
             perm[r, i] = python_shuffle(words[start : start + W], D)[0]
-    args = (group_starts(N, 1), 0, np.zeros(3), False, 1.0, False, True, 0.3, False, 0.5,
+    args = (group_starts(N, 1), 0, np.zeros(3), False, 1.0, 0, 1, 0.3, False, 0.5,
             np.zeros(D), np.ones(D))  # fmt: skip
     P1, U1, X = p.copy(), u.copy(), np.empty((R, N, D))
     wind_step(P1, U1, pbest, pbest_f, rank, perm, state.copy(), True, coef_draw,

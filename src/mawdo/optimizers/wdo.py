@@ -57,10 +57,23 @@ class WindParams(Params):
         ``"awdo"``: coefficients ``~ U[0, 1]``, pressure and Coriolis divided by the rank (Eq. 4).
     alpha, g, RT, c : float
         Friction, gravity, pressure (RT) and Coriolis coefficients of WDO (0.4, 0.2, 3, 0.4).
-    coef_draw : {"iteration", "parcel"}
-        AWDO: one coefficient draw per iteration (paper) or one per parcel and iteration.
+    coef_draw : {"iteration", "parcel", "fixed"}
+        AWDO: one coefficient draw per iteration (paper) or one per parcel and iteration; or
+        ``"fixed"``: no draw, ``alpha, g, RT, c`` as given (a component-study switch; the
+        draws' means are 0.5 each).
+    gravity_to : {"centre", "mean", "best", "none"}
+        Target of the gravity term ``-g (p - target)``: the centre of the normalised box (the
+        papers; the group centroid under low-D stabilisation), the mean position of the run's
+        population, its best-so-far ``tbest``, or no gravity term. Study switch; the last three
+        also replace low-D stabilisation's centroid.
+    pressure : {"rank", "flat"}
+        ``"rank"``: the pressure and Coriolis weights of ``velocity`` (WDO ``|1 - 1/i| RT``,
+        AWDO ``RT/r``; Coriolis ``c/r``). ``"flat"``: rank-free ``RT (B - p) + c u[perm]``
+        (study switch).
     vmax : float
-        Velocity clamp in normalised units, > 0 (0.3).
+        Velocity clamp in normalised units, > 0 (0.3); also the initial velocities' range.
+    clamp : bool
+        Clamp velocities to ``vmax`` at every step (papers); false: no clamp (study switch).
     groups : int
         Number of contiguous groups G, 1 <= G <= pop_size.
     guidance : {"global", "group", "hierarchical"}
@@ -98,8 +111,11 @@ class WindParams(Params):
     g: float = option(0.2, lo=0)
     RT: float = option(3.0, lo=0)
     c: float = option(0.4, lo=0)
-    coef_draw: str = option("iteration", choices=("iteration", "parcel"))
+    coef_draw: str = option("iteration", choices=("iteration", "parcel", "fixed"))
+    gravity_to: str = option("centre", choices=("centre", "mean", "best", "none"))
+    pressure: str = option("rank", choices=("rank", "flat"))
     vmax: float = option(0.3, lo=0, lo_open=True)
+    clamp: bool = True
     groups: int = option(1, lo=1)
     guidance: str = option("global", choices=("global", "group", "hierarchical"))
     rank_scope: str = option("population", choices=("population", "group"))
@@ -244,14 +260,23 @@ class Wind(Optimizer):
             s.p, s.u, s.pbest, s.pbest_f, rank, perm, rng, rng is not _NO_RNG,
             coef_draw, coef,
             gstarts, guidance,
-            np.asarray(w, float), P.gate, 2.0 * math.sqrt(D), s.low_dim, P.velocity == "awdo",
-            float(s.vmax), P.boundary == "reflect", float(P.eta),
+            np.asarray(w, float), P.gate, 2.0 * math.sqrt(D), self._gravity_mode(s),
+            2 if P.pressure == "flat" else int(P.velocity == "awdo"),
+            float(s.vmax) if P.clamp else math.inf, P.boundary == "reflect", float(P.eta),
             lb, width, X,
         )  # fmt: skip
         s.restarted = None
         if restart:
             self._restart(s, X, m)
         return X
+
+    def _gravity_mode(self, s: WindState) -> int:
+        """The kernel's ``gravity`` code: 0 origin, 1 group centroid (low-D), 2 population
+        mean, 3 tbest, 4 none."""
+        to = self.params.gravity_to
+        if to == "centre":
+            return int(s.low_dim)
+        return {"mean": 2, "best": 3, "none": 4}[to]
 
     def _permutation_draw(self, s: WindState):
         """``(perm, rng)`` for the kernel: with real streams, the per-run xoshiro256** states
@@ -294,7 +319,8 @@ class Wind(Optimizer):
         ``(R or 1, N or 1, 4)``."""
         P = self.params
         builtin = type(self)._coefficients is Wind._coefficients
-        if builtin and not s.low_dim and P.velocity == "wdo":
+        fixed = P.velocity == "wdo" or P.coef_draw == "fixed"
+        if builtin and not s.low_dim and fixed:
             # WDO's four fixed scalars: laid out once per state, not broadcast at every ask
             if s.coef_kernel is None:
                 s.coef_kernel = (None, np.array([[[P.alpha, P.g, P.RT, P.c]]], dtype=float))
@@ -320,7 +346,7 @@ class Wind(Optimizer):
                 s.coef = self._group_coefficients(s.streams)
             per = s.coef[:, s.gid]  # (R, N, 4)
             return tuple(per[..., k : k + 1] for k in range(4))
-        if P.velocity == "awdo":
+        if P.velocity == "awdo" and P.coef_draw != "fixed":
             shape = (1, 4) if P.coef_draw == "iteration" else (s.p.shape[1], 4)
             draw = s.streams.random(shape)  # a_t, g_t, RT_t, c_t ~ U[0, 1] (Eq. 4)
             return tuple(draw[..., k : k + 1] for k in range(4))

@@ -32,8 +32,8 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
     w,
     gate,
     d_max,
-    centre_on,
-    awdo,
+    gravity,
+    pressure,
     vmax,
     reflect,
     eta,
@@ -72,12 +72,17 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
     guidance : int
         0 ``B = tbest``, 1 ``B = gbest_g``, 2 hierarchical (Eq. 5) with weights ``w = (w1, w2,
         w3)`` and, when ``gate``, ``w3`` scaled by the distance gate of Eq. 10 (``d_max``).
-    centre_on : bool
-        Gravity toward the group centroid (Eqs. 22-23) instead of the origin.
-    awdo : bool
-        AWDO velocity (Eq. 4) instead of WDO's (Bayraktar 2013 Eq. 1).
+    gravity : int
+        Target of the gravity term ``-g (p - centre)``: 0 the origin (WDO, AWDO), 1 the
+        parcel's group centroid (low-D stabilisation, Eqs. 22-23), 2 the mean position of the
+        run's population, 3 the run's best-so-far ``tbest``, 4 no gravity term (``g = 0``; the
+        coefficient draws are still made).
+    pressure : int
+        Rank weights of the pressure and Coriolis terms: 0 WDO's ``|1 - 1/r| RT`` and ``c/r``
+        (Bayraktar 2013 Eq. 1), 1 AWDO's ``RT/r`` and ``c/r`` (Eq. 4), 2 rank-free ``RT`` and
+        ``c``.
     vmax : float
-        Velocity clamp.
+        Velocity clamp (``inf``: none).
     reflect : bool, eta : float
         Reflect-damp boundary (Eqs. 15-16) or clip (Eq. 3).
     lb, width : (D,)
@@ -92,7 +97,7 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
     Bv = np.empty(D)  # guidance B of the parcel
     cw = np.empty(4)  # alpha, g, RT, c of the parcel
     for r in range(R):
-        tb = run_leaders(p, pbest, pbest_f, r, gstarts, guidance, w, gate, d_max, centre_on,
+        tb = run_leaders(p, pbest, pbest_f, r, gstarts, guidance, w, gate, d_max, gravity,
                          gbest, w3e, centre)  # fmt: skip
         # the run's generator lives in locals (registers) while its parcels move
         rr = r if use_rng else 0  # rng is a (1, 4) placeholder without use_rng
@@ -119,10 +124,13 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
                     for k in range(4):
                         cw[k] = coef[rc, ci, k]
                 a1 = 1.0 - cw[0]
-                grav = cw[1]
+                grav = cw[1] if gravity != 4 else 0.0
                 RT = cw[2]
-                wp = RT / rk if awdo else abs(1.0 - 1.0 / rk) * RT  # pressure weight
-                wc = cw[3] / rk  # Coriolis weight
+                if pressure == 2:  # rank-free
+                    wp, wc = RT, cw[3]
+                else:  # pressure and Coriolis weights
+                    wp = RT / rk if pressure == 1 else abs(1.0 - 1.0 / rk) * RT
+                    wc = cw[3] / rk
                 # shuffling a copy of the velocities with the swaps that would build the
                 # permutation gives u[perm] with no index array and no gather
                 if use_rng:
@@ -165,11 +173,13 @@ def wind_step(  # noqa: PLR0913 - one fused iteration needs every input
 
 
 @njit(cache=True, nogil=True, inline="always")
-def run_leaders(p, pbest, pbest_f, r, gstarts, guidance, w, gate, d_max, centre_on, gbest, w3e,
+def run_leaders(p, pbest, pbest_f, r, gstarts, guidance, w, gate, d_max, gravity, gbest, w3e,
                 centre):  # fmt: skip  # pragma: no cover - compiled
     """Run ``r``'s leaders for :func:`wind_step`: each group's best parcel ``gbest (G,)``, the
-    gated ``w3`` of each group ``w3e (G,)`` (Eq. 10), the group centroids ``centre (G, D)``
-    when ``centre_on`` (Eqs. 22-23); returns ``tbest``'s index (first minima, as argmin)."""
+    gated ``w3`` of each group ``w3e (G,)`` (Eq. 10), and each group's gravity target
+    ``centre (G, D)`` for ``gravity`` 1-3 (group centroid, Eqs. 22-23; population mean; tbest),
+    left as it is otherwise (zeros: the origin); returns ``tbest``'s index (first minima, as
+    argmin)."""
     G = gstarts.size - 1
     D = p.shape[2]
     tb = 0
@@ -189,13 +199,20 @@ def run_leaders(p, pbest, pbest_f, r, gstarts, guidance, w, gate, d_max, centre_
                 diff = pbest[r, gbest[g], d] - pbest[r, tb, d]
                 acc += diff * diff
             w3e[g] = w[2] * min(1.0, np.sqrt(acc) / d_max)
-        if centre_on:
-            a, b = gstarts[g], gstarts[g + 1]
+        if gravity == 1 or (gravity == 2 and g == 0):
+            # the population mean is the centroid of the one segment [0, N), shared by the groups
+            a, b = (gstarts[g], gstarts[g + 1]) if gravity == 1 else (0, p.shape[1])
             for d in range(D):
                 acc = 0.0
                 for k in range(a, b):
                     acc += p[r, k, d]
                 centre[g, d] = acc / (b - a)
+        elif gravity == 2:
+            for d in range(D):
+                centre[g, d] = centre[0, d]
+        elif gravity == 3:
+            for d in range(D):
+                centre[g, d] = pbest[r, tb, d]
     return tb
 
 

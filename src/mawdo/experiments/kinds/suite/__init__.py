@@ -5,7 +5,9 @@ Plan (:class:`SuitePlan`, presets ``bbob-quick`` and ``bbob-full``), one task on
 (:func:`execute_suite_task`, rows :class:`SuiteRow` holding each run's best-so-far against
 evaluations), reading back (:mod:`.data`), measures (:mod:`.measures`), tables and report
 (:mod:`.report`), figures (:mod:`.plots`), IOHanalyzer export (:mod:`.export`), COCO's measures
-as array functions (:mod:`.metrics`) and ioh's log format (:mod:`.ioh_logs`). Importing this
+as array functions (:mod:`.metrics`) and ioh's log format (:mod:`.ioh_logs`); the WDO family's
+component study (issue 29: presets ``wdo-components`` and ``wdo-components-quick`` from
+:mod:`.components`, each switch's effect per function group in :mod:`.effects`). Importing this
 package registers the ``suite`` study kind (called ``bbob`` before: stores and plans that say
 ``kind = "bbob"`` are read as it).
 """

@@ -93,22 +93,26 @@ def aggregate_runtime(rt, total_evals) -> np.ndarray:
     Parameters
     ----------
     rt : array_like
-        Runtimes ``(runs, T)`` from :func:`runtimes` (``inf`` = not reached).
+        Runtimes ``(runs, T)`` from :func:`runtimes` (``inf`` = not reached), or a stack of such
+        sets ``(..., runs, T)`` (bootstrap samples, say).
     total_evals : array_like
-        Evaluations each run spent, shape ``(runs,)``.
+        Evaluations each run spent, shape ``(runs,)`` (or ``(..., runs)`` with a stack).
 
     Returns
     -------
     numpy.ndarray
-        Shape ``(T,)``, in evaluations.
+        Shape ``(T,)`` (or ``(..., T)``), in evaluations.
     """
-    rt = np.atleast_2d(np.asarray(rt, dtype=float))
-    tot = np.asarray(total_evals, dtype=float).reshape(-1, 1)
-    if tot.shape[0] != rt.shape[0]:
-        raise ValueError(f"{rt.shape[0]} runs of runtimes but {tot.shape[0]} total_evals")
+    rt = np.asarray(rt, dtype=float)
+    rt = np.atleast_2d(rt) if rt.ndim < 2 else rt
+    tot = np.asarray(total_evals, dtype=float)
+    if tot.shape != rt.shape[:-1]:
+        n_tot = tot.shape[-1] if tot.ndim else 1
+        raise ValueError(f"{rt.shape[-2]} runs of runtimes but {n_tot} total_evals")
+    tot = tot[..., None]
     ok = np.isfinite(rt)
-    spent = np.where(ok, rt, tot).sum(axis=0)
-    n_ok = ok.sum(axis=0)
+    spent = np.where(ok, rt, tot).sum(axis=-2)
+    n_ok = ok.sum(axis=-2)
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(n_ok > 0, spent / np.maximum(n_ok, 1), np.inf)
 

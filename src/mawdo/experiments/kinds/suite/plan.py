@@ -20,6 +20,7 @@ from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import Field, field_validator, model_validator
 
+from mawdo.experiments.kinds.suite.components import component_presets
 from mawdo.experiments.kinds.suite.keys import parse_key, problem_key
 from mawdo.experiments.kinds.suite.variants import canonical_name, check_variants, describe_setup
 from mawdo.experiments.plans import PlanError, PositiveInt, StudyPlanBase
@@ -371,6 +372,9 @@ PRESET_HELP = {
     "bbob-full": "issue 13's protocol: BBOB f1-f24, instances 1-5, D 5 and 20, 1e4 x D "
     "evaluations, 5 runs per instance, the paper's six algorithms + CMA-ES + random",
 }
+_COMPONENTS, _COMPONENT_HELP = component_presets(BBOB_SEED)
+PRESETS.update(_COMPONENTS)
+PRESET_HELP.update(_COMPONENT_HELP)
 
 
 def preset_plan(name: str) -> SuitePlan:

@@ -8,6 +8,7 @@ import os
 from pathlib import Path
 
 from mawdo.experiments.kinds.suite.data import StudyRuns, load_runs
+from mawdo.experiments.kinds.suite.effects import effect_tables
 from mawdo.experiments.kinds.suite.measures import (
     ART_TARGETS,
     RANK_FLOOR,
@@ -143,6 +144,8 @@ def write_suite_report(
     tables = [friedman_table(study)]
     for dim in study.dims:
         tables += [art_table(study, dim), fixed_budget_table(study, dim)]
+    for dim in study.dims:  # component studies (issue 29): each switch against its base
+        tables += effect_tables(study, dim)
     lines = [
         f"# {study.suite} study: {', '.join(study.algorithms)}",
         "",
