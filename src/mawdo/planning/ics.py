@@ -40,11 +40,15 @@ import numpy as np
 import shapely
 
 from mawdo.planning.cost import assemble_paths
+from mawdo.planning.motion import BoundedRandomWalk
 from mawdo.planning.path import advance, segment_lengths
 from mawdo.planning.scenario import CircleObstacle, Scenario
 from mawdo.planning.sipp.intervals import Movers, forbidden, segment_free
 
 __all__ = ["Continuation", "SafeContinuation", "SafeRun"]
+
+#: Horizons of obstacle motion tabulated at once when no mover is a random walker.
+REUSE = 8
 
 
 @dataclass(frozen=True)
@@ -104,17 +108,26 @@ class SafeContinuation:
         dirs = np.column_stack([np.cos(ang), np.sin(ang)])
         self._moves = [(k, self.v * k * dirs) for k in sorted(int(h) for h in hops)]
         self._statics = [_geometry(scenario.obstacles[i].shape) for i in scenario.static_indices]
-        self._mv = (None, None)
+        moving = [scenario.obstacles[i].motion for i in scenario.moving_indices]
+        self._walkers = any(isinstance(m, BoundedRandomWalk) for m in moving)
+        self._mv = (0.0, 0.0, None)  # (first valid time, last, tables)
 
     # -- the model -------------------------------------------------------------------------
 
     def movers(self, t0: float):
-        """The moving obstacles from ``t0`` to the horizon's end (compiled tables, cached)."""
-        if self._mv[0] != t0:
-            mv = Movers.from_scenario(self.sc, self.clearance, t0, t0 + self.horizon + 1.0,
-                                      walkers="reachable")  # fmt: skip
-            self._mv = (t0, mv.arrays())
-        return self._mv[1]
+        """The moving obstacles from ``t0`` to the horizon's end (compiled tables). Without
+        random walkers the tables do not depend on ``t0`` beyond the window they cover, so one
+        built for ``REUSE`` horizons serves every decision inside it (a crowd of 50 movers
+        costs ~35 ms to tabulate on a shared core); a walker's reachable disc grows from
+        ``t0``, so with walkers they are built per decision."""
+        T0, T1, arrays = self._mv
+        inside = not self._walkers and T0 <= t0 and t0 + self.horizon + 1.0 <= T1
+        if arrays is not None and (t0 == T0 or inside):
+            return arrays
+        T1 = t0 + (1 if self._walkers else REUSE) * self.horizon + 1.0
+        mv = Movers.from_scenario(self.sc, self.clearance, t0, T1, walkers="reachable")
+        self._mv = (t0, T1, mv.arrays())
+        return self._mv[2]
 
     def static_clear(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
         """Per straight move ``a[i] -> b[i]`` (pixels, shape (n, 2)): it keeps ``r +
