@@ -25,6 +25,9 @@ Assumptions (what "safe" rests on):
   ``r + clearance / 2``, so that a plan sliding along the guide's inflated edges (exactly at
   ``r + clearance``) is not rejected by rounding; the disc must stay inside the map (a goal
   may lie ``r`` from the border);
+* the robot may stop, start and turn at once, at up to its full speed: with the opt-in
+  kinematic limits (:mod:`mawdo.planning.kinematics`) a continuation that needs a sharper
+  stop or turn than they allow is still counted (the guard checks every step as driven);
 * the horizon is finite: what happens after ``t0 + horizon`` is not looked at. A continuation
   is a witness that a safe motion exists, not the motion the run will drive.
 
