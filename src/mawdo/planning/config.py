@@ -112,6 +112,23 @@ class PlannerConfig:
     time_routes : int
         Timed routes per query of that guide (>= 1): the earliest arrival and up to
         ``time_routes - 1`` time-diverse alternatives, all seeds.
+    ics_horizon : int
+        Receding horizon: prediction horizon (time steps, >= 0; 0 turns the rule off) of the
+        rule that never drives into an inevitable collision (:mod:`mawdo.planning.ics`): a
+        stretch, a wait or an evasive move is taken only when the robot keeps a safe
+        continuation after it until that many steps from now (drive on to the goal, wait, or
+        reach a spot where waiting is safe), obstacles moving as predicted and random walkers
+        grown by their reachable set. When no option keeps one the run drives the least bad
+        and counts it (``PlanResult.inevitable``); a run that gives up first moves to where
+        waiting is safe.
+    max_speed, max_accel, max_turn : float or None
+        Opt-in kinematic limits of the executed motion (None: free, the default and the
+        paper's set-up; :mod:`mawdo.planning.kinematics`): most distance per step (px per
+        step, > 0), most change of velocity per step (px per step squared, > 0; the robot
+        starts at rest) and most change of heading per step between two moves (radians per
+        step, in (0, pi]). Every executed step is projected onto them and checked by the
+        guard as driven; a turn-rate limit adds a penalty on each corner's excess turn to the
+        refinement's cost; the checker reports violations and success needs none.
     """
 
     pop_size: int = 240
@@ -142,6 +159,10 @@ class PlannerConfig:
     threads: int = 1
     time_guide: bool = False
     time_routes: int = 2
+    ics_horizon: int = 30
+    max_speed: float | None = None
+    max_accel: float | None = None
+    max_turn: float | None = None
 
     def __post_init__(self) -> None:
         # every optimizer needs two candidates; checked first, so pop_size=1 is named for itself
@@ -175,6 +196,8 @@ class PlannerConfig:
         check_int("PlannerConfig.polish_rounds", self.polish_rounds, 0)
         check_int("PlannerConfig.threads", self.threads, 1)
         check_int("PlannerConfig.time_routes", self.time_routes, 1)
+        check_int("PlannerConfig.ics_horizon", self.ics_horizon, 0)
+        _check_limits(self)
         if not isinstance(self.time_guide, bool | np.bool_):
             raise ValueError(f"PlannerConfig.time_guide={self.time_guide!r} must be True or False")
         steps = np.asarray(self.polish_steps, float)
@@ -187,6 +210,24 @@ class PlannerConfig:
         for name in ("guide_routes", "guide_copies"):
             if getattr(self, name) < 0:
                 raise ValueError(f"PlannerConfig.{name}={getattr(self, name)!r} must be >= 0")
+
+
+def _check_limits(cfg: PlannerConfig) -> None:
+    """The kinematic limits: None or a finite positive number (a turn rate at most pi)."""
+    for name, unit, top in (
+        ("max_speed", "px per step", np.inf),
+        ("max_accel", "px per step squared", np.inf),
+        ("max_turn", "radians per step", np.pi),
+    ):
+        v = getattr(cfg, name)
+        if v is None:
+            continue
+        ok = isinstance(v, int | float | np.integer | np.floating) and not isinstance(v, bool)
+        if not (ok and np.isfinite(v) and 0 < v <= top):
+            bound = f"in (0, {top:.6g}]" if np.isfinite(top) else "> 0"
+            raise ValueError(
+                f"PlannerConfig.{name}={v!r} must be None (no limit) or a number {bound} ({unit})"
+            )
 
 
 # The paper's planner: it replans every step and executes the optimizer's best as it is (no

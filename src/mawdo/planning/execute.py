@@ -18,7 +18,9 @@ from mawdo.planning.config import PLANNING_OPTIONS, PlannerConfig, step_limit, s
 from mawdo.planning.cost import PathCost, assemble_paths
 from mawdo.planning.guard import Elite, Guard
 from mawdo.planning.guide import Guide
-from mawdo.planning.path import advance, densify, polyline_length
+from mawdo.planning.ics import SafeContinuation, SafeRun
+from mawdo.planning.kinematics import LimitedRun, Limits
+from mawdo.planning.path import densify, polyline_length
 from mawdo.planning.polish import polish
 from mawdo.planning.result import Drive, PlanResult, Replan
 from mawdo.planning.scenario import Scenario
@@ -67,14 +69,16 @@ def _optimizers(algorithm: str, cfg: PlannerConfig) -> dict:
 class _Watched:
     """The cost as the optimizer sees it; the elite sees every batch it evaluates."""
 
-    def __init__(self, cost: PathCost, elite: Elite) -> None:
-        self.cost, self.elite, self.bounds = cost, elite, cost.bounds
+    def __init__(self, cost: PathCost, elite: Elite, extra=None) -> None:
+        self.cost, self.elite, self.bounds, self.extra = cost, elite, cost.bounds, extra
 
     def __call__(self, X, start=None, t0: float = 0.0):
-        return self.elite.add(X, self.cost(X, start=start, t0=t0))
+        f = self.cost(X, start=start, t0=t0)
+        f = f if self.extra is None else f + self.extra(X, start)  # kinematic limits
+        return self.elite.add(X, f)
 
 
-class Run(TimedRun):
+class Run(TimedRun, SafeRun, LimitedRun):
     """State of one run (see :func:`mawdo.planning.planner.plan` for the parameters)."""
 
     def __init__(self, sc: Scenario, algorithm: str, seed, cfg: PlannerConfig, dynamic: bool):
@@ -99,7 +103,10 @@ class Run(TimedRun):
         self.guard = Guard(sc, cfg.clearance)
         self.optimizers = self._make_optimizers()
         self.replans: list[Replan] = []
-        self.counts = {"waits": 0, "evasions": 0, "fallbacks": 0, "holds": 0}
+        self.counts = {"waits": 0, "evasions": 0, "fallbacks": 0, "holds": 0, "inevitable": 0}
+        on = dynamic and cfg.ics_horizon > 0  # the rule of issue 27: no inevitable collisions
+        self.ics = SafeContinuation(sc, cfg.clearance, cfg.ics_horizon) if on else None
+        self.limits = Limits.of(cfg) if dynamic else None
         self.stalled = False  # the last search found nothing cheaper than its warm start
         self.chosen_index = 0  # which candidate the guard accepted at the last replan
         self._reach = None  # the oracle's answer, when the guide found no route
@@ -161,7 +168,7 @@ class Run(TimedRun):
         t_start = time.perf_counter()
         x0 = self._x0(pos, remainder, rng, pop, step)
         elite = Elite(cfg.elite_size)
-        watched = _Watched(self.cost, elite)
+        watched = _Watched(self.cost, elite, self._turn_cost())
         t = float(step)
         res = minimize(
             lambda X: watched(X, start=pos, t0=t),
@@ -223,18 +230,22 @@ class Run(TimedRun):
     # -- the guard -----------------------------------------------------------------------------
 
     def choose(self, cands, pos, step: int, horizon: float):
-        """First candidate whose next ``horizon`` px are safe (route), or ``None``."""
+        """First candidate whose next ``horizon`` px are safe and keep a safe continuation
+        (route), or ``None``; the least bad when no option keeps one (:class:`SafeRun`)."""
+        least = None
         for i, x in enumerate(cands):
             route = assemble_paths(x[None, :], pos, self.sc.goal)[0]
             if self.dynamic:
                 safe = self.guard.stretch_hits(route, float(step), horizon) == 0
             else:  # single-shot: the whole plan on the frozen map at t = 0
                 safe = int(self.cost.parts(x[None, :], start=pos, t0=0.0)[1][0]) == 0
-            if safe:
+            if safe and least is None:  # the least bad, should no option keep a continuation
+                least = (i, route)
+            if safe and self._continues(route, step, horizon):
                 self.counts["fallbacks"] += i > 0
                 self.chosen_index = i
                 return route
-        return None
+        return self._least_bad(least, pos, step, self._target(pos, cands))
 
     def execute(self, progress=None) -> PlanResult:
         """Drive the run; ``progress(step, max_steps, replans)`` is called before each step."""
@@ -273,13 +284,17 @@ class Run(TimedRun):
                     pos = self._fallback(drive, pos, step, cands)
                     stuck, force = stuck + 1, True
                     if stuck >= cfg.give_up_steps:
+                        pos, note = self._settle(drive, pos, step + 1)
                         reason = f"{NO_ROUTE}: gave up after {stuck} steps of waiting or evading"
+                        reason += note
                         break
                     remainder = assemble_paths(cands[:1], pos, sc.goal)[0]
                     continue
                 self.stalled = self.stalled and self.chosen_index == 0
                 stuck, remainder, force = 0, chosen, False
-            pos, remainder, passed, frac = self._drive(remainder, step)
+            prev, (pos, remainder, passed, frac) = pos, self._drive(remainder, step)
+            if self.limits is not None:  # the step the kinematic limits allow
+                pos, remainder, passed, frac = self._limited_step(prev, pos, remainder, step)
             drive.move(step, pos, passed, frac)
         return self._finish(drive, reason)
 
@@ -360,15 +375,12 @@ class Run(TimedRun):
         return self._reach
 
     def _fallback(self, drive, pos, step: int, cands):
-        """No candidate is safe: wait if that is safe, else the least-bad evasive move."""
-        target = assemble_paths(cands[:1], pos, self.sc.goal)[0]
-        target, _, _, _ = advance(target, self.sc.robot_speed)
-        if self.guard.step_clearance(pos, pos, float(step), 1.0) >= self.cfg.clearance:
-            self.counts["waits"] += 1
-            drive.move(step, pos.copy())
-            return pos
-        to, _, _ = self.guard.evasive_move(pos, target, float(step), 1.0)
-        self.counts["evasions"] += 1
+        """No candidate is safe: wait if that is safe, else the least-bad evasive move (with
+        the rule on, one that keeps a safe continuation if any does: :class:`SafeRun`)."""
+        to, waited, kept = self._pending_escape(pos, step, self._target(pos, cands))
+        to = self._limited(pos, to, step)
+        self.counts["inevitable"] += not kept
+        self.counts["waits" if waited else "evasions"] += 1
         drive.move(step, to.copy())
         return to
 
@@ -377,6 +389,7 @@ class Run(TimedRun):
             reason,
             self.sc,
             margin=self.cfg.clearance,
+            limits=self.limits,
             algorithm=self.algorithm,
             seed=self.seed,
             config=self.cfg,

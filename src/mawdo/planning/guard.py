@@ -154,8 +154,12 @@ class Guard:
         rep = check_trajectory(np.vstack([pos, to]), self.scenario, times=np.array([t, t + dt]))
         return min(float(rep.min_clearance), -rep.border_excess)
 
-    def evasive_move(self, pos: np.ndarray, target: np.ndarray, t: float, dt: float):
-        """Best move over ``dt`` steps: ``(to, clearance, safe)`` (see the module docstring)."""
+    def evasive_move(self, pos: np.ndarray, target: np.ndarray, t: float, dt: float, admit=None):
+        """Best move over ``dt`` steps: ``(to, clearance, safe)`` (see the module docstring).
+
+        ``admit(to) -> bool`` (optional): of the safe moves, only those it admits count, tried
+        nearest the target first; ``safe`` is then False when it admits none (the move
+        returned is the one without ``admit``)."""
         v = self.scenario.robot_speed * dt
         ang = np.linspace(0.0, 2 * np.pi, 16, endpoint=False)
         dirs = np.column_stack([np.cos(ang), np.sin(ang)])
@@ -164,7 +168,13 @@ class Guard:
         safe = clear >= self.clearance
         if safe.any():
             idx = np.nonzero(safe)[0]
-            best = idx[np.argmin(np.hypot(*(moves[idx] - target).T))]
+            near = idx[np.argsort(np.hypot(*(moves[idx] - target).T), kind="stable")]
+            best = near[0]
+            if admit is not None:
+                first = next((i for i in near if admit(moves[i])), None)
+                if first is None:
+                    return moves[best], float(clear[best]), False
+                best = first
         else:
             best = int(np.argmax(clear))
         return moves[best], float(clear[best]), bool(safe[best])

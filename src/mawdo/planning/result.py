@@ -71,6 +71,10 @@ class PlanResult:
         :attr:`~mawdo.planning.config.PlannerConfig.hold_straight` and ``hold_gap``).
     fallbacks : int
         Times the guard drove an elite candidate other than the optimizer's best.
+    inevitable : int
+        Steps at which no option of the guard kept a safe continuation, so it drove the least
+        bad (:mod:`mawdo.planning.ics`), plus one when a run that gave up found no spot where
+        waiting is safe (not stored in the ``.npz`` payload: 0 when read back).
     solved : bool
         False when a single-shot planner returned no route (the route is the start alone and
         the route metrics are None).
@@ -97,6 +101,8 @@ class PlanResult:
     evasions: int = 0
     fallbacks: int = 0
     holds: int = 0
+    inevitable: int = 0
+    kinematic_violations: int = 0
     hits: int = 0
     solved: bool = True
     guarded: bool = True
@@ -131,20 +137,31 @@ class Drive:
         self.stamps.append(step + 1.0)
         self.traj.append(pos.copy())
 
-    def result(self, reason: str, scenario, margin: float = 0.0, **fields) -> PlanResult:
+    def result(
+        self, reason: str, scenario, margin: float = 0.0, limits=None, **fields
+    ) -> PlanResult:
         """The run's outcome; the independent checker judges the route (success needs it).
 
         ``margin`` (px, >= 0) is the planner's safety margin: segments closer than it without
-        colliding count as near misses.
+        colliding count as near misses. ``limits``
+        (:class:`~mawdo.planning.kinematics.Limits`, optional): the trajectory must keep them
+        too (:func:`~mawdo.planning.kincheck.check_kinematics`).
         """
         from mawdo.planning.check import check_trajectory
+        from mawdo.planning.kincheck import check_kinematics
 
         route, stamps = np.array(self.route), np.array(self.stamps)
         rep = check_trajectory(route, scenario, times=stamps)
         reached = reason == "goal reached"
+        kin = None
+        if limits is not None:
+            kin = check_kinematics(np.array(self.traj), limits.speed, limits.accel, limits.turn)
         if reached and not rep.ok:
             reason = f"goal reached but the route collides ({rep.hits} checker hits: "
             reason += f"{rep.describe()})"
+        elif reached and kin is not None and not kin.ok:
+            reason = f"goal reached but the motion breaks the kinematic limits ({kin.describe()})"
+            reached = False
         per_step = rep.clearance.min(axis=1) if rep.clearance.size else np.zeros(0)
         return PlanResult(
             trajectory=np.array(self.traj),
@@ -157,6 +174,7 @@ class Drive:
             hits=int(rep.hits),
             min_clearance=float(rep.min_clearance),
             near_misses=int(np.sum((per_step >= -1e-9) & (per_step < margin))),
+            kinematic_violations=0 if kin is None else kin.count,
             **fields,
         )
 

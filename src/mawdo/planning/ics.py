@@ -1,0 +1,328 @@
+"""Never drive into an inevitable collision (issue 27, item 2).
+
+A state (position, time) of the robot is an *inevitable collision state* when every motion
+from it meets an obstacle. Before a stretch of a plan is driven, the run asks
+:class:`SafeContinuation` whether the robot, at the stretch's end, still has a *safe
+continuation* up to the end of the prediction horizon ``t0 + horizon`` (``t0``: the time of
+the decision). Three kinds are tried, cheapest first:
+
+``"goal"``
+    the rest of the plan, driven at full speed, meets nothing until it reaches the goal or the
+    horizon ends;
+``"wait"``
+    standing still where the stretch ends is safe until the horizon ends;
+``"spot"``
+    a straight move at full speed, ``k`` whole steps long (``k`` in ``hops``) along one of
+    ``headings`` directions, to a spot where standing still is safe until the horizon ends.
+
+Assumptions (what "safe" rests on):
+
+* obstacles follow the motion model the planner predicts (constant velocity, patrol, waypoint
+  tracks: exact); random walkers, whose draws the robot cannot know, are discs that grow with
+  their reachable set, ``step`` px per time step from where they are at ``t0`` (the
+  safe-interval guide's model, :class:`~mawdo.planning.sipp.intervals.Movers`);
+* hit distance to a mover is ``r + clearance`` (as the guard's); to a static obstacle
+  ``r + clearance / 2``, so that a plan sliding along the guide's inflated edges (exactly at
+  ``r + clearance``) is not rejected by rounding; the disc must stay inside the map (a goal
+  may lie ``r`` from the border);
+* the robot may stop, start and turn at once, at up to its full speed: with the opt-in
+  kinematic limits (:mod:`mawdo.planning.kinematics`) a continuation that needs a sharper
+  stop or turn than they allow is still counted (the guard checks every step as driven);
+* the horizon is finite: what happens after ``t0 + horizon`` is not looked at. A continuation
+  is a witness that a safe motion exists, not the motion the run will drive.
+
+The tests are exact (the safe-interval guide's closed-form forbidden departures and its
+segment test, shapely distances for the statics); no time sampling.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+from mawdo.planning.cost import assemble_paths
+from mawdo.planning.motion import BoundedRandomWalk
+from mawdo.planning.path import advance, segment_lengths
+from mawdo.planning.scenario import CircleObstacle, Scenario
+from mawdo.planning.sipp.intervals import Movers, forbidden, segment_free
+
+__all__ = ["Continuation", "SafeContinuation", "SafeRun"]
+
+#: Horizons of obstacle motion tabulated at once when no mover is a random walker.
+REUSE = 8
+
+
+@dataclass(frozen=True)
+class Continuation:
+    """A safe continuation: a timed polyline driven straight and uniformly between vertices.
+
+    Attributes
+    ----------
+    kind : {"goal", "wait", "spot"}
+        Along the plan (to the goal or to the horizon's end), standing still, or a move to a
+        spot where standing still is safe.
+    points : numpy.ndarray, shape (k, 2)
+        Positions (pixels); a wait repeats a position.
+    times : numpy.ndarray, shape (k,)
+        Time at each position (time steps), non-decreasing, the last one the horizon's end
+        (or the goal's arrival).
+    """
+
+    kind: str
+    points: np.ndarray
+    times: np.ndarray
+
+
+class SafeContinuation:
+    """Safe continuations of a scenario's robot (see the module docstring).
+
+    Parameters
+    ----------
+    scenario : Scenario
+    clearance : float
+        Margin (px, >= 0) added to the robot radius for the movers (half of it for the
+        statics; none for the border).
+    horizon : int
+        Prediction horizon (time steps, >= 1): a continuation must be safe up to
+        ``t0 + horizon``.
+    headings : int
+        Directions of the escape moves (>= 1), evenly spaced.
+    hops : tuple of int
+        Lengths of the escape moves, in whole steps at full speed (each >= 1), tried shortest
+        first.
+    """
+
+    def __init__(
+        self,
+        scenario: Scenario,
+        clearance: float,
+        horizon: int,
+        headings: int = 16,
+        hops: tuple = (1, 2, 4, 8),
+    ) -> None:
+        if int(horizon) < 1:
+            raise ValueError(f"horizon={horizon!r} must be >= 1 time step")
+        self.sc, self.clearance, self.horizon = scenario, float(clearance), int(horizon)
+        self.v = scenario.robot_speed
+        self.reach = scenario.robot_radius + 0.5 * self.clearance
+        ang = np.linspace(0.0, 2.0 * np.pi, int(headings), endpoint=False)
+        dirs = np.column_stack([np.cos(ang), np.sin(ang)])
+        self._moves = [(k, self.v * k * dirs) for k in sorted(int(h) for h in hops)]
+        self._statics = [_geometry(scenario.obstacles[i].shape) for i in scenario.static_indices]
+        moving = [scenario.obstacles[i].motion for i in scenario.moving_indices]
+        self._walkers = any(isinstance(m, BoundedRandomWalk) for m in moving)
+        self._mv = (0.0, 0.0, None)  # (first valid time, last, tables)
+
+    # -- the model -------------------------------------------------------------------------
+
+    def movers(self, t0: float):
+        """The moving obstacles from ``t0`` to the horizon's end (compiled tables). Without
+        random walkers the tables do not depend on ``t0`` beyond the window they cover, so one
+        built for ``REUSE`` horizons serves every decision inside it (a crowd of 50 movers
+        costs ~35 ms to tabulate on a shared core); a walker's reachable disc grows from
+        ``t0``, so with walkers they are built per decision."""
+        T0, T1, arrays = self._mv
+        inside = not self._walkers and T0 <= t0 and t0 + self.horizon + 1.0 <= T1
+        if arrays is not None and (t0 == T0 or inside):
+            return arrays
+        T1 = t0 + (1 if self._walkers else REUSE) * self.horizon + 1.0
+        mv = Movers.from_scenario(self.sc, self.clearance, t0, T1, walkers="reachable")
+        self._mv = (t0, T1, mv.arrays())
+        return self._mv[2]
+
+    def static_clear(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """Per straight move ``a[i] -> b[i]`` (pixels, shape (n, 2)): it keeps ``r +
+        clearance / 2`` from every static obstacle and the disc stays inside the map (the box
+        is convex, so both ends decide; a goal may lie ``r`` from the border)."""
+        a, b = np.atleast_2d(a), np.atleast_2d(b)
+        lo, W, H = self.sc.robot_radius, self.sc.width, self.sc.height
+        ok = np.ones(len(a), bool)
+        for q in (a, b):
+            ok &= (q[:, 0] >= lo) & (q[:, 0] <= W - lo) & (q[:, 1] >= lo) & (q[:, 1] <= H - lo)
+        if self._statics and ok.any():
+            lines = shapely.linestrings(np.stack([a, b], axis=1))
+            for geom, grow in self._statics:
+                ok &= shapely.distance(lines, geom) - grow >= self.reach
+        return ok
+
+    def wait_safe(self, p, ta: float, tb: float, t0: float) -> bool:
+        """Standing at ``p`` (pixels) from ``ta`` to ``tb`` (time steps) meets no mover
+        (statics are not looked at: ``p`` is where a checked move ended)."""
+        if tb <= ta:
+            return True
+        F = forbidden(float(p[0]), float(p[1]), 0.0, 0.0, 0.0, ta, tb, self.movers(t0))
+        return len(F) == 0
+
+    def path_safe(self, points: np.ndarray, times: np.ndarray, t0: float) -> bool:
+        """A timed polyline (pixels, time steps; straight and uniform between vertices) meets
+        no mover and keeps clear of the statics and the border."""
+        mv = self.movers(t0)
+        for i in range(len(points) - 1):
+            (ux, uy), (vx, vy) = points[i], points[i + 1]
+            if times[i + 1] > times[i] and not segment_free(
+                ux, uy, vx, vy, times[i], times[i + 1], mv
+            ):
+                return False
+        return bool(np.all(self.static_clear(points[:-1], points[1:])))
+
+    # -- continuations ---------------------------------------------------------------------
+
+    def find(self, p, t: float, t0: float, route=None, wait_first: bool = False):
+        """A safe continuation from ``p`` (pixels) at time ``t`` up to ``t0 + horizon``, or
+        ``None`` when there is none of the three kinds.
+
+        ``route`` (pixels, from ``p``) is the plan's rest, tried first unless ``wait_first``
+        (a run that gives up wants to stop, not to drive on); ``t0`` is the decision's time.
+        """
+        p = np.asarray(p, dtype=float)
+        end = t0 + self.horizon
+        along = None if route is None else self._along(route, t, end, t0)
+        if along is not None and not wait_first:
+            return along
+        if self.wait_safe(p, t, end, t0):
+            return Continuation("wait", np.vstack([p, p]), np.array([t, max(t, end)]))
+        spot = self._spot(p, t, end, t0)
+        return spot if spot is not None else along
+
+    def after_stretch(self, route: np.ndarray, t: float, distance: float) -> bool:
+        """True when the robot, having driven the first ``distance`` px of ``route`` (from
+        its first point at time ``t``, full speed), has a safe continuation (:meth:`find`);
+        a stretch that reaches the goal has one."""
+        end, rest, _, _ = advance(route, distance)
+        if len(rest) < 2 or float(np.sum(segment_lengths(rest))) <= 1e-9:
+            return True  # the goal is reached within the stretch
+        t1 = t + distance / self.v
+        return self.find(end, t1, t, route=rest) is not None
+
+    def _along(self, route, t: float, end: float, t0: float):
+        pts = np.asarray(route, dtype=float)
+        times = t + np.concatenate([[0.0], np.cumsum(segment_lengths(pts))]) / self.v
+        if times[-1] > end:  # cut at the horizon's end
+            k = int(np.searchsorted(times, end, side="right"))
+            last, _, _, _ = advance(pts, (end - t) * self.v)
+            pts, times = np.vstack([pts[:k], last]), np.append(times[:k], end)
+        ok = self.path_safe(pts, times, t0)
+        return Continuation("goal", pts, times) if ok else None
+
+    def _spot(self, p, t: float, end: float, t0: float):
+        """The first escape move (shortest hop first, then by heading) to a spot where
+        standing is safe until ``end``."""
+        mv = self.movers(t0)
+        for k, offsets in self._moves:
+            tk = t + k
+            if tk >= end:
+                break
+            spots = p + offsets
+            clear = self.static_clear(np.repeat(p[None], len(spots), axis=0), spots)
+            for q in spots[clear]:
+                if segment_free(p[0], p[1], q[0], q[1], t, tk, mv) and self.wait_safe(
+                    q, tk, end, t0
+                ):
+                    return Continuation("spot", np.vstack([p, q, q]), np.array([t, tk, end]))
+        return None
+
+
+class SafeRun:
+    """The run loop's use of a :class:`SafeContinuation` (mixed into
+    :class:`~mawdo.planning.execute.Run`, which sets ``ics`` (None: the rule is off),
+    ``guard``, ``cfg``, ``sc`` and ``counts``).
+
+    Its moves go through ``_limited`` (:class:`~mawdo.planning.kinematics.LimitedRun`).
+
+    The rule filters the guard's options: a candidate, a wait or an evasive move is taken only
+    when the robot keeps a safe continuation after it. When no option keeps one, the run does
+    what it would do without the rule (the least bad) and counts the step in
+    ``counts["inevitable"]``.
+    """
+
+    _pending = None  # (step, escape) found by _least_bad, made by the fallback
+
+    def _target(self, pos, cands):
+        """Where the best candidate takes the robot in one step (pixels)."""
+        route = assemble_paths(cands[:1], pos, self.sc.goal)[0]
+        return advance(route, self.sc.robot_speed)[0]
+
+    def _continues(self, route, step: int, distance: float) -> bool:
+        """The stretch of ``distance`` px of ``route`` driven from ``step`` keeps a safe
+        continuation (always, with the rule off)."""
+        return self.ics is None or self.ics.after_stretch(route, float(step), distance)
+
+    def _keeps(self, step: int):
+        """``admit(to)`` for the moves of ``step``: True when ``to`` at ``step + 1`` has a
+        safe continuation (None with the rule off)."""
+        if self.ics is None:
+            return None
+        t = float(step)
+        return lambda to: self.ics.find(to, t + 1.0, t) is not None
+
+    def _may_wait(self, pos, step: int) -> bool:
+        """Waiting one step at ``pos`` keeps the margin (the checker) and, with the rule on,
+        a safe continuation."""
+        if self.guard.step_clearance(pos, pos, float(step), 1.0) < self.cfg.clearance:
+            return False
+        keeps = self._keeps(step)
+        return keeps is None or keeps(pos)
+
+    def _escape(self, pos, step: int, target):
+        """The fallback's move of ``step`` from ``pos``: ``(to, waited, kept)``: a wait that
+        keeps a continuation, else the evasive move nearest ``target`` that keeps one, else
+        (``kept`` False) the old fallback's move (wait if safe, else the least-bad evasion)."""
+        if self._may_wait(pos, step):
+            return pos.copy(), True, True
+        to, _, kept = self.guard.evasive_move(pos, target, float(step), 1.0, self._keeps(step))
+        if kept or self.ics is None:
+            return to, False, True
+        if self.guard.step_clearance(pos, pos, float(step), 1.0) >= self.cfg.clearance:
+            return pos.copy(), True, False
+        return to, False, False
+
+    def _least_bad(self, least, pos, step: int, target):
+        """No safe candidate keeps a continuation: ``None`` when none is safe at all or when a
+        wait or an evasive move keeps one (the fallback then makes it), else ``least``'s
+        route (``(index, route)``: the first safe candidate), counted as inevitable."""
+        if least is None:
+            return None
+        escape = self._escape(pos, step, target)
+        if escape[2]:
+            self._pending = (step, escape)
+            return None
+        self.counts["inevitable"] += 1
+        self.counts["fallbacks"] += least[0] > 0
+        self.chosen_index = least[0]
+        return least[1]
+
+    def _pending_escape(self, pos, step: int, target):
+        """:meth:`_escape`, or the one :meth:`_least_bad` found at this step."""
+        pending, self._pending = self._pending, None
+        if pending is not None and pending[0] == step:
+            return pending[1]
+        return self._escape(pos, step, target)
+
+    def _settle(self, drive, pos, step: int):
+        """A run that gives up at ``step`` stops where waiting is safe: it stays, or drives
+        the shortest escape move to a spot where standing is safe until the horizon's end.
+        Returns ``(pos, note)``, the note for the run's reason."""
+        if self.ics is None:
+            return pos, ""
+        t = float(step)
+        c = self.ics.find(pos, t, t, wait_first=True)
+        if c is None:
+            self.counts["inevitable"] += 1
+            return pos, "; it found no spot where waiting is safe"
+        if c.kind == "spot":
+            a, b = c.points[0], c.points[1]
+            k = int(round(c.times[1] - c.times[0]))
+            for j in range(1, k + 1):  # as the kinematic limits allow, if any
+                pos = self._limited(pos, a + (b - a) * (j / k), step + j - 1)
+                drive.move(step + j - 1, pos)
+        return pos, f"; it stopped where waiting is safe for {self.ics.horizon} steps"
+
+
+def _geometry(shape):
+    """A static shape as ``(geometry, grow)``: the distance to it is the shapely distance
+    minus ``grow`` (a circle is its centre grown by its radius, exact)."""
+    if isinstance(shape, CircleObstacle):
+        return shapely.Point(shape.center), float(shape.radius)
+    return shapely.Polygon(shape.vertices), 0.0
