@@ -44,6 +44,8 @@ METRICS = (
     "elite_fallbacks",
     "near_misses",
     "holds",
+    "inevitable",
+    "kinematic_violations",
 )
 
 
@@ -139,7 +141,8 @@ def run_metrics(
     # the guard's record (issue 10), and replans kept without a search (hold_straight, hold_gap)
     counts = {"waits": result.waits, "evasions": result.evasions,
               "elite_fallbacks": result.fallbacks, "near_misses": result.near_misses,
-              "holds": result.holds}  # fmt: skip
+              "holds": result.holds, "inevitable": result.inevitable,
+              "kinematic_violations": result.kinematic_violations}  # fmt: skip
     out |= {k: int(v) if result.guarded else None for k, v in counts.items()}
     if t_star is not None:
         out |= time_metrics(result, float(t_star))

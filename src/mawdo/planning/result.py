@@ -74,7 +74,11 @@ class PlanResult:
     inevitable : int
         Steps at which no option of the guard kept a safe continuation, so it drove the least
         bad (:mod:`mawdo.planning.ics`), plus one when a run that gave up found no spot where
-        waiting is safe (not stored in the ``.npz`` payload: 0 when read back).
+        waiting is safe (stored in the ``.npz`` payload since 0.8; 0 when read from older ones).
+    kinematic_violations : int
+        Steps of the executed trajectory that break the opt-in kinematic limits
+        (:func:`~mawdo.planning.kincheck.check_kinematics`); 0 without limits. Stored like
+        ``inevitable``.
     solved : bool
         False when a single-shot planner returned no route (the route is the start alone and
         the route metrics are None).
@@ -211,7 +215,15 @@ def result_to_bytes(result: PlanResult) -> bytes:
         collision_free=np.array(result.collision_free),
         min_clearance=np.array(result.min_clearance),
         events=np.array(
-            [result.waits, result.evasions, result.fallbacks, result.near_misses, result.holds]
+            [
+                result.waits,
+                result.evasions,
+                result.fallbacks,
+                result.near_misses,
+                result.holds,
+                result.inevitable,
+                result.kinematic_violations,
+            ]
         ),
         verdict=np.array([result.hits, result.solved, result.guarded]),
     )
@@ -245,9 +257,13 @@ def result_from_bytes(data: bytes, scenario) -> PlanResult:
     sc = resolve_scenario(scenario)
     extra = {}
     if "events" in z.files:  # payloads written since the guard (issue 10)
-        w, e, f, nm, *held = (int(x) for x in z["events"])  # holds: written since 0.3
+        # holds: written since 0.3; inevitable steps and kinematic violations since 0.8
+        w, e, f, nm, *later = (int(x) for x in z["events"])
+        later += [0] * (3 - len(later))
         extra = dict(
-            holds=held[0] if held else 0,
+            holds=later[0],
+            inevitable=later[1],
+            kinematic_violations=later[2],
             collision_free=bool(z["collision_free"]),
             min_clearance=float(z["min_clearance"]),
             waits=w,
