@@ -1,31 +1,35 @@
 """WDO+: a WDO-family variant designed on BBOB (issue 29; docs/algorithms.md#wdo-plus).
 
-WDO's velocity (Bayraktar et al. 2013, Eq. 1) with four changes, each a switch:
+WDO's velocity (Bayraktar et al. 2013, Eq. 1) with five changes, each a switch:
 
 1. **gravity toward a moving reference** (``centre``): ``-g (p - m)`` with ``m`` the mean of the
    run's personal bests (``"mean"``) or the global best (``"best"``) instead of WDO's box
    centre (``"origin"``), which drags every run toward the middle of the box;
-2. **success-adapted noise** (``adapt``): a velocity term ``sigma_r xi``, ``xi`` of unit
+2. **random pressure weights** (``random_pressure``): each coordinate's pull toward ``tbest``
+   is weighed by its own ``w ~ U[0, 1)``, so the pull is no longer the same straight line for
+   every coordinate;
+3. **success-adapted noise** (``adapt``): a velocity term ``sigma_r xi``, ``xi`` of unit
    variance per coordinate, whose step ``sigma_r`` each run adapts by the 1/5-th success rule
-   on the fraction of parcels that improved their personal best::
+   on the fraction ``s`` of parcels that improved their personal best::
 
-       sigma <- sigma exp((s - success_target) / ((1 - success_target) damp)),   clamped to [0, vmax]
+       sigma <- min(vmax, sigma exp((s - success_target) / ((1 - success_target) damp)))
 
-3. **restarts** (``restart``): a run whose best has not improved for ``stall`` iterations, or
+4. **restarts** (``restart``): a run whose best has not improved for ``stall`` iterations, or
    whose ``sigma`` fell below ``sigma_min``, redraws its population uniformly in the box (same
    size: the runs of a batch share one candidate count, docs/deviations.md#d-wdo-plus);
-4. **midpoint bounds** (``boundary``): a coordinate that would leave the box lands halfway
+5. **midpoint bounds** (``boundary``): a coordinate that would leave the box lands halfway
    between its old value and the bound, instead of being clipped onto it.
 
 Per parcel ``i`` of rank ``r_i`` (1 = best), in ``[-1, 1]^D``::
 
-    u' = clamp((1 - alpha) u - g (p - m) + |1 - 1/r_i| RT (tbest - p) + c u[perm] / r_i
+    u' = clamp((1 - alpha) u - g (p - m) + |1 - 1/r_i| RT w (tbest - p) + c u[perm] / r_i
                + sigma xi,  -vmax, vmax)
     p' = p + u'   (then the boundary rule)
 
-With ``centre="origin"``, ``adapt=False, sigma0=0``, ``restart=False``, ``boundary="clip"``
-the move is WDO's (tests/optimizers/test_wdo_plus.py checks it against ``wdo``'s kernel).
-Every draw comes from the run's own stream, so a run is the same alone or in any batch.
+With ``centre="origin"``, ``random_pressure=False``, ``adapt=False, sigma0=0``,
+``restart=False`` and ``boundary="clip"`` the move is WDO's (tests/optimizers/test_wdo_plus.py
+checks it against ``wdo``'s kernel). Every draw comes from the run's own stream, so a run is
+the same alone or in any batch.
 """
 
 from __future__ import annotations
@@ -58,20 +62,20 @@ class WDOPlusParams(Params):
     random_pressure : bool
         Weigh each coordinate's pressure term by its own ``U[0, 1)`` draw (change 2).
     adapt : bool
-        Adapt each run's noise step by the success rule (change 2); when false ``sigma``
+        Adapt each run's noise step by the success rule (change 3); when false ``sigma``
         stays ``sigma0`` (0 gives WDO's noiseless move).
     sigma0 : float
-        Initial noise step, normalised units, in [0, vmax] (0.1).
+        Initial noise step, normalised units, in [0, vmax] (0.05).
     success_target, damp : float
         Success-rule target rate in (0, 1) (0.2) and damping > 0 (1).
     restart : bool
-        Restart stalled runs (change 3).
+        Restart stalled runs (change 4).
     stall : int
-        Iterations without improvement of the run's best before a restart, >= 1 (30).
+        Iterations without improvement of the run's best before a restart, >= 1 (60).
     sigma_min : float
         Restart when the noise step falls below this, >= 0 (1e-9).
     boundary : {"clip", "midpoint"}
-        Boundary rule (change 4).
+        Boundary rule (change 5).
     """
 
     pop_size: int = option(20, lo=2)
@@ -83,11 +87,11 @@ class WDOPlusParams(Params):
     centre: str = option("mean", choices=CENTRES)
     random_pressure: bool = True
     adapt: bool = True
-    sigma0: float = option(0.1, lo=0)
+    sigma0: float = option(0.05, lo=0)
     success_target: float = option(0.2, lo=0, hi=1, lo_open=True, hi_open=True)
     damp: float = option(1.0, lo=0, lo_open=True)
     restart: bool = True
-    stall: int = option(30, lo=1)
+    stall: int = option(60, lo=1)
     sigma_min: float = option(1e-9, lo=0)
     boundary: str = option("midpoint", choices=BOUNDS)
 
