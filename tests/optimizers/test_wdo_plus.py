@@ -124,7 +124,7 @@ def test_all_components_off_is_wdos_kernel():
     np.testing.assert_array_equal(X1, X2)
 
 
-def test_in_kernel_draws_are_each_parcels_permutation_then_two_uniforms_per_coordinate():
+def test_in_kernel_draws_are_each_parcels_permutation_then_one_word_per_coordinate():
     rng = np.random.default_rng(9)
     R, N, D = 2, 4, 7
     p, u = rng.uniform(-1, 1, (R, N, D)), rng.uniform(-0.3, 0.3, (R, N, D))
@@ -135,14 +135,14 @@ def test_in_kernel_draws_are_each_parcels_permutation_then_two_uniforms_per_coor
     perm, noise, press = np.empty((R, N, D), np.int16), np.empty((R, N, D)), np.empty((R, N, D))
     final = []
     for r in range(R):
-        words, s = python_xoshiro(state[r], N * (W + 2 * D))
+        words, s = python_xoshiro(state[r], N * (W + D))
         final.append(s)
         for i in range(N):
-            block = words[i * (W + 2 * D) : (i + 1) * (W + 2 * D)]
+            block = words[i * (W + D) : (i + 1) * (W + D)]
             perm[r, i] = python_shuffle(block[:W], D)[0]
-            unit = np.array([(w >> 11) * 2.0**-53 for w in block[W:]])  # xi_0, w_0, xi_1, ...
-            noise[r, i] = (2 * unit[0::2] - 1) * np.sqrt(3)
-            press[r, i] = unit[1::2]
+            # low half -> noise, high half -> pressure weight, each k / 2**32
+            noise[r, i] = [(2 * ((w & 0xFFFFFFFF) / 2**32) - 1) * np.sqrt(3) for w in block[W:]]
+            press[r, i] = [(w >> 32) / 2**32 for w in block[W:]]
     out = []
     for use_rng in (False, True):
         P, U, X, st = p.copy(), u.copy(), np.empty((R, N, D)), state.copy()

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from mawdo.optimizers.kernels import SHIFT11, U53, xoshiro_step
+from mawdo.optimizers.kernels import xoshiro_step
 from mawdo.optimizers.wind_kernel import shuffle_values
 
 CENTRES = ("origin", "mean", "best")
@@ -21,6 +21,9 @@ BOUNDS = ("clip", "midpoint")
 """Boundary handling: WDO's clip, or halfway from the old position to the crossed bound."""
 
 SQRT3 = np.sqrt(3.0)  # (2U - 1) sqrt(3) has unit variance
+LOW32 = np.uint64(0xFFFFFFFF)
+SHIFT32 = np.uint64(32)
+U32 = 1.0 / 4294967296.0
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
@@ -76,8 +79,8 @@ def plus_step(  # noqa: PLR0913 - one fused iteration needs every input
         read when ``use_rng`` is false (tests).
     rng : (R, 4) uint64, use_rng : bool
         Per-run xoshiro256** states. Each parcel draws its permutation
-        (:func:`shuffle_values`), then per coordinate a uniform ``U`` (53 bits) for
-        ``xi = (2U - 1) sqrt 3`` followed, with ``random_pressure``, by one for ``w``.
+        (:func:`shuffle_values`), then one word per coordinate: its low 32 bits give ``U`` for
+        ``xi = (2U - 1) sqrt 3``, its high 32 bits ``w`` (``k 2**-32`` for a half ``k``).
     lb, width : (D,)
         Problem box: ``X = lb + (p + 1)/2 width``.
     X : (R, N, D)
@@ -118,11 +121,13 @@ def plus_step(  # noqa: PLR0913 - one fused iteration needs every input
                         up[d] = u[r, i, d]
                     s0, s1, s2, s3 = shuffle_values(up, s0, s1, s2, s3)
                     for d in range(D):
+                        # one word, two 32-bit uniforms: the noise's (low half) and the
+                        # pressure weight's (high half); int64 -> double converts in one
+                        # instruction where uint64 -> double does not
                         wd, s0, s1, s2, s3 = xoshiro_step(s0, s1, s2, s3)
-                        xi[d] = (2.0 * (np.float64(wd >> SHIFT11) * U53) - 1.0) * SQRT3
+                        xi[d] = (2.0 * (np.float64(np.int64(wd & LOW32)) * U32) - 1.0) * SQRT3
                         if random_pressure:
-                            wd, s0, s1, s2, s3 = xoshiro_step(s0, s1, s2, s3)
-                            wr[d] = np.float64(wd >> SHIFT11) * U53
+                            wr[d] = np.float64(np.int64(wd >> SHIFT32)) * U32
                 else:
                     for d in range(D):
                         up[d] = u[r, i, perm[r, i, d]]
