@@ -2,16 +2,20 @@
 fixed draws, WDO recovered with every component off, the in-kernel draws, restarts and budgets.
 """
 
+import copy
+
 import numpy as np
 import pytest
 
 from mawdo import minimize
 from mawdo.optimizers import make_optimizer
+from mawdo.optimizers.base import Space
 from mawdo.optimizers.kernels import words_per_permutation
 from mawdo.optimizers.wdo import group_starts
 from mawdo.optimizers.wdo_plus import stalled, success_sigma
 from mawdo.optimizers.wdo_plus_kernel import plus_step
 from mawdo.optimizers.wind_kernel import wind_step
+from mawdo.streams import RunStreams, run_seed_sequences
 from tests.optimizers.test_kernels import python_shuffle, python_xoshiro
 
 # One run, three parcels, two dimensions: small enough to follow by hand.
@@ -196,6 +200,26 @@ def test_restart_redraws_only_the_stalled_runs_population():
     # a flat function never improves after the first value: a restart every stall + 1 = 3
     # iterations (2 of stall, then the held evaluation of the fresh population)
     assert res.metadata["restarts"].tolist() == [2, 2]
+
+
+def test_restart_redraws_the_stalled_run_from_its_own_stream_and_leaves_the_other():
+    opt = make_optimizer("wdo_plus", pop_size=4, stall=3)
+    streams = RunStreams.from_seed_sequences(run_seed_sequences(5, 2))
+    s = opt.init(Space(np.full(2, -1.0), np.full(2, 1.0)), streams, 100)
+    X = opt.ask(s)
+    s = opt.tell(s, X, np.ones((2, 4)))  # the first values: both runs' best is 1
+    X = opt.ask(s)
+    s.stall[:] = [2, 2]
+    s.sigma[:] = [0.01, 0.02]
+    before = s.p.copy()
+    twin = copy.deepcopy(streams.generators[0])  # what run 0's stream draws next
+    s = opt.tell(s, X, np.array([[1.0] * 4, [0.5] * 4]))  # run 0 stalls a third time, run 1 not
+    np.testing.assert_array_equal(s.p[0], twin.uniform(size=(4, 2)) * 2.0 - 1.0)
+    np.testing.assert_array_equal(s.p[1], before[1])
+    assert s.hold.tolist() == [True, False] and s.restarts.tolist() == [1, 0]
+    assert s.sigma[0] == 0.05 and s.sigma[1] != 0.05  # reset to sigma0 / adapted
+    assert np.isinf(s.pbest_f[0]).all() and (s.pbest_f[1] == 0.5).all()
+    assert s.stall.tolist() == [0, 0] and (s.u[0] == 0).all()
 
 
 @pytest.mark.parametrize("evals", [997, 1000, 2003])
