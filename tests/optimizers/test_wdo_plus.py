@@ -193,7 +193,7 @@ def test_stall_counter_and_restart_mask_by_hand():
     np.testing.assert_array_equal(mask, [False, True, False, True])
 
 
-def test_restart_redraws_only_the_stalled_runs_population():
+def test_a_flat_function_restarts_every_stall_plus_one_iterations():
     opt = make_optimizer("wdo_plus", pop_size=5, stall=2)
     res = minimize(lambda X: np.zeros(X.shape[:-1]), algorithm=opt, dim=3, runs=2, seed=1,
                    max_iter=7, lb=-1.0, ub=1.0)  # fmt: skip
@@ -242,6 +242,9 @@ def test_same_seed_same_runs_whatever_the_split():
     ]
 
 
-def test_sigma0_above_vmax_is_refused_naming_both():
+def test_sigma0_above_vmax_or_zero_with_adaptation_is_refused():
     with pytest.raises(ValueError, match="sigma0=0.5 must not exceed vmax=0.3"):
         make_optimizer("wdo_plus", sigma0=0.5)
+    with pytest.raises(ValueError, match="sigma0=0 cannot adapt: give sigma0 > 0, or adapt=False"):
+        make_optimizer("wdo_plus", sigma0=0.0)
+    assert make_optimizer("wdo_plus", sigma0=0.0, adapt=False).params.sigma0 == 0.0

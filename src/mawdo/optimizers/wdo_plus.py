@@ -99,6 +99,9 @@ class WDOPlusParams(Params):
         super().__post_init__()
         if self.sigma0 > self.vmax:
             raise ValueError(f"sigma0={self.sigma0!r} must not exceed vmax={self.vmax!r}")
+        if self.adapt and self.sigma0 == 0:
+            # the rule multiplies sigma: from 0 it stays 0, below sigma_min, a restart each step
+            raise ValueError("sigma0=0 cannot adapt: give sigma0 > 0, or adapt=False for no noise")
 
 
 @dataclass
