@@ -51,6 +51,9 @@ def plus_step(  # noqa: PLR0913 - one fused iteration needs every input
 ):  # pragma: no cover - compiled
     """One WDO+ move of every parcel of every run, in place on ``p`` and ``u``.
 
+    Long by design, like :func:`~mawdo.optimizers.wind_kernel.wind_step`: one fused pass;
+    separate kernels per component would add passes over the arrays.
+
     Parameters (``R`` runs, ``N`` parcels, ``D`` dimensions; positions in ``[-1, 1]^D``)
     ----------
     p, u : (R, N, D) positions and velocities, updated in place.
