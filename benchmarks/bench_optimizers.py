@@ -5,8 +5,10 @@ Three tables, each figure beside its target:
 1. microseconds per evaluation of every registered optimizer on F1 sphere, D = 30, pop 50,
    500 iterations, 30 runs in one batch, wall and CPU time (best of ``--repeats``; the machine
    may be shared, so the minimum is the figure least disturbed by other load). Target <= 0.35
-   us. mealpy's figures are quoted from issue 15 (measured 2026-11-23; mealpy pins
-   numpy <= 1.26, so it cannot run in this venv) and the ratio to them is printed.
+   us. Below it, each WDO-family variant's CPU time per evaluation as a multiple of WDO's
+   (issue 29: target <= 1.5x). mealpy's figures are quoted from issue 15 (measured
+   2026-11-23; mealpy pins numpy <= 1.26, so it cannot run in this venv) and the ratio to
+   them is printed.
 2. us/eval of WDO, MAWDO and GWO at 1, 30, 300 and 1000 runs (100 iterations each): 1000 runs
    must cost no more per evaluation than 30. Large batches go in cache-sized blocks of runs
    (mawdo.blocks); the last column is 1000 runs forced into one block, for comparison.
@@ -28,6 +30,9 @@ import tracemalloc
 import numpy as np
 
 US_TARGET = 0.35
+# issue 29: a WDO-family variant may cost at most this many times WDO's CPU us/eval
+VARIANT_RATIO_TARGET = 1.5
+VARIANTS = ("wdo_plus",)
 MEM_TARGET = 6.0
 # mealpy 3.0.1 / NiaPy, same problem and budget, quoted from issue 15 (2026-11-23)
 MEALPY_US = {"wdo": 38.1, "gwo": 50.6, "woa": 33.1}
@@ -122,6 +127,15 @@ def main(argv: list[str] | None = None) -> dict:
             "  cmaes: the reference CMA-ES is the maintained `cmaes` library, one CMA per run;"
             " its cost is the library's per-run tell() (issue 15 note)"
         )
+    for variant in VARIANTS:
+        if variant in out["us"] and "wdo" in out["us"]:
+            ratio = out["us"][variant][1] / out["us"]["wdo"][1]
+            out.setdefault("variant_ratio", {})[variant] = ratio
+            flag = "ok" if ratio <= VARIANT_RATIO_TARGET else "MISSED"
+            print(
+                f"{variant} / wdo CPU us/eval: {ratio:5.2f}x, target <= {VARIANT_RATIO_TARGET:.1f}x"
+                f" {flag} (issue 29)"
+            )
     if args.quick:
         return out
 

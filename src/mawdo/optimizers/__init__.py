@@ -2,11 +2,12 @@
 
 from mawdo.optimizers import catalog as _catalog  # noqa: F401  (registers every algorithm)
 from mawdo.optimizers.base import Optimizer, Params, Space
-from mawdo.optimizers.catalog import ABLATION_ALGORITHMS, PAPER_ALGORITHMS
+from mawdo.optimizers.catalog import ABLATION_ALGORITHMS, HOLDOUT_ALGORITHMS, PAPER_ALGORITHMS
 from mawdo.optimizers.registry import OPTIMIZERS, AlgorithmSpec, make_optimizer
 
 __all__ = [
     "ABLATION_ALGORITHMS",
+    "HOLDOUT_ALGORITHMS",
     "OPTIMIZERS",
     "PAPER_ALGORITHMS",
     "AlgorithmSpec",

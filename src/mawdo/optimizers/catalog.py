@@ -166,3 +166,20 @@ register(
         label="DE (scipy)",
     )
 )
+
+from mawdo.optimizers.wdo_plus import WDOPlus  # noqa: E402
+
+register(
+    AlgorithmSpec(
+        "wdo_plus",
+        WDOPlus,
+        {},
+        "this library (issue 29), after Bayraktar et al. 2013's WDO; docs/algorithms.md#wdo-plus",
+        "WDO+: gravity toward the personal bests' mean, success-adapted noise, restarts, "
+        "midpoint bounds",
+        label="WDO+",
+    )
+)
+
+# Issue 29's hold-out field: the references, the paper's algorithms and the variant.
+HOLDOUT_ALGORITHMS = ("cmaes", "scipy_de", "random", *PAPER_ALGORITHMS, "wdo_plus")

@@ -31,7 +31,13 @@ from pydantic import AfterValidator, Field, field_validator
 from mawdo.experiments.plans import PlanError, PositiveInt, StudyPlanBase
 from mawdo.experiments.protocol import Task, missing_run_tasks
 from mawdo.functions import FUNCTIONS, PAPER_SUITE
-from mawdo.optimizers import ABLATION_ALGORITHMS, OPTIMIZERS, PAPER_ALGORITHMS, make_optimizer
+from mawdo.optimizers import (
+    ABLATION_ALGORITHMS,
+    HOLDOUT_ALGORITHMS,
+    OPTIMIZERS,
+    PAPER_ALGORITHMS,
+    make_optimizer,
+)
 from mawdo.streams import name_word, seed_word
 
 PAPER_SEED = 20251125
@@ -260,11 +266,22 @@ def _paper(name: str, algorithms=PAPER_ALGORITHMS, **kw) -> dict[str, Any]:
     }
 
 
+# Issue 29's hold-out on F1-F16: equal evaluations; the references keep their own population
+# rule (CMA-ES 4 + 3 ln D, scipy 15 D), the others the paper's 50.
+HOLDOUT = {
+    "budget": "evals",
+    "options": {"cmaes": {"auto_pop_size": True}, "scipy_de": {"auto_pop_size": True}},
+}
+
 PRESETS: dict[str, dict[str, Any]] = {
     "paper-table3": _paper("paper-table3"),
     "paper-table3-shifted": _paper("paper-table3-shifted", shifted=True),
     "paper-table3-evals": _paper("paper-table3-evals", budget="evals"),
     "paper-ablation": _paper("paper-ablation", ABLATION_ALGORITHMS),
+    "holdout-paper": _paper("holdout-paper", HOLDOUT_ALGORITHMS, **HOLDOUT),
+    "holdout-paper-shifted": _paper(
+        "holdout-paper-shifted", HOLDOUT_ALGORITHMS, shifted=True, **HOLDOUT
+    ),
     "smoke": {
         "name": "smoke",
         "algorithms": ["gwo", "wdo", "mewdo", "mawdo"],
@@ -284,6 +301,9 @@ PRESET_HELP = {
     "paper-table3-shifted": "paper-table3 on the shifted suite (optimum moved off the centre)",
     "paper-table3-evals": "paper-table3 with equal evaluation budgets (50 x 500 per run)",
     "paper-ablation": "paper Table 5: MAWDO-1..4 and MAWDO on F1-F16, 30 runs",
+    "holdout-paper": "issue 29 hold-out: F1-F16, equal evaluations (50 x 500), CMA-ES, scipy "
+    "DE, random, the paper's six and WDO+",
+    "holdout-paper-shifted": "holdout-paper on the shifted suite (optimum moved off the centre)",
     "smoke": "a few seconds: 4 algorithms, 3 functions, 4 tiny runs",
 }
 

@@ -21,6 +21,7 @@ from typing import Annotated, Any, ClassVar, Literal
 from pydantic import Field, field_validator, model_validator
 
 from mawdo.experiments.kinds.suite.components import component_presets
+from mawdo.experiments.kinds.suite.holdout import HOLDOUT_HELP, HOLDOUT_PRESETS
 from mawdo.experiments.kinds.suite.keys import parse_key, problem_key
 from mawdo.experiments.kinds.suite.variants import canonical_name, check_variants, describe_setup
 from mawdo.experiments.plans import PlanError, PositiveInt, StudyPlanBase
@@ -363,6 +364,7 @@ PRESETS: dict[str, dict[str, Any]] = {
         "runs": 5,
         "seed": BBOB_SEED,
     },
+    **HOLDOUT_PRESETS,
 }
 """Named BBOB plans (``mawdo bench run --preset bbob-quick``)."""
 
@@ -371,6 +373,7 @@ PRESET_HELP = {
     "instance: MAWDO, WDO, GWO, WOA, CMA-ES, random",
     "bbob-full": "issue 13's protocol: BBOB f1-f24, instances 1-5, D 5 and 20, 1e4 x D "
     "evaluations, 5 runs per instance, the paper's six algorithms + CMA-ES + random",
+    **HOLDOUT_HELP,
 }
 _COMPONENTS, _COMPONENT_HELP = component_presets(BBOB_SEED)
 PRESETS.update(_COMPONENTS)

@@ -1,0 +1,51 @@
+"""The hold-out study of issue 29 (item 4) as suite presets: CEC 2017 and CEC 2022.
+
+WDO+ (``wdo_plus``) was designed on BBOB only; these presets judge it on suites it never saw,
+at each suite's own budget, against the issue's ten algorithms. The paper's F1-F16, unshifted
+and shifted, are the benchmark kind's presets ``holdout-paper`` and ``holdout-paper-shifted``.
+
+Budgets (evaluations per dimension, COCO's convention): CEC 2017 gives ``10000 D`` per run;
+CEC 2022 gives 200 000 evaluations at D = 10 and 1 000 000 at D = 20, i.e. ``20000 D`` and
+``50000 D``, so its two dimensions are two presets (a suite plan has one budget per D).
+CEC's protocol asks 51 runs; the presets make 10 (docs/deviations.md#d-holdout-runs).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from mawdo.optimizers import HOLDOUT_ALGORITHMS
+
+HOLDOUT_SEED = 20261126
+"""Master seed of the hold-out presets."""
+
+
+def _cec(name: str, suite: str, dims: list[int], budget: float, n_functions: int) -> dict:
+    return {
+        "name": name,
+        "suite": suite,
+        "algorithms": list(HOLDOUT_ALGORITHMS),
+        "functions": list(range(1, n_functions + 1)),
+        "instances": [1],
+        "dims": dims,
+        "budget": budget,
+        "runs": 10,
+        "seed": HOLDOUT_SEED,
+    }
+
+
+HOLDOUT_PRESETS: dict[str, dict[str, Any]] = {
+    "holdout-cec2017": _cec("holdout-cec2017", "cec2017", [10, 30], 1e4, 29),
+    "holdout-cec2022-d10": _cec("holdout-cec2022-d10", "cec2022", [10], 2e4, 12),
+    "holdout-cec2022-d20": _cec("holdout-cec2022-d20", "cec2022", [20], 5e4, 12),
+}
+"""Suite presets of the hold-out study (issue 29 item 4)."""
+
+HOLDOUT_HELP = {
+    "holdout-cec2017": "issue 29 hold-out: CEC 2017 F1-F29, D 10 and 30, 1e4 x D evaluations, "
+    "10 runs: CMA-ES, scipy DE, random, GWO, WOA, WDO, AWDO, MAWDO, MEWDO, WDO+",
+    "holdout-cec2022-d10": "issue 29 hold-out: CEC 2022 F1-F12, D 10, 2e4 x D (200 000) "
+    "evaluations, 10 runs, the same ten algorithms",
+    "holdout-cec2022-d20": "issue 29 hold-out: CEC 2022 F1-F12, D 20, 5e4 x D (1 000 000) "
+    "evaluations, 10 runs, the same ten algorithms",
+}
