@@ -38,6 +38,11 @@ def _one(args):
     res = run_planner(planner, scene.scenario, seed=0)
     wall = time.perf_counter() - t0
     m = run_metrics(res, l_star=scene.l_star, snapshots=0, t_star=scene.t_star)
+    if scene.t_star is None and res.solved and res.route_times is not None:  # a static family
+        from mawdo.planning.check import check_trajectory
+
+        rep = check_trajectory(res.route, res.scenario, times=res.route_times)
+        m |= {"active_collisions": len(rep.active), "passive_collisions": len(rep.passive)}
     return family, index, planner, m, wall
 
 
@@ -80,11 +85,14 @@ def latency(runs: int = 5) -> None:
 
 def _row(name, runs) -> str:
     ok = [m for m in runs if m["success"]]
-    act = sum(m["active_collisions"] or 0 for m in runs)
-    gaps = np.array([m["time_gap"] for m in ok])
+    act = sum(m.get("active_collisions") or 0 for m in runs)
+    gaps = np.array([m.get("time_gap", np.nan) for m in ok])
     med, p95 = (np.median(gaps), np.percentile(gaps, 95)) if gaps.size else (np.nan, np.nan)
+    lg = np.array([m["gap"] for m in ok])
+    lmed, lmax = (np.median(lg), np.max(lg)) if lg.size else (np.nan, np.nan)
     return (f"{name:24s} success {len(ok)}/{len(runs)} (target >= 99 %)  active {act} "
-            f"(target 0)  T/T* median {med:.3f} (<= 1.05)  p95 {p95:.3f} (<= 1.15)")  # fmt: skip
+            f"(target 0)  T/T* median {med:.3f} (<= 1.05)  p95 {p95:.3f} (<= 1.15)  "
+            f"L/L* median {lmed:.4f} max {lmax:.4f}")  # fmt: skip
 
 
 def main(argv=None) -> None:
@@ -102,13 +110,15 @@ def main(argv=None) -> None:
             return
     fams, plans = a.families.split(","), a.planners.split(",")
     jobs = [(f, i, p) for f in fams for i in range(a.scenes) for p in plans]
+    out = []
     with ProcessPoolExecutor(a.workers) as pool:
-        out = list(pool.map(_one, jobs))
+        for f, i, p, m, wall in pool.map(_one, jobs):  # in order, each as soon as it is done
+            out.append((f, i, p, m, wall))
+            print(f"  {f}-{i} {p:11s} ok={m['success']!s:5s} active={m.get('active_collisions')} "
+                  f"passive={m.get('passive_collisions')} T/T*={m.get('time_gap', np.nan):.3f} "
+                  f"L/L*={m['gap']:.4f} {wall:.0f}s "
+                  f"{'' if m['success'] else m['reason'][:70]}", flush=True)  # fmt: skip
         paper = [] if a.no_paper else list(pool.map(_paper, ["mawdo", "mawdo_time"]))
-    for f, i, p, m, wall in out:
-        print(f"  {f}-{i} {p:11s} ok={m['success']!s:5s} active={m['active_collisions']} "
-              f"passive={m['passive_collisions']} T/T*={m['time_gap']:.3f} {wall:.0f}s "
-              f"{'' if m['success'] else m['reason'][:70]}")  # fmt: skip
     for f in fams:
         for p in plans:
             print(_row(f"{f} {p}", [m for ff, _, pp, m, _ in out if ff == f and pp == p]))
