@@ -172,6 +172,7 @@ def test_parked_mover_stops_in_the_corridor_then_leaves():
         # blocked at t = 0 (the disc as a static obstacle leaves no static route) ...
         frozen = sc.to_dict()
         frozen["obstacles"][car.index].pop("motion")
+        frozen.pop("spots")  # a waiting spot in the corridor lies under the now static disc
         assert not scenario_optimum(scenario_from_dict(frozen)).reachable
         # ... so the robot waits, then goes
         assert scene.time_route.waiting > 0.0

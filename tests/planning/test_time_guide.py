@@ -134,3 +134,24 @@ def test_timed_route_clock_and_path_by_hand():
     assert np.array_equal(route_geometry(r), [[0.0, 0.0], [3.0, 4.0]])
     pts, frac = passed_between(r, 1.5, 2.5)
     assert np.array_equal(pts, [[0.0, 0.0]]) and np.allclose(frac, [0.5])
+
+
+def test_slalom_gaps_within_a_pixel_of_the_diameter_are_timed_through():
+    """slalom-0: every gap is 0.3-1 px wider than the robot. At the 0.5 px margin the safe-
+    interval guide finds no route (the gaps are closed to it); at the margin the run fits to
+    the scene (half its slack) it finds one, the checker accepts that timed route at the true
+    radius, and the run reaches the goal without an active collision."""
+    from mawdo.planning.passage import fitted_clearance
+    from mawdo.planning.sipp.guide import SafeIntervalGuide
+
+    scene = _scene("slalom", 0)
+    sc = scene.scenario
+    assert SafeIntervalGuide(sc, clearance=0.5).routes(1) == []
+    c = fitted_clearance(sc, 0.5)
+    assert 0.0 < c < 0.25  # at most half of at most 1 px of slack, less the guide's own
+    (route,) = SafeIntervalGuide(sc, clearance=c).routes(1)
+    assert check_trajectory(route.points, sc, times=route.times).ok
+    assert scene.t_star <= route.arrival <= 1.02 * scene.t_star
+    res = run_planner("guide_only", sc, seed=0)
+    assert res.success, res.reason
+    assert _active(res) == 0 and res.config.clearance == c

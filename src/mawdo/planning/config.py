@@ -54,7 +54,8 @@ class PlannerConfig:
         Extra options for the optimizer (e.g. ``{"groups": 8}``).
     clearance : float
         Safety margin (px, >= 0) added to the robot radius in the cost, the guide and the guard;
-        the checker reports steps closer than this as near misses.
+        the checker reports steps closer than this as near misses. A run uses at most half the
+        scene's narrowest-passage slack (:func:`mawdo.planning.passage.fitted_clearance`).
     elite_size : int
         Distinct candidates kept from each optimisation for the guard to fall back on, >= 1.
     give_up_steps : int

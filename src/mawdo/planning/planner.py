@@ -26,6 +26,7 @@ from mawdo.planning.config import (  # noqa: F401  (public names re-exported)
 )
 from mawdo.planning.execute import Run
 from mawdo.planning.follower import ORACLE_FOLLOWER, follow_oracle  # noqa: F401
+from mawdo.planning.passage import fit_config
 from mawdo.planning.path import polyline_length
 from mawdo.planning.result import (  # noqa: F401  (public names re-exported)
     PlanResult,
@@ -101,7 +102,7 @@ def prepare(
     sc = resolve_scenario(scenario)
     OPTIMIZERS[algorithm]  # an unknown name fails here, listing the known ones
     check_seed(seed)
-    cfg = resolve_config(config, overrides)
+    cfg = fit_config(sc, resolve_config(config, overrides))
     return Run(sc, algorithm, seed, cfg, dynamic)
 
 

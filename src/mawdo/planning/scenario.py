@@ -22,6 +22,7 @@ File layout (TOML)::
     start = [20.0, 20.0]
     goal = [346.0, 346.0]
     robot = { radius = 4.0, speed = 4.0 }
+    spots = [[60.0, 300.0]]        # optional: waiting spots (bays, corners) for the time guide
 
     [[obstacles]]                  # static polygon (motion omitted = static)
     shape = "polygon"
@@ -233,6 +234,10 @@ class ScenarioSpec(_Model):
     goal: Point
     robot: RobotSpec = RobotSpec()
     obstacles: list[ObstacleSpec] = Field(default_factory=list)
+    #: Waiting spots (pixels): free points where a timed route may stop or turn (bays,
+    #: corners), added to the safe-interval guide's roadmap. None (the default) is left out
+    #: of :meth:`Scenario.to_dict`, so files without spots read and hash as before.
+    spots: list[Point] | None = None
 
 
 # --------------------------------------------------------------------------------------------
@@ -347,6 +352,11 @@ class Scenario:
     def moving_indices(self) -> list[int]:
         """Indices of obstacles that move."""
         return [o.index for o in self.obstacles if not o.is_static]
+
+    @property
+    def spots(self) -> np.ndarray:
+        """Waiting spots (pixels), shape ``(k, 2)``; ``(0, 2)`` when the file gives none."""
+        return np.asarray(self.spec.spots or [], dtype=float).reshape(-1, 2)
 
     def straight_line_length(self) -> float:
         """Length of the straight start-goal segment (pixels)."""
@@ -497,6 +507,34 @@ def _semantic_errors(spec: ScenarioSpec) -> list[tuple[str, str]]:
             if ob.distance(getattr(spec, name)) <= r:
                 who = f"obstacles[{i}]" + (f" ({ob.id!r})" if ob.id else "")
                 errors.append((name, f"inside {who} inflated by the robot radius {r:g} px at t=0"))
+    return errors + _spot_errors(spec)
+
+
+def _spot_errors(spec: ScenarioSpec) -> list[tuple[str, str]]:
+    """Each waiting spot must hold the robot: its disc inside the map and clear of every
+    static obstacle (movers may cross it: the time guide waits there only while it is safe)."""
+    W, H, r = spec.width, spec.height, spec.robot.radius
+    errors = []
+    statics = [
+        (i, ob) for i, ob in enumerate(spec.obstacles) if isinstance(ob.motion, StaticMotion)
+    ]
+    for j, (x, y) in enumerate(spec.spots or []):
+        path = f"spots[{j}]"
+        if not (0.0 <= x <= W and 0.0 <= y <= H):
+            errors.append((path, f"({x:g}, {y:g}) is outside the map [0, {W:g}] x [0, {H:g}]; "
+                                 "move or drop the spot"))  # fmt: skip
+            continue
+        if not (r <= x <= W - r and r <= y <= H - r):
+            errors.append((path, _border_message(x, y, W, H, r) + "; move or drop the spot"))
+            continue
+        for i, ob in statics:
+            if ob.distance((x, y)) <= r:
+                who = f"obstacles[{i}]" + (f" ({ob.id!r})" if ob.id else "")
+                errors.append(
+                    (path, f"({x:g}, {y:g}) is inside static {who} inflated by the robot "
+                           f"radius {r:g} px; a spot must hold the robot: move or drop it")
+                )  # fmt: skip
+                break
     return errors
 
 

@@ -69,6 +69,8 @@ def guide_only_run(scenario, seed, config: PlannerConfig) -> PlanResult:
     """The guides' best seed executed as is (no optimizer), safe-interval guide on; ``seed``
     changes nothing (no random draw)."""
     from mawdo.planning.config import resolve_scenario
+    from mawdo.planning.passage import fit_config
 
-    cfg = replace(config, time_guide=True)
-    return GuideOnlyRun(resolve_scenario(scenario), "guide_only", seed, cfg, True).execute()
+    sc = resolve_scenario(scenario)
+    cfg = fit_config(sc, replace(config, time_guide=True))
+    return GuideOnlyRun(sc, "guide_only", seed, cfg, True).execute()

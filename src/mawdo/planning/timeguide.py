@@ -10,9 +10,13 @@ A candidate of the optimizer is a path driven at the robot's full speed: it cann
 timed route can, so the run drives it step by step from its clock (:func:`position_at`): a
 wait is the robot holding its position for the steps the route says.
 
-Waiting spots: the guide's roadmap has the static visibility graph's corners plus
+Waiting spots: the guide's roadmap has the static visibility graph's corners, the scenario's
+own waiting spots (:attr:`~mawdo.planning.scenario.Scenario.spots`: bays, corners; the timed
+scene families carry those their ``T*`` was computed with) and
 :func:`~mawdo.planning.sipp.optimum.dodge_spots` along each static guide route (points on the
-route and beside it every few robot radii), where the robot may wait or step aside.
+route and beside it every few robot radii), where the robot may wait or step aside. Spots too
+close to a wall for the run's margin are dropped
+(:func:`~mawdo.planning.sipp.roadmap.usable_spots`).
 """
 
 from __future__ import annotations
@@ -36,15 +40,17 @@ class TimeGuide:
     k : int
         Most timed routes per query (>= 1): the earliest and ``k - 1`` time-diverse ones.
     static_routes : sequence of numpy.ndarray
-        Static guide routes (pixels) along which waiting spots are placed.
+        Static guide routes (pixels) along which waiting spots are placed, beside the
+        scenario's own spots.
     """
 
     def __init__(self, scenario: Scenario, clearance: float, k: int, static_routes=()) -> None:
         from mawdo.planning.sipp.optimum import dodge_spots
+        from mawdo.planning.sipp.roadmap import usable_spots
 
         self.scenario, self.clearance, self.k = scenario, float(clearance), int(k)
-        spots = [dodge_spots(r, scenario) for r in static_routes]
-        self.spots = np.unique(np.vstack(spots), axis=0) if spots else np.zeros((0, 2))
+        spots = np.vstack([scenario.spots] + [dodge_spots(r, scenario) for r in static_routes])
+        self.spots = usable_spots(scenario, self.clearance, np.unique(spots, axis=0))
 
     def routes(self, pos, t: float) -> list:
         """Timed routes (:class:`~mawdo.planning.sipp.guide.TimedRoute`) from ``pos``

@@ -317,9 +317,12 @@ def _attempt(family: Family, p: dict, seed: int, index: int, attempt: int):
         if timed is None:
             return None, reason
     t_star = None if timed is None else timed.t_star
-    # only the description changes: the validated spec is copied, not validated again
-    text = _describe(family, p, seed, index, opt.length, t_star)
-    scenario = replace(scenario, spec=scenario.spec.model_copy(update={"description": text}))
+    # only the description (and a timed family's spots, free at the robot radius by their
+    # construction) change: the validated spec is copied, not validated again
+    update = {"description": _describe(family, p, seed, index, opt.length, t_star)}
+    if timed is not None and len(spots):
+        update["spots"] = [(float(x), float(y)) for x, y in spots]
+    scenario = replace(scenario, spec=scenario.spec.model_copy(update=update))
     route = None if timed is None else timed.route
     scene = Scene(
         family.name, seed, index, p, scenario, opt.length, opt.path, attempt + 1,

@@ -17,6 +17,7 @@ import math
 import weakref
 
 import numpy as np
+import shapely
 
 from mawdo.planning.geometry import FlatObstacles, centre_box, inflate
 from mawdo.planning.guide import GUIDE_SEGMENTS, SLACK
@@ -24,7 +25,7 @@ from mawdo.planning.scenario import Scenario
 from mawdo.planning.sipp.intervals import Movers
 from mawdo.planning.visgraph import VisGraph, build, csr_dijkstra, visible_from_point
 
-__all__ = ["Roadmap"]
+__all__ = ["Roadmap", "usable_spots"]
 
 _CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
@@ -40,6 +41,26 @@ def _free_point(p, name: str, graph: VisGraph, scenario: Scenario) -> np.ndarray
             "inside an inflated static obstacle; give a free point (or a smaller clearance)"
         )
     return p
+
+
+def usable_spots(
+    scenario: Scenario, clearance: float, spots, segments: int = GUIDE_SEGMENTS
+) -> np.ndarray:
+    """The spots (pixels, ``(k, 2)``) the roadmap at ``clearance`` can take: inside the map
+    shrunk by ``rho`` and outside every static obstacle inflated by ``rho`` (as the roadmap
+    inflates them; ``rho`` = robot radius + clearance + the guide's slack). A spot valid for the
+    bare robot (:class:`~mawdo.planning.scenario.Scenario` checks that) may be too close to a
+    wall for a larger margin; it is dropped rather than failing the whole guide."""
+    pts = np.reshape(np.asarray(spots, dtype=float), (-1, 2))
+    rho = scenario.robot_radius + clearance + SLACK
+    x0, y0, x1, y1 = centre_box(scenario, rho)
+    keep = (pts[:, 0] > x0) & (pts[:, 0] < x1) & (pts[:, 1] > y0) & (pts[:, 1] < y1)
+    statics = [
+        inflate(scenario.obstacles[i].shape, rho, n=segments) for i in scenario.static_indices
+    ]
+    if statics and keep.any():
+        keep &= ~shapely.intersects(shapely.union_all(statics), shapely.points(pts))
+    return pts[keep]
 
 
 def _csr(pairs: np.ndarray, nodes: np.ndarray):
