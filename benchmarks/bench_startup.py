@@ -70,15 +70,15 @@ def _load() -> str:
 
 
 #: The same rows measured at main 486dab0 (before the issue 28 item 2 work of 2026-11-26):
-#: (wall s, CPU s, load average while it ran) on this shared 2-core VM, printed beside each
-#: row. Rows absent there print "-".
+#: (wall s, CPU s, load average while it ran) on this shared 2-core VM at a load of 11 to 17
+#: from other jobs (so wall times are several times the CPU times), printed beside each row.
+#: Rows absent here (``cold plan paper, one process``: not measured then) print "-".
 BEFORE = {
-    "install: python -m mawdo.jitwarm -j 2": None,
-    "first plan paper after install": None,
-    "cold plan paper, no install step": None,
-    "cold plan paper, one process": None,
-    "warm plan paper + GIF": None,
-    "cold reproduce --quick": None,
+    "install: python -m mawdo.jitwarm -j 2": (548.2, 82.7, 15),
+    "first plan paper after install": (104.6, 9.9, 16),
+    "cold plan paper, no install step": (525.9, 94.5, 12),
+    "warm plan paper + GIF": (23.3, 9.1, 12),  # the better of 2 samples (27.0 s, 10.2 s)
+    "cold reproduce --quick": (1755.7, 64.3, 11),  # /usr/bin/time, not this module
 }
 
 
