@@ -23,7 +23,9 @@ each row also gives the CPU time (user + sys) of the process and all its childre
 (``getrusage(RUSAGE_CHILDREN)``) and the load average. ``python -m benchmarks startup``
 (about 5 to 15 minutes; ``STARTUP_SAMPLES=k`` warm samples, default 3; ``STARTUP_REPRODUCE=1``
 adds the cold ``reproduce --quick``, 15 to 30 minutes; ``STARTUP_SRC=path`` measures another
-copy of the sources, e.g. an older commit's ``src`` for a before/after).
+copy of the sources, e.g. an older commit's ``src`` for a before/after; ``STARTUP_SKIP=one,cold``
+leaves rows out: ``install`` (and the first plan after it), ``cold``, ``one``). Beside each row,
+the same row measured before (:data:`BEFORE`).
 """
 
 from __future__ import annotations
@@ -67,9 +69,35 @@ def _load() -> str:
     return f"load {one:.1f} (1 min) {five:.1f} (5 min) on {os.cpu_count()} cores"
 
 
+#: The same rows measured at main 486dab0 (before the issue 28 item 2 work of 2026-11-26):
+#: (wall s, CPU s, load average while it ran) on this shared 2-core VM at a load of 11 to 17
+#: from other jobs (so wall times are several times the CPU times), printed beside each row.
+#: Rows absent here (``cold plan paper, one process``: not measured then) print "-".
+BEFORE = {
+    "install: python -m mawdo.jitwarm -j 2": (548.2, 82.7, 15),
+    "first plan paper after install": (104.6, 9.9, 16),
+    "cold plan paper, no install step": (525.9, 94.5, 12),
+    "warm plan paper + GIF": (23.3, 9.1, 12),  # the better of 2 samples (27.0 s, 10.2 s)
+    "cold reproduce --quick": (1755.7, 64.3, 11),  # /usr/bin/time, not this module
+}
+
+
+def _before(name: str) -> str:
+    was = BEFORE.get(name.split(" (")[0])
+    return (
+        f"before {was[0]:6.1f} s wall / {was[1]:5.1f} s CPU (load {was[2]:.0f})"
+        if was
+        else "before -"
+    )
+
+
 def _row(name: str, wall: float, cpu: float, target: float | None) -> None:
     goal = f"(target <= {target:g} s {_flag(wall <= target)})" if target else "(no target)"
-    print(f"  {name:38s} wall {wall:7.1f} s {goal:24s} CPU {cpu:7.1f} s   {_load()}", flush=True)
+    print(
+        f"  {name:38s} wall {wall:7.1f} s {goal:24s} CPU {cpu:7.1f} s   {_load()}\n"
+        f"  {'':38s} {_before(name)}",
+        flush=True,
+    )
 
 
 def _cold(tmp: Path, name: str) -> Path:
@@ -80,22 +108,27 @@ def _cold(tmp: Path, name: str) -> Path:
 
 def main() -> None:
     samples = int(os.environ.get("STARTUP_SAMPLES", "3"))
+    skip = set(filter(None, os.environ.get("STARTUP_SKIP", "").split(",")))
     plan = ["-m", "mawdo.cli", "plan", "paper", "--no-progress", "--out"]
     print(f"  sources: {SRC}")
     with tempfile.TemporaryDirectory(prefix="mawdo-startup-") as tmp:
         tmp = Path(tmp)
         cache = _cold(tmp, "numba-install")
-        if (SRC / "mawdo" / "jitwarm.py").is_file():
+        if (SRC / "mawdo" / "jitwarm.py").is_file() and "install" not in skip:
             warm = ["-m", "mawdo.jitwarm", "--jobs", "2"]
             _row("install: python -m mawdo.jitwarm -j 2", *timed(warm, cache, tmp), None)
             _row("first plan paper after install", *timed([*plan, "first"], cache, tmp), 30)
+        if (SRC / "mawdo" / "jitwarm.py").is_file() and "cold" not in skip:
             one = _cold(tmp, "numba-cold")
             _row("cold plan paper, no install step", *timed([*plan, "cold"], one, tmp), 30)
-        jobs1 = {"MAWDO_JIT_JOBS": "1"}
-        cold = _cold(tmp, "numba-cold1")
-        _row("cold plan paper, one process", *timed([*plan, "c1"], cold, tmp, jobs1), 30)
+            cache = one
+        if "one" not in skip:
+            jobs1 = {"MAWDO_JIT_JOBS": "1"}
+            cold = _cold(tmp, "numba-cold1")
+            _row("cold plan paper, one process", *timed([*plan, "c1"], cold, tmp, jobs1), 30)
+            cache = cold
         for k in range(samples):
-            _row(f"warm plan paper + GIF ({k + 1})", *timed([*plan, f"w{k}"], cold, tmp), 5)
+            _row(f"warm plan paper + GIF ({k + 1})", *timed([*plan, f"w{k}"], cache, tmp), 5)
         if os.environ.get("STARTUP_REPRODUCE", "0") != "0":
             repro = _cold(tmp, "numba-reproduce")
             args = ["-m", "mawdo.cli", "reproduce", "--quick", "--no-progress", "--out", "r"]

@@ -121,6 +121,9 @@ def test_run_resume_and_report_a_benchmark_preset(tmp_path):
                 cwd=tmp_path)  # fmt: skip
     assert rep.returncode == 0, rep.stderr
     assert rep.stdout.strip() == f"report: {Path('rep') / 'report.md'}"
+    # issue 28: what a report spends its seconds on is said on stderr, with how long it took
+    assert "writing the report of the benchmark study ..." in rep.stderr
+    assert "writing the report of the benchmark study: done in " in rep.stderr
     table = (tmp_path / "rep" / "results_raw.csv").read_text().splitlines()
     sphere = [r.fun for r in stored_rows(tmp_path / "new.db", "sphere")]
     assert f"F1,Ave,{float(np.mean(sphere))!r}" in table  # F1 is sphere: mean of stored runs

@@ -218,3 +218,68 @@ def test_grid_says_obstacles_are_drawn_at_t_while_the_lines_span_all_times(runs)
     page = fig.bbox
     assert note.x0 >= page.x0 and note.x1 <= page.x1 and note.y0 >= page.y0
     assert note.y1 <= legend.y0 + 1
+
+
+def gif_frames(path) -> list[np.ndarray]:
+    with Image.open(path) as im:
+        out = []
+        for k in range(im.n_frames):
+            im.seek(k)
+            out.append(np.asarray(im.convert("RGB")).astype(int))
+        return out
+
+
+def test_gif_frames_are_the_panel_drawn_afresh_and_the_robot_is_where_the_run_puts_it(
+    runs, tmp_path
+):
+    """Each frame (blitted, on the shared palette) is the panel a fresh figure draws at the
+    frame's time, up to the palette's rounding of anti-aliased pixels; the robot's centre pixel
+    has the robot's colour exactly, at the run's position of that time."""
+    from matplotlib.colors import to_rgb
+
+    from mawdo.planning.render import animation
+
+    res = runs["mawdo"]
+    out = render.animate(res, tmp_path / "run.gif", every=3)
+    ts = render.animation_times(res, every=3)
+    frames = gif_frames(out)
+    assert len(frames) == len(ts) == 11 and frames[0].shape == (448, 400, 3)
+    opt = render.optimum_path(res.scenario, {})
+    robot = np.round(np.multiply(to_rgb(render.STYLE["robot"]["facecolor"]), 255)).astype(int)
+    route, times = render.route_of(res)
+    for k in (0, 4, 10):
+        fig, ax = animation._panel(res, float(ts[k]), opt, 80, None)
+        fig.canvas.draw()
+        fresh = np.asarray(fig.canvas.buffer_rgba())[..., :3].astype(int)
+        off = np.abs(fresh - frames[k]).max(axis=-1)
+        assert np.mean(off > 40) < 0.002, (k, np.mean(off > 40))  # palette rounding only
+        assert np.mean(off == 0) > 0.9
+        x, y = ax.transData.transform(render.position_at(route, times, float(ts[k])))
+        row, col = int(fresh.shape[0] - y), int(x)
+        np.testing.assert_array_equal(frames[k][row, col], robot)
+        if k:  # where the robot was at the start it is no longer
+            x0, y0 = ax.transData.transform(route[0])
+            assert not np.array_equal(frames[k][int(448 - y0), int(x0)], robot)
+    moved = [np.any(a != b) for a, b in zip(frames, frames[1:], strict=False)]
+    assert all(moved)  # the robot moves (it does not wait in this run): every frame differs
+    assert np.all(frames[0][0, 0] == 255) and np.all(frames[-1][0, 0] == 255)  # pure white
+
+
+def test_forked_returns_the_childs_value_and_raises_its_error():
+    import os
+
+    job = render.Forked(os.getpid)
+    pid = job.result()
+    assert isinstance(pid, int)
+    assert (pid != os.getpid()) == render.can_fork()  # drawn in another process where it can
+
+    def fails():
+        raise OSError("cannot write '/x/run.gif': No space left on device")
+
+    with pytest.raises(OSError, match="No space left on device"):
+        render.Forked(fails).result()
+    here = render.Forked(os.getpid, parallel=False)
+    assert here.result() == os.getpid() and render.forked_note(here) == ""
+    if render.can_fork():  # a value that cannot be pickled back: said, not lost silently
+        with pytest.raises(RuntimeError, match="could not send back"):
+            render.Forked(lambda: lambda: None).result()

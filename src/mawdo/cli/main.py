@@ -256,10 +256,12 @@ def demo(
     (out / "metrics.md").write_text(
         "| metric | value |\n|---|---|\n" + "".join(f"| {k} | {v} |\n" for k, v in run.rows())
     )
+    frames = len(render.animation_times(run.result))
+    drawing = render.Forked(lambda: render.animate(run.result, out / "mawdo_paper.gif", every=2))
     with step("drawing the snapshot grid"):
         grid = job.write_figure(run, out / job.FIGURE)
-    with step(f"writing the GIF ({len(render.animation_times(run.result))} frames)"):
-        gif = render.animate(run.result, out / "mawdo_paper.gif", every=2)
+    with step(f"writing the GIF ({frames} frames{render.forked_note(drawing)})"):
+        gif = drawing.result()
     console.print(f"snapshot grid : {grid}")
     console.print(f"animation     : {gif}")
     console.print(f"metrics       : {out / 'metrics.md'}, {out / 'metrics.json'}")

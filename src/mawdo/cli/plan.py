@@ -136,12 +136,13 @@ def run_cmd(
             from mawdo.planning import render
         except ImportError:
             return
+        frames = len(render.animation_times(res))
+        job = render.Forked(lambda: render.animate(res, out / "run.gif"))  # beside the grid
         with step("drawing the snapshot grid", progress):
             grid = render.snapshot_grid([res], out / "snapshots.png")
         console.print(f"snapshot grid: {grid}")
-        frames = len(render.animation_times(res))
-        with step(f"writing the GIF ({frames} frames)", progress):
-            gif = render.animate(res, out / "run.gif")
+        with step(f"writing the GIF ({frames} frames{render.forked_note(job)})", progress):
+            gif = job.result()
         console.print(f"animation: {gif}")
 
 

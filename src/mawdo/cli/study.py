@@ -185,7 +185,10 @@ def report_cmd(
         )
     options = report_options(kind, option)
     target = list(stores) if kind.report_merges_stores else stores[0]
-    with writing_into(out):
+    from mawdo.cli.progress import step
+
+    # tens of seconds of tables and figures: a line on stderr says what is going on
+    with writing_into(out), step(f"writing the report of the {kind.name} study"):
         result = kind.report(target, out, **options)
     typer.echo(f"report: {report_path(result, out)}")
 

@@ -17,11 +17,13 @@ Units: pixels (x right, y up, origin at the lower-left map corner) and time step
 
 A package, one module per job (every name is importable from here as before):
 :mod:`.style` (colours, sizes, shared helpers), :mod:`.world` (one map panel), :mod:`.snapshots`
-(the grid), :mod:`.animation` (the GIF), :mod:`.plots` (convergence and box plots).
+(the grid), :mod:`.animation` (the GIF), :mod:`.plots` (convergence and box plots),
+:mod:`.forked` (a figure drawn in a second process beside another: the GIF beside the grid).
 """
 
 # ruff: noqa: F401 - private names are re-exported: callers import them from here as before
 from mawdo.planning.render.animation import animate, animation_times
+from mawdo.planning.render.forked import Forked, can_fork, forked_note
 from mawdo.planning.render.plots import (
     as_runs,
     plain_log_labels,
@@ -61,6 +63,7 @@ from mawdo.planning.render.style import (
 from mawdo.planning.render.world import draw_world, legend_handles
 
 __all__ = [
+    "Forked",
     "animate",
     "animation_times",
     "plot_cost_convergence",

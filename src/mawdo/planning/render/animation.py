@@ -97,6 +97,18 @@ def animate(
     ts = animation_times(result, every, max_frames)
     sc = result.scenario
     opt = optimum_path(sc, {}) if optimum else None
+    fig, ax = _panel(result, float(ts[0]), opt, dpi, label)
+    frame0 = world_state(sc, float(ts[0]), result, opt)
+    frames = _Frames(fig, ax, sc, frame0)
+    images = [frames.grab(world_state(sc, float(t), result, opt), t) for t in ts]
+    _write_gif(images, out, fps)
+    return out
+
+
+def _panel(result: PlanResult, t: float, opt, dpi: int, label: str | None):
+    """The GIF's figure with its one map panel drawn at time ``t``, laid out once (frames keep
+    that layout: the panel title's text changes, not its height); ``(figure, axes)``."""
+    sc = result.scenario
     fig = new_figure((5.0, 5.6), dpi)
     fig.get_layout_engine().set(w_pad=0.02, h_pad=0.02)
     fig.suptitle(f"{label or display_name(result.algorithm)}  (seed {result.seed})", fontsize=10)
@@ -111,17 +123,13 @@ def animate(
         handlelength=2.0,
         columnspacing=1.0,
     )
-
-    frame0 = world_state(sc, float(ts[0]), result, opt)
-    draw_world(ax, sc, float(ts[0]), result=result, optimum=opt)
+    draw_world(ax, sc, t, result=result, optimum=opt, clear=False)  # a new axes: no clear
     ax.set_xlabel("x (px)", fontsize=7)
     ax.set_ylabel("y (px)", fontsize=7)
-    fig.draw_without_rendering()  # fix the constrained layout once; frames keep it
+    # the layout alone, not a whole draw with rendering off (the frames' first draw renders)
+    fig.get_layout_engine().execute(fig)
     fig.set_layout_engine("none")
-    frames = _Frames(fig, ax, sc, frame0)
-    images = [frames.grab(world_state(sc, float(t), result, opt), t) for t in ts]
-    _write_gif(images, out, fps)
-    return out
+    return fig, ax
 
 
 class _Frames:
@@ -147,10 +155,8 @@ class _Frames:
         arts = [a for gid in self.gids for a in self.layers[gid]]
         return sorted(arts, key=lambda a: a.get_zorder())  # (a stable sort)
 
-    def grab(self, state: dict, t: float):
-        """The frame at time ``t`` (state from :func:`world_state`) as an RGB image."""
-        from PIL import Image
-
+    def grab(self, state: dict, t: float) -> np.ndarray:
+        """The frame at time ``t`` (state from :func:`world_state`): RGB, ``(h, w, 3)`` uint8."""
         for gid in self.gids:
             data = state.get(gid)
             arts = self.layers[gid]
@@ -168,7 +174,7 @@ class _Frames:
         for a in [*self._artists(), self.ax.title]:
             self.ax.draw_artist(a)
         rgba = np.asarray(canvas.buffer_rgba())
-        return Image.fromarray(np.ascontiguousarray(rgba[..., :3]))
+        return np.ascontiguousarray(rgba[..., :3])  # a copy: the canvas's buffer is reused
 
 
 def _packed(rgb: np.ndarray) -> np.ndarray:
@@ -180,40 +186,48 @@ def _packed(rgb: np.ndarray) -> np.ndarray:
 class _Palette:
     """One palette for every frame, from the first, middle and last frame: their most frequent
     colours exactly (background, fills and lines stay pure), the anti-aliased rest by median
-    cut. Pillow maps a pixel to a palette through a coarse colour cache (white could become
-    252 grey), so pixels of an exact colour are set to its entry afterwards."""
+    cut. Each colour of a frame maps to its nearest palette entry (squared RGB distance, the
+    first on a tie), through a table over all 2^24 colours filled as colours appear: a frame
+    costs a lookup per pixel, not a search (Pillow's own mapping was a quarter of the GIF's
+    time, and its coarse colour cache could turn white into 252 grey)."""
 
-    def __init__(self, images: list) -> None:
+    def __init__(self, frames: list[np.ndarray]) -> None:
         from PIL import Image
 
-        picks = [np.asarray(images[k]) for k in (0, len(images) // 2, -1)]
-        colours, counts = np.unique(_packed(np.concatenate(picks)), return_counts=True)
-        top = colours[np.argsort(-counts, kind="stable")[:_EXACT_COLOURS]]
-        self.exact = np.sort(top)  # entry k of the palette is colour self.exact[k]
-        exact_rgb = np.stack([self.exact >> 16, (self.exact >> 8) & 255, self.exact & 255], 1)
-        n_cut = 256 - len(self.exact)
-        cut = Image.fromarray(np.concatenate(picks)).quantize(n_cut, Image.Quantize.MEDIANCUT)
+        picks = np.concatenate([frames[k] for k in (0, len(frames) // 2, -1)])
+        colours, counts = np.unique(_packed(picks), return_counts=True)
+        top = np.sort(colours[np.argsort(-counts, kind="stable")[:_EXACT_COLOURS]])
+        exact_rgb = np.stack([top >> 16, (top >> 8) & 255, top & 255], 1)
+        n_cut = 256 - len(top)
+        cut = Image.fromarray(picks).quantize(n_cut, Image.Quantize.MEDIANCUT)
         rest = np.asarray(cut.getpalette()[: 3 * n_cut]).reshape(-1, 3)
-        self.rgb = np.concatenate([exact_rgb, rest]).astype(np.uint8).ravel().tolist()
-        self.image = Image.new("P", (1, 1))
-        self.image.putpalette(self.rgb)
+        self.entries = np.concatenate([exact_rgb, rest]).astype(np.int64)  # (<= 256, 3)
+        self.rgb = self.entries.astype(np.uint8).ravel().tolist()
+        self.table = np.full(1 << 24, -1, dtype=np.int16)  # 0xRRGGBB -> entry (-1: not yet)
+        self.table[top] = np.arange(len(top))
 
-    def __call__(self, im):
-        """An RGB frame as a palette image on this palette."""
+    def __call__(self, frame: np.ndarray):
+        """An RGB frame (``(h, w, 3)`` uint8) as a palette image on this palette."""
         from PIL import Image
 
-        index = np.array(im.quantize(palette=self.image, dither=Image.Dither.NONE))
-        packed = _packed(np.asarray(im))
-        at = np.minimum(np.searchsorted(self.exact, packed), len(self.exact) - 1)
-        hit = self.exact[at] == packed
-        index.reshape(-1)[hit] = at[hit]
-        out = Image.fromarray(index, "P")
+        packed = _packed(frame)
+        index = self.table[packed]
+        new = np.unique(packed[index < 0])
+        if new.size:
+            for lo in range(0, new.size, 2048):  # (2048, 256) distances at a time
+                part = new[lo : lo + 2048]
+                rgb = np.stack([part >> 16, (part >> 8) & 255, part & 255], 1).astype(np.int64)
+                d2 = ((rgb[:, None, :] - self.entries[None, :, :]) ** 2).sum(-1)
+                self.table[part] = np.argmin(d2, axis=1)
+            index = self.table[packed]
+        out = Image.fromarray(index.astype(np.uint8).reshape(frame.shape[:2]), "P")
         out.putpalette(self.rgb)
         return out
 
 
-def _write_gif(images: list, out: Path, fps) -> None:
-    """Write RGB frames as one looping GIF on a shared palette, each shown ``1 / fps`` s."""
+def _write_gif(images: list[np.ndarray], out: Path, fps) -> None:
+    """Write RGB frames (``(h, w, 3)`` uint8) as one looping GIF on a shared palette, each
+    shown ``1 / fps`` s."""
     palette = _Palette(images)
     frames = [palette(im) for im in images]
     try:

@@ -109,7 +109,8 @@ def snapshot_figure(
             if i >= len(ts):
                 ax.set_visible(False)
                 continue
-            draw_world(ax, res.scenario, float(ts[i]), result=res, optimum=opt)
+            # a new axes: clearing it again would only rebuild its ticks (0.1-0.2 s a grid)
+            draw_world(ax, res.scenario, float(ts[i]), result=res, optimum=opt, clear=False)
             if c == 0:
                 ax.set_ylabel("y (px)", fontsize=8)
             else:
@@ -194,6 +195,11 @@ def snapshot_grid(
     fig = snapshot_figure(
         results, times=times, rows=rows, cols=cols, optimum=optimum, metrics=metrics, dpi=dpi
     )
+    # Lay out once, then save with the layout fixed: savefig would otherwise draw the whole
+    # figure twice (a layout pass with drawing switched off, then the real one), about 0.4 s
+    # of the grid's 2 s. Same positions, same pixels.
+    fig.get_layout_engine().execute(fig)
+    fig.set_layout_engine("none")
     return save_figure(fig, out, metadata=dict(metadata)) if metadata else save_figure(fig, out)
 
 
