@@ -3,8 +3,8 @@
 At every (re)plan the run asks the :class:`~mawdo.planning.sipp.guide.SafeIntervalGuide` for
 the earliest-arrival timed route from the robot's position and time, and up to
 ``time_routes - 1`` time-diverse alternatives. Their geometry joins the seeds; the guard
-follows the earliest one (waits included) when no static candidate is safe to the goal or
-when it arrives earlier than the best safe one (:mod:`mawdo.planning.execute`).
+follows the earliest one (waits included) when the candidate it accepted is not
+collision-free to the goal when driven at full speed from now (:meth:`TimedRun._timed_choice`).
 
 A candidate of the optimizer is a path driven at the robot's full speed: it cannot wait. A
 timed route can, so the run drives it step by step from its clock (:func:`position_at`): a
