@@ -99,6 +99,12 @@ def test_a_finished_store_is_skipped(reference_store, tmp_path):
     assert (summary.done, summary.skipped, summary.tasks) == (0, small_plan().total_runs, 0)
 
 
+def _sigint_default() -> None:
+    """Python's Ctrl-C in the child, whatever this process inherited: a suite started in the
+    background of a non-interactive shell ignores SIGINT, and its children with it."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _start(plan_file: Path, db: Path, *extra: str) -> subprocess.Popen:
     return subprocess.Popen(
         [
@@ -117,6 +123,7 @@ def _start(plan_file: Path, db: Path, *extra: str) -> subprocess.Popen:
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
+        preexec_fn=_sigint_default,
     )
 
 
