@@ -64,6 +64,7 @@ def test_a_step_names_itself_and_says_when_it_is_done(capsys):
     assert capsys.readouterr().err == ""
 
 
+@pytest.mark.slow  # two whole `plan paper` runs in subprocesses, 30-60 s on 2 cores
 def test_plan_says_when_it_draws_the_grid_and_writes_the_gif(tmp_path):
     out = tmp_path / "run"
     r = mawdo("plan", "paper", "--preset", "quick", "--out", str(out))
