@@ -115,6 +115,17 @@ class StudyPlanBase(BaseModel):
         return hashlib.sha256(blob.encode("utf-8")).hexdigest()
 
 
+def reject_duplicates(values: tuple, field: str) -> tuple:
+    """``values`` unchanged when no entry repeats; else a ``ValueError`` naming the repeat and
+    its first place, e.g. ``functions[1]: 'sphere' is listed twice (also functions[0])``."""
+    first: dict[Any, int] = {}
+    for i, v in enumerate(values):
+        if v in first:
+            raise ValueError(f"{field}[{i}]: {v!r} is listed twice (also {field}[{first[v]}])")
+        first[v] = i
+    return values
+
+
 def plan_from_data(path, data: dict[str, Any], preset: Callable, build: Callable):
     """The plan of a plan file's fields ``data``: ``preset(name)`` with the other fields as
     overrides when ``data`` has a ``preset`` key, else ``build(data)``; a :class:`PlanError`

@@ -28,7 +28,7 @@ from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import AfterValidator, Field, field_validator
 
-from mawdo.experiments.plans import PlanError, PositiveInt, StudyPlanBase
+from mawdo.experiments.plans import PlanError, PositiveInt, StudyPlanBase, reject_duplicates
 from mawdo.experiments.protocol import Task, missing_run_tasks
 from mawdo.functions import FUNCTIONS, PAPER_SUITE
 from mawdo.optimizers import (
@@ -116,15 +116,7 @@ class ExperimentPlan(StudyPlanBase):
     @field_validator("algorithms", "functions")
     @classmethod
     def _no_duplicates(cls, names: tuple[str, ...], info) -> tuple[str, ...]:
-        first: dict[str, int] = {}
-        for i, n in enumerate(names):
-            if n in first:
-                raise ValueError(
-                    f"{info.field_name}[{i}]: {n!r} is listed twice "
-                    f"(also {info.field_name}[{first[n]}])"
-                )
-            first[n] = i
-        return names
+        return reject_duplicates(names, info.field_name)
 
     @field_validator("options")
     @classmethod

@@ -24,7 +24,7 @@ from mawdo.experiments.kinds.suite.components import component_presets
 from mawdo.experiments.kinds.suite.holdout import HOLDOUT_HELP, HOLDOUT_PRESETS
 from mawdo.experiments.kinds.suite.keys import parse_key, problem_key
 from mawdo.experiments.kinds.suite.variants import canonical_name, check_variants, describe_setup
-from mawdo.experiments.plans import PlanError, PositiveInt, StudyPlanBase
+from mawdo.experiments.plans import PlanError, PositiveInt, StudyPlanBase, reject_duplicates
 from mawdo.experiments.protocol import Task, missing_run_tasks
 from mawdo.optimizers import PAPER_ALGORITHMS, make_optimizer
 from mawdo.streams import name_word
@@ -154,15 +154,7 @@ class SuitePlan(StudyPlanBase):
     @field_validator("instances", "dims")
     @classmethod
     def _no_duplicates(cls, values: tuple, info) -> tuple:
-        first: dict[Any, int] = {}
-        for i, v in enumerate(values):
-            if v in first:
-                raise ValueError(
-                    f"{info.field_name}[{i}]: {v!r} is listed twice (also {info.field_name}"
-                    f"[{first[v]}])"
-                )
-            first[v] = i
-        return values
+        return reject_duplicates(values, info.field_name)
 
     @field_validator("functions")
     @classmethod
