@@ -21,7 +21,7 @@ from numba import njit
 
 from mawdo.planning.check import check_trajectory
 from mawdo.planning.cost import PathCost
-from mawdo.planning.path import advance, densify
+from mawdo.planning.path import advance, densify, unit_headings
 from mawdo.planning.scenario import Scenario
 
 __all__ = ["Elite", "Guard"]
@@ -161,8 +161,7 @@ class Guard:
         nearest the target first; ``safe`` is then False when it admits none (the move
         returned is the one without ``admit``)."""
         v = self.scenario.robot_speed * dt
-        ang = np.linspace(0.0, 2 * np.pi, 16, endpoint=False)
-        dirs = np.column_stack([np.cos(ang), np.sin(ang)])
+        dirs = unit_headings(16)
         moves = np.vstack([pos, pos + v * dirs, pos + 0.5 * v * dirs])
         clear = np.array([self.step_clearance(pos, m, t, dt) for m in moves])
         safe = clear >= self.clearance

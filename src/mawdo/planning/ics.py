@@ -44,7 +44,7 @@ import shapely
 
 from mawdo.planning.cost import assemble_paths
 from mawdo.planning.motion import BoundedRandomWalk
-from mawdo.planning.path import advance, segment_lengths
+from mawdo.planning.path import advance, segment_lengths, unit_headings
 from mawdo.planning.scenario import CircleObstacle, Scenario
 from mawdo.planning.sipp.intervals import Movers, forbidden, segment_free
 
@@ -107,8 +107,7 @@ class SafeContinuation:
         self.sc, self.clearance, self.horizon = scenario, float(clearance), int(horizon)
         self.v = scenario.robot_speed
         self.reach = scenario.robot_radius + 0.5 * self.clearance
-        ang = np.linspace(0.0, 2.0 * np.pi, int(headings), endpoint=False)
-        dirs = np.column_stack([np.cos(ang), np.sin(ang)])
+        dirs = unit_headings(int(headings))
         self._moves = [(k, self.v * k * dirs) for k in sorted(int(h) for h in hops)]
         self._statics = [_geometry(scenario.obstacles[i].shape) for i in scenario.static_indices]
         moving = [scenario.obstacles[i].motion for i in scenario.moving_indices]

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mawdo.planning.path import polyline_length
+from mawdo.planning.path import polyline_length, unit_headings
 
 __all__ = ["Limits", "LimitedRun", "project", "stopping_speed", "turn_penalty"]
 
@@ -140,8 +140,7 @@ class LimitedRun:
         if self.guard.step_clearance(pos, first, t, 1.0) >= self.cfg.clearance:
             return self._take(pos, first)
         v = self.sc.robot_speed
-        ang = np.linspace(0.0, 2.0 * np.pi, 16, endpoint=False)
-        dirs = np.column_stack([np.cos(ang), np.sin(ang)])
+        dirs = unit_headings(16)
         wants = np.vstack([-self._vel, v * dirs, 0.5 * v * dirs])
         moves = np.array([pos + project(w, self._vel, lim) for w in wants])
         clear = np.array([self.guard.step_clearance(pos, m, t, 1.0) for m in moves])

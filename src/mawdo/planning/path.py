@@ -6,6 +6,8 @@ metrics of an executed path are not computed by the code that produced it.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 
@@ -121,3 +123,14 @@ def densify(points: np.ndarray, m: int) -> np.ndarray:
     out[vrow] = base[1:-1]
     out[~is_vertex] = new
     return out
+
+
+@functools.lru_cache(maxsize=8)
+def unit_headings(n: int) -> np.ndarray:
+    """``n`` (>= 1) unit vectors at equal angles, counter-clockwise from +x: the fan of
+    directions the guard, the inevitable-collision rule and the kinematic fallback try;
+    shape (n, 2), read-only (shared between calls)."""
+    ang = np.linspace(0.0, 2.0 * np.pi, int(n), endpoint=False)
+    dirs = np.column_stack([np.cos(ang), np.sin(ang)])
+    dirs.setflags(write=False)
+    return dirs
