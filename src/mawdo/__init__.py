@@ -16,7 +16,7 @@ from mawdo.optimizers import OPTIMIZERS, make_optimizer  # noqa: E402
 from mawdo.problem import ObjectiveError, Problem  # noqa: E402
 from mawdo.result import OptimizeResult  # noqa: E402
 
-__version__ = "0.8.0"
+__version__ = "0.9.0"
 
 
 def __getattr__(name):

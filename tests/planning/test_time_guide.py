@@ -78,18 +78,42 @@ def test_doorway_patrol_is_timed_through_the_door():
     assert res.steps <= 1.05 * scene.t_star
 
 
-def test_default_run_never_consults_the_time_guide(monkeypatch):
+def test_time_guide_off_never_consults_the_guide(monkeypatch):
     sc = _scene("doorway", 0).scenario
-    off = plan(sc, "mawdo", seed=0, time_guide=False)
+    seen = plan(sc, "mawdo", seed=0, time_guide=False)
 
     def refuse(*args, **kwargs):
-        raise AssertionError("the default planner asked the safe-interval guide")
+        raise AssertionError("a run with time_guide=False asked the safe-interval guide")
 
     monkeypatch.setattr(TimeGuide, "routes", refuse)
+    again = plan(sc, "mawdo", seed=0, time_guide=False)
+    assert np.array_equal(again.route, seen.route)
+    assert [r.cost for r in again.replans] == [r.cost for r in seen.replans]
+
+
+def test_the_default_planner_consults_the_time_guide_and_the_paper_presets_do_not(monkeypatch):
+    """Issue 27: the guide seeds every (re)plan of the default planner; the ``paper`` and
+    ``study`` presets keep the planner the paper measures."""
+    from mawdo.planning.config import PRESETS, PlannerConfig
+
+    assert PlannerConfig().time_guide
+    assert all(PRESETS[k].time_guide for k in ("realtime", "quick", "fast"))
+    assert not PRESETS["paper"].time_guide and not PRESETS["study"].time_guide
+    asked = []
+    real = TimeGuide.routes
+
+    def spy(self, pos, t):
+        asked.append(t)
+        return real(self, pos, t)
+
+    monkeypatch.setattr(TimeGuide, "routes", spy)
+    sc = _scene("doorway", 0).scenario
     default = plan(sc, "mawdo", seed=0)
-    assert np.array_equal(default.route, off.route)
-    assert np.array_equal(default.route_times, off.route_times)
-    assert [r.cost for r in default.replans] == [r.cost for r in off.replans]
+    assert asked and asked[0] == 0.0  # the first plan is seeded by the timed routes
+    # mawdo_time only forces the switch on: under the default preset it is the same run
+    timed = run_planner("mawdo_time", sc, seed=0)
+    assert np.array_equal(default.route, timed.route)
+    assert np.array_equal(default.route_times, timed.route_times)
 
 
 def test_guide_only_is_registered_without_an_optimizer():

@@ -289,12 +289,15 @@ class Store:
             Filters.
         skip : tuple of str
             Row fields not to read (large blobs a caller does not need); they come back as
-            their default (None).
+            their default (None), as do fields the store's ``runs`` table lacks (columns added
+            to the row type after the store was made).
         """
         unknown = set(skip) - {n for n, _ in self._schema}
         if unknown:
             raise ValueError(f"skip: {sorted(unknown)} are not fields of {self.row_type.__name__}")
-        read = [(n, s) for n, s in self._schema if n not in skip]
+        # a column added to the row type after the store was made reads as its default (None)
+        present = {c[1] for c in self.conn.execute("PRAGMA table_info(runs)").fetchall()}
+        read = [(n, s) for n, s in self._schema if n not in skip and n in present]
         cond, args = [], []
         for col, val in (("algorithm", algorithm), ("problem", problem)):
             if val is not None:

@@ -34,6 +34,12 @@ class ArenaRow(RunRow):
     ``l_star`` (NaN when the goal is not reached). Latencies are replans after the first plan
     (None for single-shot planners); ``first_plan_s`` is the first plan's (or the single
     shot's) wall time; ``nfev`` the cost evaluations (OMPL: validity checks).
+
+    Timed scene families (issue 27) also store ``t_star``, the scene's earliest arrival (time
+    steps), ``time_gap`` = arrival step / ``t_star`` (NaN unless the run succeeded), and the
+    checker's ``active_collisions`` (the robot moving) and ``passive_collisions`` (the robot at
+    rest, hit by an obstacle); ``inevitable`` counts the steps at which no option kept a safe
+    continuation. Stores made before these columns existed read them as None.
     """
 
     status: str | None = column("text")
@@ -58,6 +64,11 @@ class ArenaRow(RunRow):
     first_plan_s: float | None = column("real")
     nfev: int | None = column("int")
     trace: bytes | None = column("blob")
+    t_star: float | None = column("real")
+    time_gap: float | None = column("real")
+    active_collisions: int | None = column("int")
+    passive_collisions: int | None = column("int")
+    inevitable: int | None = column("int")
 
 
 def scenario_from_toml(text: str, name: str):
@@ -89,18 +100,23 @@ COLUMNS = {
     "latency_p99_ms": "latency_p99_ms",
     "first_plan_s": "first_plan_s",
     "nfev": "nfev",
+    "inevitable": "inevitable",
 }
+#: The columns of a timed scene (one with an earliest arrival ``t_star``).
+TIME_COLUMNS = ("t_star", "time_gap", "active_collisions", "passive_collisions")
 # not measured: stored as None (NULL), not NaN (the gap of a failed run stays NaN)
 _NONE_IF_NAN = ("latency_p50_ms", "latency_p95_ms", "latency_p99_ms", "first_plan_s")
 
 
-def row_metrics(res, l_star: float) -> dict[str, Any]:
+def row_metrics(res, l_star: float, t_star: float | None = None) -> dict[str, Any]:
     """The arena columns of a run of any planner, from
-    :func:`~mawdo.planning.metrics.run_metrics` (no snapshot ratios, the scene's ``l_star``)."""
+    :func:`~mawdo.planning.metrics.run_metrics` (no snapshot ratios, the scene's ``l_star`` and,
+    for a timed scene, its ``t_star``)."""
     from mawdo.planning.metrics import run_metrics
 
-    m = run_metrics(res, l_star=l_star, snapshots=0)
+    m = run_metrics(res, l_star=l_star, snapshots=0, t_star=t_star)
     out = {col: m[name] for col, name in COLUMNS.items()}
+    out |= {col: m[col] for col in TIME_COLUMNS if col in m}
     for col in ("success", "collision_free"):
         out[col] = None if out[col] is None else int(out[col])
     for col in _NONE_IF_NAN:
@@ -109,17 +125,18 @@ def row_metrics(res, l_star: float) -> dict[str, Any]:
 
 
 def plan_scene(name: str, sc, l_star: float, seed: int, preset: str, overrides: dict,
-               options: dict | None = None):  # fmt: skip
+               options: dict | None = None, t_star: float | None = None):  # fmt: skip
     """Run the planner ``name`` (:data:`~mawdo.planning.planners.PLANNERS`) on ``sc`` with the
     preset and its overrides, passing it those of ``options`` it takes; returns the
-    :class:`~mawdo.planning.result.PlanResult` and its arena columns (:func:`row_metrics`)."""
+    :class:`~mawdo.planning.result.PlanResult` and its arena columns (:func:`row_metrics`;
+    ``t_star`` for a timed scene)."""
     from mawdo.planning.config import resolve_config
     from mawdo.planning.planners import PLANNERS
 
     planner = PLANNERS[name]
     opts = {k: v for k, v in (options or {}).items() if k in planner.options}
     res = planner.run(sc, seed, resolve_config(preset, overrides), **opts)
-    return res, row_metrics(res, l_star)
+    return res, row_metrics(res, l_star, t_star)
 
 
 def _plan_one(spec: dict[str, Any], scene, seed: int) -> tuple[dict[str, Any], bytes | None]:
@@ -127,7 +144,7 @@ def _plan_one(spec: dict[str, Any], scene, seed: int) -> tuple[dict[str, Any], b
     from mawdo.planning.result import result_to_bytes
 
     res, m = plan_scene(spec["algorithm"], scene.scenario, scene.l_star, seed, spec["preset"],
-                        spec["overrides"], spec["planner_options"])  # fmt: skip
+                        spec["overrides"], spec["planner_options"], scene.t_star)  # fmt: skip
     bad = not (m["success"] and m["collision_free"])
     return m, (result_to_bytes(res) if bad else None)
 

@@ -216,8 +216,13 @@ class ArenaPlan(StudyPlanBase):
         )
 
 
-# six families: clutter, walls with doors, a long detour, a trap, and two of moving traffic
-DEFAULT_FAMILIES = ("forest", "rooms", "maze", "u_trap", "crossing", "dense")
+# six families decided by the static topology: clutter, walls with doors, a long detour, a
+# trap, and two of moving traffic; then six decided by time (issue 27), each scene with an
+# earliest arrival T*: oncoming traffic with bays, a patrolled door, a faster chaser, a crowd,
+# a mover parked in the only corridor, gaps barely wider than the robot
+STATIC_FAMILIES = ("forest", "rooms", "maze", "u_trap", "crossing", "dense")
+TIMED_FAMILIES = ("corridor", "doorway", "chaser", "crowd", "parked", "slalom")
+DEFAULT_FAMILIES = STATIC_FAMILIES + TIMED_FAMILIES
 
 ARENA_PRESETS: dict[str, dict[str, Any]] = {
     "arena-default": {
@@ -225,7 +230,8 @@ ARENA_PRESETS: dict[str, dict[str, Any]] = {
         "families": list(DEFAULT_FAMILIES),
         "n": 50,
         "algorithms": ["mawdo", "woa", "gwo"],
-        "baselines": [ORACLE, "straight", "bitstar"],
+        # guide_only: the same planner with the optimizer switched off (the swarm's share)
+        "baselines": ["guide_only", ORACLE, "straight", "bitstar"],
         "planner": "realtime",
     },
     "arena-quick": {

@@ -4,7 +4,8 @@
   checker), gap L/L* median / p90 / max over successful runs, replan latency p95 / p99 and
   time to first plan; rejected scenes and planner errors are counted apart.
 - ``ecdf_runtime.png`` (wall time per run, all families) and ``ecdf_gap.png`` (one panel per
-  family), one line per planner.
+  family, T/T* on timed families), one line per planner; ``swarm.png``, the swarm's share over
+  the guide alone (:mod:`mawdo.experiments.kinds.arena.figures`).
 - ``gallery/``: one snapshot image per failed or colliding run, named after its scene, and
   ``scenes/``: the TOML file of each of those scenes (``mawdo plan scenes/<name>.toml``).
 """
@@ -16,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from mawdo.experiments.kinds.arena.execute import scenario_from_toml
+from mawdo.experiments.kinds.arena.figures import arena_figures, swarm_figure
 from mawdo.experiments.kinds.arena.plan import ArenaPlan
 from mawdo.experiments.store import Store
 from mawdo.experiments.tables import Table, to_csv, to_latex, to_markdown
@@ -34,6 +36,9 @@ COLUMNS = [
     "gap median",
     "gap p90",
     "gap max",
+    "T/T* median",
+    "T/T* p95",
+    "active",
     "latency p95 (ms)",
     "latency p99 (ms)",
     "first plan (s)",
@@ -64,6 +69,8 @@ def cell_numbers(rows: list) -> dict[str, float]:
     p95 = np.array([r.latency_p95_ms for r in ok if r.latency_p95_ms is not None], dtype=float)
     p99 = np.array([r.latency_p99_ms for r in ok if r.latency_p99_ms is not None], dtype=float)
     first = np.array([r.first_plan_s for r in ok if r.first_plan_s is not None], dtype=float)
+    tgaps = np.array([r.time_gap for r in ok if r.success and r.time_gap is not None], float)
+    timed = [r for r in ok if r.active_collisions is not None]
     return {
         "scenes": n,
         "rejected": sum(r.status == "rejected" for r in rows),
@@ -73,6 +80,9 @@ def cell_numbers(rows: list) -> dict[str, float]:
         "gap median": _q(gaps, 50),
         "gap p90": _q(gaps, 90),
         "gap max": float(gaps.max()) if gaps.size else float("nan"),
+        "T/T* median": _q(tgaps, 50),
+        "T/T* p95": _q(tgaps, 95),
+        "active": sum(r.active_collisions for r in timed) if timed else float("nan"),
         "latency p95 (ms)": float(np.median(p95)) if p95.size else float("nan"),
         "latency p99 (ms)": float(np.median(p99)) if p99.size else float("nan"),
         "first plan (s)": float(np.median(first)) if first.size else float("nan"),
@@ -104,6 +114,9 @@ def arena_tables(store: Store) -> list[Table]:
             "gap median": ".3f",
             "gap p90": ".3f",
             "gap max": ".3f",
+            "T/T* median": ".3f",
+            "T/T* p95": ".3f",
+            "active": ".0f",
             "latency p95 (ms)": ".1f",
             "latency p99 (ms)": ".1f",
             "first plan (s)": ".3f",
@@ -120,6 +133,9 @@ def arena_tables(store: Store) -> list[Table]:
         "success = goal reached and the independent checker approves the executed route; "
         "collisions = runs whose route the checker rejects (space and time, moving obstacles "
         "included); gap = executed length / exact static optimum L*, over successful runs; "
+        "T/T* = arrival step / earliest arrival T* (timed families only), over successful runs; "
+        "active = the checker's collisions with the robot moving, summed over all runs (timed "
+        "families only); "
         "latency = median over runs of each run's replan p95 / p99 (receding-horizon planners "
         "only); first plan = median wall time of the first plan (single shot for baselines)."
     )
@@ -130,75 +146,6 @@ def arena_tables(store: Store) -> list[Table]:
         "count in no rate. OMPL runs are time-budgeted and not seeded: not reproducible."
     )
     return [t]
-
-
-def _ecdf(ax, x: np.ndarray, label: str, color: str) -> None:
-    x = np.sort(x[np.isfinite(x)])
-    if x.size:  # starts at 0 on the left of the smallest value, so one run is a visible step
-        y = np.arange(0, x.size + 1) / x.size
-        ax.step(np.concatenate([x[:1], x]), y, where="post", label=label, color=color)
-
-
-def arena_figures(store: Store, out: Path) -> list[Path]:
-    """Runtime ECDF (all families) and gap ECDF (one panel per family), from stored rows."""
-    from matplotlib.lines import Line2D
-    from matplotlib.ticker import MaxNLocator
-
-    from mawdo.planning.render import new_figure
-
-    plan = _plan_of(store)
-    rows = {
-        (a, f): [r for _, _, r in store.rows(a, f, skip=NO_TRACE)]
-        for a in plan.planners
-        for f in plan.families
-    }
-    # one colour per planner in every panel, whether or not it has data there
-    colors = {p: f"C{i % 10}" for i, p in enumerate(plan.planners)}
-    fig = new_figure((7, 4.5), 120)
-    ax = fig.add_subplot()
-    for p in plan.planners:
-        w = np.array(
-            [
-                r.wall_time
-                for f in plan.families
-                for r in rows[p, f]
-                if r.status == "ok" and r.wall_time
-            ],
-            dtype=float,
-        )
-        _ecdf(ax, w, _label(p), colors[p])
-    ax.set(
-        xscale="log",
-        xlabel="wall time per run (s)",
-        ylabel="fraction of runs",
-        title="Runtime ECDF, all families",
-    )
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    paths = [out / "ecdf_runtime.png"]
-    fig.savefig(paths[0])
-    nf = len(plan.families)
-    cols = min(nf, 3)
-    nrows = -(-nf // cols)
-    fig = new_figure((4 * cols, 3.2 * nrows + 0.4), 110)
-    axes = np.atleast_1d(fig.subplots(nrows, cols, squeeze=False)).ravel()
-    for ax, f in zip(axes, plan.families, strict=False):
-        for p in plan.planners:
-            g = np.array([r.gap for r in rows[p, f] if r.status == "ok" and r.success], float)
-            _ecdf(ax, g, _label(p), colors[p])
-        if not ax.lines:
-            ax.text(0.5, 0.5, "no successful run", ha="center", transform=ax.transAxes)
-        ax.set(title=f, xlabel="gap L / L* (successful runs)", ylabel="fraction")
-        ax.ticklabel_format(axis="x", useOffset=False)
-        ax.xaxis.set_major_locator(MaxNLocator(4))
-        ax.grid(alpha=0.3)
-    for ax in axes[nf:]:
-        ax.set_visible(False)
-    handles = [Line2D([], [], color=colors[p], label=_label(p)) for p in plan.planners]
-    fig.legend(handles=handles, loc="outside lower center", ncols=min(6, len(handles)))
-    paths.append(out / "ecdf_gap.png")
-    fig.savefig(paths[1])
-    return paths
 
 
 def first_collision_time(result) -> float | None:
@@ -277,6 +224,7 @@ def write_arena_report(
         tables = arena_tables(store)
         summary = headline(store)
         figs = arena_figures(store, out) if figures else []
+        figs += swarm_figure(store, out) if figures else []
         gallery = failure_gallery(store, out, gallery_limit) if figures else []
         rejected = [
             (f, r.run, r.reason)

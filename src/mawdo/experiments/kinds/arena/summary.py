@@ -57,7 +57,89 @@ def headline(store: Store) -> list[str]:
             f"{len(rows)} scenes, {_gap(gap)}; weakest family {worst} "
             f"({100 * ws:.0f} % success, {_gap(wg)})."
         )
-    return lines + strengths(store)
+    return lines + timed_lines(store) + strengths(store) + swarm_share(store)
+
+
+def _timed_families(store: Store) -> list[str]:
+    """Families whose planned scenes carry an earliest arrival ``t_star`` (issue 27)."""
+    plan = store.plan
+    out = []
+    for f in plan.families:
+        rows = [r for _, _, r in store.rows(None, f, skip=NO_TRACE) if r.status == "ok"]
+        if rows and all(r.t_star is not None for r in rows):
+            out.append(f)
+    return out
+
+
+def timed_lines(store: Store) -> list[str]:
+    """Per planner that sees time, on the timed families together: success over the scenes
+    with a ``T*``, active collisions (the robot moving) in all runs, successful or not, and
+    the arrival-time gap T/T* median and p95; then its weakest timed family."""
+    from mawdo.planning.planners import PLANNERS, PREDICTED
+
+    fams = _timed_families(store)
+    if not fams:
+        return []
+    lines = []
+    for p in store.plan.planners:
+        if p not in PLANNERS or PLANNERS[p].sees_time != PREDICTED:
+            continue
+        per = {f: _ok_rows(store, p, f) for f in fams}
+        rows = [r for f in fams for r in per[f]]
+        if not rows:
+            continue
+        active = sum(r.active_collisions or 0 for r in rows)
+        tg = np.array([r.time_gap for r in rows if r.success], dtype=float)
+        stats = (
+            f"T/T* median {np.median(tg):.3f}, p95 {np.percentile(tg, 95):.3f}"
+            if tg.size
+            else ("no successful run")
+        )
+        succ = {f: sum(bool(r.success) for r in per[f]) / len(per[f]) for f in fams if per[f]}
+        worst = min(succ, key=lambda f: (succ[f], -_median_time_gap(per[f])))
+        lines.append(
+            f"- {p} on the {len(fams)} timed families ({', '.join(fams)}): "
+            f"{100 * sum(bool(r.success) for r in rows) / len(rows):.1f} % success over "
+            f"{len(rows)} scenes with an earliest arrival T*, {active} active collisions, "
+            f"{stats}; weakest family {worst} ({100 * succ[worst]:.0f} % success, "
+            f"T/T* median {_median_time_gap(per[worst]):.3f})."
+        )
+    return lines
+
+
+def _median_time_gap(rows: list) -> float:
+    g = [r.time_gap for r in rows if r.success and r.time_gap is not None]
+    return float(np.median(g)) if g else float("nan")
+
+
+def swarm_share(store: Store, base: str = "guide_only") -> list[str]:
+    """The swarm's measured contribution: per family, the median gap (L/L* on static
+    families, T/T* on timed ones) of each optimizer-driven planner beside the same planner
+    with the optimizer switched off (``guide_only``), over the scenes both solved."""
+    plan = store.plan
+    if base not in plan.planners:
+        return []
+    timed = set(_timed_families(store))
+    lines = []
+    for a in plan.algorithms:
+        parts = []
+        for f in plan.families:
+            ours = {r.scene_name: r for r in _ok_rows(store, a, f) if r.success}
+            theirs = {r.scene_name: r for r in _ok_rows(store, base, f) if r.success}
+            both = sorted(set(ours) & set(theirs))
+            if not both:
+                continue
+            key = "time_gap" if f in timed else "gap"
+            mine = np.median([getattr(ours[n], key) for n in both])
+            other = np.median([getattr(theirs[n], key) for n in both])
+            sign = "T/T*" if f in timed else "L/L*"
+            parts.append(f"{f} {sign} {mine:.3f} vs {other:.3f} ({len(both)})")
+        if parts:
+            lines.append(
+                f"- {a} against {base} (the same planner without its optimizer), median gap on "
+                f"the scenes both solve (count): " + "; ".join(parts) + "."
+            )
+    return lines
 
 
 def strengths(store: Store) -> list[str]:
