@@ -179,3 +179,19 @@ def test_slalom_gaps_within_a_pixel_of_the_diameter_are_timed_through():
     res = run_planner("guide_only", sc, seed=0)
     assert res.success, res.reason
     assert _active(res) == 0 and res.config.clearance == c
+
+
+def test_a_scene_without_movers_never_consults_the_time_guide(monkeypatch):
+    """Without moving obstacles the earliest arrival is the static shortest route at full
+    speed, already a seed: the guide is not built, and the run is the one with it off."""
+    sc = _scene("forest", 0).scenario
+    assert not sc.moving_indices
+    off = plan(sc, "mawdo", seed=0, time_guide=False)
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("the time guide was consulted on a scene without movers")
+
+    monkeypatch.setattr(TimeGuide, "routes", refuse)
+    default = plan(sc, "mawdo", seed=0)
+    assert np.array_equal(default.route, off.route)
+    assert [r.cost for r in default.replans] == [r.cost for r in off.replans]

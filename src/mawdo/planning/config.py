@@ -110,7 +110,9 @@ class PlannerConfig:
         collision-free to the goal (driven at full speed from now), the robot follows the
         earliest-arrival timed route instead, waits included (it holds its position for the
         steps the route waits). On by default; off in the ``paper`` and ``study`` presets,
-        which measure the optimizers as the paper runs them.
+        which measure the optimizers as the paper runs them. Consulted only in scenarios with
+        moving obstacles: without them the earliest arrival is the static guide's shortest
+        route driven at full speed, which is already a seed.
     time_routes : int
         Timed routes per query of that guide (>= 1): the earliest arrival and up to
         ``time_routes - 1`` time-diverse alternatives, all seeds.

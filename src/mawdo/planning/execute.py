@@ -112,12 +112,10 @@ class Run(TimedRun, SafeRun, LimitedRun):
         self._reach = None  # the oracle's answer, when the guide found no route
         self._per_pop = None  # seconds of one population's cost (estimate_seconds)
         # the safe-interval guide (time_guide): the timed route being followed, and the last
-        # query's (step, routes), asked at most once per replan
-        self.timer = (
-            TimeGuide(sc, cfg.clearance, cfg.time_routes, self.routes)
-            if cfg.time_guide and dynamic
-            else None
-        )
+        # query's (step, routes), asked at most once per replan. Without moving obstacles the
+        # earliest arrival is the static guide's shortest route at full speed, already a seed
+        timed = cfg.time_guide and dynamic and bool(sc.moving_indices)
+        self.timer = TimeGuide(sc, cfg.clearance, cfg.time_routes, self.routes) if timed else None
         self.following = None
         self.timed_follows = 0  # replans at which the guard chose a timed route
         self._timed = (-1, [])
