@@ -197,15 +197,29 @@ def test_the_only_safe_action_is_to_wait():
     # driving straight out of the pocket at once hits the door: waiting is needed
     line = sc.start + np.outer(np.arange(12), [sc.robot_speed, 0.0])
     assert not check_trajectory(line, sc).ok
-    res = plan(sc, "mawdo", seed=0, config="quick")
+    # the guard alone waits as a fallback (no candidate is safe) ...
+    res = plan(sc, "mawdo", seed=0, config="quick", time_guide=False)
     assert_contract(res)
     assert res.success and res.waits >= 1, (res.reason, res.waits)
+    # ... the time guide plans the wait: the robot holds its position, then drives out
+    timed = plan(sc, "mawdo", seed=0, config="quick")
+    assert_contract(timed)
+    assert timed.success and timed.collision_free, timed.reason
+    held = np.all(np.abs(np.diff(timed.trajectory, axis=0)) < 1e-9, axis=1)
+    assert held.any()  # at least one step in place
+    assert timed.steps <= res.steps
 
 
 def test_give_up_after_the_configured_time():
-    res = plan(maps.waiting_pocket(), "mawdo", seed=0, config="quick", give_up_steps=2)
+    # the guard's give-up: with no timed route to follow it evades or waits, and stops
+    res = plan(
+        maps.waiting_pocket(), "mawdo", seed=0, config="quick", give_up_steps=2, time_guide=False
+    )
     assert_contract(res)
     assert not res.success and "gave up after 2 steps" in res.reason
+    # a planned wait is no stall: with the time guide the same limit does not stop the run
+    timed = plan(maps.waiting_pocket(), "mawdo", seed=0, config="quick", give_up_steps=2)
+    assert timed.success, timed.reason
 
 
 def test_walled_in_goal_is_an_honest_failure():
