@@ -124,6 +124,22 @@ class Movers:
             t_base, pptr, pt0, pt1, po, pv,
         )  # fmt: skip
 
+    def subset(self, idx) -> Movers:
+        """The movers ``idx`` (indices into this table, ascending) with their rows copied
+        unchanged: every test of one mover reads only that mover's rows, so a verdict on the
+        subset is the full table's verdict when the movers left out cannot take part."""
+        idx = np.asarray(idx, dtype=np.int64)
+        a, b = self.pptr[idx], self.pptr[idx + 1]
+        rows = np.concatenate([np.arange(x, y) for x, y in zip(a, b, strict=True)] + [[]])
+        rows = rows.astype(np.int64)
+        pptr = np.zeros(len(idx) + 1, np.int64)
+        pptr[1:] = np.cumsum(b - a)
+        return Movers(
+            self.kind[idx], self.box[idx], self.circle[idx], self.center[idx], self.thr[idx],
+            self.verts[idx], self.nverts[idx], self.vmax[idx], self.base[idx], self.t_base,
+            pptr, self.pt0[rows], self.pt1[rows], self.po[rows], self.pv[rows],
+        )  # fmt: skip
+
     def arrays(self) -> tuple:
         """The fields in order, as the compiled functions take them."""
         return (
