@@ -137,9 +137,14 @@ class SafeContinuation:
         self._walkers = any(isinstance(o.motion, BoundedRandomWalk) for o in moving)
         # the shapes' tables never change: built once, not at every decision
         self._flat = FlatObstacles.from_obstacles(moving, scenario.robot_radius + self.clearance)
-        self._rho = self._flat.bound[:, 6]
+        self._moving, self._centre, self._rho = (
+            moving,
+            self._flat.bound[:, 4:6],
+            self._flat.bound[:, 6],
+        )
         self._speed = np.array([_top_speed(o.motion) for o in moving])
-        self._mv = (0.0, 0.0, None, {}, None)  # (first valid time, last, tables, subsets, where)
+        # (first valid time, last, movers' centres then, their pieces, tables per mover set)
+        self._mv = (0.0, 0.0, None, {}, {})
 
     # -- the model -------------------------------------------------------------------------
 
@@ -152,31 +157,35 @@ class SafeContinuation:
 
         ``near = (p, t)``: only the movers that can meet a robot leaving ``p`` (pixels) at
         ``t`` (time steps) at up to its speed before the horizon's end (the module
-        docstring's prefilter); None: all of them."""
-        T0, T1, mv, subsets, where = self._mv
+        docstring's prefilter); None: all of them. A mover's pieces are tabulated once per
+        window, when a decision first needs them."""
+        T0, T1, where, pieces, tables = self._mv
         inside = not self._walkers and T0 <= t0 and t0 + self.horizon + 1.0 <= T1
-        if mv is None or not (t0 == T0 or inside):
+        if where is None or not (t0 == T0 or inside):
             T0, T1 = t0, t0 + (1 if self._walkers else REUSE) * self.horizon + 1.0
-            mv = Movers.from_scenario(
-                self.sc, self.clearance, T0, T1, walkers="reachable", flat=self._flat
-            )
-            # each mover's offset at T0: its first piece's, or a walker's base
-            first = mv.po[np.minimum(mv.pptr[:-1], max(len(mv.po) - 1, 0))] if len(mv.po) else 0.0
-            where = mv.center + np.where(mv.kind[:, None] == 1, mv.base, first)
-            self._mv = (T0, T1, mv, {}, where)
-            subsets = self._mv[3]
-        if near is None or not self.prune or not len(mv.kind):
-            return mv.arrays()
-        p, t = near
-        end = t0 + self.horizon
-        reach = self._rho + self.v * (end - t) + self._speed * (end - T0) + PRUNE_TOL
-        keep = np.hypot(where[:, 0] - p[0], where[:, 1] - p[1]) <= reach
-        if keep.all():
-            return mv.arrays()
+            where = self._centre + np.array([o.offset(T0) for o in self._moving]).reshape(-1, 2)
+            pieces, tables = {}, {}
+            self._mv = (T0, T1, where, pieces, tables)
+        keep = np.ones(len(where), bool)
+        if near is not None and self.prune:
+            (px, py), t = near
+            end = t0 + self.horizon
+            reach = self._rho + self.v * (end - t) + self._speed * (end - T0) + PRUNE_TOL
+            keep = np.hypot(where[:, 0] - px, where[:, 1] - py) <= reach
         key = keep.tobytes()
-        if key not in subsets:
-            subsets[key] = mv.subset(np.flatnonzero(keep)).arrays()
-        return subsets[key]
+        if key not in tables:
+
+            def knots(j, a, b):
+                if j not in pieces:
+                    pieces[j] = self._moving[j].knots(a, b)
+                return pieces[j]
+
+            mv = Movers.from_scenario(
+                self.sc, self.clearance, T0, T1, walkers="reachable", knots=knots,
+                flat=self._flat, only=None if keep.all() else np.flatnonzero(keep),
+            )  # fmt: skip
+            tables[key] = mv.arrays()
+        return tables[key]
 
     def static_clear(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
         """Per straight move ``a[i] -> b[i]`` (pixels, shape (n, 2)): it keeps ``r +

@@ -77,6 +77,7 @@ class Movers:
         walkers: str,
         knots=None,
         flat: FlatObstacles | None = None,
+        only=None,
     ) -> Movers:
         """Tables of the scenario's moving obstacles, hit distance grown by ``margin`` px.
 
@@ -84,25 +85,32 @@ class Movers:
         ``"known"`` (their seeded walk, as the cost kernel and the checker see it).
         ``knots(j, t0, t_end)`` may stand in for the ``j``-th moving obstacle's
         :meth:`~mawdo.planning.motion.Motion.knots` (pieces covering the interval; a cache),
-        ``flat`` for their :class:`FlatObstacles`.
+        ``flat`` for their :class:`FlatObstacles` (all of them). ``only``: the indices
+        (ascending, into the moving obstacles) of those to tabulate, default all; each
+        mover's rows are what the full table holds for it, and every test of one mover reads
+        only its own rows.
         """
         if walkers not in _WALKER_MODES:
             raise ValueError(f"walkers must be one of {_WALKER_MODES}, got {walkers!r}")
         moving = tuple(scenario.obstacles[i] for i in scenario.moving_indices)
         if flat is None:
             flat = FlatObstacles.from_obstacles(moving, scenario.robot_radius + margin)
-        n = len(moving)
+        idx = np.arange(len(moving)) if only is None else np.asarray(only, np.int64)
+        if only is not None:
+            flat = FlatObstacles(*(a[idx] for a in flat.arrays()))
+        n = len(idx)
         kind = np.zeros(n, np.int64)
         vmax = np.zeros(n)
         base = np.zeros((n, 2))
         pieces = []
-        for m, o in enumerate(moving):
+        for m, j in enumerate(idx):
+            o = moving[j]
             if walkers == "reachable" and isinstance(o.motion, BoundedRandomWalk):
                 kind[m], vmax[m] = 1, o.motion.step
                 base[m] = o.offset(float(t0))
                 pieces.append((np.zeros(0), np.zeros((0, 2))))
             else:
-                pieces.append(o.knots(t0, t_end) if knots is None else knots(m, t0, t_end))
+                pieces.append(o.knots(t0, t_end) if knots is None else knots(j, t0, t_end))
         return cls._from_pieces(kind, flat, vmax, base, float(t0), pieces)
 
     @classmethod
@@ -122,22 +130,6 @@ class Movers:
         return cls(
             kind, box, flat.is_circle, center, flat.thresh, flat.verts, flat.nverts, vmax, base,
             t_base, pptr, pt0, pt1, po, pv,
-        )  # fmt: skip
-
-    def subset(self, idx) -> Movers:
-        """The movers ``idx`` (indices into this table, ascending) with their rows copied
-        unchanged: every test of one mover reads only that mover's rows, so a verdict on the
-        subset is the full table's verdict when the movers left out cannot take part."""
-        idx = np.asarray(idx, dtype=np.int64)
-        a, b = self.pptr[idx], self.pptr[idx + 1]
-        rows = np.concatenate([np.arange(x, y) for x, y in zip(a, b, strict=True)] + [[]])
-        rows = rows.astype(np.int64)
-        pptr = np.zeros(len(idx) + 1, np.int64)
-        pptr[1:] = np.cumsum(b - a)
-        return Movers(
-            self.kind[idx], self.box[idx], self.circle[idx], self.center[idx], self.thr[idx],
-            self.verts[idx], self.nverts[idx], self.vmax[idx], self.base[idx], self.t_base,
-            pptr, self.pt0[rows], self.pt1[rows], self.po[rows], self.pv[rows],
         )  # fmt: skip
 
     def arrays(self) -> tuple:
