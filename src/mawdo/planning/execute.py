@@ -19,7 +19,7 @@ from mawdo.planning.cost import PathCost, assemble_paths
 from mawdo.planning.guard import Elite, Guard
 from mawdo.planning.guide import Guide
 from mawdo.planning.ics import SafeContinuation, SafeRun
-from mawdo.planning.kinematics import LimitedRun, Limits
+from mawdo.planning.kinematics import LimitedRun, Limits, at_speed
 from mawdo.planning.path import densify, polyline_length
 from mawdo.planning.polish import polish
 from mawdo.planning.result import Drive, PlanResult, Replan
@@ -82,13 +82,10 @@ class Run(TimedRun, SafeRun, LimitedRun):
     """State of one run (see :func:`mawdo.planning.planner.plan` for the parameters)."""
 
     def __init__(self, sc: Scenario, algorithm: str, seed, cfg: PlannerConfig, dynamic: bool):
-        self.sc, self.algorithm, self.seed, self.cfg, self.dynamic = (
-            sc,
-            algorithm,
-            seed,
-            cfg,
-            dynamic,
-        )
+        # a lower speed limit times every path of the run (kinematics.at_speed)
+        self.given, sc = sc, (at_speed(sc, cfg.max_speed) if dynamic else sc)
+        self.sc, self.algorithm, self.seed, self.cfg = sc, algorithm, seed, cfg
+        self.dynamic = dynamic
         self.guide = guide_for(sc, cfg.clearance, cfg.guide_routes) if cfg.guide_routes else None
         self.routes = self.guide.routes(sc.start) if self.guide else []
         self.m = _waypoints_needed(self.routes, cfg)
@@ -385,7 +382,7 @@ class Run(TimedRun, SafeRun, LimitedRun):
     def _finish(self, drive, reason: str) -> PlanResult:
         return drive.result(
             reason,
-            self.sc,
+            self.given,
             margin=self.cfg.clearance,
             limits=self.limits,
             algorithm=self.algorithm,

@@ -18,6 +18,14 @@ meets all three. :class:`LimitedRun` drives every step of a run through it (the 
 the move actually driven); :func:`turn_penalty` is the refinement's share (the candidate cost
 grows with each corner's turn beyond what one step allows). The independent checker's verdict
 is :func:`mawdo.planning.kincheck.check_kinematics`.
+
+A speed limit below the scenario's robot speed is the robot's speed for the whole run
+(:func:`at_speed`): the refinement's cost, the guard, the inevitable-collision rule and the
+safe-interval guide all time their paths at ``max_speed`` (less :data:`SLACK`), so a stretch
+is checked as it will be driven and the time guide's edges take ``length / max_speed`` steps.
+Acceleration and turn rate are not in those timings (the guide and the rule still assume
+instant starts, stops and turns): they are enforced by the step projection above and judged
+by the checker only; the refinement's turn penalty only steers it away from sharp corners.
 """
 
 from __future__ import annotations
@@ -29,7 +37,7 @@ import numpy as np
 
 from mawdo.planning.path import polyline_length, unit_headings
 
-__all__ = ["Limits", "LimitedRun", "project", "stopping_speed", "turn_penalty"]
+__all__ = ["Limits", "LimitedRun", "at_speed", "project", "stopping_speed", "turn_penalty"]
 
 #: Weight of :func:`turn_penalty` in the refinement's cost (px per radian of excess turn).
 TURN_WEIGHT = 100.0
@@ -61,6 +69,27 @@ class Limits:
         it sets none (the planner then runs as without this module)."""
         lim = cls(config.max_speed, config.max_accel, config.max_turn)
         return None if lim == cls() else lim
+
+
+def at_speed(scenario, max_speed: float | None):
+    """``scenario`` with its robot's speed lowered to ``max_speed`` (less :data:`SLACK`, the
+    projection's own margin, so a planned step is never clamped) when that is slower; else
+    ``scenario`` itself (the same object: a run without a speed limit is unchanged).
+
+    Parameters
+    ----------
+    scenario : Scenario
+    max_speed : float or None
+        Speed limit (px per step, > 0), or None for none.
+    """
+    if max_speed is None:
+        return scenario
+    speed = float(max_speed) * (1.0 - SLACK)
+    if speed >= scenario.robot_speed:
+        return scenario
+    robot = scenario.spec.robot.model_copy(update={"speed": speed})
+    spec = scenario.spec.model_copy(update={"robot": robot})
+    return type(scenario)(spec=spec, obstacles=scenario.obstacles)
 
 
 def _rotate(v: np.ndarray, ang: float) -> np.ndarray:

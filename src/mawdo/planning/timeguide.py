@@ -124,7 +124,32 @@ class TimedRun:
     def _drive(self, remainder, step: int):
         """One step along the plan: ``(pos, remainder, passed, frac)`` (see
         :func:`~mawdo.planning.path.advance`); a followed timed route is driven by its clock,
-        so that its waits hold the robot in place."""
+        so that its waits hold the robot in place.
+
+        No guard check precedes a step along a followed timed route: the route is already
+        safe under the guard's model, at least as conservatively. It was returned by the
+        safe-interval guide queried at the replan's step ``s0`` from the robot's position then,
+        with the run's clearance, and each of its moves and waits passed the exact segment
+        test (:func:`~mawdo.planning.sipp.intervals.segment_free`: touching is a hit) against
+
+        * the static obstacles inflated by ``r + clearance`` plus the static guide's slack
+          (round corners by circumscribed polygons) and the map shrunk by as much: no
+          closer than the guard allows;
+        * the movers of known motion (constant velocity, patrol, waypoint tracks) on the same
+          piecewise-linear knots the guard's kernel uses, hit distance ``r + clearance``;
+        * each random walker as its reachable set from ``s0``: its shape where it is at
+          ``s0``, grown by its top speed ``step`` per time step. The seeded walk the guard
+          knows moves at most ``step`` px per step (folding at the border never lengthens a
+          move), so at every later time the walker lies inside that grown shape, and a move
+          clear of the grown shape is clear of the walker by the same hit distance.
+
+        The run drives the route's own pieces at their own times (:func:`position_at`, the
+        vertices passed at their fractions of the step), so every driven piece is part of a
+        checked move or wait. The route is asked again at every replan, from where the robot
+        is. With kinematic limits a step may leave the route; it is then the guard-checked
+        projection (:class:`~mawdo.planning.kinematics.LimitedRun`). Tested on corridor,
+        doorway, parked and crowd scenes with the independent checker
+        (``tests/planning/test_timed_follow.py``)."""
         if self.following is None:
             return advance(remainder, self.sc.robot_speed)
         route = self.following

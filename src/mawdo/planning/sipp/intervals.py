@@ -77,6 +77,7 @@ class Movers:
         walkers: str,
         knots=None,
         flat: FlatObstacles | None = None,
+        only=None,
     ) -> Movers:
         """Tables of the scenario's moving obstacles, hit distance grown by ``margin`` px.
 
@@ -84,25 +85,32 @@ class Movers:
         ``"known"`` (their seeded walk, as the cost kernel and the checker see it).
         ``knots(j, t0, t_end)`` may stand in for the ``j``-th moving obstacle's
         :meth:`~mawdo.planning.motion.Motion.knots` (pieces covering the interval; a cache),
-        ``flat`` for their :class:`FlatObstacles`.
+        ``flat`` for their :class:`FlatObstacles` (all of them). ``only``: the indices
+        (ascending, into the moving obstacles) of those to tabulate, default all; each
+        mover's rows are what the full table holds for it, and every test of one mover reads
+        only its own rows.
         """
         if walkers not in _WALKER_MODES:
             raise ValueError(f"walkers must be one of {_WALKER_MODES}, got {walkers!r}")
         moving = tuple(scenario.obstacles[i] for i in scenario.moving_indices)
         if flat is None:
             flat = FlatObstacles.from_obstacles(moving, scenario.robot_radius + margin)
-        n = len(moving)
+        idx = np.arange(len(moving)) if only is None else np.asarray(only, np.int64)
+        if only is not None:
+            flat = FlatObstacles(*(a[idx] for a in flat.arrays()))
+        n = len(idx)
         kind = np.zeros(n, np.int64)
         vmax = np.zeros(n)
         base = np.zeros((n, 2))
         pieces = []
-        for m, o in enumerate(moving):
+        for m, j in enumerate(idx):
+            o = moving[j]
             if walkers == "reachable" and isinstance(o.motion, BoundedRandomWalk):
                 kind[m], vmax[m] = 1, o.motion.step
                 base[m] = o.offset(float(t0))
                 pieces.append((np.zeros(0), np.zeros((0, 2))))
             else:
-                pieces.append(o.knots(t0, t_end) if knots is None else knots(m, t0, t_end))
+                pieces.append(o.knots(t0, t_end) if knots is None else knots(j, t0, t_end))
         return cls._from_pieces(kind, flat, vmax, base, float(t0), pieces)
 
     @classmethod
