@@ -83,7 +83,9 @@ def us_per_eval(
     return wall, cpu
 
 
-def overhead_ratio(variant: str, base: str = "wdo", pairs: int = 7) -> tuple[float, list[float]]:
+def overhead_ratio(
+    variant: str, base: str = "wdo", pairs: int = 7
+) -> tuple[float, list[float], dict[str, float]]:
     """Median over ``pairs`` interleaved runs of ``variant``'s CPU us/eval over ``base``'s.
 
     Each pair times one batch of each (table 1's shape), alternating which goes first, so a
@@ -96,27 +98,31 @@ def overhead_ratio(variant: str, base: str = "wdo", pairs: int = 7) -> tuple[flo
         Median ratio (1.0 = the same cost per evaluation).
     ratios : list of float
         Every pair's ratio, in order.
+    us : dict
+        Median CPU us/eval of ``variant`` and of ``base`` over the pairs.
     """
-    ratios = []
+    ratios, times = [], {variant: [], base: []}
     for i in range(pairs):
         order = (variant, base) if i % 2 else (base, variant)
         cpu = {a: us_per_eval(a, repeats=1)[1] for a in order}
         ratios.append(cpu[variant] / cpu[base])
-    return float(np.median(ratios)), ratios
+        for a in order:
+            times[a].append(cpu[a])
+    return float(np.median(ratios)), ratios, {a: float(np.median(v)) for a, v in times.items()}
 
 
 def print_overhead(out: dict, pairs: int) -> None:
     """The issue-29 rows: each variant's CPU us/eval over WDO's against the 1.5x target."""
     for variant in VARIANTS:
         load = os.getloadavg()[0]
-        ratio, ratios = overhead_ratio(variant, pairs=pairs)
+        ratio, ratios, us = overhead_ratio(variant, pairs=pairs)
         out.setdefault("variant_ratio", {})[variant] = ratio
         flag = "ok" if ratio <= VARIANT_RATIO_TARGET else "MISSED"
         print(
             f"{variant} / wdo CPU us/eval: {ratio:5.2f}x median of {pairs} interleaved pairs "
-            f"(range {min(ratios):.2f}-{max(ratios):.2f}), target <= "
-            f"{VARIANT_RATIO_TARGET:.1f}x {flag} (issue 29; load average {load:.1f} -> "
-            f"{os.getloadavg()[0]:.1f} on {os.cpu_count()} cores)"
+            f"(range {min(ratios):.2f}-{max(ratios):.2f}; {us[variant]:.3f} / {us['wdo']:.3f} "
+            f"us), target <= {VARIANT_RATIO_TARGET:.1f}x {flag} (issue 29; load average "
+            f"{load:.1f} -> {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores)"
         )
 
 
