@@ -3,6 +3,7 @@ refusal of a store that is not a hold-out store."""
 
 from __future__ import annotations
 
+import dataclasses
 import subprocess
 import sys
 
@@ -11,6 +12,7 @@ import pytest
 
 from mawdo.experiments.kinds.suite.holdout_data import HoldoutSuite
 from mawdo.experiments.kinds.suite.holdout_summary import (
+    _gap,
     full_evaluations,
     mean_ranks,
     place,
@@ -60,7 +62,17 @@ def test_ranks_places_and_ties_match_the_hand_count(suite):
     # F1: both below the 1e-8 floor, a tie; F3: wdo_plus has no run, left out
     assert versus(suite, "wdo_plus", "cmaes") == ([], ["F2"], ["F1"])
     assert versus(suite, "wdo_plus", "gwo") == (["F1"], ["F2"], [])
-    assert suite.missing() == ["F3 (cmaes, wdo_plus, gwo)"]
+    assert _gap(suite) == "F3 (cmaes, wdo_plus, gwo)"
+
+
+def test_missing_functions_are_named_and_untouched_ones_given_as_ranges(suite):
+    finals = {k: v for k, v in suite.finals.items() if k[1] == "F1"}
+    finals["gwo", "F2"] = np.array([1.0, 2.0])
+    cut = dataclasses.replace(suite, functions=("F1", "F2", "F3", "F4", "F5"), finals=finals)
+    assert _gap(cut) == "F2 (cmaes, wdo_plus); no run on F3-F5"
+    assert _gap(dataclasses.replace(suite, finals={}, functions=("F1", "F3"))) == (
+        "no run on F1, F3"
+    )
 
 
 def test_the_sentence_names_who_is_ahead_and_the_goal(suite):

@@ -77,16 +77,6 @@ class HoldoutSuite:
                     out[i, j] = np.median(np.maximum(v, RANK_FLOOR))
         return out
 
-    def missing(self) -> list[str]:
-        """``"F21 (cmaes, ...)"`` for each function some algorithm has fewer runs on than the
-        plan asks (a study stopped before the end)."""
-        out = []
-        for f in self.functions:
-            short = [a for a in self.algorithms if len(self.finals.get((a, f), ())) < self.runs]
-            if short:
-                out.append(f"{f} ({', '.join(short)})")
-        return out
-
 
 def load_holdout(path: str | Path) -> HoldoutSuite:
     """Read one hold-out store (a suite store of CEC, or a benchmark store of F1-F16).

@@ -117,10 +117,38 @@ def headline(suites: Sequence[HoldoutSuite]) -> list[str]:
     lines += [suite_sentence(s) for s in suites]
     lines.append(_reduced(suites))
     for s in suites:
-        gap = s.missing()
+        gap = _gap(s)
         if gap:
-            lines.append(f"Not computed (missing runs) in {s.title}: {'; '.join(gap)}.")
+            lines.append(f"Not computed (runs missing) in {s.title}: {gap}.")
     return lines
+
+
+def _number(label: str) -> int | None:
+    """``"F12"`` -> 12; None for a label that is not ``F`` and a number."""
+    return int(label[1:]) if label[:1] == "F" and label[1:].isdigit() else None
+
+
+def _gap(suite: HoldoutSuite) -> str:
+    """``"F5 (gwo, woa); no run on F6-F29"``: the functions some algorithms have not finished,
+    naming them, then the functions nobody has started, as ranges; ``""`` when complete."""
+    partial, empty = [], []
+    for f in suite.functions:
+        short = [a for a in suite.algorithms if len(suite.finals.get((a, f), ())) < suite.runs]
+        if len(short) == len(suite.algorithms) and not any(
+            (a, f) in suite.finals for a in suite.algorithms
+        ):
+            empty.append(f)
+        elif short:
+            partial.append(f"{f} ({', '.join(short)})")
+    spans: list[list[str]] = []
+    for f in empty:  # consecutive labels F6, F7, ... -> one span
+        n, last = _number(f), _number(spans[-1][-1]) if spans else None
+        if n is not None and last is not None and n == last + 1:
+            spans[-1].append(f)
+        else:
+            spans.append([f])
+    ranges = ", ".join(s[0] if len(s) == 1 else f"{s[0]}-{s[-1]}" for s in spans)
+    return "; ".join([*partial, *([f"no run on {ranges}"] if ranges else [])])
 
 
 def _reduced(suites: Sequence[HoldoutSuite]) -> str:
@@ -148,8 +176,8 @@ def _reduced(suites: Sequence[HoldoutSuite]) -> str:
         f"The study is reduced ({'; '.join(here) or 'no suite'}; the full presets ask {full}) "
         "because opfunu evaluates CEC functions one point per call: at random search's wall "
         f"time per evaluation in these stores ({cost or 'not stored'}; its own cost is "
-        f"negligible), the full presets' CEC evaluations alone take {days:.1f} days of one "
-        "core, and the machine that made this study had 2 shared cores."
+        f"negligible), the full presets of these CEC suites take {days:.1f} days of one core "
+        "for the evaluations alone, and the machine that made this study had 2 shared cores."
     )
 
 
