@@ -41,8 +41,9 @@ HOLDOUT_PRESETS: dict[str, dict[str, Any]] = {
     "holdout-cec2022-d10": _cec("holdout-cec2022-d10", "cec2022", [10], 2e4, 12),
     "holdout-cec2022-d20": _cec("holdout-cec2022-d20", "cec2022", [20], 5e4, 12),
     # The committed study (docs/results/holdout): what a shared 2-core machine finishes in one
-    # session. opfunu evaluates one point per call (~190 us on average over CEC 2017 D = 10),
-    # so CEC's own budgets at D = 30 / 20 are days of CPU here (docs/deviations.md#d-holdout-quick).
+    # session. opfunu evaluates one point per call (random search: 327 us of wall time per
+    # evaluation on CEC 2017, D = 10, at load ~6), so CEC's own budgets at D = 30 / 20 are days
+    # of CPU here (docs/deviations.md#d-holdout-quick).
     "holdout-quick-cec2017": _cec("holdout-quick-cec2017", "cec2017", [10], 1e3, 29, runs=2),
     "holdout-quick-cec2022": _cec("holdout-quick-cec2022", "cec2022", [10], 1e3, 12, runs=2),
 }
