@@ -34,3 +34,17 @@ def test_paper_presets_cover_f1_f16_unshifted_and_shifted_at_equal_evaluations()
         assert plan.budget == "evals" and plan.pop_size * plan.max_iter == 25_000
         assert plan.options["cmaes"] == {"auto_pop_size": True}
     assert not plain.shifted and shifted.shifted
+
+
+def test_quick_presets_are_the_full_ones_cut_only_in_dimension_budget_and_runs():
+    """The committed study (docs/results/holdout) runs ``holdout-quick-*``: D = 10, 1000 x D
+    evaluations, 2 runs; everything else (suite, functions, algorithms, seed) as the full
+    presets, so its runs are those the full plans would make at these settings."""
+    for quick, full in (
+        ("holdout-quick-cec2017", "holdout-cec2017"),
+        ("holdout-quick-cec2022", "holdout-cec2022-d10"),
+    ):
+        q, f = preset_plan(quick), preset_plan(full)
+        assert q.dims == (10,) and q.runs == 2 and evaluation_budget(q.budget, 10) == 10_000
+        for field in ("suite", "functions", "algorithms", "instances", "seed"):
+            assert getattr(q, field) == getattr(f, field), field
