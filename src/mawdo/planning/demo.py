@@ -116,8 +116,15 @@ def write_figure(run: DemoRun, path) -> Path:
 
     if Path(path).suffix.lower() != ".png":
         raise ValueError(f"the demo figure {str(path)!r} must be a .png (it stores PNG text)")
-    text = {"Title": run.title, "Description": run.caption, "Source": "mawdo demo"}
+    text = figure_text_chunks(run)
     return snapshot_grid({LABEL: run.result}, path, metrics={LABEL: run.metrics}, metadata=text)
+
+
+def figure_text_chunks(run: DemoRun) -> dict[str, str]:
+    """The PNG text the demo's figure stores: its ``Title``, ``Description`` (the caption) and
+    ``Source``. ``mawdo demo`` draws the figure with it in a process begun at its start
+    (:mod:`mawdo.planning.render.early`): the same grid :func:`write_figure` draws."""
+    return {"Title": run.title, "Description": run.caption, "Source": "mawdo demo"}
 
 
 def figure_text(path) -> dict[str, str]:
