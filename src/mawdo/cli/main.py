@@ -222,18 +222,14 @@ def _print_table(function: str, results: dict) -> None:
     console.print(t)
 
 
-def _demo_run(sc, seed: int, out: Path):
-    """The demo's run, its table and caption printed, its metrics saved."""
+def _demo_run(ready, out: Path):
+    """The demo's run (set up by ``prepare_demo``), its table and caption printed, its metrics
+    saved."""
     from mawdo.cli.progress import notice_compiles
     from mawdo.planning import demo as job
 
-    console.print(
-        f"[bold]mawdo demo[/]: MAWDO on the '{sc.name}' scenario ({sc.width:g} x "
-        f"{sc.height:g} px, {len(sc.static_indices)} static and "
-        f"{len(sc.moving_indices)} moving obstacles), real-time receding-horizon replanning"
-    )
     with notice_compiles():  # a first run after installing compiles the kernels
-        run = job.run_demo(seed)
+        run = job.finish_demo(ready.execute())
     t = Table(title="MAWDO on the paper scenario (one run)")
     t.add_column("metric")
     t.add_column("value", justify="right")
@@ -257,6 +253,7 @@ def demo(
     import time
 
     from mawdo.cli.plan import draw_figures, early_figures
+    from mawdo.cli.progress import notice_compiles
     from mawdo.planning import demo as job
     from mawdo.planning.scenario import get_scenario
 
@@ -264,9 +261,16 @@ def demo(
     check_output_dir(out, "--out folder")
     sc = get_scenario(job.SCENARIO)
     grid, gif = out / job.FIGURE, out / "mawdo_paper.gif"
+    console.print(
+        f"[bold]mawdo demo[/]: MAWDO on the '{sc.name}' scenario ({sc.width:g} x "
+        f"{sc.height:g} px, {len(sc.static_indices)} static and "
+        f"{len(sc.moving_indices)} moving obstacles), real-time receding-horizon replanning"
+    )
+    with notice_compiles():  # a first run after installing compiles the kernels
+        ready = job.prepare_demo(seed)
     # the figures' set-up starts now, in a second process, while this one plans
     with early_figures(True, sc, job.ALGORITHM, seed, grid, gif, label=job.LABEL) as drawing:
-        run = _demo_run(sc, seed, out)
+        run = _demo_run(ready, out)
         from mawdo.planning.render.animation import animation_times
 
         frames = len(animation_times(run.result))
