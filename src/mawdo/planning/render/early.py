@@ -3,10 +3,12 @@
 A warm ``mawdo plan paper`` spends about 4 s planning and, after it, about 3 s of CPU on its
 figures: importing matplotlib, laying out the snapshot grid and the GIF's panel (axes, ticks,
 static obstacles, legend), then drawing the run on them. Only the last part needs the run.
-:class:`EarlyFigures` forks a child right after the command has read its arguments; the child
-does the first part on the second core while the parent plans, then waits for the run on a
-pipe. The parent sends the run (pickled: a few hundred kB) and waits for the child's answer:
-the paths it wrote, or its error, raised again in the parent. The child draws the grid itself
+:class:`EarlyFigures` forks a child once the command has set its run up (arguments checked,
+modules imported and kernels loaded, which the child then shares: forked at argument parsing
+it imported Numba and the planner a second time, 1.3 s more CPU); the child does the first
+part on the second core while the parent plans, then waits for the run on a pipe. The
+parent sends the run (pickled: a few hundred kB) and waits for the child's answer: the paths
+it wrote, or its error, raised again in the parent. The child draws the grid itself
 and the GIF in a grandchild (:class:`~mawdo.planning.render.forked.Forked`), so after the run
 only the drawing of the moving parts and the file writing are left.
 
