@@ -16,7 +16,11 @@ nowhere else):
   its kernels missing and compiles them in 2 processes itself (a progress line every 2 s).
 * ``cold plan paper, one process`` - the same with ``MAWDO_JIT_JOBS=1``: compiled in the
   command's own process as they are needed, as before issue 28.
-* ``warm plan paper + GIF (k)`` - kernels cached.
+* ``warm plan paper + GIF (k)`` - kernels cached. Since issue 28's second session the figures
+  are set up in a process forked at the command's start, while the run is planned.
+* ``warm plan paper, no figures`` - the same with ``--no-figures``: the planning alone (imports,
+  kernels loaded from the cache, the run, its metrics), the floor under the row above, which
+  the figures' process can only approach (5 s target shown for comparison).
 
 Wall time depends on what else runs on the machine (here 2 cores shared with other jobs), so
 each row also gives the CPU time (user + sys) of the process and all its children
@@ -129,6 +133,9 @@ def main() -> None:
             cache = cold
         for k in range(samples):
             _row(f"warm plan paper + GIF ({k + 1})", *timed([*plan, f"w{k}"], cache, tmp), 5)
+        bare = [*plan[:-1], "--no-figures", "--out"]
+        for k in range(samples):
+            _row(f"warm plan paper, no figures ({k + 1})", *timed([*bare, f"n{k}"], cache, tmp), 5)
         if os.environ.get("STARTUP_REPRODUCE", "0") != "0":
             repro = _cold(tmp, "numba-reproduce")
             args = ["-m", "mawdo.cli", "reproduce", "--quick", "--no-progress", "--out", "r"]

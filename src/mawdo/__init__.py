@@ -6,26 +6,60 @@
 (30,)
 """
 
+import sys
+import types
+
 from mawdo.jitcache import drop_stale_caches
 
 # before any kernel module loads: a cached kernel may hold an old version of a helper it inlined
 drop_stale_caches()
 
-from mawdo.minimize import make_problem, minimize  # noqa: E402
-from mawdo.optimizers import OPTIMIZERS, make_optimizer  # noqa: E402
-from mawdo.problem import ObjectiveError, Problem  # noqa: E402
-from mawdo.result import OptimizeResult  # noqa: E402
-
 __version__ = "0.9.0"
+
+#: The facade's names and the module each comes from. They are imported on first use (PEP 562),
+#: so that a command (``mawdo plan paper``) does not pay for the optimizers, the driver and Numba
+#: before it has read its arguments: ``import mawdo`` alone costs milliseconds, not 1.4 s.
+_LAZY = {
+    "make_problem": "mawdo.minimize",
+    "OPTIMIZERS": "mawdo.optimizers",
+    "make_optimizer": "mawdo.optimizers",
+    "ObjectiveError": "mawdo.problem",
+    "Problem": "mawdo.problem",
+    "OptimizeResult": "mawdo.result",
+    "FUNCTIONS": "mawdo.functions",
+}
 
 
 def __getattr__(name):
-    # FUNCTIONS lives in mawdo.functions; imported lazily so that package stays independent.
-    if name == "FUNCTIONS":
-        from mawdo.functions import FUNCTIONS
+    if name in _LAZY:
+        import importlib
 
-        return FUNCTIONS
+        value = getattr(importlib.import_module(_LAZY[name]), name)
+        globals()[name] = value  # later look-ups skip this function
+        return value
     raise AttributeError(f"module 'mawdo' has no attribute {name!r}")
+
+
+class _Facade(types.ModuleType):
+    """The package's module type: ``mawdo.minimize`` is the function, imported on first use.
+
+    The submodule of the same name, once imported (by the planner, say), would otherwise be
+    bound here in the function's place, as Python binds every imported submodule to its
+    package: the setter keeps the function, as the eager import it replaces did.
+    """
+
+    @property
+    def minimize(self):
+        from mawdo.minimize import minimize
+
+        return minimize
+
+    @minimize.setter
+    def minimize(self, value) -> None:
+        pass  # the import system binding the submodule ``mawdo.minimize``
+
+
+sys.modules[__name__].__class__ = _Facade
 
 
 __all__ = [

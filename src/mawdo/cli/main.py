@@ -222,29 +222,14 @@ def _print_table(function: str, results: dict) -> None:
     console.print(t)
 
 
-@app.command()
-def demo(
-    out: Path = typer.Option(Path("out/demo"), help="output folder"),
-    seed: int = typer.Option(0, min=0, help="seed of the run (an integer >= 0)"),
-):
-    """The main job: MAWDO plans through the moving obstacles of the `paper` scenario."""
-    import time
-
+def _demo_run(ready, out: Path):
+    """The demo's run (set up by ``prepare_demo``), its table and caption printed, its metrics
+    saved."""
+    from mawdo.cli.progress import notice_compiles
     from mawdo.planning import demo as job
-    from mawdo.planning import get_scenario, render
-
-    t0 = time.perf_counter()
-    check_output_dir(out, "--out folder")
-    sc = get_scenario(job.SCENARIO)
-    console.print(
-        f"[bold]mawdo demo[/]: MAWDO on the '{sc.name}' scenario ({sc.width:g} x "
-        f"{sc.height:g} px, {len(sc.static_indices)} static and "
-        f"{len(sc.moving_indices)} moving obstacles), real-time receding-horizon replanning"
-    )
-    from mawdo.cli.progress import notice_compiles, step
 
     with notice_compiles():  # a first run after installing compiles the kernels
-        run = job.run_demo(seed)
+        run = job.finish_demo(ready.execute())
     t = Table(title="MAWDO on the paper scenario (one run)")
     t.add_column("metric")
     t.add_column("value", justify="right")
@@ -256,12 +241,41 @@ def demo(
     (out / "metrics.md").write_text(
         "| metric | value |\n|---|---|\n" + "".join(f"| {k} | {v} |\n" for k, v in run.rows())
     )
-    frames = len(render.animation_times(run.result))
-    drawing = render.Forked(lambda: render.animate(run.result, out / "mawdo_paper.gif", every=2))
-    with step("drawing the snapshot grid"):
-        grid = job.write_figure(run, out / job.FIGURE)
-    with step(f"writing the GIF ({frames} frames{render.forked_note(drawing)})"):
-        gif = drawing.result()
+    return run
+
+
+@app.command()
+def demo(
+    out: Path = typer.Option(Path("out/demo"), help="output folder"),
+    seed: int = typer.Option(0, min=0, help="seed of the run (an integer >= 0)"),
+):
+    """The main job: MAWDO plans through the moving obstacles of the `paper` scenario."""
+    import time
+
+    from mawdo.cli.plan import draw_figures, early_figures
+    from mawdo.cli.progress import notice_compiles
+    from mawdo.planning import demo as job
+    from mawdo.planning.scenario import get_scenario
+
+    t0 = time.perf_counter()
+    check_output_dir(out, "--out folder")
+    sc = get_scenario(job.SCENARIO)
+    grid, gif = out / job.FIGURE, out / "mawdo_paper.gif"
+    console.print(
+        f"[bold]mawdo demo[/]: MAWDO on the '{sc.name}' scenario ({sc.width:g} x "
+        f"{sc.height:g} px, {len(sc.static_indices)} static and "
+        f"{len(sc.moving_indices)} moving obstacles), real-time receding-horizon replanning"
+    )
+    with notice_compiles():  # a first run after installing compiles the kernels
+        ready = job.prepare_demo(seed)
+    # the figures' set-up starts now, in a second process, while this one plans
+    with early_figures(True, sc, job.ALGORITHM, seed, grid, gif, label=job.LABEL) as drawing:
+        run = _demo_run(ready, out)
+        from mawdo.planning.render.animation import animation_times
+
+        frames = len(animation_times(run.result))
+        payload = (run.result, run.metrics, job.figure_text_chunks(run))
+        grid, gif = draw_figures(drawing, payload, frames, True)
     console.print(f"snapshot grid : {grid}")
     console.print(f"animation     : {gif}")
     console.print(f"metrics       : {out / 'metrics.md'}, {out / 'metrics.json'}")

@@ -20,25 +20,51 @@ Modules, one job each:
 >>> run_metrics(result)["gap"]                                 # doctest: +SKIP
 """
 
-from mawdo.planning.check import CheckReport, check_static_path, check_trajectory
-from mawdo.planning.config import PRESETS, PlannerConfig
-from mawdo.planning.cost import CostWeights, PathCost, assemble_paths
-from mawdo.planning.geometry import inflate, inflated_obstacles
-from mawdo.planning.metrics import run_metrics
-from mawdo.planning.oracle import OracleResult, scenario_optimum, shortest_path
-from mawdo.planning.planner import plan
-from mawdo.planning.planners import PLANNERS, PlannerSpec, run_planner
-from mawdo.planning.rasters import from_movingai_map, from_occupancy_image
-from mawdo.planning.result import PlanResult, Replan
-from mawdo.planning.scenario import (
-    SCENARIOS,
-    Obstacle,
-    Scenario,
-    ScenarioError,
-    get_scenario,
-    load_scenario,
-    scenario_from_dict,
-)
+# The names below are imported on first use (PEP 562): ``from mawdo.planning.scenario import
+# ...`` or ``from mawdo.planning import get_scenario`` then loads what it needs, not the planner,
+# the oracle and the checker with it (about 1 s of imports a command may not need yet).
+_LAZY = {
+    "CheckReport": "check",
+    "check_static_path": "check",
+    "check_trajectory": "check",
+    "PRESETS": "config",
+    "PlannerConfig": "config",
+    "CostWeights": "cost",
+    "PathCost": "cost",
+    "assemble_paths": "cost",
+    "inflate": "geometry",
+    "inflated_obstacles": "geometry",
+    "run_metrics": "metrics",
+    "OracleResult": "oracle",
+    "scenario_optimum": "oracle",
+    "shortest_path": "oracle",
+    "plan": "planner",
+    "PLANNERS": "planners",
+    "PlannerSpec": "planners",
+    "run_planner": "planners",
+    "from_movingai_map": "rasters",
+    "from_occupancy_image": "rasters",
+    "PlanResult": "result",
+    "Replan": "result",
+    "SCENARIOS": "scenario",
+    "Obstacle": "scenario",
+    "Scenario": "scenario",
+    "ScenarioError": "scenario",
+    "get_scenario": "scenario",
+    "load_scenario": "scenario",
+    "scenario_from_dict": "scenario",
+}
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        import importlib
+
+        value = getattr(importlib.import_module(f"mawdo.planning.{_LAZY[name]}"), name)
+        globals()[name] = value  # later look-ups skip this function
+        return value
+    raise AttributeError(f"module 'mawdo.planning' has no attribute {name!r}")
+
 
 __all__ = [
     "PLANNERS",

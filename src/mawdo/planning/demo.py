@@ -90,10 +90,21 @@ def run_demo(seed: int = 0) -> DemoRun:
     DemoRun
         The run and its metrics (minutes on a cold Numba cache, then about a minute).
     """
-    from mawdo.planning.metrics import run_metrics
-    from mawdo.planning.planner import plan
+    return finish_demo(prepare_demo(seed).execute())
 
-    result = plan(SCENARIO, algorithm=ALGORITHM, seed=seed, config=PRESET)
+
+def prepare_demo(seed: int = 0):
+    """The demo's run set up, not run (:func:`mawdo.planning.planner.prepare`): ``.execute()``
+    runs it, :func:`finish_demo` measures it; :func:`run_demo` is both."""
+    from mawdo.planning.planner import prepare
+
+    return prepare(SCENARIO, algorithm=ALGORITHM, seed=seed, config=PRESET)
+
+
+def finish_demo(result: PlanResult) -> DemoRun:
+    """The demo run of an executed :func:`prepare_demo`, with its metrics."""
+    from mawdo.planning.metrics import run_metrics
+
     return DemoRun(result, run_metrics(result))
 
 
@@ -116,8 +127,15 @@ def write_figure(run: DemoRun, path) -> Path:
 
     if Path(path).suffix.lower() != ".png":
         raise ValueError(f"the demo figure {str(path)!r} must be a .png (it stores PNG text)")
-    text = {"Title": run.title, "Description": run.caption, "Source": "mawdo demo"}
+    text = figure_text_chunks(run)
     return snapshot_grid({LABEL: run.result}, path, metrics={LABEL: run.metrics}, metadata=text)
+
+
+def figure_text_chunks(run: DemoRun) -> dict[str, str]:
+    """The PNG text the demo's figure stores: its ``Title``, ``Description`` (the caption) and
+    ``Source``. ``mawdo demo`` draws the figure with it in a process begun at its start
+    (:mod:`mawdo.planning.render.early`): the same grid :func:`write_figure` draws."""
+    return {"Title": run.title, "Description": run.caption, "Source": "mawdo demo"}
 
 
 def figure_text(path) -> dict[str, str]:

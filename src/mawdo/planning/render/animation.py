@@ -94,26 +94,49 @@ def animate(
     if not (isinstance(fps, int | np.integer | float) and fps > 0):
         raise ValueError(f"fps={fps!r} must be > 0")
     out = checked_output_path(path, (".gif",))
-    ts = animation_times(result, every, max_frames)
-    sc = result.scenario
-    opt = optimum_path(sc, {}) if optimum else None
-    fig, ax = _panel(result, float(ts[0]), opt, dpi, label)
-    frame0 = world_state(sc, float(ts[0]), result, opt)
-    frames = _Frames(fig, ax, sc, frame0)
-    images = [frames.grab(world_state(sc, float(t), result, opt), t) for t in ts]
-    _write_gif(images, out, fps)
-    return out
+    label = label or display_name(result.algorithm)
+    frame = GifFrame(result.scenario, label, result.seed, optimum=optimum, dpi=dpi)
+    return frame.write(result, out, fps=fps, every=every, max_frames=max_frames)
 
 
-def _panel(result: PlanResult, t: float, opt, dpi: int, label: str | None):
-    """The GIF's figure with its one map panel drawn at time ``t``, laid out once (frames keep
+class GifFrame:
+    """The GIF's figure before the run: what :func:`animate` draws once, then the frames.
+
+    ``GifFrame(scenario, label, seed)`` lays out the panel (title, legend, axes, ticks, labels)
+    and renders everything that never moves as the background the frames are blitted on;
+    :meth:`write` draws the run's frames on it and writes the GIF. The first step needs no
+    run, so it can be done while the planner runs (:mod:`.early`); the frames are the same.
+    """
+
+    def __init__(self, scenario, label: str, seed: int, optimum: bool = True, dpi: int = 80):
+        self.scenario = scenario
+        self.opt = optimum_path(scenario, {}) if optimum else None
+        self.fig, self.ax = _figure(scenario, f"{label}  (seed {seed})", dpi)
+        # the world at t = 0 (every frame's first time) without a run: its layers and the
+        # background behind them; the run's layers are added by write()
+        draw_world(self.ax, scenario, 0.0, optimum=self.opt, clear=False)
+        self.frames = _Frames(
+            self.fig, self.ax, scenario, world_state(scenario, 0.0, None, self.opt)
+        )
+
+    def write(self, result: PlanResult, out: Path, fps=12, every=2, max_frames=200) -> Path:
+        """Draw ``result``'s frames (:func:`animation_times`) and write them to ``out``."""
+        ts = animation_times(result, every, max_frames)
+        sc, opt = self.scenario, self.opt
+        self.frames.add(world_state(sc, float(ts[0]), result, opt))
+        images = [self.frames.grab(world_state(sc, float(t), result, opt), t) for t in ts]
+        _write_gif(images, out, fps)
+        return out
+
+
+def _figure(scenario, title: str, dpi: int):
+    """The GIF's figure: title, legend, one axes with its labels, laid out once (frames keep
     that layout: the panel title's text changes, not its height); ``(figure, axes)``."""
-    sc = result.scenario
     fig = new_figure((5.0, 5.6), dpi)
     fig.get_layout_engine().set(w_pad=0.02, h_pad=0.02)
-    fig.suptitle(f"{label or display_name(result.algorithm)}  (seed {result.seed})", fontsize=10)
+    fig.suptitle(title, fontsize=10)
     ax = fig.add_subplot()
-    handles = legend_handles(sc.robot_radius)
+    handles = legend_handles(scenario.robot_radius)
     fig.legend(
         handles=handles,
         loc="outside lower center",
@@ -123,12 +146,23 @@ def _panel(result: PlanResult, t: float, opt, dpi: int, label: str | None):
         handlelength=2.0,
         columnspacing=1.0,
     )
-    draw_world(ax, sc, t, result=result, optimum=opt, clear=False)  # a new axes: no clear
+    draw_world(ax, scenario, 0.0, clear=False, moving=False)  # limits, ticks (a new axes)
     ax.set_xlabel("x (px)", fontsize=7)
     ax.set_ylabel("y (px)", fontsize=7)
     # the layout alone, not a whole draw with rendering off (the frames' first draw renders)
     fig.get_layout_engine().execute(fig)
     fig.set_layout_engine("none")
+    for artist in [*ax.lines, *ax.patches]:
+        artist.remove()  # the caller draws the world
+    return fig, ax
+
+
+def _panel(result: PlanResult, t: float, opt, dpi: int, label: str | None):
+    """The GIF's figure with its map panel drawn at time ``t`` in one go (what a frame shows);
+    ``(figure, axes)``."""
+    title = f"{label or display_name(result.algorithm)}  (seed {result.seed})"
+    fig, ax = _figure(result.scenario, title, dpi)
+    draw_world(ax, result.scenario, t, result=result, optimum=opt, clear=False)
     return fig, ax
 
 
@@ -140,15 +174,21 @@ class _Frames:
         self.layers = {}  # gid -> its artists
         for a in [*ax.lines, *ax.patches]:
             self.layers.setdefault(a.get_gid(), []).append(a)
-        for gid, data in state.items():  # layers absent at the first time: empty artists
-            if gid not in self.layers:
-                self.layers[gid] = add_layer(ax, scenario, gid, data)
-        self.gids = list(state)
-        for a in self._artists():
-            a.set_animated(True)
+        self.gids: list = []
+        self.add(state)
         ax.title.set_animated(True)
         fig.canvas.draw()
         self.background = fig.canvas.copy_from_bbox(fig.bbox)
+
+    def add(self, state: dict) -> None:
+        """Layers of ``state`` not drawn yet: added as empty artists, every layer animated
+        (drawn per frame, not in the background)."""
+        for gid, data in state.items():
+            if gid not in self.layers:
+                self.layers[gid] = add_layer(self.ax, self.scenario, gid, data)
+        self.gids = list(state)
+        for a in self._artists():
+            a.set_animated(True)
 
     def _artists(self) -> list:
         # the order of a fresh panel: by zorder, ties in the order draw_world adds them

@@ -99,9 +99,15 @@ def _run(fn: Callable[[], object], conn) -> None:
         os._exit(130)
     except Exception as exc:
         message = (False, exc)
+    send_back(conn, message)
+
+
+def send_back(conn, message: tuple[bool, object]) -> None:
+    """Send a child's ``(ok, value or error)`` on ``conn`` and close it; a value or an error
+    that does not pickle becomes a ``RuntimeError`` that says what it was."""
     try:
         conn.send(message)
-    except Exception as exc:  # a value or an error that does not pickle: say what it was
+    except Exception as exc:
         what = f"{type(message[1]).__name__}: {message[1]}" if not message[0] else exc
         conn.send((False, RuntimeError(f"the drawing process could not send back {what}")))
     conn.close()

@@ -74,66 +74,139 @@ def snapshot_figure(
         ``rows x cols`` map panels titled ``"t = <t>"``, and one legend sub-figure at the bottom.
     """
     items = as_results(results)
+    _check_shape(rows, cols)
+    blocks = grid_blocks(items, times, rows * cols, metrics)
+    frame = GridFrame.for_blocks(blocks, rows, cols, optimum, dpi)
+    return frame.fill(blocks)
+
+
+def grid_blocks(items, times, n_panels: int, metrics: Mapping[str, Mapping] | None) -> list:
+    """Per run ``(result, headline, panel times)`` of a grid of ``n_panels`` panels a run."""
+    times = _checked_times(times, n_panels)
+    metrics = dict(metrics or {})
+    out = []
+    for key, res in items:
+        label = display_name(key)
+        headline = run_headline(label, res, metrics.get(key, metrics.get(label)))
+        out.append((res, headline, default_times(res, n_panels) if times is None else times))
+    return out
+
+
+class GridFrame:
+    """A snapshot grid in two steps: what needs only the scenarios, then the runs.
+
+    ``GridFrame(scenarios, ...)`` lays out the figure, its panels with their axes, ticks and
+    labels, the static obstacles, the optimum, start and goal, the legend and the note;
+    :meth:`fill` adds what moves (obstacles at each panel's time, tracks, plan, trail, robot)
+    and the titles. The first step is most of the grid's work (the layout above all) and can
+    run before the runs exist (:mod:`.early`: while the planner runs), with placeholder titles.
+    The figure is the one a single pass draws: the same artists in the same order, and the
+    layout made with titles of the heights drawn (if a real title's height differs from its
+    placeholder's, :meth:`fill` lays out a new frame with the real titles).
+
+    Parameters
+    ----------
+    scenarios : list of Scenario
+        One per block of panels (one block per run), top to bottom.
+    rows, cols : int
+        Panels per block.
+    optimum : bool
+        Draw the exact shortest path around the static obstacles.
+    dpi : int
+        Resolution (dots per inch).
+    titles : list of str, optional
+        Each block's title (default a placeholder headline).
+    shown : list of int, optional
+        Panels shown in each block, the first ones (default all).
+    """
+
+    def __init__(
+        self, scenarios, rows=2, cols=4, optimum=True, dpi=GRID_DPI, titles=None, shown=None
+    ) -> None:
+        _check_shape(rows, cols)
+        self.rows, self.cols, self.scenarios = rows, cols, list(scenarios)
+        self.args = (rows, cols, optimum, dpi)
+        n = len(self.scenarios)
+        self.titles = list(titles or [_PLACEHOLDER] * n)
+        self.shown = list(shown or [rows * cols] * n)
+        block_h = rows * PANEL_IN + 0.75  # title row and x labels
+        legend_h = 1.0  # the legend and the time note under it
+        self.fig = fig = new_figure((cols * PANEL_IN + 0.5, n * block_h + legend_h), dpi)
+        fig.get_layout_engine().set(w_pad=0.03, h_pad=0.05, hspace=0.02, wspace=0.02)
+        self.subfigs = fig.subfigures(
+            n + 1, 1, height_ratios=[block_h] * n + [legend_h], squeeze=False
+        )[:, 0]
+        cache: dict = {}
+        self.axes, self.optima = [], []
+        titled = zip(self.scenarios, self.subfigs, self.titles, self.shown, strict=False)
+        for sc, sub, title, k in titled:  # (the last sub-figure is the legend's)
+            sub.suptitle(title, fontsize=11, fontweight="bold")
+            opt = optimum_path(sc, cache) if optimum else None
+            axes = sub.subplots(rows, cols, squeeze=False)
+            for i, ax in enumerate(axes.flat):
+                if i >= k:
+                    ax.set_visible(False)
+                    continue
+                # a new axes: clearing it again would only rebuild its ticks (0.1-0.2 s a grid)
+                draw_world(ax, sc, 0.0, optimum=opt, clear=False, moving=False)
+                self._label(ax, i, k)
+            self.axes.append(axes)
+            self.optima.append(opt)
+        _legend(self.subfigs[-1], self.scenarios[0].robot_radius)
+        # Lay out once, and save with the layout fixed: savefig would otherwise draw the whole
+        # figure twice (a layout pass with drawing off, then the real one), about 0.4 s of 2 s.
+        fig.get_layout_engine().execute(fig)
+        fig.set_layout_engine("none")
+        self.laid_out = self._extents()
+
+    @classmethod
+    def for_blocks(cls, blocks, rows=2, cols=4, optimum=True, dpi=GRID_DPI):
+        """The frame of :func:`grid_blocks`' blocks, laid out with their titles."""
+        scenarios = [res.scenario for res, _, _ in blocks]
+        titles = [headline for _, headline, _ in blocks]
+        return cls(scenarios, rows, cols, optimum, dpi, titles, [len(ts) for *_, ts in blocks])
+
+    def _label(self, ax, i: int, n: int) -> None:
+        """Axis labels of panel ``i`` of ``n``: y on the first column, x where none is below."""
+        r, c = divmod(i, self.cols)
+        if c == 0:
+            ax.set_ylabel("y (px)", fontsize=8)
+        else:
+            ax.tick_params(labelleft=False)
+        if r == self.rows - 1 or i + self.cols >= n:
+            ax.set_xlabel("x (px)", fontsize=8)
+        else:
+            ax.tick_params(labelbottom=False)
+
+    def _extents(self) -> list[tuple[float, float]]:
+        """Each title's vertical extent on the canvas (what the layout made room for)."""
+        renderer = self.fig.canvas.get_renderer()
+        texts = [s._suptitle for s in self.subfigs[:-1]]
+        texts += [ax.title for axes in self.axes for ax in axes.flat if ax.get_visible()]
+        boxes = [t.get_window_extent(renderer) for t in texts]
+        return [(round(b.y0, 6), round(b.y1, 6)) for b in boxes]
+
+    def fill(self, blocks, again: bool = True):
+        """Draw the runs of :func:`grid_blocks`, one per scenario given; returns the figure
+        (a new frame's, laid out for the blocks, if they do not fit this one's titles and
+        panel counts and ``again``)."""
+        if again and [len(ts) for *_, ts in blocks] != self.shown:
+            return GridFrame.for_blocks(blocks, *self.args).fill(blocks, again=False)
+        for (res, headline, ts), sub, axes, opt in zip(
+            blocks, self.subfigs, self.axes, self.optima, strict=False
+        ):
+            sub._suptitle.set_text(headline)  # where the layout put it, in its font
+            for ax, t in zip(axes.flat, ts, strict=False):
+                draw_world(ax, res.scenario, float(t), res, opt, clear=False, static=False)
+        if again and self._extents() != self.laid_out:  # a title the layout did not expect
+            return GridFrame.for_blocks(blocks, *self.args).fill(blocks, again=False)
+        return self.fig
+
+
+def _check_shape(rows, cols) -> None:
     for name, v in (("rows", rows), ("cols", cols)):
         if not isinstance(v, int | np.integer) or v < 1:
             raise ValueError(f"{name}={v!r} must be a positive integer")
-    n_panels = rows * cols
-    if times is not None:
-        times = np.atleast_1d(np.asarray(times, dtype=float))
-        if times.ndim != 1 or times.size == 0:
-            raise ValueError("times must be a non-empty 1-D sequence of time steps")
-        if not np.all(np.isfinite(times)) or np.any(times < 0):
-            raise ValueError(f"times must be finite and >= 0, got {times.tolist()}")
-        if times.size > n_panels:
-            raise ValueError(f"{times.size} times do not fit in rows x cols = {n_panels} panels")
-    metrics = dict(metrics or {})
-
-    block_h = rows * PANEL_IN + 0.75  # title row and x labels
-    legend_h = 1.0  # the legend and the time note under it
-    width = cols * PANEL_IN + 0.5
-    fig = new_figure((width, len(items) * block_h + legend_h), dpi)
-    fig.get_layout_engine().set(w_pad=0.03, h_pad=0.05, hspace=0.02, wspace=0.02)
-    subfigs = fig.subfigures(
-        len(items) + 1, 1, height_ratios=[block_h] * len(items) + [legend_h], squeeze=False
-    )[:, 0]
-    cache: dict = {}
-    for (key, res), sub in zip(items, subfigs[:-1], strict=False):
-        label = display_name(key)
-        m = metrics.get(key, metrics.get(label))
-        sub.suptitle(run_headline(label, res, m), fontsize=11, fontweight="bold")
-        ts = default_times(res, n_panels) if times is None else times
-        opt = optimum_path(res.scenario, cache) if optimum else None
-        axes = sub.subplots(rows, cols, squeeze=False)
-        for i, ax in enumerate(axes.flat):
-            r, c = divmod(i, cols)
-            if i >= len(ts):
-                ax.set_visible(False)
-                continue
-            # a new axes: clearing it again would only rebuild its ticks (0.1-0.2 s a grid)
-            draw_world(ax, res.scenario, float(ts[i]), result=res, optimum=opt, clear=False)
-            if c == 0:
-                ax.set_ylabel("y (px)", fontsize=8)
-            else:
-                ax.tick_params(labelleft=False)
-            if r == rows - 1 or i + cols >= len(ts):
-                ax.set_xlabel("x (px)", fontsize=8)
-            else:
-                ax.tick_params(labelbottom=False)
-    r0 = items[0][1].scenario.robot_radius
-    handles = legend_handles(r0)
-    subfigs[-1].legend(
-        handles=handles,
-        loc="upper center",
-        ncols=min(len(handles), 5),
-        fontsize=9,
-        frameon=False,
-        handlelength=2.4,
-        columnspacing=1.6,
-    )
-    # wrap: a grid of one or two columns is narrower than the note
-    note = dict(ha="center", va="bottom", fontsize=8.5, style="italic", wrap=True)
-    subfigs[-1].text(0.5, 0.04, TIME_NOTE, **note)
-    return fig
 
 
 def snapshot_grid(
@@ -195,12 +268,47 @@ def snapshot_grid(
     fig = snapshot_figure(
         results, times=times, rows=rows, cols=cols, optimum=optimum, metrics=metrics, dpi=dpi
     )
-    # Lay out once, then save with the layout fixed: savefig would otherwise draw the whole
-    # figure twice (a layout pass with drawing switched off, then the real one), about 0.4 s
-    # of the grid's 2 s. Same positions, same pixels.
-    fig.get_layout_engine().execute(fig)
-    fig.set_layout_engine("none")
+    return save_grid(fig, out, metadata)
+
+
+def save_grid(fig, out: Path, metadata: Mapping[str, str] | None = None) -> Path:
+    """Write a laid-out grid figure to ``out`` (PNG text ``metadata`` if given)."""
     return save_figure(fig, out, metadata=dict(metadata)) if metadata else save_figure(fig, out)
+
+
+#: Title of a block before its run is known: the layout only needs a line of bold text.
+_PLACEHOLDER = "MAWDO  (seed 0)  |  length 0.0 px  |  gap L/L* 0.000  |  smoothness 0.00 rad"
+
+
+def _checked_times(times, n_panels: int):
+    """``times`` as a float array (None stays None), checked against ``n_panels``."""
+    if times is None:
+        return None
+    times = np.atleast_1d(np.asarray(times, dtype=float))
+    if times.ndim != 1 or times.size == 0:
+        raise ValueError("times must be a non-empty 1-D sequence of time steps")
+    if not np.all(np.isfinite(times)) or np.any(times < 0):
+        raise ValueError(f"times must be finite and >= 0, got {times.tolist()}")
+    if times.size > n_panels:
+        raise ValueError(f"{times.size} times do not fit in rows x cols = {n_panels} panels")
+    return times
+
+
+def _legend(sub, robot_radius: float) -> None:
+    """The legend and the time note, in the bottom sub-figure."""
+    handles = legend_handles(robot_radius)
+    sub.legend(
+        handles=handles,
+        loc="upper center",
+        ncols=min(len(handles), 5),
+        fontsize=9,
+        frameon=False,
+        handlelength=2.4,
+        columnspacing=1.6,
+    )
+    # wrap: a grid of one or two columns is narrower than the note
+    note = dict(ha="center", va="bottom", fontsize=8.5, style="italic", wrap=True)
+    sub.text(0.5, 0.04, TIME_NOTE, **note)
 
 
 # --------------------------------------------------------------------------------------------

@@ -36,6 +36,8 @@ def draw_world(
     title: str | None = None,
     small: float = 7.0,
     clear: bool = True,
+    moving: bool = True,
+    static: bool = True,
 ) -> None:
     """Draw the world at time ``t`` on ``ax``, and a run's state at ``t`` if ``result`` is given.
 
@@ -60,6 +62,12 @@ def draw_world(
         Font size of ticks and title (points).
     clear : bool
         Clear the axes completely before drawing.
+    moving, static : bool
+        Draw what moves (moving obstacles, tracks, the run) and what stands (static obstacles,
+        optimum, start, goal, limits, ticks), each or both: a snapshot grid draws the standing
+        part before the run exists (:class:`~mawdo.planning.render.snapshots.GridFrame`). In
+        the order both are drawn, ties of ``zorder`` between the two parts never occur, so
+        the panel is the same in one call or in two.
 
     Notes
     -----
@@ -67,18 +75,21 @@ def draw_world(
     ``"start"``, ``"goal"``, ``"static:<id>"``, ``"moving:<id>"``, ``"inflated:<id>"``,
     ``"track:<id>"``): SVG output names its elements, and tests can find them.
     """
+    fixed = standing_gids(scenario)
     if clear:
         ax.clear()
     else:
         for artist in [*ax.lines, *ax.patches]:
-            artist.remove()
+            if static if artist.get_gid() in fixed else moving:
+                artist.remove()
     for gid, data in world_state(scenario, t, result, optimum, track).items():
-        if data is not None:
+        if data is not None and (static if gid in fixed else moving):
             add_layer(ax, scenario, gid, data)
-    ax.set_xlim(0.0, scenario.width)
-    ax.set_ylim(0.0, scenario.height)
-    ax.set_aspect("equal", adjustable="box")
-    ax.tick_params(labelsize=small - 1, length=2, pad=1.5)
+    if static:
+        ax.set_xlim(0.0, scenario.width)
+        ax.set_ylim(0.0, scenario.height)
+        ax.set_aspect("equal", adjustable="box")
+        ax.tick_params(labelsize=small - 1, length=2, pad=1.5)
     ax.set_title(f"t = {format_time(t)}" if title is None else title, fontsize=small + 1, pad=3)
 
 
@@ -128,6 +139,16 @@ def world_state(
         state["trail"] = trail
         state["robot"] = trail[-1]
     return state
+
+
+def standing_gids(scenario: Scenario) -> set[str]:
+    """The ``gid`` of what a panel draws the same at every time: the static obstacles and their
+    inflated outlines, the optimum, start and goal."""
+    fixed = {"optimum", "start", "goal"}
+    for ob in scenario.obstacles:
+        if ob.is_static:
+            fixed |= {f"static:{ob.id}", f"inflated:{ob.id}"}
+    return fixed
 
 
 #: per scenario, its obstacles' inflated outlines at offset zero (a frame translates them)

@@ -1,0 +1,184 @@
+"""Figures begun at a command's start: a forked process sets them up while the planner runs.
+
+A warm ``mawdo plan paper`` spends about 4 s planning and, after it, about 3 s of CPU on its
+figures: importing matplotlib, laying out the snapshot grid and the GIF's panel (axes, ticks,
+static obstacles, legend), then drawing the run on them. Only the last part needs the run.
+:class:`EarlyFigures` forks a child once the command has set its run up (arguments checked,
+modules imported and kernels loaded, which the child then shares: forked at argument parsing
+it imported Numba and the planner a second time, 1.3 s more CPU); the child does the first
+part on the second core while the parent plans, then waits for the run on a pipe. The
+parent sends the run (pickled: a few hundred kB) and waits for the child's answer: the paths
+it wrote, or its error, raised again in the parent. The child draws the grid itself
+and the GIF in a grandchild (:class:`~mawdo.planning.render.forked.Forked`), so after the run
+only the drawing of the moving parts and the file writing are left.
+
+Where ``fork`` is missing or there is one core, nothing runs early: :meth:`EarlyFigures.send`
+then sets up and draws in this process, the same figures one after the other.
+
+Interrupts: the child shares the terminal's process group, so Ctrl-C reaches it too; it ends
+quietly (exit 130) and the parent's ``KeyboardInterrupt`` ends it if it still runs. A parent
+that stops early (bad input, an error) calls :meth:`EarlyFigures.cancel` (``with`` does): the
+child ends without writing anything. A parent killed outright closes its end of the pipe, and
+the child, waiting on it, ends.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import warnings
+from collections.abc import Callable
+
+from mawdo.planning.render.forked import can_fork, send_back
+
+#: ``prepare()`` runs early and returns ``finish(payload) -> value``.
+Prepare = Callable[[], Callable[[object], object]]
+
+
+class EarlyFigures:
+    """Run ``prepare()`` now in a forked child; :meth:`send` gives its ``finish`` the payload.
+
+    Parameters
+    ----------
+    prepare : callable
+        Takes nothing and returns ``finish``, a callable that takes the payload (picklable)
+        and returns a picklable value (the paths written). Neither may print (the child shares
+        the terminal) nor start Numba's parallel threads.
+    parallel : bool
+        False: run both in this process, at :meth:`send` (what happens without ``fork``).
+    """
+
+    def __init__(self, prepare: Prepare, parallel: bool = True) -> None:
+        self.prepare = prepare
+        self.proc = self.conn = None
+        self.payload = None
+        if not (parallel and can_fork()):
+            return
+        ctx = multiprocessing.get_context("fork")
+        self.conn, child_end = ctx.Pipe()
+        with warnings.catch_warnings():  # Python >= 3.12 warns when other threads exist
+            warnings.simplefilter("ignore", DeprecationWarning)
+            # not a daemon: the child forks the GIF's drawing process itself
+            self.proc = ctx.Process(target=_child, args=(prepare, child_end, self.conn))
+            self.proc.start()
+        child_end.close()
+
+    @property
+    def early(self) -> bool:
+        """Whether a child set the figures up while this process planned."""
+        return self.proc is not None
+
+    def send(self, payload) -> None:
+        """Hand the run to the child (without one: keep it for :meth:`result`)."""
+        if self.proc is None:
+            self.payload = payload
+            return
+        try:
+            self.conn.send(payload)
+        except (BrokenPipeError, EOFError):
+            pass  # the child ended early: result() says how
+
+    def result(self):
+        """Wait for the figures and return ``finish``'s value, or raise the child's error."""
+        if self.proc is None:
+            return self.prepare()(self.payload)
+        try:
+            ok, value = self.conn.recv()
+        except EOFError:  # it died without a word (killed, out of memory)
+            self.proc.join()
+            raise RuntimeError(
+                f"the drawing process ended (exit code {self.proc.exitcode}) with no result"
+            ) from None
+        except BaseException:  # Ctrl-C while waiting: no child left behind
+            self.cancel()
+            raise
+        self.conn.close()
+        self.proc.join()
+        if not ok:
+            raise value
+        return value
+
+    def cancel(self) -> None:
+        """End the child now if it still runs (nothing more is written)."""
+        if self.proc is None:
+            return
+        if self.proc.is_alive():
+            self.proc.terminate()
+        self.proc.join()
+        self.conn.close()
+
+    def __enter__(self) -> EarlyFigures:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.cancel()  # a no-op once result() has joined the child
+
+
+def _child(prepare: Prepare, conn, parent_end) -> None:
+    """The child: ``prepare()``, then the payload from ``conn``, then ``(ok, value)`` back."""
+    parent_end.close()  # so that the parent's death closes the pipe for us
+    try:
+        try:
+            finish, error = prepare(), None
+        except Exception as exc:  # said once the parent asks for the figures
+            finish, error = None, exc
+        try:
+            payload = conn.recv()
+        except EOFError:  # the parent stopped before its run: nothing to draw
+            os._exit(0)
+        message = (False, error) if error else (True, finish(payload))
+    except KeyboardInterrupt:  # the parent has its own and says so
+        os._exit(130)
+    except Exception as exc:
+        message = (False, exc)
+    send_back(conn, message)
+
+
+def run_figures(scenario, algorithm: str, seed: int, grid, gif, label: str | None = None,
+                every: int = 2) -> Prepare:  # fmt: skip
+    """What :class:`EarlyFigures` runs for one planning run: the snapshot grid and the GIF.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        The run's scenario (the figures' static parts are drawn from it before the run).
+    algorithm : str
+        The run's algorithm (the GIF's title; the grid's when ``label`` is None).
+    seed : int
+        The run's seed (the titles).
+    grid, gif : Path
+        Output paths of the snapshot grid (``.png``) and the GIF.
+    label : str, optional
+        The grid's label for the run (default: the algorithm's display label).
+    every : int
+        Time steps between GIF frames.
+
+    Returns
+    -------
+    callable
+        ``prepare()`` for :class:`EarlyFigures`; its ``finish`` takes ``(result, metrics,
+        metadata)`` (metrics and PNG text may be None) and returns ``(grid path, gif path)``.
+    """
+
+    def prepare():
+        from mawdo.planning.render.animation import GifFrame
+        from mawdo.planning.render.forked import Forked
+        from mawdo.planning.render.snapshots import GridFrame, grid_blocks, save_grid
+        from mawdo.planning.render.style import IMAGE_SUFFIXES, checked_output_path, display_name
+
+        frame = GridFrame([scenario])
+        movie = GifFrame(scenario, display_name(algorithm), seed)
+
+        def finish(payload):
+            result, metrics, metadata = payload
+            grid_out = checked_output_path(grid, IMAGE_SUFFIXES)
+            gif_out = checked_output_path(gif, (".gif",))
+            job = Forked(lambda: movie.write(result, gif_out, every=every))  # beside the grid
+            key = label or result.algorithm
+            blocks = grid_blocks([(key, result)], None, frame.rows * frame.cols, {key: metrics})
+            path = save_grid(frame.fill(blocks), grid_out, metadata)
+            return path, job.result()
+
+        return finish
+
+    return prepare

@@ -1,0 +1,202 @@
+"""Figures begun at a command's start (issue 28, item 2): the same pixels, errors said, Ctrl-C.
+
+The snapshot grid laid out before the run (placeholder titles, static parts only) and filled
+after it must be the grid a single pass draws; a panel drawn in two calls (what stands, then
+what moves) the panel one call draws; and the process that does it early must hand back its
+value or its error, end when the command stops, and stop with the command on Ctrl-C.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from mawdo.planning import render
+from mawdo.planning.planner import plan
+from mawdo.planning.render.early import EarlyFigures, run_figures
+from mawdo.planning.render.snapshots import GridFrame, grid_blocks, save_grid
+from mawdo.planning.render.world import draw_world
+from mawdo.planning.visgraph import component_labels
+
+SRC = str(Path(__file__).resolve().parents[2] / "src")
+ENV = {**os.environ, "PYTHONPATH": SRC, "PYTHONUNBUFFERED": "1"}
+
+
+@pytest.fixture(scope="module")
+def run():
+    return plan("paper", "mawdo", seed=0, config="quick", max_steps=40)
+
+
+def pixels(path) -> np.ndarray:
+    with Image.open(path) as im:
+        return np.asarray(im.convert("RGB"))
+
+
+def canvas(fig) -> np.ndarray:
+    fig.canvas.draw()
+    return np.asarray(fig.canvas.buffer_rgba())[..., :3].copy()
+
+
+def test_a_panel_drawn_in_two_calls_is_the_panel_one_call_draws(run):
+    from mawdo.planning.render.style import new_figure, optimum_path
+
+    opt = optimum_path(run.scenario, {})
+    images = []
+    for parts in ([dict()], [dict(moving=False), dict(static=False)]):
+        fig = new_figure((4, 4), 80, layout=None)
+        ax = fig.add_subplot()
+        for kw in parts:
+            draw_world(ax, run.scenario, 20.0, result=run, optimum=opt, clear=False, **kw)
+        images.append(canvas(fig))
+    np.testing.assert_array_equal(images[0], images[1])
+    assert (images[0] != 255).any(axis=-1).mean() > 0.05  # something was drawn
+
+
+def test_the_grid_set_up_before_the_run_is_the_grid_drawn_after_it(run, tmp_path):
+    metrics = {"MAWDO": {"length_px": 512.25, "gap": 1.0625, "smoothness_rad": 1.5}}
+    direct = render.snapshot_grid({"MAWDO": run}, tmp_path / "direct.png", metrics=metrics)
+    frame = GridFrame([run.scenario])  # placeholder titles, no run yet
+    blocks = grid_blocks([("MAWDO", run)], None, 8, metrics)
+    early = save_grid(frame.fill(blocks), tmp_path / "early.png")
+    np.testing.assert_array_equal(pixels(direct), pixels(early))
+    # a title of another height than the placeholder's: laid out again, still the same grid
+    tall = [(run, "MAWDO (seed 0) | gap n/a | goal not reached: Timeout [qgjpy]", blocks[0][2])]
+    again = save_grid(GridFrame([run.scenario]).fill(tall), tmp_path / "again.png")
+    once = save_grid(GridFrame.for_blocks(tall).fill(tall), tmp_path / "once.png")
+    np.testing.assert_array_equal(pixels(again), pixels(once))
+
+
+def test_the_early_figures_are_the_figures_of_the_run(run, tmp_path):
+    job = EarlyFigures(
+        run_figures(run.scenario, "mawdo", 0, tmp_path / "g.png", tmp_path / "a.gif")
+    )
+    assert job.early == render.can_fork()
+    job.send((run, None, None))
+    grid, gif = job.result()
+    direct = render.snapshot_grid([run], tmp_path / "direct.png")
+    np.testing.assert_array_equal(pixels(grid), pixels(direct))
+    assert gif.read_bytes() == render.animate(run, tmp_path / "direct.gif").read_bytes()
+
+
+def test_the_early_process_hands_back_its_value_or_its_error(tmp_path):
+    def prepare():
+        mine = os.getpid()
+        return lambda payload: (mine, payload * 2)
+
+    job = EarlyFigures(prepare)
+    job.send(21)
+    pid, value = job.result()
+    assert value == 42 and (pid != os.getpid()) == render.can_fork()
+
+    def broken():
+        raise OSError("cannot write '/x/run.gif': No space left on device")
+
+    job = EarlyFigures(broken)
+    job.send(None)
+    with pytest.raises(OSError, match="No space left on device"):
+        job.result()
+
+    def fails_later():
+        return lambda payload: 1 / payload
+
+    with EarlyFigures(fails_later) as job:
+        job.send(0)
+        with pytest.raises(ZeroDivisionError):
+            job.result()
+
+    here = EarlyFigures(prepare, parallel=False)
+    here.send(1)
+    assert here.result() == (os.getpid(), 2) and not here.early
+
+
+def test_a_command_that_stops_early_ends_the_early_process_and_nothing_is_written(tmp_path):
+    marker = tmp_path / "written"
+
+    def prepare():
+        return lambda payload: marker.write_text("drawn")
+
+    with EarlyFigures(prepare) as job:
+        pid = job.proc.pid if job.early else None
+    if pid is not None:
+        assert not job.proc.is_alive()
+    time.sleep(0.2)
+    assert not marker.exists()
+
+
+def test_component_labels_number_components_as_scipy_does():
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    rng = np.random.default_rng(5)
+    for n, m in [(1, 0), (5, 0), (12, 6), (40, 25), (60, 200)]:
+        a, b = rng.integers(0, n, m), rng.integers(0, n, m)
+        a, b = np.r_[a, np.arange(n)], np.r_[b, np.arange(n)]  # self-pairs, as STRtree gives
+        _, want = connected_components(coo_matrix((np.ones(len(a)), (a, b)), shape=(n, n)))
+        np.testing.assert_array_equal(component_labels(n, a, b), want)
+
+
+def _start(out: Path, *extra: str) -> subprocess.Popen:
+    def child() -> None:  # a background job of a non-interactive shell ignores SIGINT
+        signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+    cmd = [sys.executable, "-m", "mawdo.cli", "plan", "paper", "--preset", "quick", *extra]
+    return subprocess.Popen(
+        [*cmd, "--out", str(out)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=ENV,
+        start_new_session=True,
+        preexec_fn=child,
+    )
+
+
+def _group_gone(pgid: int, within: float = 10.0) -> bool:
+    end = time.monotonic() + within
+    while time.monotonic() < end:
+        try:
+            os.killpg(pgid, 0)
+        except ProcessLookupError:
+            return True
+        time.sleep(0.1)
+    return False
+
+
+def _children(pid: int) -> list[int]:
+    try:
+        text = Path(f"/proc/{pid}/task/{pid}/children").read_text()
+    except OSError:
+        return []
+    return [int(p) for p in text.split()]
+
+
+@pytest.mark.skipif(not render.can_fork(), reason="figures are drawn early only with fork")
+def test_ctrl_c_while_planning_stops_the_command_and_its_figures_process(tmp_path):
+    proc = _start(tmp_path / "out")
+    end = time.monotonic() + 120
+    while not _children(proc.pid) and proc.poll() is None and time.monotonic() < end:
+        time.sleep(0.05)  # the figures' process starts once the arguments are read
+    assert _children(proc.pid), "no figures process was started"
+    time.sleep(1.0)  # the run is being set up or planned, the figures' process sets up
+    os.killpg(proc.pid, signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130, err
+    assert "Traceback" not in err
+    assert _group_gone(proc.pid), "a process of the command outlived Ctrl-C"
+    assert not (tmp_path / "out" / "snapshots.png").exists()
+
+
+def test_bad_input_ends_the_figures_process_and_creates_nothing(tmp_path):
+    proc = _start(tmp_path / "out", "--algorithm", "nosuch")
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 2 and err.startswith("error: "), err
+    assert _group_gone(proc.pid)
+    assert not (tmp_path / "out").exists()
