@@ -25,6 +25,7 @@ from mawdo.planning.render.early import EarlyFigures, run_figures
 from mawdo.planning.render.snapshots import GridFrame, grid_blocks, save_grid
 from mawdo.planning.render.world import draw_world
 from mawdo.planning.visgraph import component_labels
+from tests.cli_run import interruptible
 
 SRC = str(Path(__file__).resolve().parents[2] / "src")
 ENV = {**os.environ, "PYTHONPATH": SRC, "PYTHONUNBUFFERED": "1"}
@@ -144,19 +145,8 @@ def test_component_labels_number_components_as_scipy_does():
 
 
 def _start(out: Path, *extra: str) -> subprocess.Popen:
-    def child() -> None:  # a background job of a non-interactive shell ignores SIGINT
-        signal.signal(signal.SIGINT, signal.SIG_DFL)
-
     cmd = [sys.executable, "-m", "mawdo.cli", "plan", "paper", "--preset", "quick", *extra]
-    return subprocess.Popen(
-        [*cmd, "--out", str(out)],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-        env=ENV,
-        start_new_session=True,
-        preexec_fn=child,
-    )
+    return interruptible([*cmd, "--out", str(out)], env=ENV)
 
 
 def _group_gone(pgid: int, within: float = 10.0) -> bool:

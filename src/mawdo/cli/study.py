@@ -34,7 +34,7 @@ FORCE = typer.Option(False, "--force", help="discard a store made by another pla
 RETRY_FAILED = typer.Option(False, "--retry-failed", help=RETRY_HELP)
 PROGRESS = typer.Option(True, "--progress/--no-progress", help="show a progress bar (stderr)")
 
-ALIAS_RELEASE = "0.9"
+ALIAS_RELEASE = "1.0"  # was 0.9; kept one more minor release (0.9.0 still has them)
 """The release that drops the older per-kind study commands."""
 
 
