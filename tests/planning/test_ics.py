@@ -9,6 +9,7 @@ independent checker (shapely) on trajectories written out by hand.
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from mawdo.planning.check import check_trajectory
 from mawdo.planning.config import PlannerConfig
@@ -149,3 +150,33 @@ def test_paper_scenario_runs_as_before_where_the_rule_never_fires():
     assert on.inevitable == 0 and on.success
     np.testing.assert_array_equal(on.trajectory, off.trajectory)
     assert (on.waits, on.evasions, on.fallbacks) == (off.waits, off.evasions, off.fallbacks)
+
+
+def _dense_18():
+    from mawdo.experiments.kinds.arena import arena_preset
+    from mawdo.planning.scenes import generate_scene
+
+    scene = generate_scene("dense", 18, seed=0)
+    return scene.scenario, arena_preset("arena-default").planner_seed("dense", 18)
+
+
+def test_the_rule_sees_random_walkers_as_the_guard_does():
+    """A walker's seeded future, not a disc growing for ``ics_horizon`` steps: among seven
+    walkers of ``dense`` no spot stays clear of 30-step discs, so with them the rule refused
+    the stretches the guard accepted and the run gave up (arena-default, 0.9.0 before this)."""
+    from mawdo.planning.motion import BoundedRandomWalk
+
+    sc, seed = _dense_18()
+    assert sum(isinstance(o.motion, BoundedRandomWalk) for o in sc.obstacles) >= 5
+    assert SafeContinuation.walkers == "known"
+    res = plan(sc, "mawdo", seed=seed)
+    assert res.success and res.collision_free, res.reason
+    assert res.inevitable == 0 and res.waits == 0
+
+
+@pytest.mark.slow
+def test_growing_walker_discs_make_the_rule_give_up_on_dense_18(monkeypatch):
+    sc, seed = _dense_18()
+    monkeypatch.setattr(SafeContinuation, "walkers", "reachable")
+    res = plan(sc, "mawdo", seed=seed)
+    assert not res.success and "gave up" in res.reason
