@@ -18,6 +18,7 @@ import pytest
 from pydantic import Field
 from typer.testing import CliRunner
 
+from mawdo.cli.study import ALIAS_RELEASE
 from mawdo.experiments import (
     STUDY_KINDS,
     PlanError,
@@ -35,7 +36,9 @@ from mawdo.streams import name_word, seed_word
 from .cli_run import mawdo
 
 NOTE = re.compile(
-    r"^note: '(mawdo [a-z ]+)' is now '(mawdo study [a-z]+)'; this alias goes in 0\.9$"
+    r"^note: '(mawdo [a-z ]+)' is now '(mawdo study [a-z]+)'; this alias goes in "
+    + re.escape(ALIAS_RELEASE)
+    + "$"
 )
 TINY_BENCH = ("--set", "algorithms=gwo", "--set", "functions=sphere,rastrigin", "--set", "runs=2",
               "--set", "max_iter=5")  # fmt: skip
