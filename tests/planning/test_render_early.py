@@ -41,6 +41,16 @@ def pixels(path) -> np.ndarray:
         return np.asarray(im.convert("RGB"))
 
 
+def assert_same_picture(a: np.ndarray, b: np.ndarray) -> None:
+    """The same figure up to anti-aliasing: equal size, and at most 0.1 % of the values off by
+    at most 3 levels (a figure drawn in a forked process now and then rounds a few edge pixels
+    of text one level apart; a moved line, panel or label changes far more, far further)."""
+    assert a.shape == b.shape
+    diff = np.abs(a.astype(int) - b.astype(int))
+    assert diff.max() <= 3, f"values differ by up to {diff.max()} levels"
+    assert np.count_nonzero(diff) <= 1e-3 * diff.size, f"{np.count_nonzero(diff)} values differ"
+
+
 def canvas(fig) -> np.ndarray:
     fig.canvas.draw()
     return np.asarray(fig.canvas.buffer_rgba())[..., :3].copy()
@@ -67,7 +77,7 @@ def test_the_grid_set_up_before_the_run_is_the_grid_drawn_after_it(run, tmp_path
     frame = GridFrame([run.scenario])  # placeholder titles, no run yet
     blocks = grid_blocks([("MAWDO", run)], None, 8, metrics)
     early = save_grid(frame.fill(blocks), tmp_path / "early.png")
-    np.testing.assert_array_equal(pixels(direct), pixels(early))
+    assert_same_picture(pixels(direct), pixels(early))
     # a title of another height than the placeholder's: laid out again, still the same grid
     tall = [(run, "MAWDO (seed 0) | gap n/a | goal not reached: Timeout [qgjpy]", blocks[0][2])]
     again = save_grid(GridFrame([run.scenario]).fill(tall), tmp_path / "again.png")
@@ -83,7 +93,7 @@ def test_the_early_figures_are_the_figures_of_the_run(run, tmp_path):
     job.send((run, None, None))
     grid, gif = job.result()
     direct = render.snapshot_grid([run], tmp_path / "direct.png")
-    np.testing.assert_array_equal(pixels(grid), pixels(direct))
+    assert_same_picture(pixels(grid), pixels(direct))
     assert gif.read_bytes() == render.animate(run, tmp_path / "direct.gif").read_bytes()
 
 
