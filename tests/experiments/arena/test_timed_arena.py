@@ -4,7 +4,6 @@ state numbers recomputed here from the raw store with sqlite3."""
 
 from __future__ import annotations
 
-import sqlite3
 import statistics
 from pathlib import Path
 
@@ -17,6 +16,8 @@ from mawdo.experiments.kinds.arena.plan import ARENA_PRESETS, TIMED_FAMILIES
 from mawdo.experiments.kinds.arena.report import COLUMNS
 from mawdo.experiments.kinds.arena.summary import swarm_share, timed_lines
 from mawdo.planning.scenes import generate_scene
+
+from .test_summary import _sql
 
 TIMED = {
     "name": "timed-tiny",
@@ -35,14 +36,6 @@ def timed_store(tmp_path_factory) -> Path:
     db = tmp_path_factory.mktemp("timed") / "timed.db"
     assert run_plan(ArenaPlan.from_dict(TIMED), db, progress=False).complete
     return db
-
-
-def _sql(db, query: str, *args) -> list[tuple]:
-    conn = sqlite3.connect(db)
-    try:
-        return conn.execute(query, args).fetchall()
-    finally:
-        conn.close()
 
 
 def test_the_default_arena_holds_the_timed_families_and_the_guide_alone():

@@ -71,6 +71,16 @@ class ArenaRow(RunRow):
     inevitable: int | None = column("int")
 
 
+#: Row fields a caller that needs no trace or scene text leaves unread (large blobs).
+NO_TRACE = ("trace", "scene_toml")
+
+
+def is_timed(rows) -> bool:
+    """A family is timed when every planned scene of it carries an earliest arrival ``t_star``."""
+    ok = [r for r in rows if r.status == "ok"]
+    return bool(ok) and all(r.t_star is not None for r in ok)
+
+
 def scenario_from_toml(text: str, name: str):
     """A stored scene's TOML text as a :class:`~mawdo.planning.scenario.Scenario`."""
     from mawdo.planning.scenario import scenario_from_dict

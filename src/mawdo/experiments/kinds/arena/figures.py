@@ -7,21 +7,15 @@ from pathlib import Path
 
 import numpy as np
 
+from mawdo.experiments.kinds.arena.execute import NO_TRACE, is_timed
 from mawdo.experiments.store import Store
 
-NO_TRACE = ("trace", "scene_toml")
 
-
-def _label(name: str) -> str:
+def label(name: str) -> str:
+    """A planner's display name (an optimizer's, else the planner's own)."""
     from mawdo.optimizers import OPTIMIZERS
 
     return OPTIMIZERS[name].display if name in OPTIMIZERS else name
-
-
-def _timed(rows) -> bool:
-    """A family is timed when every planned scene of it carries an earliest arrival T*."""
-    ok = [r for r in rows if r.status == "ok"]
-    return bool(ok) and all(r.t_star is not None for r in ok)
 
 
 def _ecdf(ax, x: np.ndarray, label: str, color: str) -> None:
@@ -58,7 +52,7 @@ def arena_figures(store: Store, out: Path) -> list[Path]:
             ],
             dtype=float,
         )
-        _ecdf(ax, w, _label(p), colors[p])
+        _ecdf(ax, w, label(p), colors[p])
     ax.set(
         xscale="log",
         xlabel="wall time per run (s)",
@@ -81,7 +75,7 @@ def arena_figures(store: Store, out: Path) -> list[Path]:
         key, what = ("time_gap", "T / T*") if timed else ("gap", "L / L*")
         for p in plan.planners:
             ok = [r for r in rows[p, f] if r.status == "ok" and r.success]
-            _ecdf(ax, np.array([getattr(r, key) for r in ok], float), _label(p), colors[p])
+            _ecdf(ax, np.array([getattr(r, key) for r in ok], float), label(p), colors[p])
         if not ax.lines:
             ax.text(0.5, 0.5, "no successful run", ha="center", transform=ax.transAxes)
         ax.set(title=f, xlabel=f"gap {what} (successful runs)", ylabel="fraction")
@@ -90,7 +84,7 @@ def arena_figures(store: Store, out: Path) -> list[Path]:
         ax.grid(alpha=0.3)
     for ax in axes[nf:]:
         ax.set_visible(False)
-    handles = [Line2D([], [], color=colors[p], label=_label(p)) for p in plan.planners]
+    handles = [Line2D([], [], color=colors[p], label=label(p)) for p in plan.planners]
     fig.legend(handles=handles, loc="outside lower center", ncols=min(6, len(handles)))
     paths.append(out / "ecdf_gap.png")
     fig.savefig(paths[1])
@@ -118,14 +112,14 @@ def swarm_figure(store: Store, out: Path, base: str = "guide_only") -> list[Path
             both = set.intersection(*(set(v) for v in rows.values()))
             if not both:
                 continue
-            key = "time_gap" if _timed(rows[p].values()) else "gap"
+            key = "time_gap" if is_timed(rows[p].values()) else "gap"
             g = np.array([getattr(rows[p][n], key) for n in sorted(both)], float)
             xs.append(i - 0.4 + width * (j + 0.5))
             med.append(np.median(g))
             lo.append(np.median(g) - np.percentile(g, 10))
             hi.append(np.percentile(g, 90) - np.median(g))
         style = {"marker": "s", "color": "0.3"} if p == base else {"marker": "o", "color": f"C{j}"}
-        ax.errorbar(xs, med, yerr=[lo, hi], ls="none", capsize=2, label=_label(p), **style)
+        ax.errorbar(xs, med, yerr=[lo, hi], ls="none", capsize=2, label=label(p), **style)
     ax.set_xticks(range(len(plan.families)), plan.families, rotation=30, ha="right")
     ax.set(ylabel="gap (L/L* static, T/T* timed), median and 10-90 %",
            title=f"The swarm's share: each optimizer against {base} (no optimizer)")  # fmt: skip

@@ -16,13 +16,12 @@ from pathlib import Path
 
 import numpy as np
 
-from mawdo.experiments.kinds.arena.execute import scenario_from_toml
+from mawdo.experiments.kinds.arena.execute import NO_TRACE, scenario_from_toml
 from mawdo.experiments.kinds.arena.figures import arena_figures, swarm_figure
+from mawdo.experiments.kinds.arena.figures import label as _label
 from mawdo.experiments.kinds.arena.plan import ArenaPlan
 from mawdo.experiments.store import Store
 from mawdo.experiments.tables import Table, to_csv, to_latex, to_markdown
-
-NO_TRACE = ("trace", "scene_toml")
 
 COLUMNS = [
     "family",
@@ -43,12 +42,6 @@ COLUMNS = [
     "latency p99 (ms)",
     "first plan (s)",
 ]
-
-
-def _label(name: str) -> str:
-    from mawdo.optimizers import OPTIMIZERS
-
-    return OPTIMIZERS[name].display if name in OPTIMIZERS else name
 
 
 def _q(x: np.ndarray, q: float) -> float:

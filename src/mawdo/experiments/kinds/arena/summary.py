@@ -14,9 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
+from mawdo.experiments.kinds.arena.execute import NO_TRACE, is_timed
 from mawdo.experiments.store import Store
-
-NO_TRACE = ("trace", "scene_toml")
 
 
 def _ok_rows(store: Store, planner: str, family: str | None = None) -> list:
@@ -62,13 +61,8 @@ def headline(store: Store) -> list[str]:
 
 def _timed_families(store: Store) -> list[str]:
     """Families whose planned scenes carry an earliest arrival ``t_star`` (issue 27)."""
-    plan = store.plan
-    out = []
-    for f in plan.families:
-        rows = [r for _, _, r in store.rows(None, f, skip=NO_TRACE) if r.status == "ok"]
-        if rows and all(r.t_star is not None for r in rows):
-            out.append(f)
-    return out
+    rows = {f: [r for _, _, r in store.rows(None, f, skip=NO_TRACE)] for f in store.plan.families}
+    return [f for f, fam_rows in rows.items() if is_timed(fam_rows)]
 
 
 def timed_lines(store: Store) -> list[str]:
