@@ -18,7 +18,8 @@ def raw(db, planner):
     conn = sqlite3.connect(db)
     try:
         return conn.execute(
-            "SELECT success, collision_free, gap, problem FROM runs WHERE algorithm = ? "
+            "SELECT success, collision_free, CASE WHEN t_star IS NOT NULL THEN time_gap "
+            "ELSE gap END, problem FROM runs WHERE algorithm = ? "
             "AND status = 'ok' AND error_text IS NULL",
             (planner,),
         ).fetchall()

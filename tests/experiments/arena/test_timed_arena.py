@@ -14,7 +14,14 @@ from mawdo.experiments import Store, run_plan
 from mawdo.experiments.kinds.arena import ArenaPlan, arena_tables, write_arena_report
 from mawdo.experiments.kinds.arena.plan import ARENA_PRESETS, TIMED_FAMILIES
 from mawdo.experiments.kinds.arena.report import COLUMNS
-from mawdo.experiments.kinds.arena.summary import swarm_share, timed_lines
+from mawdo.experiments.kinds.arena.summary import (
+    GAP_NOTE,
+    headline,
+    strengths,
+    swarm_share,
+    timed_lines,
+    worst_runs,
+)
 from mawdo.planning.scenes import generate_scene
 
 from .test_summary import _sql
@@ -85,6 +92,44 @@ def test_timed_sentences_are_the_stores(timed_store):
         assert f", {active} active collisions," in line
         assert f"T/T* median {statistics.median(gaps):.3f}" in line
         assert f"p95 {np.percentile(gaps, 95):.3f}" in line
+        early = [g for g in gaps if g < 1.0]
+        if early:
+            assert f"; {len(early)} runs arrived before T* (lowest T/T* {min(early):.3f}:" in line
+        else:
+            assert "arrived before T*" not in line
+
+
+# the gap each run is judged by, computed independently of summary.judged_gap
+JUDGED = "CASE WHEN t_star IS NOT NULL THEN time_gap ELSE gap END"
+
+
+def test_headline_judges_timed_scenes_by_arrival_time_and_static_ones_by_length(timed_store):
+    with Store.read(timed_store) as store:
+        lines = headline(store)
+        worst = worst_runs(store, "mawdo", k=4)
+        tail = strengths(store)
+    assert lines[0] == GAP_NOTE
+    line = next(s for s in lines if s.startswith("- mawdo: "))
+    gaps = [
+        g
+        for (g,) in _sql(
+            timed_store,
+            f"SELECT {JUDGED} FROM runs WHERE algorithm = 'mawdo' AND status = 'ok' "
+            "AND error_text IS NULL AND success = 1",
+        )
+    ]
+    assert f"median gap {statistics.median(gaps):.3f};" in line
+    (g, fam) = max(
+        _sql(
+            timed_store,
+            f"SELECT {JUDGED}, problem FROM runs WHERE algorithm = 'mawdo' AND status = 'ok' "
+            "AND error_text IS NULL AND success = 1",
+        )
+    )
+    assert f"mawdo {g:.3f} ({fam})" in next(s for s in tail if s.startswith("- Largest gap"))
+    # the worst successes come by the judged gap, largest first
+    judged = [r.time_gap if r.t_star is not None else r.gap for _, r in worst if r.success]
+    assert judged == sorted(judged, reverse=True)
 
 
 def test_swarm_share_compares_each_family_on_the_scenes_both_solve(timed_store):

@@ -245,7 +245,8 @@ def write_arena_report(
         md.append(f"\n## The {len(shown)} worst runs of mawdo (re-run from the stored scene)\n")
         for w in shown:
             ok = w["success"] and w["collision_free"]
-            verdict = f"succeeds, gap {w['gap']:.3f}" if ok else "fails (no gap)"
+            kind = "T/T*" if w["timed"] else "L/L*"
+            verdict = f"succeeds, gap {kind} {w['gap']:.3f}" if ok else "fails (no gap)"
             md.append(f"- {w['family']}, `{w['scene_file']}`: {verdict}\n")
             md.append(f"  ![{Path(w['image']).stem}]({w['image']})\n")
     md += [f"![{p.stem}]({p.name})\n" for p in figs]

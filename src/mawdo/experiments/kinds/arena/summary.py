@@ -23,11 +23,23 @@ def _ok_rows(store: Store, planner: str, family: str | None = None) -> list:
     return [r for _, _, r in rows if r.status == "ok" and r.error_text is None]
 
 
+def judged_gap(row) -> float:
+    """The gap a run is judged by: T/T* on a scene with an earliest arrival (a timed family,
+    where the fastest route may be longer than L*, e.g. through a waiting bay), else L/L*."""
+    return row.time_gap if row.t_star is not None else row.gap
+
+
+GAP_NOTE = (
+    "- Gap: arrival time over the earliest arrival (T/T*) on the timed families, route length "
+    "over the exact static optimum (L/L*) on the others; over successful runs."
+)
+
+
 def _rates(rows: list) -> tuple[float, float, float]:
     n = len(rows)
     succ = sum(bool(r.success) for r in rows) / n
     coll = sum(r.collision_free == 0 for r in rows) / n
-    gaps = [r.gap for r in rows if r.success]
+    gaps = [judged_gap(r) for r in rows if r.success]
     return succ, coll, float(np.median(gaps)) if gaps else float("nan")
 
 
@@ -38,11 +50,11 @@ def _gap(g: float) -> str:
 def headline(store: Store) -> list[str]:
     """Sentences (Markdown list items) about every planner of the arena, from stored rows.
 
-    Per planner over all families: success and collision rates, median gap; and the family
-    where it succeeds least (ties: the largest median gap).
+    Per planner over all families: success and collision rates, median gap (`judged_gap`);
+    and the family where it succeeds least (ties: the largest median gap).
     """
     plan = store.plan
-    lines = []
+    lines = [GAP_NOTE] if _timed_families(store) else []
     for p in plan.planners:
         rows = _ok_rows(store, p)
         if not rows:
@@ -96,9 +108,21 @@ def timed_lines(store: Store) -> list[str]:
             f"{100 * sum(bool(r.success) for r in rows) / len(rows):.1f} % success over "
             f"{len(rows)} scenes with an earliest arrival T*, {active} active collisions, "
             f"{stats}; weakest family {worst} ({100 * succ[worst]:.0f} % success, "
-            f"T/T* median {_median_time_gap(per[worst]):.3f})."
+            f"T/T* median {_median_time_gap(per[worst]):.3f}){_early(tg)}."
         )
     return lines
+
+
+def _early(tg: np.ndarray) -> str:
+    """T* is exact over roadmap routes with waits at roadmap vertices, an upper bound of the
+    free-space optimum: say how often and how far a run arrived before it."""
+    early = tg[tg < 1.0]
+    if not early.size:
+        return ""
+    return (
+        f"; {early.size} runs arrived before T* (lowest T/T* {early.min():.3f}: T* is the "
+        "earliest arrival over the roadmap, an upper bound of the free-space optimum)"
+    )
 
 
 def _median_time_gap(rows: list) -> float:
@@ -164,7 +188,9 @@ def strengths(store: Store) -> list[str]:
         )
     worst, lat = [], []
     for a in ours:
-        gaps = [(r.gap, f) for f in plan.families for r in _ok_rows(store, a, f) if r.success]
+        gaps = [
+            (judged_gap(r), f) for f in plan.families for r in _ok_rows(store, a, f) if r.success
+        ]
         if gaps:
             g, f = max(gaps)
             worst.append(f"{a} {g:.3f} ({f})")
@@ -191,12 +217,14 @@ def strengths(store: Store) -> list[str]:
 
 
 def worst_runs(store: Store, planner: str, k: int = 3) -> list[tuple[str, object]]:
-    """The ``k`` worst runs of ``planner`` as ``(family, row)``: failures, then largest gaps."""
+    """The ``k`` worst runs of ``planner`` as ``(family, row)``: failures, then the largest
+    gaps (`judged_gap`)."""
 
     def badness(item):
         _, r = item
         failed = not (r.success and r.collision_free)
-        return (not failed, -(r.gap if r.gap is not None and np.isfinite(r.gap) else np.inf))
+        g = judged_gap(r)
+        return (not failed, -(g if g is not None and np.isfinite(g) else np.inf))
 
     items = [(f, r) for f in store.plan.families for r in _ok_rows(store, planner, f)]
     return sorted(items, key=badness)[:k]
@@ -222,8 +250,12 @@ def render_worst(store_path, out_dir, planner: str = "mawdo", k: int = 3) -> lis
         for fam, r in worst_runs(store, planner, k):
             full = next(x for _, _, x in store.rows(planner, fam) if x.run == r.run)
             sc = scenario_from_toml(full.scene_toml, r.scene_name)
-            res, m = plan_scene(planner, sc, r.l_star, r.planner_seed, ap.planner, ap.overrides)
-            same_gap = (np.isnan(m["gap"]) and not r.success) or np.isclose(m["gap"], r.gap)
+            res, m = plan_scene(planner, sc, r.l_star, r.planner_seed, ap.planner, ap.overrides,
+                                t_star=r.t_star)  # fmt: skip
+            same_gap = (np.isnan(m["gap"]) and not r.success) or (
+                np.isclose(m["gap"], r.gap)
+                and (r.t_star is None or np.isclose(m["time_gap"], r.time_gap))
+            )
             if m["success"] != r.success or m["collision_free"] != r.collision_free or not same_gap:
                 raise RuntimeError(
                     f"re-running {planner} on {r.scene_name} gave success={m['success']}, "
@@ -233,10 +265,15 @@ def render_worst(store_path, out_dir, planner: str = "mawdo", k: int = 3) -> lis
             img = Path("worst") / f"{r.scene_name}__{planner}.png"
             scene_file = Path("worst") / f"{r.scene_name}.toml"
             (out / scene_file).write_text(full.scene_toml, encoding="utf-8")
-            gap = f"gap {r.gap:.3f}" if r.success and r.collision_free else "failed"
+            gap = (
+                f"{'T/T*' if r.t_star is not None else 'L/L*'} {judged_gap(r):.3f}"
+                if r.success and r.collision_free
+                else "failed"
+            )
             render.snapshot_grid({f"{planner} on {r.scene_name} ({gap})": res}, out / img,
                                  rows=1, cols=4, dpi=80)  # fmt: skip
             made.append({"family": fam, "scene": r.scene_name, "image": str(img),
                          "scene_file": str(scene_file), "success": bool(r.success),
-                         "collision_free": bool(r.collision_free), "gap": r.gap})  # fmt: skip
+                         "collision_free": bool(r.collision_free), "gap": judged_gap(r),
+                         "timed": r.t_star is not None})  # fmt: skip
     return made
