@@ -1,4 +1,5 @@
-"""WDO+'s fused Numba move (:func:`plus_step`): one pass over every parcel of every run.
+"""WDO+'s fused Numba move (:func:`plus_step`): one pass over every parcel of every run, and
+its bookkeeping after each evaluation (:func:`plus_tell`), one more.
 
 The equations are those of :mod:`mawdo.optimizers.wdo_plus` (its module docstring);
 ``tests/optimizers/test_wdo_plus.py`` checks this kernel against a step computed by hand on a
