@@ -174,23 +174,8 @@ def plus_step(  # noqa: PLR0913 - one fused iteration needs every input
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def plus_tell(  # noqa: PLR0913 - one fused pass over the bookkeeping of every run
-    F,
-    p,
-    f,
-    pbest,
-    pbest_f,
-    sigma,
-    hold,
-    gain,
-    vmax,
-    best,
-    stall,
-    limit,
-    sigma_min,
-    restart,
-    mask,
-):  # pragma: no cover - compiled
+def plus_tell(F, p, f, pbest, pbest_f, sigma, hold, gain, vmax, best, stall, limit, sigma_min,
+              restart, mask):  # fmt: skip  # pragma: no cover - compiled
     """WDO+'s bookkeeping after an evaluation, every run in one pass, in place; returns the
     number of runs to restart.
 
