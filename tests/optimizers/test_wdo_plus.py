@@ -13,7 +13,7 @@ from mawdo.optimizers.base import Space
 from mawdo.optimizers.kernels import words_per_permutation
 from mawdo.optimizers.wdo import group_starts
 from mawdo.optimizers.wdo_plus import stalled, success_sigma
-from mawdo.optimizers.wdo_plus_kernel import plus_step
+from mawdo.optimizers.wdo_plus_kernel import plus_step, plus_tell
 from mawdo.optimizers.wind_kernel import wind_step
 from mawdo.streams import RunStreams, run_seed_sequences
 from tests.optimizers.test_kernels import python_shuffle, python_xoshiro
@@ -191,6 +191,49 @@ def test_stall_counter_and_restart_mask_by_hand():
     np.testing.assert_array_equal(b, [3.0, 1.0 - 1e-13, 0.5, 5.0])
     np.testing.assert_array_equal(s, [0, 3, 0, 3])
     np.testing.assert_array_equal(mask, [False, True, False, True])
+
+
+def numpy_tell(F, p, pbest, pbest_f, sigma, hold, best, stall, adapt, limit, sigma_min):
+    """WDO+'s bookkeeping as the NumPy rule (the pre-kernel ``tell``): new arrays."""
+    if adapt and (~hold).any():
+        gain = success_sigma(sigma, (F < pbest_f).mean(axis=1), 0.2, 0.5, 0.3)
+        sigma = np.where(~hold, gain, sigma)
+    better = F < pbest_f
+    pbest = np.where(better[..., None], p, pbest)
+    pbest_f = np.where(better, F, pbest_f)
+    best, stall, mask = stalled(best, stall, pbest_f.min(axis=1), limit, sigma, sigma_min)
+    return pbest, pbest_f, sigma, best, stall, mask
+
+
+@pytest.mark.parametrize("adapt", [True, False])
+def test_fused_tell_is_the_numpy_rule_bit_for_bit(adapt):
+    R, N, D, limit = 64, 7, 3, 4
+    rng = np.random.default_rng(3)
+    pbest, pbest_f = rng.uniform(-1, 1, (R, N, D)), np.full((R, N), np.inf)
+    sigma, best = rng.uniform(0, 0.3, R), np.full(R, np.inf)
+    stall, hold = np.zeros(R, np.int64), rng.random(R) < 0.2
+    gain = np.exp((np.arange(N + 1) / N - 0.2) / (0.8 * 0.5)) if adapt else np.empty(0)
+    sigma_min = 0.02 if adapt else -1.0
+    seen = set()
+    for _ in range(40):
+        p = rng.uniform(-1, 1, (R, N, D))
+        # few distinct values: ties with the personal bests, repeats of the run's best
+        F = rng.integers(0, 6, (R, N)).astype(float) + rng.integers(0, 2, R)[:, None] * 1e-13
+        F[rng.random((R, N)) < 0.03] = np.nan
+        want = numpy_tell(F, p, pbest, pbest_f, sigma, hold, best, stall, adapt, limit,
+                          sigma_min)  # fmt: skip
+        f, mask = np.empty((R, N)), np.empty(R, bool)
+        n = plus_tell(F, p, f, pbest, pbest_f, sigma, hold, gain, 0.3, best, stall, limit,
+                      sigma_min, True, mask)  # fmt: skip
+        got = pbest, pbest_f, sigma, best, stall, mask
+        for a, b in zip(got, want, strict=True):
+            assert np.array_equal(a, b, equal_nan=True)
+        assert n == mask.sum() and not hold.any()
+        np.testing.assert_array_equal(f, F)
+        seen.update(mask.nonzero()[0].tolist())
+        pbest_f[mask], best[mask], stall[mask] = np.inf, np.inf, 0  # the restart's resets
+        hold = mask.copy()
+    assert len(seen) > R // 2  # the stall test fired on most runs
 
 
 def test_a_flat_function_restarts_every_stall_plus_one_iterations():

@@ -88,12 +88,14 @@ _TWO52 = 4503599627370496.0
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _magic_bits(x):  # pragma: no cover - compiled
+def magic_bits(x):  # pragma: no cover - compiled
+    """The bits of the double ``2**52 + x`` for a uint64 ``x < 2**52`` (view them as float64)."""
     return x | _MAGIC
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _magic_unit(bits_as_double):  # pragma: no cover - compiled
+def magic_unit(bits_as_double):  # pragma: no cover - compiled
+    """``x 2**-32`` from the double :func:`magic_bits` made of ``x``, bit for bit."""
     return (bits_as_double - _TWO52) * _U32
 
 
@@ -105,12 +107,12 @@ def halves_to_unit(words, r1, r2):  # pragma: no cover - compiled
     lo = np.empty(words.size, np.uint64)
     hi = np.empty(words.size, np.uint64)
     for m in range(words.size):
-        lo[m] = _magic_bits(words[m] & _LOW32)
-        hi[m] = _magic_bits(words[m] >> _SHIFT32)
+        lo[m] = magic_bits(words[m] & _LOW32)
+        hi[m] = magic_bits(words[m] >> _SHIFT32)
     lof, hif = lo.view(np.float64), hi.view(np.float64)
     for m in range(words.size):
-        r1[m] = _magic_unit(lof[m])
-        r2[m] = _magic_unit(hif[m])
+        r1[m] = magic_unit(lof[m])
+        r2[m] = magic_unit(hif[m])
 
 
 @njit(cache=True, nogil=True, inline="always")
@@ -160,11 +162,11 @@ def gwo_step(X, lead_x, a, rng, use_rng, r, lb, ub, out):  # pragma: no cover - 
             if use_rng:
                 for m in range(M):
                     wd, s0, s1, s2, s3 = xoshiro_step(s0, s1, s2, s3)
-                    lo[m] = _magic_bits(wd & _LOW32)
-                    hi[m] = _magic_bits(wd >> _SHIFT32)
+                    lo[m] = magic_bits(wd & _LOW32)
+                    hi[m] = magic_bits(wd >> _SHIFT32)
                 for m in range(M):
-                    r1[m] = _magic_unit(lof[m])
-                    r2[m] = _magic_unit(hif[m])
+                    r1[m] = magic_unit(lof[m])
+                    r2[m] = magic_unit(hif[m])
             else:
                 for d in range(D):
                     for k in range(3):

@@ -39,9 +39,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from mawdo.optimizers.base import Optimizer, Params, Space, as_x0, initial_population, option
-from mawdo.optimizers.kernels import seed_xoshiro, segment_ranks, update_personal_best
+from mawdo.optimizers.kernels import seed_xoshiro, segment_ranks
 from mawdo.optimizers.wdo import group_starts
-from mawdo.optimizers.wdo_plus_kernel import BOUNDS, CENTRES, plus_step
+from mawdo.optimizers.wdo_plus_kernel import BOUNDS, CENTRES, plus_step, plus_tell
 from mawdo.streams import RunStreams
 
 
@@ -121,6 +121,7 @@ class WDOPlusState:
     t: int
     space: Space
     streams: RunStreams
+    gain: np.ndarray  # (N + 1,) success_gain of k/N improved parcels; empty: no adaptation
     rng: np.ndarray | None = None  # (R, 4) xoshiro256** state per run
 
 
@@ -137,7 +138,13 @@ def success_sigma(sigma, success, target, damp, vmax):
     ``success`` ``(R,)`` is the fraction of parcels in ``[0, 1]`` that improved their
     personal best this iteration; returns a new ``(R,)`` array.
     """
-    return np.minimum(sigma * np.exp((success - target) / ((1.0 - target) * damp)), vmax)
+    return np.minimum(sigma * success_gain(success, target, damp), vmax)
+
+
+def success_gain(success, target, damp):
+    """The success rule's factor ``exp((success - target) / ((1 - target) damp))`` (NumPy's
+    ``exp``); the kernel reads it from a table over the ``N + 1`` possible fractions ``k/N``."""
+    return np.exp((success - target) / ((1.0 - target) * damp))
 
 
 def stalled(best, stall, run_best, limit, sigma, sigma_min):
@@ -179,6 +186,11 @@ class WDOPlus(Optimizer):
             hold=np.ones(R, bool),
             restarts=np.zeros(R, np.int64),
             t=0,
+            gain=(
+                success_gain(np.arange(N + 1) / N, P.success_target, P.damp)
+                if P.adapt
+                else np.empty(0)
+            ),
             space=space,
             streams=streams,
         )
@@ -213,29 +225,20 @@ class WDOPlus(Optimizer):
         return X
 
     def tell(self, state: WDOPlusState, X: np.ndarray, F: np.ndarray) -> WDOPlusState:
+        """Success rule, personal bests and restart test in one kernel pass (:func:`plus_tell`,
+        the numbers of :func:`success_sigma`, ``update_personal_best`` and :func:`stalled`)."""
         s = state
         P = self.params
-        moved = ~s.hold
-        if P.adapt and moved.any():
-            success = (F < s.pbest_f).mean(axis=1)
-            s.sigma = np.where(
-                moved, success_sigma(s.sigma, success, P.success_target, P.damp, P.vmax), s.sigma
-            )
-        s.f = np.array(F, dtype=float)
-        update_personal_best(s.p, s.f, s.pbest, s.pbest_f)
-        s.hold[:] = False
+        mask = np.empty(s.hold.shape, bool)
+        # sigma_min < 0 never restarts a run whose sigma does not adapt
+        n = plus_tell(
+            np.asarray(F, dtype=float), s.p, s.f, s.pbest, s.pbest_f, s.sigma, s.hold,
+            s.gain, float(P.vmax), s.best, s.stall, P.stall,
+            P.sigma_min if P.adapt else -1.0, P.restart, mask,
+        )  # fmt: skip
         s.t += 1
-        if P.restart:
-            s.best, s.stall, mask = stalled(
-                s.best,
-                s.stall,
-                s.pbest_f.min(axis=1),
-                P.stall,
-                s.sigma,
-                P.sigma_min if P.adapt else -1.0,
-            )
-            if mask.any():
-                self._restart(s, np.flatnonzero(mask))
+        if n:
+            self._restart(s, np.flatnonzero(mask))
         self.metadata["restarts"] = s.restarts.copy()
         return s
 
