@@ -181,3 +181,22 @@ def test_arena_sentences_are_those_of_the_committed_store(tmp_path):
         lines = headline(store)
     summary = (ROOT / "docs" / "results" / "arena-default" / "summary.md").read_text("utf-8")
     assert lines == summary.splitlines()
+
+
+@pytest.mark.slow
+def test_the_committed_arena_figures_are_drawn_from_the_committed_store(tmp_path):
+    """README's and docs/planning.md's arena figures are what the report draws from the store
+    (the same picture up to anti-aliasing: at most 0.1 % of values off)."""
+    import matplotlib.image as mpimg
+
+    from mawdo.experiments.kinds.arena import write_arena_report
+
+    committed = ROOT / "docs" / "results" / "arena-default"
+    db = unpack(committed / "store.db.xz", tmp_path)
+    out = tmp_path / "report"
+    write_arena_report(db, out, gallery_limit=0, worst=0)
+    for name in ("swarm.png", "ecdf_gap.png", "ecdf_runtime.png"):
+        new, old = mpimg.imread(out / name), mpimg.imread(committed / name)
+        assert new.shape == old.shape, name
+        off = np.abs(new.astype(float) - old.astype(float)) > 3 / 255
+        assert off.mean() <= 1e-3, f"{name}: {off.mean():.2%} of values differ"
