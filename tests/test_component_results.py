@@ -14,6 +14,8 @@ import lzma
 import re
 import shutil
 import sqlite3
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -22,6 +24,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 FOLDER = ROOT / "docs" / "results" / "wdo-components"
 STORES = ("d5pairs", "d5refs", "d20", "d20refs")
+GENERATOR = "mawdo.experiments.kinds.suite.components_summary"
 BY_DIM = {5: ("d5pairs", "d5refs"), 20: ("d20", "d20refs")}
 GROUPS = {  # COCO's BBOB groups, the reference the report's groups must match
     "separable": range(1, 6),
@@ -53,15 +56,35 @@ def lines() -> list[str]:
     return (FOLDER / "findings.md").read_text(encoding="utf-8").splitlines()
 
 
-def test_findings_and_docs_section_are_those_of_the_committed_stores(stores, lines):
-    """About 10 s (25 s on a loaded 2-core machine): the generator reads 26 000 runs."""
-    from mawdo.experiments.kinds.suite.components_summary import findings, load_facts
-    from mawdo.experiments.kinds.suite.components_text import docs_section
-
-    facts, plans = load_facts([stores[s] for s in STORES])
-    assert findings(facts, plans) == lines
-    section = docs_section(lines, plans)
+def test_findings_and_docs_section_are_those_of_the_committed_stores(stores, lines, tmp_path):
+    """The generator, run as its docs say, rewrites findings.md as committed and prints the
+    section docs/algorithms.md holds (about 10 s; 25 s on a loaded 2-core machine)."""
+    out = tmp_path / "out"
+    done = subprocess.run(
+        [sys.executable, "-m", GENERATOR, *(str(stores[s]) for s in STORES), "--out", str(out),
+         "--no-plots"],
+        capture_output=True, text=True, check=False,
+    )  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert (out / "findings.md").read_text(encoding="utf-8").splitlines() == lines
+    assert done.stdout.strip().endswith(lines[-1])
+    section = done.stdout.rstrip("\n") + "\n"
     assert section in (ROOT / "docs" / "algorithms.md").read_text(encoding="utf-8")
+
+
+def test_generator_names_what_is_missing(stores, tmp_path):
+    """A store alone (no bases), or a path that is no store: exit 2, one error line naming the
+    problem, no traceback, nothing written."""
+    cases = {str(stores["d5refs"]): "the stores lack wdo, awdo, mawdo", "none.db": "none.db"}
+    for arg, says in cases.items():
+        done = subprocess.run(
+            [sys.executable, "-m", GENERATOR, arg, "--out", str(tmp_path / "o")],
+            capture_output=True, text=True, check=False, cwd=tmp_path,
+        )  # fmt: skip
+        assert done.returncode == 2, done.stderr
+        assert done.stderr.startswith("error: ") and "Traceback" not in done.stderr
+        assert says in done.stderr
+        assert not (tmp_path / "o").exists()
 
 
 class Raw:

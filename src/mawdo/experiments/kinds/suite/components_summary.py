@@ -63,7 +63,11 @@ class DimFacts:
         wanted = [*BASES, *REFERENCES, *(v for b in BASES for v in self.singles[b])]
         missing = [a for a in wanted if a not in study.algorithms]
         if missing:
-            raise ValueError(f"D = {dim}: the stores lack {', '.join(missing)}")
+            raise ValueError(
+                f"D = {dim}: the stores lack {', '.join(missing[:4])}"
+                f"{f' and {len(missing) - 4} more' if len(missing) > 4 else ''}; name every "
+                "store of the component study (variants and references) together"
+            )
         self.variants = [a for a in study.algorithms if a not in (*BASES, *REFERENCES)]
         self.data = EffectData(study, dim, [*BASES, *REFERENCES, *self.variants], PAIR_BASE)
 
@@ -251,6 +255,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--out", type=Path, required=True, help="output folder")
     parser.add_argument("--no-plots", action="store_true", help="skip the figures")
     args = parser.parse_args(argv)
+    from mawdo.experiments.store import StoreError
+
     try:
         facts, plans = load_facts(args.stores)
         lines = findings(facts, plans)
@@ -259,7 +265,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         if not args.no_plots:
             for f in facts:
                 plot_selected(f, args.out)
-    except (ValueError, OSError) as exc:
+    except (ValueError, OSError, StoreError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
     print(docs_section(lines, plans))
