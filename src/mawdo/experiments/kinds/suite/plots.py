@@ -91,9 +91,13 @@ def _save(fig: Figure, path: Path, svg: bool) -> list[Path]:
     return out
 
 
-def plot_ecdfs(study: StudyRuns, dim: int, out_dir: Path, svg: bool = False) -> list[Path]:
+def plot_ecdfs(
+    study: StudyRuns, dim: int, out_dir: Path, svg: bool = False, top: float = 1.0, stem=None
+) -> list[Path]:
     """One panel per function group (the first: all functions): fraction of (function, run,
-    target) triples solved against evaluations / D, log x, 51 targets ``1e2 .. 1e-8``."""
+    target) triples solved against evaluations / D, log x, 51 targets ``1e2 .. 1e-8``; the y
+    axis up to ``top`` (< 1 zooms in on weak algorithms), saved as ``stem`` (default
+    ``ecdf_d{D}``)."""
     grp = groups(study)
     x = np.logspace(0, math.log10(study.budget), 200)
     fig, axes = _figure(len(grp), 3)
@@ -111,15 +115,16 @@ def plot_ecdfs(study: StudyRuns, dim: int, out_dir: Path, svg: bool = False) -> 
                 **look[algo],
             )
         ax.set_xscale("log")
-        ax.set_ylim(-0.02, 1.02)
+        ax.set_ylim(-0.02 * top, 1.02 * top)
         ax.set_xlim(1, study.budget)
         ax.grid(True, alpha=0.3)
         ax.set_title(f"{name} ({function_list(fids)})", fontsize=9)
         ax.set_xlabel("evaluations / D")
         ax.set_ylabel("fraction of (function, run, target)")
     axes[0].legend(fontsize=8, loc="upper left")
-    fig.suptitle(f"{study.suite} D={dim}: runtime ECDFs, targets 1e2 .. 1e-8 (51)")
-    return _save(fig, out_dir / f"ecdf_d{dim}", svg)
+    cut = f"; y axis cut at {top:g}" if top < 1 else ""
+    fig.suptitle(f"{study.suite} D={dim}: runtime ECDFs, targets 1e2 .. 1e-8 (51){cut}")
+    return _save(fig, out_dir / (stem or f"ecdf_d{dim}"), svg)
 
 
 def plot_convergence(study: StudyRuns, dim: int, out_dir: Path, svg: bool = False) -> list[Path]:
