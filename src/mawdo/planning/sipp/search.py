@@ -147,7 +147,12 @@ def _relax(ux, uy, pv, j0, j1, sid, a, T, top, hv, lo, hi, state, heap, mv):
             continue
         if lo[J] >= top + T:
             break
-        tau = _depart(ux, uy, pv[0], pv[1], a, T, max(a, lo[J] - T), top, hi[J], mv)
+        x = max(a, lo[J] - T)
+        # the departure is >= x, so an arrival no earlier than the best known one is certain:
+        # skip the exact (and costly) departure search, which could not change anything
+        if x + T >= arrival[J]:
+            continue
+        tau = _depart(ux, uy, pv[0], pv[1], a, T, x, top, hi[J], mv)
         if tau + T < arrival[J]:
             arrival[J] = tau + T
             parent[J] = sid
