@@ -3,7 +3,9 @@
 One place for the commands' progress lines (results go to stdout; this goes to stderr):
 
 * :func:`step` - a spinner with the step's name on a terminal, a plain ``"<step> ..."`` line
-  otherwise (logs, pipes), then ``"<step>: done in <s> s"``;
+  otherwise (logs, pipes), then ``"<step>: done in <s> s"``; what the step says it is doing
+  (:func:`mawdo.experiments.progress.say`) follows the name on the spinner, or in a log a line
+  ``"<step>: <what>"`` at most every 2 s;
 * :func:`notice_compiles` - at the first compile on a cold Numba cache, compiles the kernels of
   :mod:`mawdo.jitwarm`'s table in two processes at once (a line every 2 s), then says when
   Numba compiles anything else, with a line every 2 s while it does and the time it took
@@ -44,14 +46,32 @@ def step(message: str, enabled: bool = True):
     if not enabled:
         yield
         return
+    from mawdo.experiments.progress import listening
+
     t0 = time.perf_counter()
     if ERR.is_terminal:
-        with ERR.status(message):
-            yield
+        with ERR.status(message) as status:
+            with listening(lambda sub: status.update(f"{message}: {sub}")):
+                yield
     else:
         ERR.print(f"{message} ...", highlight=False)
-        yield
+        with listening(_every(message)):
+            yield
     ERR.print(f"{message}: done in {time.perf_counter() - t0:.1f} s", highlight=False)
+
+
+def _every(message: str):
+    """A listener that prints ``"<step>: <what now>"`` at most once per :data:`EVERY` seconds
+    (a log gets a line while a long step works, not one per figure)."""
+    last = [-EVERY]
+
+    def listener(sub: str) -> None:
+        now = time.perf_counter()
+        if now - last[0] >= EVERY:
+            last[0] = now
+            ERR.print(f"{message}: {sub}", highlight=False)
+
+    return listener
 
 
 def jit_jobs() -> int:

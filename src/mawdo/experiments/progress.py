@@ -1,9 +1,32 @@
 """Progress bars on stderr (rich): the sweep's runs with an ETA, and the one shape every bar of
-the package shares (:func:`start_bar`, also used by the planner's step bar in the commands)."""
+the package shares (:func:`start_bar`, also used by the planner's step bar in the commands);
+and :func:`say`, with which a long step (a report drawing hundreds of figures) tells whoever
+shows progress what it is doing now, without knowing who that is."""
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from typing import Any
+
+_LISTENERS: list[Callable[[str], None]] = []
+
+
+def say(message: str) -> None:
+    """Tell the listeners (:func:`listening`) what the running step is doing now, e.g.
+    ``"failure gallery: image 12 of 200"``; nothing happens when no one listens."""
+    for listener in list(_LISTENERS):
+        listener(message)
+
+
+@contextmanager
+def listening(listener: Callable[[str], None]) -> Iterator[None]:
+    """Call ``listener(message)`` for every :func:`say` inside the ``with`` body."""
+    _LISTENERS.append(listener)
+    try:
+        yield
+    finally:
+        _LISTENERS.remove(listener)
 
 
 def start_bar(label: str, columns: list, *, total=None, console=None, transient=False, **fields):

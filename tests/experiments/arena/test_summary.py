@@ -8,6 +8,8 @@ import re
 import sqlite3
 import statistics
 
+import pytest
+
 from mawdo.experiments import Store
 from mawdo.experiments.kinds.arena.summary import headline, render_worst, strengths, worst_runs
 
@@ -132,3 +134,38 @@ def test_strength_sentences_are_the_stores(reference):  # noqa: F811
         f"mawdo {min(meds):.1f}-{max(meds):.1f} ms (wall time on the machine that ran the study)."
     )
     assert lines == expect
+
+
+def test_a_long_report_says_what_it_is_doing(reference, tmp_path):  # noqa: F811
+    """The report's sub-steps reach a listener (the command's spinner or log lines): the
+    tables, the figures, each gallery image and each re-run worst scene."""
+    from mawdo.experiments.kinds.arena import write_arena_report
+    from mawdo.experiments.progress import listening
+
+    heard: list[str] = []
+    with listening(heard.append):
+        write_arena_report(reference, tmp_path, gallery_limit=2, worst=1)
+    assert heard[:2] == ["tables and sentences", "ECDFs and the swarm's share"]
+    assert "failure gallery: image 1 of 2" in heard
+    assert "failure gallery: image 3 of 2" not in heard
+    worst = [m for m in heard if m.startswith("re-running mawdo's worst scene 1 of 1 (")]
+    assert len(worst) == 1
+
+
+@pytest.mark.slow
+def test_the_report_command_logs_its_sub_steps(reference, tmp_path):  # noqa: F811
+    """In a log (stderr not a terminal) the report's step prints what it is doing, at most
+    one line per 2 s, between its start and done lines."""
+    import subprocess
+    import sys
+
+    proc = subprocess.run(
+        [sys.executable, "-m", "mawdo.cli", "study", "report", str(reference), "--out",
+         str(tmp_path / "rep")],
+        capture_output=True, text=True, timeout=600,
+    )  # fmt: skip
+    assert proc.returncode == 0, proc.stderr
+    lines = [s for s in proc.stderr.splitlines() if s.startswith("writing the report")]
+    assert lines[0] == "writing the report of the arena study ..."
+    assert lines[1] == "writing the report of the arena study: tables and sentences"
+    assert lines[-1].startswith("writing the report of the arena study: done in ")

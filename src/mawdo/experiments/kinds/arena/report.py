@@ -20,6 +20,7 @@ from mawdo.experiments.kinds.arena.execute import NO_TRACE, scenario_from_toml
 from mawdo.experiments.kinds.arena.figures import arena_figures, swarm_figure
 from mawdo.experiments.kinds.arena.figures import label as _label
 from mawdo.experiments.kinds.arena.plan import ArenaPlan
+from mawdo.experiments.progress import say
 from mawdo.experiments.store import Store
 from mawdo.experiments.tables import Table, to_csv, to_latex, to_markdown
 
@@ -182,6 +183,7 @@ def failure_gallery(store: Store, out: Path, limit: int | None = None) -> list[t
                     continue
                 if limit is not None and len(items) >= limit:
                     return items
+                say(f"failure gallery: image {len(items) + 1}" + (f" of {limit}" if limit else ""))
                 sc = scenario_from_toml(r.scene_toml, r.scene_name)
                 scene_file = Path("scenes") / f"{r.scene_name}.toml"
                 (out / scene_file).parent.mkdir(parents=True, exist_ok=True)
@@ -214,8 +216,10 @@ def write_arena_report(
     out.mkdir(parents=True, exist_ok=True)
     with Store.read(store_path) as store:
         plan = _plan_of(store)
+        say("tables and sentences")
         tables = arena_tables(store)
         summary = headline(store)
+        say("ECDFs and the swarm's share")
         figs = arena_figures(store, out) if figures else []
         figs += swarm_figure(store, out) if figures else []
         gallery = failure_gallery(store, out, gallery_limit) if figures else []

@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from mawdo.experiments.kinds.arena.execute import NO_TRACE, is_timed
+from mawdo.experiments.progress import say
 from mawdo.experiments.store import Store
 
 
@@ -247,7 +248,8 @@ def render_worst(store_path, out_dir, planner: str = "mawdo", k: int = 3) -> lis
         ap = store.plan
         if planner not in ap.algorithms:
             return []
-        for fam, r in worst_runs(store, planner, k):
+        for i, (fam, r) in enumerate(worst_runs(store, planner, k)):
+            say(f"re-running {planner}'s worst scene {i + 1} of {k} ({r.scene_name})")
             full = next(x for _, _, x in store.rows(planner, fam) if x.run == r.run)
             sc = scenario_from_toml(full.scene_toml, r.scene_name)
             res, m = plan_scene(planner, sc, r.l_star, r.planner_seed, ap.planner, ap.overrides,
