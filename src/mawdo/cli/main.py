@@ -222,14 +222,14 @@ def _print_table(function: str, results: dict) -> None:
     console.print(t)
 
 
-def _demo_run(ready, out: Path):
-    """The demo's run (set up by ``prepare_demo``), its table and caption printed, its metrics
-    saved."""
+def _demo_run(ready, out: Path, progress=None):
+    """The demo's run (set up by ``prepare_demo``; ``progress`` is called before each step),
+    its table and caption printed, its metrics saved."""
     from mawdo.cli.progress import notice_compiles
     from mawdo.planning import demo as job
 
     with notice_compiles():  # a first run after installing compiles the kernels
-        run = job.finish_demo(ready.execute())
+        run = job.finish_demo(ready.execute(progress))
     t = Table(title="MAWDO on the paper scenario (one run)")
     t.add_column("metric")
     t.add_column("value", justify="right")
@@ -252,7 +252,7 @@ def demo(
     """The main job: MAWDO plans through the moving obstacles of the `paper` scenario."""
     import time
 
-    from mawdo.cli.plan import draw_figures, early_figures
+    from mawdo.cli.plan import draw_figures, early_figures, fed
     from mawdo.cli.progress import notice_compiles
     from mawdo.planning import demo as job
     from mawdo.planning.scenario import get_scenario
@@ -270,7 +270,7 @@ def demo(
         ready = job.prepare_demo(seed)
     # the figures' set-up starts now, in a second process, while this one plans
     with early_figures(True, sc, job.ALGORITHM, seed, grid, gif, label=job.LABEL) as drawing:
-        run = _demo_run(ready, out)
+        run = _demo_run(ready, out, fed(ready, drawing))
         from mawdo.planning.render.animation import animation_times
 
         frames = len(animation_times(run.result))

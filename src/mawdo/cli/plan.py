@@ -79,6 +79,17 @@ def early_figures(enabled: bool, sc, algorithm: str, seed: int, grid: Path, gif:
         yield job
 
 
+def fed(run, job, then=None):
+    """The progress callback of ``run.execute``: ``then`` (a progress bar), and with a figures'
+    process ``job`` the run's steps sent to it as they are made (it draws the GIF's frames
+    meanwhile: :mod:`mawdo.planning.render.live`)."""
+    if job is None:
+        return then
+    from mawdo.planning.render.live import RunStream
+
+    return RunStream(run, job, then)
+
+
 def draw_figures(job, payload, frames: int, progress: bool) -> tuple[Path, Path]:
     """Send the run to the figures' process and wait for them, saying so (stderr)."""
     job.send(payload)
@@ -142,7 +153,7 @@ def run_cmd(
     check_output_dir(out, "--out folder")
     # the figures' set-up starts now, in a second process, while this one plans
     with early_figures(figures, sc, algorithm, seed, out / "snapshots.png", out / "run.gif") as job:
-        res = _execute(run, sc, algorithm, seed, preset, static, threads, out, progress)
+        res = _execute(run, sc, algorithm, seed, preset, static, threads, out, progress, job)
         if job is not None:
             from mawdo.planning.render.animation import animation_times
 
@@ -152,14 +163,15 @@ def run_cmd(
             console.print(f"animation: {gif}")
 
 
-def _execute(run, sc, algorithm, seed, preset, static, threads, out, progress):
-    """Execute the run; print its metrics and save them in ``out/metrics.json``."""
+def _execute(run, sc, algorithm, seed, preset, static, threads, out, progress, job=None):
+    """Execute the run (its steps fed to the figures' process ``job`` as they are made); print
+    its metrics and save them in ``out/metrics.json``."""
     from mawdo.planning.metrics import run_metrics_kept
 
     bar = _StepBar(progress, f"{algorithm} on {sc.name}")
     try:
         with notice_compiles(progress):
-            res = run.execute(bar)
+            res = run.execute(fed(run, job, bar))
     finally:
         bar.close()
     m, error = run_metrics_kept(res)
