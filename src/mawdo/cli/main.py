@@ -222,14 +222,18 @@ def _print_table(function: str, results: dict) -> None:
     console.print(t)
 
 
-def _demo_run(ready, out: Path, progress=None):
-    """The demo's run (set up by ``prepare_demo``; ``progress`` is called before each step),
-    its table and caption printed, its metrics saved."""
+def _demo_run(ready, out: Path, drawing=None):
+    """The demo's run (set up by ``prepare_demo``), its table and caption printed, its metrics
+    saved; the figures' process ``drawing`` (if any) gets its steps as they are made and the
+    run before the printing."""
+    from mawdo.cli.plan import fed
     from mawdo.cli.progress import notice_compiles
     from mawdo.planning import demo as job
 
     with notice_compiles():  # a first run after installing compiles the kernels
-        run = job.finish_demo(ready.execute(progress))
+        run = job.finish_demo(ready.execute(fed(ready, drawing)))
+    if drawing is not None:
+        drawing.send((run.result, run.metrics, job.figure_text_chunks(run)))
     t = Table(title="MAWDO on the paper scenario (one run)")
     t.add_column("metric")
     t.add_column("value", justify="right")
@@ -252,7 +256,7 @@ def demo(
     """The main job: MAWDO plans through the moving obstacles of the `paper` scenario."""
     import time
 
-    from mawdo.cli.plan import draw_figures, early_figures, fed
+    from mawdo.cli.plan import draw_figures, early_figures
     from mawdo.cli.progress import notice_compiles
     from mawdo.planning import demo as job
     from mawdo.planning.scenario import get_scenario
@@ -270,12 +274,11 @@ def demo(
         ready = job.prepare_demo(seed)
     # the figures' set-up starts now, in a second process, while this one plans
     with early_figures(True, sc, job.ALGORITHM, seed, grid, gif, label=job.LABEL) as drawing:
-        run = _demo_run(ready, out, fed(ready, drawing))
+        run = _demo_run(ready, out, drawing)
         from mawdo.planning.render.animation import animation_times
 
         frames = len(animation_times(run.result))
-        payload = (run.result, run.metrics, job.figure_text_chunks(run))
-        grid, gif = draw_figures(drawing, payload, frames, True)
+        grid, gif = draw_figures(drawing, frames, True)
     console.print(f"snapshot grid : {grid}")
     console.print(f"animation     : {gif}")
     console.print(f"metrics       : {out / 'metrics.md'}, {out / 'metrics.json'}")

@@ -90,9 +90,9 @@ def fed(run, job, then=None):
     return RunStream(run, job, then)
 
 
-def draw_figures(job, payload, frames: int, progress: bool) -> tuple[Path, Path]:
-    """Send the run to the figures' process and wait for them, saying so (stderr)."""
-    job.send(payload)
+def draw_figures(job, frames: int, progress: bool) -> tuple[Path, Path]:
+    """Wait for the figures of a run sent to the figures' process (:meth:`EarlyFigures.send
+    <mawdo.planning.render.early.EarlyFigures.send>`), saying so (stderr)."""
     note = ", set up while planning" if job.early else ""
     with step(f"drawing the snapshot grid and writing the GIF ({frames} frames{note})", progress):
         return job.result()
@@ -158,14 +158,15 @@ def run_cmd(
             from mawdo.planning.render.animation import animation_times
 
             frames = len(animation_times(res))
-            grid, gif = draw_figures(job, (res, None, None), frames, progress)
+            grid, gif = draw_figures(job, frames, progress)  # (_execute sent the run)
             console.print(f"snapshot grid: {grid}")
             console.print(f"animation: {gif}")
 
 
 def _execute(run, sc, algorithm, seed, preset, static, threads, out, progress, job=None):
-    """Execute the run (its steps fed to the figures' process ``job`` as they are made); print
-    its metrics and save them in ``out/metrics.json``."""
+    """Execute the run (its steps fed to the figures' process ``job`` as they are made, then
+    the run itself: its figures need no metrics); print its metrics and save them in
+    ``out/metrics.json``."""
     from mawdo.planning.metrics import run_metrics_kept
 
     bar = _StepBar(progress, f"{algorithm} on {sc.name}")
@@ -174,6 +175,8 @@ def _execute(run, sc, algorithm, seed, preset, static, threads, out, progress, j
             res = run.execute(fed(run, job, bar))
     finally:
         bar.close()
+    if job is not None:
+        job.send((res, None, None))  # drawn while the metrics are computed and printed
     m, error = run_metrics_kept(res)
     payload = {
         "scenario": sc.name,
