@@ -53,18 +53,32 @@ def _streamed_run(take: int, max_steps: int = 40):
     return result, job.news
 
 
-@pytest.mark.parametrize("take, max_frames", [(1, 200), (3, 200), (1, 6)])
-def test_frames_drawn_during_the_run_give_the_gif_of_the_finished_run(take, max_frames, tmp_path):
+@pytest.mark.parametrize(
+    "take, max_frames, stop_after", [(1, 200, 0), (3, 200, 0), (1, 6, 0), (4, 200, 5)]
+)
+def test_frames_drawn_during_the_run_give_the_gif_of_the_finished_run(
+    take, max_frames, stop_after, tmp_path
+):
     result, news = _streamed_run(take)
     assert len(news) > 3
     movie = GifFrame(result.scenario, "MAWDO", result.seed)
     partial = PartialRun()
+    asked = []
+
+    def stop():  # the run ended while frames were drawn: stop after stop_after frames
+        asked.append(1)
+        return bool(stop_after) and len(movie.drawn) >= stop_after
+
     for item in news:
         partial.add(item)
-        movie.draw_ready(partial, every=2, max_frames=max_frames)
+        movie.draw_ready(partial, every=2, max_frames=max_frames, stop=stop)
+        if stop_after:
+            assert len(movie.drawn) <= stop_after
         # only frames the run has passed: their time is before the end of the route so far
         assert all(t < partial.end for t in movie.drawn)
     assert 0 < len(movie.drawn) <= max_frames
+    if stop_after:  # asked before each frame; the frames it stopped are drawn by write()
+        assert len(movie.drawn) == stop_after and len(asked) > stop_after
     streamed = movie.write(result, tmp_path / "streamed.gif", max_frames=max_frames)
     direct = render.animate(result, tmp_path / "direct.gif", max_frames=max_frames)
     assert streamed.read_bytes() == direct.read_bytes()
@@ -105,7 +119,7 @@ def _counting_prepare(delay: float):
         def finish(payload):
             return got, payload
 
-        def feed(data):
+        def feed(data, run_over):
             time.sleep(delay)  # drawing frames
             got.append(data)
 
@@ -144,12 +158,36 @@ def test_feed_sends_only_what_the_child_took_and_loses_nothing():
     assert len(got) == made["messages"] < 100
 
 
+def test_the_child_learns_that_the_run_is_over_while_it_draws():
+    def prepare():
+        def finish(payload):
+            return payload, seen
+
+        seen = []
+
+        def feed(data, run_over):
+            deadline = time.monotonic() + 30
+            while not run_over() and time.monotonic() < deadline:
+                time.sleep(0.01)  # drawing frames until the run's end is waiting
+            seen.append(run_over())
+
+        finish.feed = feed
+        return finish
+
+    with EarlyFigures(prepare) as job:
+        job.feed(lambda: "steps 0-9")
+        job.send("run")  # without waiting for the child to take the steps
+        payload, seen = job.result()
+    assert payload == "run"
+    assert seen == ([True] if job.early else [])
+
+
 def test_an_error_while_fed_is_raised_by_result():
     def prepare():
         def finish(payload):
             return payload
 
-        def feed(data):
+        def feed(data, run_over):
             raise ValueError(f"cannot draw {data}")
 
         finish.feed = feed

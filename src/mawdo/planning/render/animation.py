@@ -121,20 +121,21 @@ class GifFrame:
         self.drawn: dict[float, _Shot] = {}  # frames drawn while the run went on, by time
         self.seen = np.zeros(1 << 24, dtype=bool)  # their colours, a flag per 0xRRGGBB
 
-    def draw_ready(self, partial, every: int = 2, max_frames: int = 200) -> int:
+    def draw_ready(self, partial, every: int = 2, max_frames: int = 200, stop=None) -> int:
         """Draw the frames the run so far fixes: those at the times ``0, every, 2 every, ...``
         before the end of ``partial`` (a run under way, :class:`~.live.PartialRun`), at most
         ``max_frames`` in all; :meth:`write` uses them. A frame shows the route up to its time
         and the last plan made at or before it, which later steps do not change, and it is a
-        function of what it shows alone, so it is the frame :meth:`write` would draw. Returns
-        how many frames were drawn now."""
+        function of what it shows alone, so it is the frame :meth:`write` would draw.
+        ``stop()`` (if given) is asked before each frame: True ends the drawing (what is
+        left, :meth:`write` draws). Returns how many frames were drawn now."""
         if not len(partial.route_times):
             return 0
         if not self.drawn:
             self.frames.add(world_state(self.scenario, 0.0, partial, self.opt))
         done = 0
         t = float(every * len(self.drawn))
-        while len(self.drawn) < max_frames and t < partial.end:
+        while len(self.drawn) < max_frames and t < partial.end and not (stop and stop()):
             state = world_state(self.scenario, t, partial, self.opt)
             self.drawn[t] = _Shot.of(self.frames.grab(state, t), seen=self.seen)
             done, t = done + 1, float(every * len(self.drawn))

@@ -35,7 +35,8 @@ from collections.abc import Callable
 from mawdo.planning.render.forked import can_fork, send_back
 
 #: ``prepare()`` runs early and returns ``finish(payload) -> value``; a ``finish`` with a
-#: ``feed`` attribute also takes what :meth:`EarlyFigures.feed` sends before the payload.
+#: ``feed`` attribute also takes what :meth:`EarlyFigures.feed` sends before the payload, as
+#: ``feed(data, payload_waiting)`` (the second a callable: True once the payload has come).
 Prepare = Callable[[], Callable[[object], object]]
 
 
@@ -184,12 +185,14 @@ def _child(prepare: Prepare, conn, parent_end) -> None:
 
 
 def _news(conn, feed):
-    """Receive until the payload, handing each :class:`News` to ``feed`` (if any) and saying
-    it was taken; return the payload."""
+    """Receive until the payload, handing each :class:`News` to ``feed`` (if any) with
+    ``conn.poll`` and saying it was taken; return the payload. While ``feed`` works, the parent
+    waits for the answer before sending more News, so a message waiting is the payload:
+    ``feed`` may stop early when ``poll()`` says so (the run is over, its figures come first)."""
     payload = conn.recv()
     while isinstance(payload, News):
         if feed is not None:
-            feed(payload.data)
+            feed(payload.data, conn.poll)
         conn.send(_TAKEN)
         payload = conn.recv()
     return payload
@@ -232,9 +235,9 @@ def run_figures(scenario, algorithm: str, seed: int, grid, gif, label: str | Non
         movie = GifFrame(scenario, display_name(algorithm), seed)
         partial = PartialRun()
 
-        def feed(news):  # the run so far: draw the GIF frames it fixes (.live)
+        def feed(news, run_over):  # the run so far: draw the GIF frames it fixes (.live)
             partial.add(news)
-            movie.draw_ready(partial, every)
+            movie.draw_ready(partial, every, stop=run_over)  # the rest after the run
 
         def finish(payload):
             result, metrics, metadata = payload
