@@ -28,8 +28,10 @@ each row also gives the CPU time (user + sys) of the process and all its childre
 (about 5 to 15 minutes; ``STARTUP_SAMPLES=k`` warm samples, default 3; ``STARTUP_REPRODUCE=1``
 adds the cold ``reproduce --quick``, 15 to 30 minutes; ``STARTUP_SRC=path`` measures another
 copy of the sources, e.g. an older commit's ``src`` for a before/after; ``STARTUP_SKIP=one,cold``
-leaves rows out: ``install`` (and the first plan after it), ``cold``, ``one``). Beside each row,
-the same row measured before (:data:`BEFORE`).
+leaves rows out: ``install`` (and the first plan after it), ``cold``, ``one``;
+``STARTUP_CACHE=sources`` runs the warm rows on Numba's own cache beside the sources, warmed
+beforehand, and skips the cold rows: a before/after of the warm rows in a minute). Beside each
+row, the same row measured before (:data:`BEFORE`).
 """
 
 from __future__ import annotations
@@ -55,10 +57,15 @@ def _children_cpu() -> float:
     return use.ru_utime + use.ru_stime
 
 
-def timed(args: list[str], cache: Path, cwd: Path, env: dict | None = None) -> tuple[float, float]:
-    """Run ``python ARGS`` with the Numba cache in ``cache``; (wall s, CPU s of it and its
-    children)."""
-    env = {**os.environ, "NUMBA_CACHE_DIR": str(cache), **(env or {})}
+def timed(
+    args: list[str], cache: Path | None, cwd: Path, env: dict | None = None
+) -> tuple[float, float]:
+    """Run ``python ARGS`` with the Numba cache in ``cache`` (None: Numba's own, beside the
+    sources); (wall s, CPU s of it and its children)."""
+    env = {**os.environ, **(env or {})}
+    env.pop("NUMBA_CACHE_DIR", None)
+    if cache is not None:
+        env["NUMBA_CACHE_DIR"] = str(cache)
     env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(SRC), env.get("PYTHONPATH")]))
     cpu, t = _children_cpu(), time.perf_counter()
     proc = subprocess.run([sys.executable, *args], cwd=cwd, env=env, capture_output=True)
@@ -113,6 +120,9 @@ def _cold(tmp: Path, name: str) -> Path:
 def main() -> None:
     samples = int(os.environ.get("STARTUP_SAMPLES", "3"))
     skip = set(filter(None, os.environ.get("STARTUP_SKIP", "").split(",")))
+    sources = os.environ.get("STARTUP_CACHE", "") == "sources"
+    if sources:
+        skip |= {"install", "cold", "one"}
     plan = ["-m", "mawdo.cli", "plan", "paper", "--no-progress", "--out"]
     print(f"  sources: {SRC}")
     with tempfile.TemporaryDirectory(prefix="mawdo-startup-") as tmp:
@@ -131,6 +141,7 @@ def main() -> None:
             cold = _cold(tmp, "numba-cold1")
             _row("cold plan paper, one process", *timed([*plan, "c1"], cold, tmp, jobs1), 30)
             cache = cold
+        cache = None if sources else cache
         for k in range(samples):
             _row(f"warm plan paper + GIF ({k + 1})", *timed([*plan, f"w{k}"], cache, tmp), 5)
         bare = [*plan[:-1], "--no-figures", "--out"]

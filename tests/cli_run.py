@@ -39,3 +39,40 @@ def interruptible(cmd: list[str], env=None) -> subprocess.Popen:
         start_new_session=True,
         preexec_fn=child,
     )
+
+
+def group_gone(pgid: int, within: float = 10.0) -> bool:
+    """Whether every process of the group ``pgid`` has ended within ``within`` seconds."""
+    import time
+
+    end = time.monotonic() + within
+    while time.monotonic() < end:
+        try:
+            os.killpg(pgid, 0)
+        except ProcessLookupError:
+            return True
+        time.sleep(0.1)
+    return False
+
+
+def children(pid: int) -> list[int]:
+    """The process ids of ``pid``'s children (Linux ``/proc``; none elsewhere)."""
+    try:
+        with open(f"/proc/{pid}/task/{pid}/children") as f:
+            return [int(p) for p in f.read().split()]
+    except OSError:
+        return []
+
+
+def ctrl_c(proc: subprocess.Popen) -> str:
+    """Send SIGINT to ``proc``'s group (a terminal's Ctrl-C; ``proc`` from
+    :func:`interruptible`) and check what a user must see: exit 130, no traceback, and no
+    process of the command left. Returns its stderr."""
+    import signal
+
+    os.killpg(proc.pid, signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130, err
+    assert "Traceback" not in err
+    assert group_gone(proc.pid), "a process of the command outlived Ctrl-C"
+    return err

@@ -9,7 +9,6 @@ value or its error, end when the command stops, and stop with the command on Ctr
 from __future__ import annotations
 
 import os
-import signal
 import subprocess
 import sys
 import time
@@ -25,7 +24,7 @@ from mawdo.planning.render.early import EarlyFigures, run_figures
 from mawdo.planning.render.snapshots import GridFrame, grid_blocks, save_grid
 from mawdo.planning.render.world import draw_world
 from mawdo.planning.visgraph import component_labels
-from tests.cli_run import interruptible
+from tests.cli_run import children, ctrl_c, group_gone, interruptible
 
 SRC = str(Path(__file__).resolve().parents[2] / "src")
 ENV = {**os.environ, "PYTHONPATH": SRC, "PYTHONUNBUFFERED": "1"}
@@ -159,38 +158,15 @@ def _start(out: Path, *extra: str) -> subprocess.Popen:
     return interruptible([*cmd, "--out", str(out)], env=ENV)
 
 
-def _group_gone(pgid: int, within: float = 10.0) -> bool:
-    end = time.monotonic() + within
-    while time.monotonic() < end:
-        try:
-            os.killpg(pgid, 0)
-        except ProcessLookupError:
-            return True
-        time.sleep(0.1)
-    return False
-
-
-def _children(pid: int) -> list[int]:
-    try:
-        text = Path(f"/proc/{pid}/task/{pid}/children").read_text()
-    except OSError:
-        return []
-    return [int(p) for p in text.split()]
-
-
 @pytest.mark.skipif(not render.can_fork(), reason="figures are drawn early only with fork")
 def test_ctrl_c_while_planning_stops_the_command_and_its_figures_process(tmp_path):
     proc = _start(tmp_path / "out")
     end = time.monotonic() + 120
-    while not _children(proc.pid) and proc.poll() is None and time.monotonic() < end:
+    while not children(proc.pid) and proc.poll() is None and time.monotonic() < end:
         time.sleep(0.05)  # the figures' process starts once the arguments are read
-    assert _children(proc.pid), "no figures process was started"
+    assert children(proc.pid), "no figures process was started"
     time.sleep(1.0)  # the run is being set up or planned, the figures' process sets up
-    os.killpg(proc.pid, signal.SIGINT)
-    _, err = proc.communicate(timeout=60)
-    assert proc.returncode == 130, err
-    assert "Traceback" not in err
-    assert _group_gone(proc.pid), "a process of the command outlived Ctrl-C"
+    ctrl_c(proc)
     assert not (tmp_path / "out" / "snapshots.png").exists()
 
 
@@ -198,5 +174,5 @@ def test_bad_input_ends_the_figures_process_and_creates_nothing(tmp_path):
     proc = _start(tmp_path / "out", "--algorithm", "nosuch")
     _, err = proc.communicate(timeout=120)
     assert proc.returncode == 2 and err.startswith("error: "), err
-    assert _group_gone(proc.pid)
+    assert group_gone(proc.pid)
     assert not (tmp_path / "out").exists()

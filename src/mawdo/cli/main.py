@@ -222,14 +222,18 @@ def _print_table(function: str, results: dict) -> None:
     console.print(t)
 
 
-def _demo_run(ready, out: Path):
+def _demo_run(ready, out: Path, drawing=None):
     """The demo's run (set up by ``prepare_demo``), its table and caption printed, its metrics
-    saved."""
+    saved; the figures' process ``drawing`` (if any) gets its steps as they are made and the
+    run before the printing."""
+    from mawdo.cli.plan import fed
     from mawdo.cli.progress import notice_compiles
     from mawdo.planning import demo as job
 
     with notice_compiles():  # a first run after installing compiles the kernels
-        run = job.finish_demo(ready.execute())
+        run = job.finish_demo(ready.execute(fed(ready, drawing)))
+    if drawing is not None:
+        drawing.send((run.result, run.metrics, job.figure_text_chunks(run)))
     t = Table(title="MAWDO on the paper scenario (one run)")
     t.add_column("metric")
     t.add_column("value", justify="right")
@@ -270,12 +274,11 @@ def demo(
         ready = job.prepare_demo(seed)
     # the figures' set-up starts now, in a second process, while this one plans
     with early_figures(True, sc, job.ALGORITHM, seed, grid, gif, label=job.LABEL) as drawing:
-        run = _demo_run(ready, out)
+        run = _demo_run(ready, out, drawing)
         from mawdo.planning.render.animation import animation_times
 
         frames = len(animation_times(run.result))
-        payload = (run.result, run.metrics, job.figure_text_chunks(run))
-        grid, gif = draw_figures(drawing, payload, frames, True)
+        grid, gif = draw_figures(drawing, frames, True)
     console.print(f"snapshot grid : {grid}")
     console.print(f"animation     : {gif}")
     console.print(f"metrics       : {out / 'metrics.md'}, {out / 'metrics.json'}")

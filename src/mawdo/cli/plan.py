@@ -79,9 +79,20 @@ def early_figures(enabled: bool, sc, algorithm: str, seed: int, grid: Path, gif:
         yield job
 
 
-def draw_figures(job, payload, frames: int, progress: bool) -> tuple[Path, Path]:
-    """Send the run to the figures' process and wait for them, saying so (stderr)."""
-    job.send(payload)
+def fed(run, job, then=None):
+    """The progress callback of ``run.execute``: ``then`` (a progress bar), and with a figures'
+    process ``job`` the run's steps sent to it as they are made (it draws the GIF's frames
+    meanwhile: :mod:`mawdo.planning.render.live`)."""
+    if job is None:
+        return then
+    from mawdo.planning.render.live import RunStream
+
+    return RunStream(run, job, then)
+
+
+def draw_figures(job, frames: int, progress: bool) -> tuple[Path, Path]:
+    """Wait for the figures of a run sent to the figures' process (:meth:`EarlyFigures.send
+    <mawdo.planning.render.early.EarlyFigures.send>`), saying so (stderr)."""
     note = ", set up while planning" if job.early else ""
     with step(f"drawing the snapshot grid and writing the GIF ({frames} frames{note})", progress):
         return job.result()
@@ -142,26 +153,30 @@ def run_cmd(
     check_output_dir(out, "--out folder")
     # the figures' set-up starts now, in a second process, while this one plans
     with early_figures(figures, sc, algorithm, seed, out / "snapshots.png", out / "run.gif") as job:
-        res = _execute(run, sc, algorithm, seed, preset, static, threads, out, progress)
+        res = _execute(run, sc, algorithm, seed, preset, static, threads, out, progress, job)
         if job is not None:
             from mawdo.planning.render.animation import animation_times
 
             frames = len(animation_times(res))
-            grid, gif = draw_figures(job, (res, None, None), frames, progress)
+            grid, gif = draw_figures(job, frames, progress)  # (_execute sent the run)
             console.print(f"snapshot grid: {grid}")
             console.print(f"animation: {gif}")
 
 
-def _execute(run, sc, algorithm, seed, preset, static, threads, out, progress):
-    """Execute the run; print its metrics and save them in ``out/metrics.json``."""
+def _execute(run, sc, algorithm, seed, preset, static, threads, out, progress, job=None):
+    """Execute the run (its steps fed to the figures' process ``job`` as they are made, then
+    the run itself: its figures need no metrics); print its metrics and save them in
+    ``out/metrics.json``."""
     from mawdo.planning.metrics import run_metrics_kept
 
     bar = _StepBar(progress, f"{algorithm} on {sc.name}")
     try:
         with notice_compiles(progress):
-            res = run.execute(bar)
+            res = run.execute(fed(run, job, bar))
     finally:
         bar.close()
+    if job is not None:
+        job.send((res, None, None))  # drawn while the metrics are computed and printed
     m, error = run_metrics_kept(res)
     payload = {
         "scenario": sc.name,

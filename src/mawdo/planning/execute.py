@@ -251,7 +251,9 @@ class Run(TimedRun, SafeRun, LimitedRun):
             return self._finish(Drive(sc.start.copy()), f"{NO_ROUTE}: static obstacles: {reach}")
         max_steps, rule = self.step_limit()
         pos = sc.start.copy()
-        drive = Drive(pos)
+        # kept on the run: a progress callback may read the moves so far (the GIF's frames
+        # are drawn while the run goes on: mawdo.planning.render.live)
+        self.drive = drive = Drive(pos)
         remainder, stuck, force = None, 0, False
         reason = step_limit_note(cfg.max_steps, max_steps, rule)
         for step in range(max_steps + 1):

@@ -118,14 +118,42 @@ class GifFrame:
         self.frames = _Frames(
             self.fig, self.ax, scenario, world_state(scenario, 0.0, None, self.opt)
         )
+        self.drawn: dict[float, _Shot] = {}  # frames drawn while the run went on, by time
+        self.seen = np.zeros(1 << 24, dtype=bool)  # their colours, a flag per 0xRRGGBB
+
+    def draw_ready(self, partial, every: int = 2, max_frames: int = 200, stop=None) -> int:
+        """Draw the frames the run so far fixes: those at the times ``0, every, 2 every, ...``
+        before the end of ``partial`` (a run under way, :class:`~.live.PartialRun`), at most
+        ``max_frames`` in all; :meth:`write` uses them. A frame shows the route up to its time
+        and the last plan made at or before it, which later steps do not change, and it is a
+        function of what it shows alone, so it is the frame :meth:`write` would draw.
+        ``stop()`` (if given) is asked before each frame: True ends the drawing (what is
+        left, :meth:`write` draws). Returns how many frames were drawn now."""
+        if not len(partial.route_times):
+            return 0
+        if not self.drawn:
+            self.frames.add(world_state(self.scenario, 0.0, partial, self.opt))
+        done = 0
+        t = float(every * len(self.drawn))
+        while len(self.drawn) < max_frames and t < partial.end and not (stop and stop()):
+            state = world_state(self.scenario, t, partial, self.opt)
+            self.drawn[t] = _Shot.of(self.frames.grab(state, t), seen=self.seen)
+            done, t = done + 1, float(every * len(self.drawn))
+        return done
 
     def write(self, result: PlanResult, out: Path, fps=12, every=2, max_frames=200) -> Path:
-        """Draw ``result``'s frames (:func:`animation_times`) and write them to ``out``."""
+        """Draw ``result``'s frames (:func:`animation_times`) and write them to ``out``; frames
+        :meth:`draw_ready` drew are used as they are."""
         ts = animation_times(result, every, max_frames)
         sc, opt = self.scenario, self.opt
         self.frames.add(world_state(sc, float(ts[0]), result, opt))
-        images = [self.frames.grab(world_state(sc, float(t), result, opt), t) for t in ts]
-        _write_gif(images, out, fps)
+        shots = []
+        for t in ts:
+            shot = self.drawn.get(float(t))
+            if shot is None:
+                shot = _Shot.of(self.frames.grab(world_state(sc, float(t), result, opt), t))
+            shots.append(shot)
+        _write_gif(shots, out, fps, self.seen if self.drawn else None)
         return out
 
 
@@ -223,53 +251,88 @@ def _packed(rgb: np.ndarray) -> np.ndarray:
     return (px[:, 0] << 16) | (px[:, 1] << 8) | px[:, 2]
 
 
+class _Shot:
+    """One frame: its RGB pixels ``(h, w, 3)`` uint8 and the same pixels packed
+    (:func:`_packed`)."""
+
+    __slots__ = ("rgb", "packed")
+
+    def __init__(self, rgb: np.ndarray, packed: np.ndarray) -> None:
+        self.rgb, self.packed = rgb, packed
+
+    @classmethod
+    def of(cls, rgb: np.ndarray, seen: np.ndarray | None = None) -> _Shot:
+        """The frame ``rgb``; its colours are flagged in ``seen`` (one flag per ``0xRRGGBB``)
+        if given."""
+        packed = _packed(rgb)
+        if seen is not None:
+            seen[packed] = True
+        return cls(rgb, packed)
+
+
 class _Palette:
     """One palette for every frame, from the first, middle and last frame: their most frequent
     colours exactly (background, fills and lines stay pure), the anti-aliased rest by median
     cut. Each colour of a frame maps to its nearest palette entry (squared RGB distance, the
     first on a tie), through a table over all 2^24 colours filled as colours appear: a frame
     costs a lookup per pixel, not a search (Pillow's own mapping was a quarter of the GIF's
-    time, and its coarse colour cache could turn white into 252 grey)."""
+    time, and its coarse colour cache could turn white into 252 grey). Each colour's entry
+    depends on that colour alone, so the table may be filled in any order: colours flagged
+    while the frames were drawn early are mapped in one pass."""
 
-    def __init__(self, frames: list[np.ndarray]) -> None:
+    def __init__(self, shots: list[_Shot]) -> None:
         from PIL import Image
 
-        picks = np.concatenate([frames[k] for k in (0, len(frames) // 2, -1)])
-        colours, counts = np.unique(_packed(picks), return_counts=True)
+        picks = [shots[k] for k in (0, len(shots) // 2, -1)]
+        packed = np.concatenate([s.packed for s in picks])
+        colours, counts = np.unique(packed, return_counts=True)
         top = np.sort(colours[np.argsort(-counts, kind="stable")[:_EXACT_COLOURS]])
         exact_rgb = np.stack([top >> 16, (top >> 8) & 255, top & 255], 1)
         n_cut = 256 - len(top)
-        cut = Image.fromarray(picks).quantize(n_cut, Image.Quantize.MEDIANCUT)
+        rgb = np.concatenate([s.rgb for s in picks])
+        cut = Image.fromarray(rgb).quantize(n_cut, Image.Quantize.MEDIANCUT)
         rest = np.asarray(cut.getpalette()[: 3 * n_cut]).reshape(-1, 3)
         self.entries = np.concatenate([exact_rgb, rest]).astype(np.int64)  # (<= 256, 3)
         self.rgb = self.entries.astype(np.uint8).ravel().tolist()
-        self.table = np.full(1 << 24, -1, dtype=np.int16)  # 0xRRGGBB -> entry (-1: not yet)
-        self.table[top] = np.arange(len(top))
+        # 0xRRGGBB -> 1 + its entry (0: not yet). Zeros, not -1: a fresh zeroed array costs no
+        # time until a page is written (np.full wrote all 32 MB: 0.1 s of CPU per GIF)
+        self.table = np.zeros(1 << 24, dtype=np.int16)
+        self.table[top] = np.arange(1, len(top) + 1)
+        # |c - e|^2 = |c|^2 - 2 c.e + |e|^2: the first term is the same for every entry
+        self._norms = (self.entries**2).sum(1).astype(float)
 
-    def __call__(self, frame: np.ndarray):
-        """An RGB frame (``(h, w, 3)`` uint8) as a palette image on this palette."""
+    def learn(self, colours: np.ndarray) -> None:
+        """Fill the table for ``colours`` (packed, unique) not in it yet: each its nearest entry
+        by squared RGB distance, the first on a tie. The distances are computed as
+        ``|e|^2 - 2 c.e`` (``|c|^2`` dropped) in floats that hold these integers exactly
+        (below 2^19), so the nearest entry and its ties are those of the integer distances."""
+        new = colours[self.table[colours] == 0]
+        for lo in range(0, new.size, 8192):
+            part = new[lo : lo + 8192]
+            rgb = np.stack([part >> 16, (part >> 8) & 255, part & 255], 1).astype(float)
+            d2 = self._norms[None, :] - 2.0 * (rgb @ self.entries.T.astype(float))
+            self.table[part] = np.argmin(d2, axis=1) + 1
+
+    def __call__(self, shot: _Shot):
+        """A frame as a palette image on this palette."""
         from PIL import Image
 
-        packed = _packed(frame)
-        index = self.table[packed]
-        new = np.unique(packed[index < 0])
-        if new.size:
-            for lo in range(0, new.size, 2048):  # (2048, 256) distances at a time
-                part = new[lo : lo + 2048]
-                rgb = np.stack([part >> 16, (part >> 8) & 255, part & 255], 1).astype(np.int64)
-                d2 = ((rgb[:, None, :] - self.entries[None, :, :]) ** 2).sum(-1)
-                self.table[part] = np.argmin(d2, axis=1)
-            index = self.table[packed]
-        out = Image.fromarray(index.astype(np.uint8).reshape(frame.shape[:2]), "P")
+        index = self.table[shot.packed]
+        if not index.all():
+            self.learn(np.unique(shot.packed[index == 0]))
+            index = self.table[shot.packed]
+        out = Image.fromarray((index - 1).astype(np.uint8).reshape(shot.rgb.shape[:2]), "P")
         out.putpalette(self.rgb)
         return out
 
 
-def _write_gif(images: list[np.ndarray], out: Path, fps) -> None:
-    """Write RGB frames (``(h, w, 3)`` uint8) as one looping GIF on a shared palette, each
-    shown ``1 / fps`` s."""
-    palette = _Palette(images)
-    frames = [palette(im) for im in images]
+def _write_gif(shots: list[_Shot], out: Path, fps, seen: np.ndarray | None = None) -> None:
+    """Write frames as one looping GIF on a shared palette, each shown ``1 / fps`` s; ``seen``
+    flags colours known to occur (mapped to the palette in one pass before the frames)."""
+    palette = _Palette(shots)
+    if seen is not None:
+        palette.learn(np.flatnonzero(seen).astype(np.uint32))
+    frames = [palette(shot) for shot in shots]
     try:
         frames[0].save(
             out,

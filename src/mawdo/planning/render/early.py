@@ -8,9 +8,12 @@ modules imported and kernels loaded, which the child then shares: forked at argu
 it imported Numba and the planner a second time, 1.3 s more CPU); the child does the first
 part on the second core while the parent plans, then waits for the run on a pipe. The
 parent sends the run (pickled: a few hundred kB) and waits for the child's answer: the paths
-it wrote, or its error, raised again in the parent. The child draws the grid itself
-and the GIF in a grandchild (:class:`~mawdo.planning.render.forked.Forked`), so after the run
-only the drawing of the moving parts and the file writing are left.
+it wrote, or its error, raised again in the parent. While the run goes on, the parent
+also hands the child the steps made so far (:meth:`EarlyFigures.feed`, :mod:`.live`), and the
+child draws each GIF frame once the run has passed its time. After the run the child draws the
+grid itself and finishes the GIF in a grandchild (:class:`~mawdo.planning.render.forked.Forked`:
+the frames not drawn yet, the palette, the file), so only the grid's moving parts, the palette
+and the file writing are left.
 
 Where ``fork`` is missing or there is one core, nothing runs early: :meth:`EarlyFigures.send`
 then sets up and draws in this process, the same figures one after the other.
@@ -31,8 +34,24 @@ from collections.abc import Callable
 
 from mawdo.planning.render.forked import can_fork, send_back
 
-#: ``prepare()`` runs early and returns ``finish(payload) -> value``.
+#: ``prepare()`` runs early and returns ``finish(payload) -> value``; a ``finish`` with a
+#: ``feed`` attribute also takes what :meth:`EarlyFigures.feed` sends before the payload, as
+#: ``feed(data, payload_waiting)`` (the second a callable: True once the payload has come).
 Prepare = Callable[[], Callable[[object], object]]
+
+
+class News:
+    """Data sent to the child before the payload (:meth:`EarlyFigures.feed`)."""
+
+    __slots__ = ("data",)
+
+    def __init__(self, data) -> None:
+        self.data = data
+
+
+#: The child's answer to each :class:`News`: it took it, the next may come.
+_TAKEN = None
+_NONE = object()
 
 
 class EarlyFigures:
@@ -52,6 +71,8 @@ class EarlyFigures:
         self.prepare = prepare
         self.proc = self.conn = None
         self.payload = None
+        self.waiting = False  # a News not yet taken by the child (None: no more News)
+        self.answer = _NONE  # the child's answer, if feed() received it
         if not (parallel and can_fork()):
             return
         ctx = multiprocessing.get_context("fork")
@@ -68,6 +89,32 @@ class EarlyFigures:
         """Whether a child set the figures up while this process planned."""
         return self.proc is not None
 
+    def feed(self, make: Callable[[], object]) -> None:
+        """Send ``make()`` to the child (its ``finish.feed``) if it has taken the last one.
+
+        ``make`` is called only then (it returns what is new since its last call, or None for
+        nothing), so at most one message waits in the pipe and the caller, the planner between
+        two steps, never waits for the child; a child that falls behind gets more at once.
+        Without a child this does nothing.
+        """
+        if self.proc is None or self.waiting is None:
+            return
+        try:
+            while self.waiting and self.conn.poll():
+                answer = self.conn.recv()
+                if answer is not _TAKEN:  # the child's end (its error): result() raises it
+                    self.answer, self.waiting = answer, None
+                    return
+                self.waiting = False
+            if self.waiting:
+                return
+            data = make()
+            if data is not None:
+                self.conn.send(News(data))
+                self.waiting = True
+        except (BrokenPipeError, EOFError, ConnectionResetError):
+            self.waiting = None  # the child ended: result() says how
+
     def send(self, payload) -> None:
         """Hand the run to the child (without one: keep it for :meth:`result`)."""
         if self.proc is None:
@@ -83,7 +130,10 @@ class EarlyFigures:
         if self.proc is None:
             return self.prepare()(self.payload)
         try:
-            ok, value = self.conn.recv()
+            answer = self.answer
+            while answer is _NONE or answer is _TAKEN:  # (answers to the last News)
+                answer = self.conn.recv()
+            ok, value = answer
         except EOFError:  # it died without a word (killed, out of memory)
             self.proc.join()
             raise RuntimeError(
@@ -123,7 +173,7 @@ def _child(prepare: Prepare, conn, parent_end) -> None:
         except Exception as exc:  # said once the parent asks for the figures
             finish, error = None, exc
         try:
-            payload = conn.recv()
+            payload = _news(conn, getattr(finish, "feed", None))
         except EOFError:  # the parent stopped before its run: nothing to draw
             os._exit(0)
         message = (False, error) if error else (True, finish(payload))
@@ -132,6 +182,20 @@ def _child(prepare: Prepare, conn, parent_end) -> None:
     except Exception as exc:
         message = (False, exc)
     send_back(conn, message)
+
+
+def _news(conn, feed):
+    """Receive until the payload, handing each :class:`News` to ``feed`` (if any) with
+    ``conn.poll`` and saying it was taken; return the payload. While ``feed`` works, the parent
+    waits for the answer before sending more News, so a message waiting is the payload:
+    ``feed`` may stop early when ``poll()`` says so (the run is over, its figures come first)."""
+    payload = conn.recv()
+    while isinstance(payload, News):
+        if feed is not None:
+            feed(payload.data, conn.poll)
+        conn.send(_TAKEN)
+        payload = conn.recv()
+    return payload
 
 
 def run_figures(scenario, algorithm: str, seed: int, grid, gif, label: str | None = None,
@@ -163,11 +227,17 @@ def run_figures(scenario, algorithm: str, seed: int, grid, gif, label: str | Non
     def prepare():
         from mawdo.planning.render.animation import GifFrame
         from mawdo.planning.render.forked import Forked
+        from mawdo.planning.render.live import PartialRun
         from mawdo.planning.render.snapshots import GridFrame, grid_blocks, save_grid
         from mawdo.planning.render.style import IMAGE_SUFFIXES, checked_output_path, display_name
 
         frame = GridFrame([scenario])
         movie = GifFrame(scenario, display_name(algorithm), seed)
+        partial = PartialRun()
+
+        def feed(news, run_over):  # the run so far: draw the GIF frames it fixes (.live)
+            partial.add(news)
+            movie.draw_ready(partial, every, stop=run_over)  # the rest after the run
 
         def finish(payload):
             result, metrics, metadata = payload
@@ -179,6 +249,7 @@ def run_figures(scenario, algorithm: str, seed: int, grid, gif, label: str | Non
             path = save_grid(frame.fill(blocks), grid_out, metadata)
             return path, job.result()
 
+        finish.feed = feed
         return finish
 
     return prepare
