@@ -50,6 +50,8 @@ from mawdo.planning.scenario import Scenario
 __all__ = ["CostWeights", "PathCost", "assemble_paths"]
 
 MODES = ("snapshot", "spacetime")
+#: Start times whose kernel arrays a cost keeps at once (see ``PathCost._motion_arrays``).
+MOTION_CACHE = 256
 
 
 @dataclass(frozen=True)
@@ -202,9 +204,11 @@ class PathCost:
         )
         self._table: MotionTable | None = None
         # the kernel's per-t0 inputs, kept for the next call with the same t0 (an optimizer
-        # calls many times per planning step): (t0, offsets) and (table, t0, kernel arrays)
+        # calls many times per planning step; the guard checks a long stretch in pieces, each
+        # from its own start time, and again at the next replan): (t0, offsets), and the
+        # table's kernel arrays per t0 (a pure function of the table and t0)
         self._snap: tuple | None = None
-        self._motion: tuple | None = None
+        self._motion: tuple = (None, {})
         self._frozen = MotionTable.frozen(len(self.flat.thresh)).kernel_arrays(0.0)
         self._kernel = ThreadedKernel(threads)  # keeps the kernel's work space between calls
         self._no_offsets = np.zeros((len(self.flat.thresh), 2))
@@ -298,6 +302,18 @@ class PathCost:
             self._table = table
         return table
 
+    def _motion_arrays(self, table: MotionTable, t0: float) -> tuple:
+        """``table.kernel_arrays(t0)``, computed once per table and ``t0``."""
+        if self._motion[0] is not table:
+            self._motion = (table, {})
+        per_t0 = self._motion[1]
+        arrays = per_t0.get(t0)
+        if arrays is None:
+            if len(per_t0) >= MOTION_CACHE:  # a long run asks ever later times: forget them
+                per_t0.clear()
+            arrays = per_t0[t0] = table.kernel_arrays(t0)
+        return arrays
+
     def _evaluate(self, X, start, t0, goal=None):
         X = np.asarray(X, dtype=np.float64)
         single = X.ndim == 1
@@ -320,10 +336,7 @@ class PathCost:
             return out_cost, out_len, out_ncol, out_turn
         spacetime = self.mode == "spacetime"
         if spacetime:
-            table = self._motion_table(X2, start, t0, goal)
-            if self._motion is None or self._motion[0] is not table or self._motion[1] != t0:
-                self._motion = (table, t0, table.kernel_arrays(t0))
-            motion = self._motion[2]
+            motion = self._motion_arrays(self._motion_table(X2, start, t0, goal), t0)
             snap = self._no_offsets  # read only by the kernel in spacetime mode
         else:
             motion = self._frozen
