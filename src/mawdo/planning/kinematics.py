@@ -207,17 +207,15 @@ class LimitedRun:
         moves = np.array([pos + project(w, self._vel, lim) for w in wants])
         clear = np.array([self.guard.step_clearance(pos, m, t, 1.0) for m in moves])
         ok = np.nonzero(clear >= self.cfg.clearance)[0]
-        best = None
-        if ok.size:
-            near = ok[np.argsort(np.hypot(*(moves[ok] - to).T), kind="stable")]
-            best = next((i for i in near if keeps(moves[i])), None)
-            if best is None and not self._ruled():
-                best = near[0]
-        if best is not None:
-            return self._take(pos, moves[best])
-        if self._ruled():  # no move keeps a continuation: come to rest, never be hit moving
-            return self._take(pos, pos + project(np.zeros(2), self._vel, lim))
-        return self._take(pos, moves[int(np.argmax(clear))])
+        rest = pos + project(np.zeros(2), self._vel, lim)  # braking toward rest
+        if not ok.size:  # every move breaks the margin: where every move hits, come to rest
+            worst = self._ruled() and clear.max() <= 0.0  # (a hit then finds it at rest)
+            return self._take(pos, rest if worst else moves[int(np.argmax(clear))])
+        near = ok[np.argsort(np.hypot(*(moves[ok] - to).T), kind="stable")]
+        best = next((i for i in near if keeps(moves[i])), None)
+        if best is None and self._ruled():  # none keeps a continuation: come to rest
+            return self._take(pos, rest)
+        return self._take(pos, moves[near[0] if best is None else best])
 
     def _ruled(self) -> bool:
         """The inevitable-collision rule is on and looks at acceleration or turn limits."""
