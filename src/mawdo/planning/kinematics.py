@@ -23,9 +23,13 @@ A speed limit below the scenario's robot speed is the robot's speed for the whol
 (:func:`at_speed`): the refinement's cost, the guard, the inevitable-collision rule and the
 safe-interval guide all time their paths at ``max_speed`` (less :data:`SLACK`), so a stretch
 is checked as it will be driven and the time guide's edges take ``length / max_speed`` steps.
-Acceleration and turn rate are not in those timings (the guide and the rule still assume
-instant starts, stops and turns): they are enforced by the step projection above and judged
-by the checker only; the refinement's turn penalty only steers it away from sharp corners.
+With an acceleration or turn-rate limit the inevitable-collision rule checks every step as
+driven: the projected step must leave a continuation simulated within the limits from the
+new velocity (:mod:`mawdo.planning.ics_limits`), else another projected heading that does,
+else the robot brakes toward rest (a hit it cannot escape then finds it at rest: passive).
+The safe-interval guide still times its routes with instant starts, stops and turns (the
+run's projection and the rule make the difference); the refinement's turn penalty only
+steers it away from sharp corners.
 """
 
 from __future__ import annotations
@@ -183,9 +187,12 @@ class LimitedRun:
     which sets ``limits`` (None: off), ``guard``, ``cfg`` and ``sc``).
 
     Every executed step goes through :meth:`_limited`: the wanted move is projected onto the
-    limits; when the guard finds the projected move unsafe, the projections of the evasive
-    headings (16 directions at full and half speed, and braking) are tried, nearest the wanted
-    end first, else the one with the largest clearance is driven.
+    limits; when the guard finds the projected move unsafe (or, with the rule looking at
+    acceleration or turn limits, it leaves no continuation within them), the projections of
+    the evasive headings (16 directions at full and half speed, and braking) are tried,
+    nearest the wanted end first; else, under that rule, the robot brakes toward rest where
+    no safe move keeps a continuation or every move hits, otherwise the safe move nearest the
+    wanted end or the one with the largest clearance is driven.
     """
 
     _vel = np.zeros(2)  # the last step's velocity (px per step)
