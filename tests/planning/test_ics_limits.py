@@ -9,6 +9,8 @@ import numpy as np
 import pytest
 
 from mawdo.planning.check import check_trajectory
+from mawdo.planning.config import PlannerConfig
+from mawdo.planning.execute import Run
 from mawdo.planning.ics import SafeContinuation
 from mawdo.planning.kinematics import Limits
 from mawdo.planning.planner import plan
@@ -95,3 +97,31 @@ def test_a_limited_robot_is_never_hit_moving_on_the_chaser(index):
     assert res.kinematic_violations == 0
     rep = check_trajectory(res.route, sc, times=res.route_times)
     assert not rep.active, rep.describe()
+
+
+def test_the_plan_is_followed_within_the_limits_and_stops_at_its_end():
+    """The plan's rest (100, 50) -> (160, 50), 60 px, the robot at (4, 0) px per step with
+    ``a = 1``: the 'goal' continuation follows it step by step within the limits (speed
+    changes by at most 1 per step) and ends at rest on the plan's last point, before the
+    bar (left edge at 200)."""
+    ics = SafeContinuation(_wall(200.0), C, horizon=30)
+    ics.limits = Limits(speed=None, accel=1.0, turn=0.6)
+    p, u = np.array([100.0, 50.0]), np.array([V, 0.0])
+    c = ics.find(p, 0.0, 0.0, route=np.array([p, [160.0, 50.0]]), vel=u)
+    assert c.kind == "goal"
+    np.testing.assert_allclose(c.points[-1], [160.0, 50.0], atol=1e-9)
+    steps = np.diff(c.points, axis=0)
+    assert np.all(np.hypot(*steps.T) <= V + 1e-9)
+    dv = np.hypot(*np.diff(np.vstack([u, steps, [0.0, 0.0]]), axis=0).T)
+    assert np.all(dv <= 1.0 + 1e-9), dv
+
+
+def test_only_acceleration_or_turn_limits_switch_the_rule_to_limited_continuations():
+    """A run without limits, or with a speed limit alone, keeps the rule's instant stops
+    (``ics.limits`` None: its decisions are those of a run without this module); an
+    acceleration or a turn-rate limit sets them."""
+    sc = _wall(330.0)
+    for extra, on in [({}, False), ({"max_speed": 2.0}, False), ({"max_accel": 1.0}, True),
+                      ({"max_turn": 0.5}, True)]:  # fmt: skip
+        run = Run(sc, "mawdo", 0, PlannerConfig(**extra), dynamic=True)
+        assert (run.ics.limits is not None) == on, extra
