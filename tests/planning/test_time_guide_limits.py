@@ -77,9 +77,8 @@ def test_a_limited_run_takes_twice_the_steps_and_keeps_the_scenario():
 def test_runs_with_limits_keep_them_and_never_collide_actively(family):
     """Timed-family scenes with the time guide on and speed, acceleration and turn limits
     (0.75 of the robot's speed, a quarter of it per step, 0.6 rad per step): no kinematic
-    violation (the independent checker) and no active collision. Not ``chaser``: its mover
-    is faster than the robot at full speed, and a slower robot that cannot stop or turn at
-    once is caught (the guard and the rule assume instant stops and turns)."""
+    violation (the independent checker) and no active collision. ``chaser`` (a mover faster
+    than the robot) with the same limits: ``tests/planning/test_ics_limits.py``."""
     for index in (0, 1):
         sc = generate_scene(family, index, seed=0).scenario
         v = sc.robot_speed

@@ -28,9 +28,11 @@ Assumptions (what "safe" rests on):
   ``r + clearance / 2``, so that a plan sliding along the guide's inflated edges (exactly at
   ``r + clearance``) is not rejected by rounding; the disc must stay inside the map (a goal
   may lie ``r`` from the border);
-* the robot may stop, start and turn at once, at up to its full speed: with the opt-in
-  kinematic limits (:mod:`mawdo.planning.kinematics`) a continuation that needs a sharper
-  stop or turn than they allow is still counted (the guard checks every step as driven);
+* the robot may stop, start and turn at once, at up to its full speed, unless the run sets
+  an acceleration or turn-rate limit (:attr:`SafeContinuation.limits`): then every step the
+  run drives is checked with continuations simulated within the limits from the robot's
+  velocity (:mod:`mawdo.planning.ics_limits`: it brakes over ``|u|^2 / (2 a)`` px, turns
+  ``max_turn`` per step);
 * the horizon is finite: what happens after ``t0 + horizon`` is not looked at. A continuation
   is a witness that a safe motion exists, not the motion the run will drive.
 
@@ -120,6 +122,9 @@ class SafeContinuation:
 
     prune = True
     walkers = "known"
+    #: Kinematic limits (:class:`~mawdo.planning.kinematics.Limits`) of the continuations
+    #: asked with a velocity (``find(..., vel=...)``); None: instant stops and turns.
+    limits = None
 
     def __init__(
         self,
@@ -235,13 +240,21 @@ class SafeContinuation:
 
     # -- continuations ---------------------------------------------------------------------
 
-    def find(self, p, t: float, t0: float, route=None, wait_first: bool = False):
+    def find(self, p, t: float, t0: float, route=None, wait_first: bool = False, vel=None):
         """A safe continuation from ``p`` (pixels) at time ``t`` up to ``t0 + horizon``, or
         ``None`` when there is none of the three kinds.
 
         ``route`` (pixels, from ``p``) is the plan's rest, tried first unless ``wait_first``
         (a run that gives up wants to stop, not to drive on); ``t0`` is the decision's time.
+        ``vel`` (px per step): the robot's velocity at ``p``; with :attr:`limits` set it makes
+        the search :func:`~mawdo.planning.ics_limits.limited_find` (continuations within the
+        kinematic limits from that velocity); otherwise it is not looked at.
         """
+        if self.limits is not None and vel is not None:
+            from mawdo.planning.ics_limits import limited_find
+
+            found = limited_find(self, p, t, t0, vel, route=route, wait_first=wait_first)
+            return None if found is None else Continuation(*found)
         p = np.asarray(p, dtype=float)
         end = t0 + self.horizon
         mv = self.movers(t0, near=(p, t))  # every continuation below leaves p at t
@@ -373,11 +386,15 @@ class SafeRun:
         if self.ics is None:
             return pos, ""
         t = float(step)
-        c = self.ics.find(pos, t, t, wait_first=True)
+        c = self.ics.find(pos, t, t, wait_first=True, vel=self._vel)
         if c is None:
             self.counts["inevitable"] += 1
             return pos, "; it found no spot where waiting is safe"
-        if c.kind == "spot":
+        if self.ics.limits is not None:  # a motion within the limits, step by step
+            for j, q in enumerate(c.points[1:-1]):
+                pos = self._limited(pos, q, step + j)
+                drive.move(step + j, pos)
+        elif c.kind == "spot":
             a, b = c.points[0], c.points[1]
             k = int(round(c.times[1] - c.times[0]))
             for j in range(1, k + 1):  # as the kinematic limits allow, if any

@@ -23,9 +23,13 @@ A speed limit below the scenario's robot speed is the robot's speed for the whol
 (:func:`at_speed`): the refinement's cost, the guard, the inevitable-collision rule and the
 safe-interval guide all time their paths at ``max_speed`` (less :data:`SLACK`), so a stretch
 is checked as it will be driven and the time guide's edges take ``length / max_speed`` steps.
-Acceleration and turn rate are not in those timings (the guide and the rule still assume
-instant starts, stops and turns): they are enforced by the step projection above and judged
-by the checker only; the refinement's turn penalty only steers it away from sharp corners.
+With an acceleration or turn-rate limit the inevitable-collision rule checks every step as
+driven: the projected step must leave a continuation simulated within the limits from the
+new velocity (:mod:`mawdo.planning.ics_limits`), else another projected heading that does,
+else the robot brakes toward rest (a hit it cannot escape then finds it at rest: passive).
+The safe-interval guide still times its routes with instant starts, stops and turns (the
+run's projection and the rule make the difference); the refinement's turn penalty only
+steers it away from sharp corners.
 """
 
 from __future__ import annotations
@@ -37,7 +41,15 @@ import numpy as np
 
 from mawdo.planning.path import polyline_length, unit_headings
 
-__all__ = ["Limits", "LimitedRun", "at_speed", "project", "stopping_speed", "turn_penalty"]
+__all__ = [
+    "Limits",
+    "LimitedRun",
+    "at_speed",
+    "project",
+    "stopping_speed",
+    "turn_penalty",
+    "wanted_step",
+]
 
 #: Weight of :func:`turn_penalty` in the refinement's cost (px per radian of excess turn).
 TURN_WEIGHT = 100.0
@@ -130,6 +142,28 @@ def stopping_speed(distance: float, accel: float) -> float:
     return accel * (math.sqrt(2.0 * distance / accel + 0.25) - 0.5)
 
 
+def wanted_step(want, left: float, prev, limits: Limits) -> np.ndarray:
+    """The step (px) the run asks of the projection when the plan wants ``want`` with
+    ``left`` px of plan to go (this step's included) after velocity ``prev`` (px per step):
+    slower so as to stop at the goal within ``max_accel`` (:func:`stopping_speed`), and
+    slower where the heading is beyond one step's ``max_turn`` (the last speed less
+    ``max_accel``, or rest without an acceleration limit): the robot brakes while it turns,
+    and from rest it may take any heading, so it never circles a point it cannot turn to."""
+    want = np.asarray(want, dtype=float)
+    n = float(np.hypot(*want))
+    if limits.accel is not None and n > 0.0:
+        want = want * min(1.0, stopping_speed(left, limits.accel) / n)
+        n = float(np.hypot(*want))
+    before = float(np.hypot(*prev))
+    if limits.turn is None or n == 0.0 or before == 0.0:
+        return want
+    cos = float(want @ prev) / (n * before)
+    if math.acos(max(-1.0, min(1.0, cos))) <= limits.turn:
+        return want
+    slow = 0.0 if limits.accel is None else max(before - limits.accel, 0.0)
+    return want * min(1.0, slow / n)
+
+
 def turn_penalty(X: np.ndarray, start, goal, max_turn: float, weight: float) -> np.ndarray:
     """Per candidate ``X`` (``(n, 2m)`` waypoints, pixels; the path start -> waypoints ->
     goal): ``weight`` (px per radian) times the sum over its corners of the turn beyond
@@ -153,20 +187,26 @@ class LimitedRun:
     which sets ``limits`` (None: off), ``guard``, ``cfg`` and ``sc``).
 
     Every executed step goes through :meth:`_limited`: the wanted move is projected onto the
-    limits; when the guard finds the projected move unsafe, the projections of the evasive
-    headings (16 directions at full and half speed, and braking) are tried, nearest the wanted
-    end first, else the one with the largest clearance is driven.
+    limits; when the guard finds the projected move unsafe (or, with the rule looking at
+    acceleration or turn limits, it leaves no continuation within them), the projections of
+    the evasive headings (16 directions at full and half speed, and braking) are tried,
+    nearest the wanted end first; else, under that rule, the robot brakes toward rest where
+    no safe move keeps a continuation or every move hits, otherwise the safe move nearest the
+    wanted end or the one with the largest clearance is driven.
     """
 
     _vel = np.zeros(2)  # the last step's velocity (px per step)
 
-    def _limited(self, pos, to, step: int):
-        """Where the robot ends the step from ``pos`` (pixels) that wanted to end at ``to``."""
+    def _limited(self, pos, to, step: int, remainder=None):
+        """Where the robot ends the step from ``pos`` (pixels) that wanted to end at ``to``;
+        ``remainder``: the plan's rest after ``to`` (pixels), for the rule's continuation
+        along it."""
         if self.limits is None:
             return to
         t, lim = float(step), self.limits
         first = pos + project(to - pos, self._vel, lim)
-        if self.guard.step_clearance(pos, first, t, 1.0) >= self.cfg.clearance:
+        keeps = self._keeps_driven(pos, step, remainder)
+        if self.guard.step_clearance(pos, first, t, 1.0) >= self.cfg.clearance and keeps(first):
             return self._take(pos, first)
         v = self.sc.robot_speed
         dirs = unit_headings(16)
@@ -174,11 +214,34 @@ class LimitedRun:
         moves = np.array([pos + project(w, self._vel, lim) for w in wants])
         clear = np.array([self.guard.step_clearance(pos, m, t, 1.0) for m in moves])
         ok = np.nonzero(clear >= self.cfg.clearance)[0]
-        if ok.size:
-            best = ok[np.argmin(np.hypot(*(moves[ok] - to).T))]
-        else:
-            best = int(np.argmax(clear))
-        return self._take(pos, moves[best])
+        rest = pos + project(np.zeros(2), self._vel, lim)  # braking toward rest
+        if not ok.size:  # every move breaks the margin: where every move hits, come to rest
+            worst = self._ruled() and clear.max() <= 0.0  # (a hit then finds it at rest)
+            return self._take(pos, rest if worst else moves[int(np.argmax(clear))])
+        near = ok[np.argsort(np.hypot(*(moves[ok] - to).T), kind="stable")]
+        best = next((i for i in near if keeps(moves[i])), None)
+        if best is None and self._ruled():  # none keeps a continuation: come to rest
+            return self._take(pos, rest)
+        return self._take(pos, moves[near[0] if best is None else best])
+
+    def _ruled(self) -> bool:
+        """The inevitable-collision rule is on and looks at acceleration or turn limits."""
+        return getattr(self, "ics", None) is not None and self.ics.limits is not None
+
+    def _keeps_driven(self, pos, step: int, remainder=None):
+        """``keeps(to)``: the step ``pos -> to`` (already within the limits) keeps a safe
+        continuation within the limits from ``to`` at ``step + 1``
+        (:mod:`~mawdo.planning.ics_limits`); always True with the rule off or without an
+        acceleration or turn-rate limit (then the rule's instant stops are within reach)."""
+        if not self._ruled():
+            return lambda to: True
+        t = float(step)
+
+        def keeps(to):
+            route = None if remainder is None else np.vstack([to, remainder])
+            return self.ics.find(to, t + 1.0, t, route=route, vel=to - pos) is not None
+
+        return keeps
 
     def _turn_cost(self):
         """The refinement's share of a turn-rate limit (:func:`turn_penalty`), or None."""
@@ -192,30 +255,12 @@ class LimitedRun:
         remainder, passed, fractions)``, straight (no vertex passed); off the plan, the
         remainder starts where the robot is and rejoins the plan at ``pos``."""
         want = pos - prev
-        n = float(np.hypot(*want))
-        if self.limits.accel is not None and n > 0.0:  # brake in time to stop at the goal
-            left = n + polyline_length(remainder)
-            want = want * min(1.0, stopping_speed(left, self.limits.accel) / n)
-        want = self._slow_to_turn(want)
-        to = self._limited(prev, prev + want, step)
+        left = float(np.hypot(*want)) + polyline_length(remainder)
+        want = wanted_step(want, left, self._vel, self.limits)
+        to = self._limited(prev, prev + want, step, remainder)
         if np.max(np.abs(to - pos)) > 1e-12:
             remainder = np.vstack([to, remainder])
         return to, remainder, np.zeros((0, 2)), np.zeros(0)
-
-    def _slow_to_turn(self, want):
-        """A heading the turn-rate limit cannot reach in one step is wanted at a lower speed
-        (the last one less ``max_accel``, or rest without an acceleration limit): the robot
-        brakes while it turns, and from rest it may take any heading, so it never circles a
-        point it cannot turn to."""
-        lim, prev = self.limits, self._vel
-        n, before = float(np.hypot(*want)), float(np.hypot(*prev))
-        if lim.turn is None or n == 0.0 or before == 0.0:
-            return want
-        cos = float(want @ prev) / (n * before)
-        if math.acos(max(-1.0, min(1.0, cos))) <= lim.turn:
-            return want
-        slow = 0.0 if lim.accel is None else max(before - lim.accel, 0.0)
-        return want * min(1.0, slow / n)
 
     def _take(self, pos, to):
         self._vel = to - pos
