@@ -22,7 +22,7 @@ from scipy.stats import rankdata
 
 ROOT = Path(__file__).resolve().parents[1]
 HOLDOUT = ROOT / "docs" / "results" / "holdout"
-STORES = ("cec2017", "cec2022", "paper", "paper_shifted")
+STORES = ("cec2017", "cec2022", "cec2022_d20", "paper", "paper_shifted")
 RIVALS = {"CMA-ES": "cmaes", "DE (scipy)": "scipy_de", "GWO": "gwo", "MAWDO": "mawdo"}
 
 
@@ -85,6 +85,7 @@ def test_readme_numbers_are_recomputed_from_the_raw_rows(stores):
     assert [c[0] for c in claims] == [
         "CEC 2017 F1-F29, D = 10",
         "CEC 2022 F1-F12, D = 10",
+        "CEC 2022 F1-F12, D = 20",
         "F1-F16 unshifted",
         "F1-F16 shifted",
     ]
@@ -115,10 +116,13 @@ def test_the_stores_are_the_registered_reduced_plans(stores):
     from mawdo.experiments import Store
     from mawdo.experiments.kinds.benchmark.plan import PRESETS, ExperimentPlan
     from mawdo.experiments.kinds.suite import preset_plan
+    from mawdo.experiments.kinds.suite.plan import PRESETS as SUITE_PRESETS
+    from mawdo.experiments.kinds.suite.plan import SuitePlan
 
     expected = [
         preset_plan("holdout-quick-cec2017"),
         preset_plan("holdout-quick-cec2022"),
+        SuitePlan.from_dict({**SUITE_PRESETS["holdout-quick-cec2022"], "dims": [20]}),
         ExperimentPlan.from_dict({**PRESETS["holdout-paper"], "runs": 2, "max_iter": 200}),
         ExperimentPlan.from_dict({**PRESETS["holdout-paper-shifted"], "runs": 2, "max_iter": 200}),
     ]

@@ -158,8 +158,7 @@ def _reduced(suites: Sequence[HoldoutSuite]) -> str:
     checks)."""
     cec = [s for s in suites if s.key.startswith("cec")]
     paper = [s for s in suites if not s.key.startswith("cec")]
-    dims = ", ".join(map(str, sorted({d for s in cec for d in s.dims})))
-    here = [f"D = {dims}, {p} on CEC" for p in sorted({s.protocol for s in cec})]
+    here = [f"{CEC_NAMES[s.key]} at {_dims(s)}: {s.protocol}" for s in cec]
     here += [f"{p} on F1-F16" for p in sorted({s.protocol for s in paper})]
     p17 = HOLDOUT_PRESETS["holdout-cec2017"]
     p22 = [HOLDOUT_PRESETS[f"holdout-cec2022-d{d}"] for d in (10, 20)]
@@ -170,8 +169,12 @@ def _reduced(suites: Sequence[HoldoutSuite]) -> str:
         f"evaluations, {p17['runs']} runs, and F1-F16 with 50 x 500 evaluations and 30 runs"
     )
     timed = [s for s in cec if s.random_us is not None]
-    cost = ", ".join(f"{CEC_NAMES[s.key]} {s.random_us:.0f} us" for s in timed)
-    days = sum(full_evaluations(s.key) * s.random_us * 1e-6 for s in timed) / 86400
+    cost = ", ".join(f"{CEC_NAMES[s.key]} at {_dims(s)} {s.random_us:.0f} us" for s in timed)
+    # one figure per suite (the mean of its stores'): its full presets cover all its dimensions
+    per_eval: dict[str, list[float]] = {}
+    for s in timed:
+        per_eval.setdefault(s.key, []).append(s.random_us)
+    days = sum(full_evaluations(k) * float(np.mean(v)) * 1e-6 for k, v in per_eval.items()) / 86400
     return (
         f"The study is reduced ({'; '.join(here) or 'no suite'}; the full presets ask {full}) "
         "because opfunu evaluates CEC functions one point per call: at random search's wall "
@@ -179,6 +182,10 @@ def _reduced(suites: Sequence[HoldoutSuite]) -> str:
         f"negligible), the full presets of these CEC suites take {days:.1f} days of one core "
         "for the evaluations alone, and the machine that made this study had 2 shared cores."
     )
+
+
+def _dims(suite: HoldoutSuite) -> str:
+    return "D = " + " and ".join(map(str, suite.dims))
 
 
 def full_evaluations(suite: str) -> int:

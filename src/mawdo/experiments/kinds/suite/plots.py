@@ -123,7 +123,9 @@ def plot_ecdfs(
         ax.set_ylabel("fraction of (function, run, target)")
     axes[0].legend(fontsize=8, loc="upper left")
     cut = f"; y axis cut at {top:g}" if top < 1 else ""
-    fig.suptitle(f"{study.suite} D={dim}: runtime ECDFs, targets 1e2 .. 1e-8 (51){cut}")
+    # one panel (a suite without function groups) is too narrow for the title on one line
+    sep = "\n" if len(grp) == 1 else ", "
+    fig.suptitle(f"{study.suite} D={dim}: runtime ECDFs{sep}targets 1e2 .. 1e-8 (51){cut}")
     return _save(fig, out_dir / (stem or f"ecdf_d{dim}"), svg)
 
 
