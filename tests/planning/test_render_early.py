@@ -42,8 +42,9 @@ def pixels(path) -> np.ndarray:
 
 def assert_same_picture(a: np.ndarray, b: np.ndarray) -> None:
     """The same figure up to anti-aliasing: equal size, and at most 0.1 % of the values off by
-    at most 3 levels (a figure drawn in a forked process now and then rounds a few edge pixels
-    of text one level apart; a moved line, panel or label changes far more, far further)."""
+    at most 3 levels (a figure drawn in a forked process, or laid out twice, now and then rounds a
+    few edge pixels of text one level apart; a moved line, panel or label changes far more, far
+    further)."""
     assert a.shape == b.shape
     diff = np.abs(a.astype(int) - b.astype(int))
     assert diff.max() <= 3, f"values differ by up to {diff.max()} levels"
@@ -81,7 +82,9 @@ def test_the_grid_set_up_before_the_run_is_the_grid_drawn_after_it(run, tmp_path
     tall = [(run, "MAWDO (seed 0) | gap n/a | goal not reached: Timeout [qgjpy]", blocks[0][2])]
     again = save_grid(GridFrame([run.scenario]).fill(tall), tmp_path / "again.png")
     once = save_grid(GridFrame.for_blocks(tall).fill(tall), tmp_path / "once.png")
-    np.testing.assert_array_equal(pixels(again), pixels(once))
+    # up to anti-aliasing: in a clean clone's first run (fresh font cache) the two layouts once
+    # rounded 359 of 4.7 M text-edge values 1-2 levels apart
+    assert_same_picture(pixels(again), pixels(once))
 
 
 def test_the_early_figures_are_the_figures_of_the_run(run, tmp_path):
