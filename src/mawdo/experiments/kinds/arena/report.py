@@ -183,7 +183,8 @@ def failure_gallery(store: Store, out: Path, limit: int | None = None) -> list[t
                     continue
                 if limit is not None and len(items) >= limit:
                     return items
-                say(f"failure gallery: image {len(items) + 1}" + (f" of {limit}" if limit else ""))
+                cap = f" of at most {limit}" if limit else ""
+                say(f"failure gallery: image {len(items) + 1}{cap}")
                 sc = scenario_from_toml(r.scene_toml, r.scene_name)
                 scene_file = Path("scenes") / f"{r.scene_name}.toml"
                 (out / scene_file).parent.mkdir(parents=True, exist_ok=True)
