@@ -94,6 +94,29 @@ def test_what_moves_placed_on_layers_made_before_is_what_draw_world_adds(run):
         np.testing.assert_array_equal(images[0], images[1], err_msg=f"times {times}")
 
 
+def test_layers_made_for_another_scenario_are_dropped_and_what_moves_drawn_anew(run):
+    """A panel's layers that do not fit the scenario placed (other obstacles) must not hide
+    an obstacle: move_world then draws as draw_world does, on this call and the next."""
+    from mawdo.planning.render.style import new_figure, optimum_path
+    from mawdo.planning.scenes import generate_scene
+
+    other = generate_scene("forest", 0, seed=0).scenario
+    opt = optimum_path(run.scenario, {})
+    images = []
+    for placed in (False, True):
+        fig = new_figure((4, 4), 80, layout=None)
+        ax = fig.add_subplot()
+        draw_world(ax, run.scenario, 0.0, optimum=opt, clear=False, moving=False)
+        layers = moving_layers(ax, other)
+        for t in (30.0, 12.0):
+            if placed:
+                move_world(ax, layers, run.scenario, t, run, opt)
+            else:
+                draw_world(ax, run.scenario, t, run, opt, clear=False, static=False)
+        images.append(canvas(fig))  # (the reference's other layers: hidden, or removed)
+    np.testing.assert_array_equal(images[0], images[1])
+
+
 @pytest.mark.parametrize("cols", [1, 2, 4])
 def test_the_note_wrapped_once_laid_out_is_the_note_wrapped_at_each_draw(run, cols):
     frame = GridFrame([run.scenario], rows=1, cols=cols)

@@ -164,17 +164,25 @@ def move_world(ax, layers: dict, scenario: Scenario, t: float, result, optimum=N
     the panel ``draw_world(ax, ..., t, result, optimum, clear=False, static=False)`` draws,
     in a fraction of its time (no artist made, removed or added to the data limits)."""
     state = world_state(scenario, t, result, optimum)
+    fixed = standing_gids(scenario)
+    if not all(g in layers for g in state if g not in fixed):  # made for another scenario
+        return _redrawn(ax, layers, scenario, t, result, optimum)
     for gid, arts in layers.items():
         data = state.get(gid)
         if data is not None and not set_layer(arts, gid, data):  # (a ring more or less)
-            for a in [a for arts in layers.values() for a in arts]:
-                a.remove()
-            layers.clear()
-            draw_world(ax, scenario, t, result, optimum, clear=False, static=False)
-            return
+            return _redrawn(ax, layers, scenario, t, result, optimum)
         for a in arts:
             a.set_visible(data is not None)
     ax.set_title(f"t = {format_time(t)}", fontsize=_SMALL + 1, pad=3)
+
+
+def _redrawn(ax, layers: dict, scenario: Scenario, t: float, result, optimum) -> None:
+    """:func:`move_world`'s way out: the layers dropped (emptied: later calls come here too),
+    what moves drawn by :func:`draw_world`."""
+    for a in [a for arts in layers.values() for a in arts]:
+        a.remove()
+    layers.clear()
+    draw_world(ax, scenario, t, result, optimum, clear=False, static=False)
 
 
 def standing_gids(scenario: Scenario) -> set[str]:
