@@ -21,6 +21,17 @@ nowhere else):
 * ``warm plan paper, no figures`` - the same with ``--no-figures``: the planning alone (imports,
   kernels loaded from the cache, the run, its metrics), the floor under the row above, which
   the figures' process can only approach (5 s target shown for comparison).
+* ``warm plan paper + GIF, phases`` - the warm row again, traced (``benchmarks/plan_trace.py``):
+  the critical path as the command's process walks it, start-up (interpreter, imports,
+  arguments, kernels loaded, the run set up), the run, and after it (metrics, then waiting for
+  the figures), each wall and CPU; and the figures' process beside it: its set-up (matplotlib,
+  the grid and the GIF laid out), when it was ready, the frames it drew during the run, the
+  grid after the run and the GIF's process. ``STARTUP_BEFORE=path/to/src`` alternates each
+  sample with the same row on another copy of the sources (a before/after in the same minutes).
+
+Every copy of the sources is byte-compiled first (``compileall``), as ``pip install`` does: with
+``PYTHONDONTWRITEBYTECODE`` set (as on the machine these rows were measured on) and no ``.pyc``,
+every run compiled mawdo's 84 modules again, 0.45 s of CPU no installed copy spends.
 
 Wall time depends on what else runs on the machine (here 2 cores shared with other jobs), so
 each row also gives the CPU time (user + sys) of the process and all its children
@@ -28,7 +39,8 @@ each row also gives the CPU time (user + sys) of the process and all its childre
 (about 5 to 15 minutes; ``STARTUP_SAMPLES=k`` warm samples, default 3; ``STARTUP_REPRODUCE=1``
 adds the cold ``reproduce --quick``, 15 to 30 minutes; ``STARTUP_SRC=path`` measures another
 copy of the sources, e.g. an older commit's ``src`` for a before/after; ``STARTUP_SKIP=one,cold``
-leaves rows out: ``install`` (and the first plan after it), ``cold``, ``one``;
+leaves rows out: ``install`` (and the first plan after it), ``cold``, ``one``, ``warm``,
+``phases``;
 ``STARTUP_CACHE=sources`` runs the warm rows on Numba's own cache beside the sources, warmed
 beforehand, and skips the cold rows: a before/after of the warm rows in a minute). Beside each
 row, the same row measured before (:data:`BEFORE`).
@@ -111,6 +123,71 @@ def _row(name: str, wall: float, cpu: float, target: float | None) -> None:
     )
 
 
+def _compiled(src: Path) -> None:
+    """Byte-compile a copy of the sources, as an install does (see the module's docstring)."""
+    subprocess.run([sys.executable, "-m", "compileall", "-q", str(src)], capture_output=True)
+
+
+def traced(src: Path, cache: Path | None, cwd: Path, out: str) -> tuple[float, float, dict]:
+    """A warm ``plan paper`` with its figures, traced (:mod:`benchmarks.plan_trace`): (wall s,
+    CPU s of it and its children, the marks by ``(role, name)``)."""
+    from benchmarks.plan_trace import phases
+
+    log = cwd / f"{out}.trace"
+    env = {**os.environ, "PYTHONPATH": str(src)}
+    env.pop("NUMBA_CACHE_DIR", None)
+    if cache is not None:
+        env["NUMBA_CACHE_DIR"] = str(cache)
+    args = [str(ROOT / "benchmarks" / "plan_trace.py"), str(log), "plan", "paper"]
+    args += ["--no-progress", "--out", out]
+    cpu, t = _children_cpu(), time.perf_counter()
+    env["TRACE_T0"] = repr(t)
+    proc = subprocess.run([sys.executable, *args], cwd=cwd, env=env, capture_output=True)
+    wall, cpu = time.perf_counter() - t, _children_cpu() - cpu
+    if proc.returncode:
+        raise RuntimeError(f"traced plan paper failed:\n{proc.stderr.decode()[-2000:]}")
+    return wall, cpu, phases(str(log))
+
+
+def _phase_row(name: str, wall: float, cpu: float, m: dict) -> None:
+    """The traced row: the critical path's phases, then the figures' process beside them."""
+    main = {k[1]: v for k, v in m.items() if k[0] == "main"}
+    fig = {k[1]: v for k, v in m.items() if k[0] == "figures"}
+    gif = {k[1]: v for k, v in m.items() if k[0] == "gif"}
+    run0, run1, end = main["run>"], main["run<"], main["end"]
+    print(
+        f"  {name:38s} wall {wall:7.2f} s (target <= 5 s {_flag(wall <= 5)}) CPU {cpu:6.2f} s"
+        f"   {_load()}\n"
+        f"  {'':38s} critical path: start-up {run0[0]:.2f} s wall / {run0[1]:.2f} s CPU "
+        f"(imports {main['imported'][0]:.2f} s), run {run1[0] - run0[0]:.2f} / "
+        f"{run1[1] - run0[1]:.2f}, after it {end[0] - run1[0]:.2f} s wall "
+        f"(this process {end[1] - run1[1]:.2f} s CPU, then the figures)",
+        flush=True,
+    )
+    if "setup<" in fig and "finish<" in fig:
+        s0, s1, f0, f1 = fig["setup>"], fig["setup<"], fig["finish>"], fig["finish<"]
+        print(
+            f"  {'':38s} figures: set up from {s0[0]:.2f} to {s1[0]:.2f} s ({s1[1]:.2f} s CPU),"
+            f" frames during the run {f0[1] - s1[1]:.2f} s CPU, after the run "
+            f"{f1[1] - f0[1]:.2f} s CPU (grid), GIF process {gif.get('gif<', (0, 0))[1]:.2f} s"
+            f" CPU; done at {f1[0]:.2f} s",
+            flush=True,
+        )
+
+
+def _phase_rows(samples: int, cache: Path | None, tmp: Path) -> None:
+    """The traced rows, alternating with ``STARTUP_BEFORE``'s sources if set."""
+    before = os.environ.get("STARTUP_BEFORE")
+    copies = [("after", SRC)] + ([("before", Path(before).resolve())] if before else [])
+    for _, src in copies:
+        _compiled(src)
+    for k in range(samples):
+        for label, src in copies:
+            tag = f" {label}" if before else ""
+            row = f"warm plan paper + GIF, phases{tag} ({k + 1})"
+            _phase_row(row, *traced(src, cache, tmp, f"p{label}{k}"))
+
+
 def _cold(tmp: Path, name: str) -> Path:
     cache = tmp / name
     cache.mkdir()
@@ -125,6 +202,7 @@ def main() -> None:
         skip |= {"install", "cold", "one"}
     plan = ["-m", "mawdo.cli", "plan", "paper", "--no-progress", "--out"]
     print(f"  sources: {SRC}")
+    _compiled(SRC)
     with tempfile.TemporaryDirectory(prefix="mawdo-startup-") as tmp:
         tmp = Path(tmp)
         cache = _cold(tmp, "numba-install")
@@ -142,11 +220,13 @@ def main() -> None:
             _row("cold plan paper, one process", *timed([*plan, "c1"], cold, tmp, jobs1), 30)
             cache = cold
         cache = None if sources else cache
-        for k in range(samples):
+        for k in range(samples if "warm" not in skip else 0):
             _row(f"warm plan paper + GIF ({k + 1})", *timed([*plan, f"w{k}"], cache, tmp), 5)
         bare = [*plan[:-1], "--no-figures", "--out"]
-        for k in range(samples):
+        for k in range(samples if "warm" not in skip else 0):
             _row(f"warm plan paper, no figures ({k + 1})", *timed([*bare, f"n{k}"], cache, tmp), 5)
+        if "phases" not in skip:
+            _phase_rows(samples, cache, tmp)
         if os.environ.get("STARTUP_REPRODUCE", "0") != "0":
             repro = _cold(tmp, "numba-reproduce")
             args = ["-m", "mawdo.cli", "reproduce", "--quick", "--no-progress", "--out", "r"]

@@ -9,10 +9,12 @@
 import sys
 import types
 
-from mawdo.jitcache import drop_stale_caches
+from mawdo.jitcache import drop_stale_caches, install_blas_hook
 
 # before any kernel module loads: a cached kernel may hold an old version of a helper it inlined
 drop_stale_caches()
+# Numba's first kernel then loads scipy's BLAS wrappers, not all of scipy.linalg (0.3 s)
+install_blas_hook()
 
 __version__ = "0.9.0"
 

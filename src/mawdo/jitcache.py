@@ -19,7 +19,10 @@ from __future__ import annotations
 
 import ast
 import hashlib
+import importlib.machinery
+import importlib.util
 import os
+import sys
 from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent
@@ -242,3 +245,86 @@ def _write(path: Path, text: str) -> None:
         os.replace(tmp, path)  # atomic: concurrent workers never read half a stamp
     except OSError:
         pass  # read-only install: Numba then caches elsewhere or not at all
+
+
+#: scipy's BLAS wrappers, which Numba imports when its first kernel loads (:func:`preload_blas`).
+BLAS = "scipy.linalg.cython_blas"
+#: The Numba module whose import checks for BLAS (``numba.np.arraymath._HAVE_BLAS``).
+BLAS_CHECK = "numba.np.arraymath"
+
+
+def preload_blas() -> bool:
+    """Load ``scipy.linalg.cython_blas`` from its file, without the rest of ``scipy.linalg``.
+
+    Numba's ``numba.np.arraymath``, imported when the first kernel loads (from the cache too),
+    checks that BLAS is there by importing ``scipy.linalg.cython_blas``; Python runs the
+    package ``scipy.linalg`` first, all of it (decompositions, ``scipy._lib``'s array API
+    layer): 0.25-0.3 s of CPU, a sixth of ``mawdo plan``'s start-up, for kernels of which none
+    uses linear algebra. The extension module needs none of that: loaded by its file it is the
+    module the import would give (compiled BLAS calls find their functions in it by name, in
+    ``sys.modules``). ``scipy.linalg``, if imported later, is imported whole as usual and gets
+    the module bound to it (:class:`BlasHook`).
+
+    Returns
+    -------
+    bool
+        True if the module was loaded now; False if there was nothing to do (Numba's check
+        already ran, ``scipy.linalg`` or the module already imported) or it could not be
+        loaded this way (then Numba imports it as before).
+    """
+    if BLAS in sys.modules or "scipy.linalg" in sys.modules or BLAS_CHECK in sys.modules:
+        return False
+    try:
+        spec = importlib.util.find_spec("scipy")  # (finds the package, imports nothing)
+        folder = Path(spec.submodule_search_locations[0]) / "linalg"
+        files = [
+            folder / f"cython_blas{suffix}" for suffix in importlib.machinery.EXTENSION_SUFFIXES
+        ]
+        blas = importlib.util.spec_from_file_location(BLAS, next(f for f in files if f.is_file()))
+        module = importlib.util.module_from_spec(blas)
+        sys.modules[BLAS] = module
+        blas.loader.exec_module(module)
+    except Exception:  # no scipy, another layout: Numba imports it the usual way
+        sys.modules.pop(BLAS, None)
+        return False
+    return True
+
+
+class BlasHook:
+    """Import hook (``sys.meta_path``, :func:`install_blas_hook`): :func:`preload_blas` just
+    before Numba's BLAS check is imported, and ``scipy.linalg``, when imported after that, given
+    its attribute ``cython_blas`` (the import system binds a submodule to its package only when
+    it loads it, and this one was loaded before the package). It finds no module itself: the
+    next finders do, as without it."""
+
+    def find_spec(self, name, path=None, target=None):
+        if name == BLAS_CHECK:
+            preload_blas()
+        elif name == "scipy.linalg" and BLAS in sys.modules:
+            sys.meta_path.remove(self)  # its work is done, and the next finders find the package
+            spec = importlib.util.find_spec(name)
+            if spec is not None and spec.loader is not None:
+                spec.loader = _Binding(spec.loader)
+            return spec
+        return None
+
+
+class _Binding:
+    """A package's loader that binds the preloaded BLAS module to the package it loads."""
+
+    def __init__(self, loader) -> None:
+        self.loader = loader
+
+    def create_module(self, spec):
+        return self.loader.create_module(spec)
+
+    def exec_module(self, module) -> None:
+        self.loader.exec_module(module)
+        module.cython_blas = sys.modules[BLAS]
+
+
+def install_blas_hook() -> None:
+    """Put :class:`BlasHook` first on ``sys.meta_path`` (once; it costs a string comparison
+    per import)."""
+    if not any(isinstance(f, BlasHook) for f in sys.meta_path):
+        sys.meta_path.insert(0, BlasHook())

@@ -21,8 +21,8 @@ from PIL import Image
 from mawdo.planning import render
 from mawdo.planning.planner import plan
 from mawdo.planning.render.early import EarlyFigures, run_figures
-from mawdo.planning.render.snapshots import GridFrame, grid_blocks, save_grid
-from mawdo.planning.render.world import draw_world
+from mawdo.planning.render.snapshots import TIME_NOTE, GridFrame, grid_blocks, save_grid
+from mawdo.planning.render.world import draw_world, move_world, moving_layers
 from mawdo.planning.visgraph import component_labels
 from tests.cli_run import children, ctrl_c, group_gone, interruptible
 
@@ -69,6 +69,64 @@ def test_a_panel_drawn_in_two_calls_is_the_panel_one_call_draws(run):
         images.append(canvas(fig))
     np.testing.assert_array_equal(images[0], images[1])
     assert (images[0] != 255).any(axis=-1).mean() > 0.05  # something was drawn
+
+
+def test_what_moves_placed_on_layers_made_before_is_what_draw_world_adds(run):
+    """The grid makes its moving artists before the run and places them after it: the panel
+    must be the one drawn by adding them then, at any time, the same layers placed again."""
+    from mawdo.planning.render.style import new_figure, optimum_path
+
+    opt = optimum_path(run.scenario, {})
+    end = float(run.route_times[-1])
+    for times in ([0.0], [20.0], [end + 5.0], [30.0, 0.0], [0.0, 12.5, end]):
+        images = []
+        for placed in (False, True):
+            fig = new_figure((4, 4), 80, layout=None)
+            ax = fig.add_subplot()
+            draw_world(ax, run.scenario, 0.0, optimum=opt, clear=False, moving=False)
+            layers = moving_layers(ax, run.scenario) if placed else None
+            for t in times:  # the last time is the one shown
+                if placed:
+                    move_world(ax, layers, run.scenario, t, run, opt)
+                else:
+                    draw_world(ax, run.scenario, t, run, opt, clear=False, static=False)
+            images.append(canvas(fig))
+        np.testing.assert_array_equal(images[0], images[1], err_msg=f"times {times}")
+
+
+def test_layers_made_for_another_scenario_are_dropped_and_what_moves_drawn_anew(run):
+    """A panel's layers that do not fit the scenario placed (other obstacles) must not hide
+    an obstacle: move_world then draws as draw_world does, on this call and the next."""
+    from mawdo.planning.render.style import new_figure, optimum_path
+    from mawdo.planning.scenes import generate_scene
+
+    other = generate_scene("forest", 0, seed=0).scenario
+    opt = optimum_path(run.scenario, {})
+    images = []
+    for placed in (False, True):
+        fig = new_figure((4, 4), 80, layout=None)
+        ax = fig.add_subplot()
+        draw_world(ax, run.scenario, 0.0, optimum=opt, clear=False, moving=False)
+        layers = moving_layers(ax, other)
+        for t in (30.0, 12.0):
+            if placed:
+                move_world(ax, layers, run.scenario, t, run, opt)
+            else:
+                draw_world(ax, run.scenario, t, run, opt, clear=False, static=False)
+        images.append(canvas(fig))  # (the reference's other layers: hidden, or removed)
+    np.testing.assert_array_equal(images[0], images[1])
+
+
+@pytest.mark.parametrize("cols", [1, 2, 4])
+def test_the_note_wrapped_once_laid_out_is_the_note_wrapped_at_each_draw(run, cols):
+    frame = GridFrame([run.scenario], rows=1, cols=cols)
+    note = frame.subfigs[-1].texts[-1]
+    assert note.get_text().replace("\n", " ") == TIME_NOTE and not note.get_wrap()
+    assert ("\n" in note.get_text()) == (cols < 3)  # narrow grids: several lines
+    once = canvas(frame.fig)
+    note.set_text(TIME_NOTE)  # as it was: wrapped by matplotlib at the draw
+    note.set_wrap(True)
+    np.testing.assert_array_equal(once, canvas(frame.fig))
 
 
 def test_the_grid_set_up_before_the_run_is_the_grid_drawn_after_it(run, tmp_path):

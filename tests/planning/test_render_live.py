@@ -206,6 +206,20 @@ def test_an_error_while_fed_is_raised_by_result():
             job.result()
 
 
+def test_a_frame_packed_from_the_canvas_rgba_is_its_rgb_packed_by_hand():
+    from mawdo.planning.render.animation import _packed_rgba, _Shot
+
+    rng = np.random.default_rng(5)
+    rgba = rng.integers(0, 256, (37, 23, 4), dtype=np.uint8)  # any alpha: it is dropped
+    r, g, b = (rgba[..., k].astype(np.int64) for k in range(3))
+    packed = _packed_rgba(rgba)
+    np.testing.assert_array_equal(packed, r * 65536 + g * 256 + b)
+    seen = np.zeros(1 << 24, dtype=bool)
+    shot = _Shot(packed, seen=seen)
+    np.testing.assert_array_equal(shot.rgb, rgba[..., :3])  # unpacked: the same pixels
+    assert set(np.flatnonzero(seen)) == set((r * 65536 + g * 256 + b).ravel())
+
+
 def test_the_palette_maps_each_colour_to_its_nearest_entry_the_first_on_a_tie():
     from mawdo.planning.render.animation import _Palette, _Shot
 

@@ -69,6 +69,19 @@ def new_figure(figsize, dpi, layout="constrained"):
     return fig
 
 
+def keep_layout(fig) -> None:
+    """Lay ``fig`` out now with its layout engine, then drop the engine: saving draws the
+    figure once. (``set_layout_engine("none")`` leaves a placeholder engine, and with any
+    engine ``savefig`` first draws the whole figure with drawing off, a layout pass: 0.3-0.4 s
+    of CPU of the snapshot grid's 0.8-1 s after a run.)"""
+    from matplotlib import rc_context
+
+    fig.get_layout_engine().execute(fig)
+    # None means the rcParams' default engine: none unless a user's rcParams ask for one
+    with rc_context({"figure.autolayout": False, "figure.constrained_layout.use": False}):
+        fig.set_layout_engine(None)
+
+
 def display_name(name) -> str:
     """Display label of a registered algorithm (``"mewdo"`` -> ``"MEWDO (reconstructed)"``)."""
     from mawdo.optimizers import OPTIMIZERS

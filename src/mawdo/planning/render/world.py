@@ -24,6 +24,8 @@ from mawdo.planning.scenario import Scenario
 
 # drawing order of the line layers (obstacles: 2 static, 3 moving; robot 8)
 _ZORDER = {"track": 1.5, "optimum": 4, "plan": 5, "trail": 6, "start": 7, "goal": 7}
+#: Font size of a panel's ticks (minus 1) and title (plus 1), points: draw_world's ``small``.
+_SMALL = 7.0
 
 
 def draw_world(
@@ -34,7 +36,7 @@ def draw_world(
     optimum: np.ndarray | None = None,
     track: float = TRACK_STEPS,
     title: str | None = None,
-    small: float = 7.0,
+    small: float = _SMALL,
     clear: bool = True,
     moving: bool = True,
     static: bool = True,
@@ -139,6 +141,48 @@ def world_state(
         state["trail"] = trail
         state["robot"] = trail[-1]
     return state
+
+
+def moving_layers(ax, scenario: Scenario) -> dict[str, list]:
+    """What moves on a panel, drawn now as hidden artists (``gid`` -> artists) for
+    :func:`move_world` to place: a snapshot grid makes them before its run exists. Made in the
+    order :func:`draw_world` adds them, after what stands, so the panel draws the same."""
+    fixed = standing_gids(scenario)
+    state = world_state(scenario, 0.0)
+    gids = [g for g in state if g not in fixed] + ["plan", "trail", "robot"]
+    layers = {}
+    for gid in gids:
+        data = scenario.start if gid == "robot" else state.get(gid)
+        layers[gid] = add_layer(ax, scenario, gid, data)
+        for a in layers[gid]:
+            a.set_visible(False)
+    return layers
+
+
+def move_world(ax, layers: dict, scenario: Scenario, t: float, result, optimum=None) -> None:
+    """Draw what moves at time ``t`` on a panel by placing :func:`moving_layers`' artists:
+    the panel ``draw_world(ax, ..., t, result, optimum, clear=False, static=False)`` draws,
+    in a fraction of its time (no artist made, removed or added to the data limits)."""
+    state = world_state(scenario, t, result, optimum)
+    fixed = standing_gids(scenario)
+    if not all(g in layers for g in state if g not in fixed):  # made for another scenario
+        return _redrawn(ax, layers, scenario, t, result, optimum)
+    for gid, arts in layers.items():
+        data = state.get(gid)
+        if data is not None and not set_layer(arts, gid, data):  # (a ring more or less)
+            return _redrawn(ax, layers, scenario, t, result, optimum)
+        for a in arts:
+            a.set_visible(data is not None)
+    ax.set_title(f"t = {format_time(t)}", fontsize=_SMALL + 1, pad=3)
+
+
+def _redrawn(ax, layers: dict, scenario: Scenario, t: float, result, optimum) -> None:
+    """:func:`move_world`'s way out: the layers dropped (emptied: later calls come here too),
+    what moves drawn by :func:`draw_world`."""
+    for a in [a for arts in layers.values() for a in arts]:
+        a.remove()
+    layers.clear()
+    draw_world(ax, scenario, t, result, optimum, clear=False, static=False)
 
 
 def standing_gids(scenario: Scenario) -> set[str]:
