@@ -120,7 +120,8 @@ def assemble_paths(X, start, goal) -> np.ndarray:
 
 def _end(name: str, p) -> np.ndarray:
     """A path end as the kernel takes it (contiguous float64, shape (2,)), or a clear error."""
-    p = np.ascontiguousarray(p, dtype=np.float64)  # one compiled layout
+    if not (type(p) is np.ndarray and p.dtype == np.float64 and p.flags.c_contiguous):
+        p = np.ascontiguousarray(p, dtype=np.float64)  # one compiled layout
     if p.shape != (2,) or not (math.isfinite(p[0]) and math.isfinite(p[1])):
         raise ValueError(f"{name} must be a finite (x, y) pair, got {p!r}")
     return p
@@ -212,6 +213,11 @@ class PathCost:
         self._frozen = MotionTable.frozen(len(self.flat.thresh)).kernel_arrays(0.0)
         self._kernel = ThreadedKernel(threads)  # keeps the kernel's work space between calls
         self._no_offsets = np.zeros((len(self.flat.thresh), 2))
+        # (a scenario is immutable: what every call reads of it, read once)
+        self._goal = _end("goal", scenario.goal)
+        self._speed = float(scenario.robot_speed)
+        size = max(float(scenario.width), float(scenario.height))
+        self._reach = (-size, 2.0 * size)  # coordinates _check_reach allows
         # the border, inflated like every obstacle: the centre must keep r + clearance from it
         # (a map narrower than that leaves an empty box, where every segment hits)
         reach = float(scenario.robot_radius) + self.clearance
@@ -288,13 +294,16 @@ class PathCost:
         if not (math.isfinite(lo) and math.isfinite(hi)):  # NaN candidates get a NaN cost
             finite = X[np.isfinite(X)]
             lo, hi = (float(finite.min()), float(finite.max())) if finite.size else (0.0, 0.0)
-        _check_reach(lo, hi, self.scenario, "a candidate coordinate")
         ends = (float(start[0]), float(start[1]), float(goal[0]), float(goal[1]))
-        _check_reach(min(ends), max(ends), self.scenario, "a coordinate of start or goal")
-        lo = min(lo, *ends)
-        hi = max(hi, *ends)
+        elo, ehi = min(ends), max(ends)
+        if lo < self._reach[0] or hi > self._reach[1]:  # (the check, without its call)
+            _check_reach(lo, hi, self.scenario, "a candidate coordinate")
+        if elo < self._reach[0] or ehi > self._reach[1]:
+            _check_reach(elo, ehi, self.scenario, "a coordinate of start or goal")
+        lo = min(lo, elo)
+        hi = max(hi, ehi)
         diag = math.sqrt(2.0) * (hi - lo)
-        t_need = t0 + (self.n_waypoints + 1) * diag / self.scenario.robot_speed
+        t_need = t0 + (self.n_waypoints + 1) * diag / self._speed
         table = self._table
         if table is None or not table.covers(t0, t_need):
             # a receding-horizon planner calls again with a later t0: cover twice what is needed
@@ -315,15 +324,18 @@ class PathCost:
         return arrays
 
     def _evaluate(self, X, start, t0, goal=None):
-        X = np.asarray(X, dtype=np.float64)
+        # (the planner calls ~20 times a replan, often with one candidate: the common case,
+        # a C-contiguous float64 array and array ends, skips numpy's conversions)
+        if not (type(X) is np.ndarray and X.dtype == np.float64 and X.flags.c_contiguous):
+            X = np.asarray(X, dtype=np.float64)
         single = X.ndim == 1
-        X2 = np.ascontiguousarray(np.atleast_2d(X))
+        X2 = X if X.ndim == 2 else np.ascontiguousarray(np.atleast_2d(X))
         if X2.ndim != 2 or X2.shape[1] != self.dim:
             raise ValueError(
                 f"X must have shape (n, {self.dim}) for {self.n_waypoints} waypoints, got {X.shape}"
             )
         start = _end("start", self.scenario.start if start is None else start)
-        goal = _end("goal", self.scenario.goal if goal is None else goal)
+        goal = self._goal if goal is None else _end("goal", goal)
         t0 = float(t0)
         if not math.isfinite(t0) or t0 < 0:
             raise ValueError(f"t0 must be finite and >= 0, got {t0!r}")
@@ -350,7 +362,7 @@ class PathCost:
             start,
             goal,
             t0,
-            float(self.scenario.robot_speed),
+            self._speed,
             spacetime,
             self.flat.arrays(),
             snap,

@@ -113,9 +113,12 @@ def population_cost(
     for i in range(n_obs):
         omax[i] = max(abs(bound[i, 4]), abs(bound[i, 5]))
         if moving[i]:
+            # the largest square first, one root after (the root is correctly rounded and
+            # monotone: the root of the largest square is the largest root, bit for bit)
+            v2 = 0.0
             for k in range(nk[i] - 1):
-                vmax[i] = max(vmax[i], math.sqrt(kv[i, k, 0] ** 2 + kv[i, k, 1] ** 2))
-            vmax[i] = vmax[i] * (1.0 + MARGIN) + MARGIN
+                v2 = max(v2, kv[i, k, 0] ** 2 + kv[i, k, 1] ** 2)
+            vmax[i] = math.sqrt(v2) * (1.0 + MARGIN) + MARGIN
             extent = 0.0
             for k in range(nk[i]):
                 extent = max(extent, max(abs(ko[i, k, 0]), abs(ko[i, k, 1])))

@@ -105,7 +105,10 @@ class ThreadedKernel:
             "threads", threads, 1, what="an integer >= 1 (1: the calling thread only)"
         )
         self._buf = np.empty((0, 0))
-        self._split = (-1, chunk_bounds(0, 1))  # (rows, their chunk bounds) of the last call
+        # per population size: its chunk bounds and the scratch floats a chunk needs (keyed
+        # by the knot counts' array too: a new motion table brings a new one); a planner
+        # alternates a few sizes (populations, one-candidate guard checks), so both are kept
+        self._plans: dict = {}
 
     def _scratch(self, rows: int, need: int) -> np.ndarray:
         if self._buf.shape[0] < rows or self._buf.shape[1] < need:
@@ -119,11 +122,21 @@ class ThreadedKernel:
         """Fill ``out = (cost, length, n_collisions, turning)`` for the rows of ``X``; the
         arguments are those of :func:`population_cost` without the scratch buffer."""
         n, npts = X.shape[0], X.shape[1] // 2 + 2
-        if self._split[0] != n:  # (an optimizer calls with the same size every iteration)
-            self._split = (n, chunk_bounds(n, self.threads))
-        bounds = self._split[1]
+        key = (n, npts, spacetime)
+        plan = self._plans.get(key)
+        if plan is None or plan[0] is not motion[3]:
+            if len(self._plans) >= 16:  # (sizes seen long ago)
+                self._plans.clear()
+            bounds = chunk_bounds(n, self.threads)
+            k = bounds.size - 1
+            plan = self._plans[key] = (
+                motion[3],
+                bounds,
+                scratch_size(-(-n // k), npts, motion[3], spacetime),
+            )
+        bounds = plan[1]
         k = bounds.size - 1
-        buf = self._scratch(k, scratch_size(-(-n // k), npts, motion[3], spacetime))
+        buf = self._scratch(k, plan[2])
         args = (X, start, goal, t0, speed, spacetime, obs, snap, motion, weights, box, out)
         if k == 1:
             population_cost(*args, buf[0])
