@@ -238,6 +238,8 @@ class LimitedRun:
         t = float(step)
 
         def keeps(to):
+            if self._timed_keeps(to, step):  # the followed timed route's own rest
+                return True
             route = None if remainder is None else np.vstack([to, remainder])
             return self.ics.find(to, t + 1.0, t, route=route, vel=to - pos) is not None
 
