@@ -10,6 +10,16 @@ A candidate of the optimizer is a path driven at the robot's full speed: it cann
 timed route can, so the run drives it step by step from its clock (:func:`position_at`): a
 wait is the robot holding its position for the steps the route says.
 
+With an acceleration or turn-rate limit (``TimeGuide(limits=...)``) the routes are timed as
+the robot drives them: each edge from rest to rest in whole steps under ``max_accel`` and the
+speed cap, a turn in place of ``ceil(angle / max_turn)`` steps at its start vertex, a moving
+robot braking first (:mod:`mawdo.planning.sipp.profile`, :mod:`mawdo.planning.sipp.profiled`).
+The run then follows the earliest timed route whenever the guide has one (a candidate is
+checked at full speed, not as the limited robot drives it), keeps it while it is on it, and
+drives it by its clock: the positions at whole steps are the profile's, so what the guide
+checked is what is driven (the rule still checks each step, with the route's rest as its
+first continuation).
+
 Waiting spots: the guide's roadmap has the static visibility graph's corners, the scenario's
 own waiting spots (:attr:`~mawdo.planning.scenario.Scenario.spots`: bays, corners; the timed
 scene families carry those their ``T*`` was computed with) and
@@ -207,8 +217,12 @@ class TimedRun:
         The run drives the route's own pieces at their own times (:func:`position_at`, the
         vertices passed at their fractions of the step), so every driven piece is part of a
         checked move or wait. The route is asked again at every replan, from where the robot
-        is. With kinematic limits a step may leave the route; it is then the guard-checked
-        projection (:class:`~mawdo.planning.kinematics.LimitedRun`). Tested on corridor,
+        is (with acceleration or turn limits: kept while the robot is on it). A speed limit
+        alone never changes a route's step (the route is timed at it); with acceleration or
+        turn limits the route is timed as driven (a rest-to-rest profile per edge, whole
+        steps), so its steps are within the limits, and a step leaves the route only when the
+        guard or the rule refuses it: it is then the guard-checked projection
+        (:class:`~mawdo.planning.kinematics.LimitedRun`). Tested on corridor,
         doorway, parked and crowd scenes with the independent checker
         (``tests/planning/test_timed_follow.py``)."""
         if self.following is None:

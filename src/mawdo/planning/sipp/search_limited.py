@@ -30,7 +30,7 @@ from numba import njit
 
 from mawdo.planning.sipp.intervals import forbidden, segment_free
 from mawdo.planning.sipp.profile import rest_steps
-from mawdo.planning.sipp.search import _start_state
+from mawdo.planning.sipp.search import start_state
 
 __all__ = ["profile_forbidden", "profile_free", "search_limited"]
 
@@ -151,7 +151,7 @@ def search_limited(graph, table, lim, start, goal, t_start, h0, t_end, ptr, lo, 
     depart = np.full(S, np.nan)
     heading = np.zeros((S, 2))
     closed = np.zeros(S, np.bool_)
-    s0 = _start_state(ptr, lo, hi, start, t_start, nodes[start], mv)
+    s0 = start_state(ptr, lo, hi, start, t_start, nodes[start], mv)
     if s0 < 0:
         return -2, arrival, parent, depart
     arrival[s0] = t_start
