@@ -166,7 +166,8 @@ class TimedRun:
 
     def _timed_routes(self, pos, step: int) -> list:
         if self._timed[0] != step:
-            self._timed = (step, self.timer.routes(pos, float(step), self._vel))
+            vel = (self._vel,) if self._profiled() else ()  # a profile starts by braking
+            self._timed = (step, self.timer.routes(pos, float(step), *vel))
         return self._timed[1]
 
     def _profiled(self) -> bool:
