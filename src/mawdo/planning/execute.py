@@ -103,7 +103,7 @@ class Run(TimedRun, SafeRun, LimitedRun):
         self.counts = {"waits": 0, "evasions": 0, "fallbacks": 0, "holds": 0, "inevitable": 0}
         on = dynamic and cfg.ics_horizon > 0  # the rule of issue 27: no inevitable collisions
         self.ics = SafeContinuation(sc, cfg.clearance, cfg.ics_horizon) if on else None
-        self.limits = Limits.of(cfg) if dynamic else None
+        self.limits = limits = Limits.of(cfg) if dynamic else None
         if self.ics is not None and self.limits is not None:  # stops and turns take time
             self.ics.limits = self.limits if (cfg.max_accel, cfg.max_turn) != (None, None) else None
         self.stalled = False  # the last search found nothing cheaper than its warm start
@@ -114,7 +114,8 @@ class Run(TimedRun, SafeRun, LimitedRun):
         # query's (step, routes), asked at most once per replan. Without moving obstacles the
         # earliest arrival is the static guide's shortest route at full speed, already a seed
         timed = cfg.time_guide and dynamic and bool(sc.moving_indices)
-        self.timer = TimeGuide(sc, cfg.clearance, cfg.time_routes, self.routes) if timed else None
+        args = (sc, cfg.clearance, cfg.time_routes, self.routes, limits)  # limits: as driven
+        self.timer = TimeGuide(*args) if timed else None
         self.following = None
         self.timed_follows = 0  # replans at which the guard chose a timed route
         self._timed = (-1, [])

@@ -24,6 +24,11 @@ rule tests any timed polyline (:meth:`~mawdo.planning.ics.SafeContinuation.path_
 :meth:`~mawdo.planning.ics.SafeContinuation.wait_safe` at the point of rest). So a
 continuation found here is a witness that a motion within the limits stays safe until the
 horizon's end: conservative (the rule may miss a cleverer motion), never optimistic.
+
+A robot on a followed timed route that the safe-interval guide timed within the limits (its
+waits included) first offers that route's rest as the continuation (``TimedRun._timed_keeps``
+in :mod:`mawdo.planning.timeguide`), tested with the same exact ``path_safe``; the kinds above
+come after it.
 """
 
 from __future__ import annotations

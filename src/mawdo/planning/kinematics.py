@@ -27,9 +27,11 @@ With an acceleration or turn-rate limit the inevitable-collision rule checks eve
 driven: the projected step must leave a continuation simulated within the limits from the
 new velocity (:mod:`mawdo.planning.ics_limits`), else another projected heading that does,
 else the robot brakes toward rest (a hit it cannot escape then finds it at rest: passive).
-The safe-interval guide still times its routes with instant starts, stops and turns (the
-run's projection and the rule make the difference); the refinement's turn penalty only
-steers it away from sharp corners.
+With an acceleration or turn-rate limit the safe-interval guide times its routes as the
+robot drives them (:mod:`mawdo.planning.sipp.profile`: each edge from rest to rest in whole
+steps, turns in place at its vertices), the run follows such a route step for step, and the
+rule takes the route's own rest as a continuation when the robot is on it; the refinement's
+turn penalty only steers candidates away from sharp corners.
 """
 
 from __future__ import annotations
@@ -238,6 +240,8 @@ class LimitedRun:
         t = float(step)
 
         def keeps(to):
+            if self._timed_keeps(to, step):  # the followed timed route's own rest
+                return True
             route = None if remainder is None else np.vstack([to, remainder])
             return self.ics.find(to, t + 1.0, t, route=route, vel=to - pos) is not None
 

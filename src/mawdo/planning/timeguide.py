@@ -10,6 +10,16 @@ A candidate of the optimizer is a path driven at the robot's full speed: it cann
 timed route can, so the run drives it step by step from its clock (:func:`position_at`): a
 wait is the robot holding its position for the steps the route says.
 
+With an acceleration or turn-rate limit (``TimeGuide(limits=...)``) the routes are timed as
+the robot drives them: each edge from rest to rest in whole steps under ``max_accel`` and the
+speed cap, a turn in place of ``ceil(angle / max_turn)`` steps at its start vertex, a moving
+robot braking first (:mod:`mawdo.planning.sipp.profile`, :mod:`mawdo.planning.sipp.profiled`).
+The run then follows the earliest timed route whenever the guide has one (a candidate is
+checked at full speed, not as the limited robot drives it), keeps it while it is on it, and
+drives it by its clock: the positions at whole steps are the profile's, so what the guide
+checked is what is driven (the rule still checks each step, with the route's rest as its
+first continuation).
+
 Waiting spots: the guide's roadmap has the static visibility graph's corners, the scenario's
 own waiting spots (:attr:`~mawdo.planning.scenario.Scenario.spots`: bays, corners; the timed
 scene families carry those their ``T*`` was computed with) and
@@ -23,6 +33,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from mawdo.planning.kinematics import SLACK, project
 from mawdo.planning.path import advance, densify, polyline_length
 from mawdo.planning.scenario import Scenario
 
@@ -42,30 +53,60 @@ class TimeGuide:
     static_routes : sequence of numpy.ndarray
         Static guide routes (pixels) along which waiting spots are placed, beside the
         scenario's own spots.
+    limits : Limits, optional
+        The run's kinematic limits (:class:`~mawdo.planning.kinematics.Limits`). With an
+        acceleration or turn-rate limit the routes are timed as driven within them: each
+        edge from rest to rest in whole steps, turns in place, and a moving robot first
+        brakes (``profile``; :mod:`mawdo.planning.sipp.profiled`). Else (None, or a speed
+        limit alone) instant starts, stops and turns at the scenario's speed.
     """
 
-    def __init__(self, scenario: Scenario, clearance: float, k: int, static_routes=()) -> None:
+    def __init__(
+        self, scenario: Scenario, clearance: float, k: int, static_routes=(), limits=None
+    ) -> None:
         from mawdo.planning.sipp.optimum import dodge_spots
         from mawdo.planning.sipp.roadmap import usable_spots
 
         self.scenario, self.clearance, self.k = scenario, float(clearance), int(k)
         spots = np.vstack([scenario.spots] + [dodge_spots(r, scenario) for r in static_routes])
         self.spots = usable_spots(scenario, self.clearance, np.unique(spots, axis=0))
+        self.limits, self.profile = limits, None
+        if limits is not None and (limits.accel, limits.turn) != (None, None):
+            free = np.inf
+            # the projection's own margin, and as much again for rounding: a planned step is
+            # never changed by the projection
+            accel = free if limits.accel is None else limits.accel * (1.0 - 4.0 * SLACK)
+            self.profile = (accel, free if limits.turn is None else float(limits.turn))
 
-    def routes(self, pos, t: float) -> list:
+    def routes(self, pos, t: float, vel=None) -> list:
         """Timed routes (:class:`~mawdo.planning.sipp.guide.TimedRoute`) from ``pos``
         (pixels) at time ``t`` (time steps), earliest arrival first; empty when none reaches
         the goal within the guide's horizon or the robot stands inside a grown mover (the
-        guard then has only its old fallbacks)."""
+        guard then has only its old fallbacks). ``vel``: the robot's velocity (px per step;
+        looked at only with a ``profile``: the route starts by braking from it)."""
         from mawdo.planning.sipp.guide import SafeIntervalGuide
 
+        lead = None if self.profile is None else self._brake(pos, vel)
         try:
             guide = SafeIntervalGuide(
-                self.scenario, start=pos, t0=float(t), clearance=self.clearance, spots=self.spots
-            )
+                self.scenario, start=pos, t0=float(t), clearance=self.clearance,
+                spots=self.spots, profile=self.profile, lead=lead,
+            )  # fmt: skip
             return guide.routes(self.k)
         except ValueError:  # the start inside a grown obstacle: no safe timed route
             return []
+
+    def _brake(self, pos, vel) -> np.ndarray:
+        """The robot's positions (pixels) at each step while it brakes from ``vel`` (px per
+        step) to rest, within the limits (:func:`~mawdo.planning.kinematics.project`)."""
+        pts = [np.asarray(pos, dtype=float)]
+        u = np.zeros(2) if vel is None else np.asarray(vel, dtype=float)
+        for _ in range(64):  # |u| falls by max_accel per step (free: rest at once)
+            if not (u[0] or u[1]):
+                break
+            u = project(np.zeros(2), u, self.limits)
+            pts.append(pts[-1] + u)
+        return np.array(pts)
 
 
 def position_at(route, t: float) -> np.ndarray:
@@ -106,20 +147,54 @@ class TimedRun:
     :class:`~mawdo.planning.execute.Run`, which sets ``timer``, ``following``, ``_timed`` and
     ``timed_follows``)."""
 
+    #: With a profile, follow the earliest timed route whenever the guide has one: it is the
+    #: only plan timed as the robot drives it (a candidate is checked at full speed).
+    timed_first = True
+
     def _timed_seeds(self, pos, step: int, first: bool) -> np.ndarray:
         """The timed routes' paths (waits dropped) as seeds: at the first plan and while the
         robot follows a timed route (elsewhere the guide is asked only when the guard needs
         it, :meth:`_timed_choice`)."""
         if self.timer is None or not (first or self.following is not None):
             return np.empty((0, 2 * self.m))
-        rows = [densify(route_geometry(r, pos), self.m).reshape(-1)
-                for r in self._timed_routes(pos, step)]  # fmt: skip
+        # with a profile a route the robot is on is kept (_timed_choice): its rest is the seed,
+        # and no query is made (a crowd's profiled query at every step cost 4x the run's CPU)
+        on = self._profiled() and self._on_route(pos, float(step))
+        routes = [self._rest_of(step)] if on else self._timed_routes(pos, step)
+        rows = [densify(route_geometry(r, pos), self.m).reshape(-1) for r in routes]
         return np.array(rows).reshape(-1, 2 * self.m)
 
     def _timed_routes(self, pos, step: int) -> list:
         if self._timed[0] != step:
-            self._timed = (step, self.timer.routes(pos, float(step)))
+            vel = (self._vel,) if self._profiled() else ()  # a profile starts by braking
+            self._timed = (step, self.timer.routes(pos, float(step), *vel))
         return self._timed[1]
+
+    def _profiled(self) -> bool:
+        """The timed routes are timed within acceleration or turn-rate limits."""
+        return self.timer is not None and self.timer.profile is not None
+
+    def _on_route(self, pos, t: float) -> bool:
+        """``pos`` is where the followed timed route is at time ``t``."""
+        route = self.following
+        return route is not None and bool(np.max(np.abs(pos - position_at(route, t))) <= 1e-9)
+
+    def _timed_keeps(self, to, step: int) -> bool:
+        """With a profile: the step to ``to`` is the followed route's, and the route's rest
+        from ``step + 1`` (cut at the horizon's end) is a safe continuation, tested by the
+        rule's own exact tests (:meth:`~mawdo.planning.ics.SafeContinuation.path_safe`)."""
+        if not (self._profiled() and self._on_route(to, step + 1.0)):
+            return False
+        route, t, end = self.following, float(step), step + float(self.ics.horizon)
+        ahead = route.times > t + 1.0
+        pts = np.vstack([to, route.points[ahead]])
+        times = np.concatenate([[t + 1.0], route.times[ahead]])
+        if times[-1] > end:
+            k = int(np.searchsorted(times, end, side="right"))
+            pts = np.vstack([pts[:k], position_at(route, end)])
+            times = np.append(times[:k], end)
+        mv = self.ics.movers(t, near=(to, t + 1.0))
+        return self.ics.path_safe(pts, times, t, mv)
 
     def _drive(self, remainder, step: int):
         """One step along the plan: ``(pos, remainder, passed, frac)`` (see
@@ -146,8 +221,12 @@ class TimedRun:
         The run drives the route's own pieces at their own times (:func:`position_at`, the
         vertices passed at their fractions of the step), so every driven piece is part of a
         checked move or wait. The route is asked again at every replan, from where the robot
-        is. With kinematic limits a step may leave the route; it is then the guard-checked
-        projection (:class:`~mawdo.planning.kinematics.LimitedRun`). Tested on corridor,
+        is (with acceleration or turn limits: kept while the robot is on it). A speed limit
+        alone never changes a route's step (the route is timed at it); with acceleration or
+        turn limits the route is timed as driven (a rest-to-rest profile per edge, whole
+        steps), so its steps are within the limits, and a step leaves the route only when the
+        guard or the rule refuses it: it is then the guard-checked projection
+        (:class:`~mawdo.planning.kinematics.LimitedRun`). Tested on corridor,
         doorway, parked and crowd scenes with the independent checker
         (``tests/planning/test_timed_follow.py``)."""
         if self.following is None:
@@ -161,12 +240,31 @@ class TimedRun:
             self.following = None
         return pos, rest, passed, frac
 
+    def _rest_of(self, step: int):
+        """The followed route from time ``step`` on (a
+        :class:`~mawdo.planning.sipp.guide.TimedRoute`)."""
+        from mawdo.planning.sipp.guide import TimedRoute
+
+        route, t = self.following, float(step)
+        ahead = route.times > t
+        pts = np.vstack([position_at(route, t), route.points[ahead]])
+        return TimedRoute(pts, np.concatenate([[t], route.times[ahead]]), route.states)
+
     def _timed_choice(self, chosen, pos, step: int):
         """The guard's use of the safe-interval guide: a candidate the guard accepted is kept
         when it is collision-free to the goal (driven at full speed from now); else the robot
-        follows the earliest timed route, when there is one (else the old fallbacks)."""
+        follows the earliest timed route, when there is one (else the old fallbacks).
+
+        With a profile (acceleration or turn-rate limits) a route the robot is on is kept:
+        it was timed as the robot drives it, from rest to rest, and stays safe under the
+        predictions it was checked against; a new query from a moving robot would first
+        brake."""
+        if self._profiled() and self._on_route(pos, float(step)):
+            if self.following.times[-1] > step:
+                self.timed_follows += 1
+                return route_geometry(self._rest_of(step), pos)
         self.following = None
-        if chosen is not None:
+        if chosen is not None and not (self._profiled() and self.timed_first):
             length = polyline_length(chosen)
             if self.guard.stretch_hits(chosen, float(step), length) == 0:
                 return chosen

@@ -21,6 +21,8 @@ import numpy as np
 from mawdo.planning.guide import GUIDE_SEGMENTS
 from mawdo.planning.scenario import Scenario
 from mawdo.planning.sipp.intervals import safe_intervals
+from mawdo.planning.sipp.profile import profile_table
+from mawdo.planning.sipp.profiled import lead_clear, profiled_route, profiled_search
 from mawdo.planning.sipp.roadmap import Roadmap
 from mawdo.planning.sipp.search import search
 
@@ -81,6 +83,17 @@ class SafeIntervalGuide:
     segments : int
         Sides (>= 3) of the polygons standing in for the inflated obstacles' rounded corners
         (:class:`~mawdo.planning.sipp.roadmap.Roadmap`); more is closer to exact, slower.
+    profile : tuple, optional
+        ``(accel, turn)``: acceleration (px per step squared) and turn rate (radians per
+        step), ``inf`` for a free one: every edge is driven from rest to rest in whole steps
+        and the robot turns in place at its vertices
+        (:mod:`~mawdo.planning.sipp.search_limited`); ``t0`` must then be a whole step.
+        None (default): straight moves at full speed, instant starts, stops and turns.
+    lead : array_like, shape (j, 2), optional
+        With ``profile``: the robot's positions at ``t0, t0 + 1, ...`` before it comes to
+        rest (braking from its velocity at ``t0``); the search starts at the last one,
+        ``j - 1`` steps after ``t0``, heading as the last move. Each step is checked like an
+        edge; ``start`` is then ignored.
 
     Raises
     ------
@@ -98,12 +111,18 @@ class SafeIntervalGuide:
         horizon: float | None = None,
         walkers: str = "reachable",
         segments: int = GUIDE_SEGMENTS,
+        profile=None,
+        lead=None,
     ) -> None:
         if not math.isfinite(t0) or t0 < 0:
             raise ValueError(f"t0 must be finite and >= 0 time steps, got {t0!r}")
         self.scenario, self.t0 = scenario, float(t0)
         self.roadmap = Roadmap.of(scenario, clearance, spots, segments)
         start = scenario.start if start is None else start
+        self.profile, self.lead = profile, None
+        if profile is not None:
+            self.lead = np.reshape(np.asarray(start if lead is None else lead, float), (-1, 2))
+            start = self.lead[-1]
         self.nodes, self.indptr, self.indices, self.weights, self.to_goal = self.roadmap.with_start(
             start
         )
@@ -119,6 +138,11 @@ class SafeIntervalGuide:
         self.movers = self.roadmap.movers(self.t0, self.t_end, walkers)
         self._mv = self.movers.arrays()
         self.ptr, self.lo, self.hi = safe_intervals(self.nodes, self.t0, self.t_end, self._mv)
+        if profile is not None:
+            accel, turn = (float(x) for x in profile)
+            v = float(scenario.robot_speed)
+            self._lim = (v, bool(accel < math.inf), turn)
+            self._table = profile_table(self.weights, v, accel)
 
     @property
     def graph(self):
@@ -131,6 +155,8 @@ class SafeIntervalGuide:
         return np.column_stack([self.lo[a:b], self.hi[a:b]])
 
     def _search(self, banned: np.ndarray):
+        if self.profile is not None:
+            return profiled_search(self, banned)
         return search(
             self.nodes, self.indptr, self.indices, self.weights, self.to_goal,
             float(self.scenario.robot_speed), self.start, 0, self.t0, self.t_end, self.ptr,
@@ -138,6 +164,8 @@ class SafeIntervalGuide:
         )  # fmt: skip
 
     def _route(self, goal_state, arrival, parent, depart) -> TimedRoute:
+        if self.profile is not None:
+            return TimedRoute(*profiled_route(self, goal_state, arrival, parent, depart))
         chain = [int(goal_state)]
         while parent[chain[-1]] >= 0:
             chain.append(int(parent[chain[-1]]))
@@ -174,6 +202,8 @@ class SafeIntervalGuide:
             raise ValueError(f"k must be an integer >= 1, got {k!r}")
         banned = np.zeros(len(self.lo), np.bool_)
         out: list[TimedRoute] = []
+        if self.profile is not None and not lead_clear(self):
+            return out
         for _ in range(int(k)):
             goal_state, arrival, parent, depart = self._search(banned)
             if goal_state == -2:

@@ -106,6 +106,7 @@ class Roadmap:
         static = [
             inflate(scenario.obstacles[i].shape, rho, n=segments) for i in scenario.static_indices
         ]
+        self._static, self._box = static, centre_box(scenario, rho)
         pts = np.reshape(np.asarray([scenario.goal, *spots], dtype=float), (-1, 2))
         # the map's border is a wall (as in the checker): the centre keeps rho from it
         self.graph = build(static, centre_box(scenario, rho), points=pts)
@@ -173,6 +174,21 @@ class Roadmap:
         weights = np.concatenate([self.weights, w])
         to_goal = np.append(self.to_goal, np.min(w + self.to_goal[seen]) if len(seen) else np.inf)
         return nodes, indptr, indices, weights, to_goal
+
+    def segment_clear(self, a, b) -> bool:
+        """The straight move ``a -> b`` (pixels) stays in the map shrunk by robot radius +
+        clearance + slack and meets no static obstacle inflated by as much (touching is a
+        hit), as the roadmap's edges do."""
+        x0, y0, x1, y1 = self._box
+        for p in (a, b):
+            if not (x0 <= p[0] <= x1 and y0 <= p[1] <= y1):
+                return False
+        if not self._static:
+            return True
+        if not hasattr(self, "_union"):  # built at the first use: runs without limits never ask
+            self._union = shapely.union_all(self._static)
+        line = shapely.LineString([a, b]) if np.any(a != b) else shapely.Point(a)
+        return not shapely.intersects(self._union, line)
 
     def _pieces(self, m: int, t0: float, t_end: float):
         """Knots of moving obstacle ``m`` covering ``[t0, t_end]`` (from a cached window)."""

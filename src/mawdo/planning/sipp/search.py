@@ -25,7 +25,7 @@ from numba import njit
 
 from mawdo.planning.sipp.intervals import EPS, earliest_free, forbidden, segment_free
 
-__all__ = ["search"]
+__all__ = ["search", "start_state"]
 
 _RETRIES = 3
 #: First window of departures examined per edge and target interval (time steps).
@@ -62,7 +62,9 @@ def _depart(ux, uy, vx, vy, a, T, x, top, J_hi, mv):
 
 
 @njit(cache=True)
-def _start_state(ptr, lo, hi, start, t0, pos, mv):
+def start_state(ptr, lo, hi, start, t0, pos, mv):
+    """The safe interval of vertex ``start`` holding ``t0`` in which standing at ``pos``
+    (pixels) at ``t0`` is safe, or -1."""
     for sid in range(ptr[start], ptr[start + 1]):
         if lo[sid] <= t0 < hi[sid]:
             if segment_free(pos[0], pos[1], pos[0], pos[1], t0, t0, mv):
@@ -110,7 +112,7 @@ def search(
     parent = np.full(S, -1, np.int64)
     depart = np.full(S, np.nan)
     closed = np.zeros(S, np.bool_)
-    s0 = _start_state(ptr, lo, hi, start, t0, nodes[start], mv)
+    s0 = start_state(ptr, lo, hi, start, t0, nodes[start], mv)
     if s0 < 0:
         return -2, arrival, parent, depart
     arrival[s0] = t0
