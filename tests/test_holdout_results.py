@@ -22,7 +22,7 @@ from scipy.stats import rankdata
 
 ROOT = Path(__file__).resolve().parents[1]
 HOLDOUT = ROOT / "docs" / "results" / "holdout"
-STORES = ("cec2017", "cec2022", "cec2022_d20", "paper", "paper_shifted")
+STORES = ("cec2017", "cec2017_d30", "cec2022", "cec2022_d20", "paper", "paper_shifted")
 RIVALS = {"CMA-ES": "cmaes", "DE (scipy)": "scipy_de", "GWO": "gwo", "MAWDO": "mawdo"}
 
 
@@ -84,6 +84,7 @@ def test_readme_numbers_are_recomputed_from_the_raw_rows(stores):
     )
     assert [c[0] for c in claims] == [
         "CEC 2017 F1-F29, D = 10",
+        "CEC 2017 F1-F29, D = 30",
         "CEC 2022 F1-F12, D = 10",
         "CEC 2022 F1-F12, D = 20",
         "F1-F16 unshifted",
@@ -121,6 +122,7 @@ def test_the_stores_are_the_registered_reduced_plans(stores):
 
     expected = [
         preset_plan("holdout-quick-cec2017"),
+        SuitePlan.from_dict({**SUITE_PRESETS["holdout-quick-cec2017"], "dims": [30]}),
         preset_plan("holdout-quick-cec2022"),
         SuitePlan.from_dict({**SUITE_PRESETS["holdout-quick-cec2022"], "dims": [20]}),
         ExperimentPlan.from_dict({**PRESETS["holdout-paper"], "runs": 2, "max_iter": 200}),
