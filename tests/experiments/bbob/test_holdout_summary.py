@@ -106,3 +106,13 @@ def test_a_store_of_another_study_is_refused_with_the_fix(tmp_path):
     assert "error:" in done.stderr and "not a hold-out store" in done.stderr
     assert "CEC 2017 / 2022 suite stores" in done.stderr and "Traceback" not in done.stderr
     assert not (tmp_path / "out" / "summary.md").exists()
+
+
+def test_a_missing_store_is_named_without_a_traceback(tmp_path):
+    missing = tmp_path / "cec2017.db"
+    cmd = [sys.executable, "-m", "mawdo.experiments.kinds.suite.holdout_summary", str(missing)]
+    done = subprocess.run([*cmd, "--out", str(tmp_path / "out")], capture_output=True, text=True)
+    assert done.returncode == 2
+    assert f"error: no results store at {missing}" in done.stderr
+    assert "Traceback" not in done.stderr
+    assert not (tmp_path / "out").exists()

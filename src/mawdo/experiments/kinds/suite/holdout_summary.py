@@ -24,6 +24,7 @@ import numpy as np
 from mawdo.experiments import stats
 from mawdo.experiments.kinds.suite.holdout import HOLDOUT_PRESETS
 from mawdo.experiments.kinds.suite.holdout_data import CEC_NAMES, HoldoutSuite, load_holdout
+from mawdo.experiments.sqlitefile import StoreError
 from mawdo.experiments.tables import Table, to_markdown
 from mawdo.optimizers import OPTIMIZERS
 from mawdo.suites import evaluation_budget
@@ -277,7 +278,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         for p in write_holdout_summary(args.stores, args.out):
             print(p)
-    except (ValueError, OSError) as exc:
+    except (ValueError, OSError, StoreError) as exc:  # a missing or foreign store: say which
         print(f"error: {exc}", file=sys.stderr)
         return 2
     return 0
