@@ -164,10 +164,18 @@ def _phase_row(name: str, wall: float, cpu: float, m: dict) -> None:
         f"(this process {end[1] - run1[1]:.2f} s CPU, then the figures)",
         flush=True,
     )
+    if "warm<" in fig:  # (imports while the parent sets its run up, before the set-up)
+        w0, w1 = fig["warm>"], fig["warm<"]
+        print(
+            f"  {'':38s} figures: forked at {w0[0]:.2f} s, imports done at {w1[0]:.2f} s "
+            f"({w1[1]:.2f} s CPU), set-up begun at {fig['setup>'][0]:.2f} s",
+            flush=True,
+        )
     if "setup<" in fig and "finish<" in fig:
         s0, s1, f0, f1 = fig["setup>"], fig["setup<"], fig["finish>"], fig["finish<"]
         print(
-            f"  {'':38s} figures: set up from {s0[0]:.2f} to {s1[0]:.2f} s ({s1[1]:.2f} s CPU),"
+            f"  {'':38s} figures: set up from {s0[0]:.2f} to {s1[0]:.2f} s "
+            f"({s1[1] - s0[1]:.2f} s CPU),"
             f" frames during the run {f0[1] - s1[1]:.2f} s CPU, after the run "
             f"{f1[1] - f0[1]:.2f} s CPU (grid), GIF process {gif.get('gif<', (0, 0))[1]:.2f} s"
             f" CPU; done at {f1[0]:.2f} s",
