@@ -24,10 +24,12 @@ nowhere else):
 * ``warm plan paper + GIF, phases`` - the warm row again, traced (``benchmarks/plan_trace.py``):
   the critical path as the command's process walks it, start-up (interpreter, imports,
   arguments, kernels loaded, the run set up), the run, and after it (metrics, then waiting for
-  the figures), each wall and CPU; and the figures' process beside it: its set-up (matplotlib,
-  the grid and the GIF laid out), when it was ready, the frames it drew during the run, the
-  grid after the run and the GIF's process. ``STARTUP_BEFORE=path/to/src`` alternates each
-  sample with the same row on another copy of the sources (a before/after in the same minutes).
+  the figures), each wall and CPU; and the figures' process beside it: when it was forked and
+  its imports done (matplotlib and the rest, while the command sets its run up: since issue
+  28's fourth pass), its set-up (the grid and the GIF laid out), when it was ready, the frames
+  it drew during the run, the grid after the run and the GIF's process.
+  ``STARTUP_BEFORE=path/to/src`` alternates each sample with the same row on another copy of
+  the sources (a before/after in the same minutes).
 
 Every copy of the sources is byte-compiled first (``compileall``), as ``pip install`` does: with
 ``PYTHONDONTWRITEBYTECODE`` set (as on the machine these rows were measured on) and no ``.pyc``,

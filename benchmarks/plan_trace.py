@@ -7,6 +7,8 @@ A mark is ``pid name wall cpu``: ``wall`` in seconds since ``TRACE_T0`` (the par
 all processes, so the interpreter's own start-up is counted), ``cpu`` the marking process's
 CPU time (a forked process starts at 0). The hooks wrap functions of ``mawdo.cli.plan``,
 ``mawdo.planning.execute.Run`` and ``mawdo.planning.render.early`` and change nothing they do;
+the command runs as the ``mawdo`` program does (:mod:`mawdo.cli.quick_exit`: ``end`` is marked
+just before the program ends without its teardown);
 :func:`phases` reads the marks back (:mod:`benchmarks.bench_startup`).
 """
 
