@@ -120,6 +120,7 @@ class GifFrame:
         )
         self.drawn: dict[float, _Shot] = {}  # frames drawn while the run went on, by time
         self.seen = np.zeros(1 << 24, dtype=bool)  # their colours, a flag per 0xRRGGBB
+        self._last = None  # the last of them (its colours are flagged)
 
     def draw_ready(self, partial, every: int = 2, max_frames: int = 200, stop=None) -> int:
         """Draw the frames the run so far fixes: those at the times ``0, every, 2 every, ...``
@@ -137,7 +138,8 @@ class GifFrame:
         t = float(every * len(self.drawn))
         while len(self.drawn) < max_frames and t < partial.end and not (stop and stop()):
             state = world_state(self.scenario, t, partial, self.opt)
-            self.drawn[t] = _Shot(self.frames.grab(state, t), seen=self.seen)
+            self.drawn[t] = _Shot(self.frames.grab(state, t), self.seen, self._last)
+            self._last = self.drawn[t].packed
             done, t = done + 1, float(every * len(self.drawn))
         return done
 
@@ -257,19 +259,23 @@ def _packed_rgba(rgba: np.ndarray) -> np.ndarray:
     cheaper than copying the RGB out and packing it (a frame drawn while the run is planned
     spent a third of its 15 ms there)."""
     words = np.ascontiguousarray(rgba).view(">u4")[..., 0]
-    return (words >> 8).astype(np.uint32)
+    return (words >> 8).astype(np.uint32, copy=False)  # (the shift made a new, native array)
 
 
 class _Shot:
     """One frame: its pixels packed, ``(h, w)`` (:func:`_packed`); its colours are flagged in
-    ``seen`` (one flag per ``0xRRGGBB``) if given."""
+    ``seen`` (one flag per ``0xRRGGBB``) if given. With ``before``, a frame of the same size
+    whose colours are all flagged already, only the pixels that differ from it are flagged:
+    the same colours (every other pixel has a colour of ``before``), in a fraction of the time
+    (``plan paper``'s frames: 0.8 -> 0.2 ms a frame measured alone, more between draws, when
+    the 16 MB of flags have left the cache)."""
 
     __slots__ = ("packed",)
 
-    def __init__(self, packed: np.ndarray, seen: np.ndarray | None = None) -> None:
+    def __init__(self, packed: np.ndarray, seen=None, before: np.ndarray | None = None) -> None:
         self.packed = packed
         if seen is not None:
-            seen[packed] = True
+            seen[packed if before is None else packed[packed != before]] = True
 
     @classmethod
     def of(cls, rgb: np.ndarray, seen: np.ndarray | None = None) -> _Shot:
