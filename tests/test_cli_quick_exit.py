@@ -62,6 +62,17 @@ def test_the_app_called_in_a_process_of_its_own_raises_system_exit(tmp_path):
     assert done.value.code == 0  # (this test process is still here to see it)
 
 
+def test_a_profiled_program_ends_as_usual_with_its_report(tmp_path):
+    out = tmp_path / "run"
+    proc = subprocess.run(
+        [sys.executable, "-m", "cProfile", "-m", "mawdo.cli", "plan", "paper", "--preset",
+         "quick", "--no-figures", "--no-progress", "--max-steps", "5", "--out", str(out)],
+        capture_output=True, text=True, env=ENV, timeout=600,
+    )  # fmt: skip
+    assert proc.returncode == 0, proc.stderr
+    assert "function calls" in proc.stdout  # cProfile's report, printed after the program
+
+
 @pytest.mark.parametrize("running", ["process", "thread", "nothing"])
 def test_end_waits_for_nothing_only_when_nothing_of_its_own_runs(running):
     script = textwrap.dedent(f"""

@@ -12,7 +12,8 @@ mawdo.cli``): a caller of the Typer app in its own process (a test's ``CliRunner
 gets the usual ``SystemExit``. Atexit handlers are not run; the conditions :func:`end` checks
 (no child process started by :mod:`multiprocessing` alive, no thread that is not a daemon)
 are those under which the handlers the commands rely on (multiprocessing joining its
-children) have nothing to do.
+children) have nothing to do, and a program watched by a tracer or a profiler (coverage,
+``python -m cProfile``, a debugger), whose report comes at the end, ends as usual.
 """
 
 from __future__ import annotations
@@ -36,6 +37,8 @@ def allow() -> None:
 
 
 def _nothing_running() -> bool:
+    if sys.gettrace() is not None or sys.getprofile() is not None:
+        return False  # a tool watches the program (coverage, a profiler, a debugger): its end
     mp = sys.modules.get("multiprocessing")
     if mp is not None and mp.active_children():
         return False
