@@ -34,6 +34,7 @@ import warnings
 from collections.abc import Callable
 from contextlib import contextmanager
 
+from mawdo.planning.render import style
 from mawdo.planning.render.forked import can_fork, send_back
 
 #: ``prepare()`` runs early and returns ``finish(payload) -> value``; a ``finish`` with a
@@ -290,12 +291,10 @@ def run_figures(scenario, algorithm: str, seed: int, grid, gif, label: str | Non
     Returns
     -------
     callable
-        ``prepare(optimum=None)`` for :class:`EarlyFigures`, with ``warm`` (see there):
-        ``optimum`` is the scenario's static optimum path
-        (:func:`~mawdo.planning.render.style.optimum_path`) if the parent computed it (it
-        has the oracle's kernels loaded; the child then loads none); its ``finish`` takes
-        ``(result, metrics, metadata)`` (metrics and PNG text may be None) and returns
-        ``(grid path, gif path)``.
+        ``prepare(optimum=None)`` with ``warm`` (:class:`EarlyFigures`); ``optimum``: the
+        static optimum path if the parent computed it (the child then loads no kernel). Its
+        ``finish`` takes ``(result, metrics, metadata)`` (metrics and PNG text may be None) and
+        returns ``(grid path, gif path)``.
     """
 
     def prepare(optimum=None):
@@ -303,17 +302,11 @@ def run_figures(scenario, algorithm: str, seed: int, grid, gif, label: str | Non
         from mawdo.planning.render.forked import Forked
         from mawdo.planning.render.live import PartialRun
         from mawdo.planning.render.snapshots import GridFrame, grid_blocks, save_grid
-        from mawdo.planning.render.style import (
-            IMAGE_SUFFIXES,
-            checked_output_path,
-            display_name,
-            know_optimum,
-        )
 
         if optimum is not None:
-            know_optimum(scenario, optimum)
+            style.know_optimum(scenario, optimum)
         frame = GridFrame([scenario])
-        movie = GifFrame(scenario, display_name(algorithm), seed)
+        movie = GifFrame(scenario, style.display_name(algorithm), seed)
         partial = PartialRun()
 
         def feed(news, run_over):  # the run so far: draw the GIF frames it fixes (.live)
@@ -322,8 +315,8 @@ def run_figures(scenario, algorithm: str, seed: int, grid, gif, label: str | Non
 
         def finish(payload):
             result, metrics, metadata = payload
-            grid_out = checked_output_path(grid, IMAGE_SUFFIXES)
-            gif_out = checked_output_path(gif, (".gif",))
+            grid_out = style.checked_output_path(grid, style.IMAGE_SUFFIXES)
+            gif_out = style.checked_output_path(gif, (".gif",))
             job = Forked(lambda: movie.write(result, gif_out, every=every))  # beside the grid
             key = label or result.algorithm
             blocks = grid_blocks([(key, result)], None, frame.rows * frame.cols, {key: metrics})
