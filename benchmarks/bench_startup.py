@@ -24,10 +24,12 @@ nowhere else):
 * ``warm plan paper + GIF, phases`` - the warm row again, traced (``benchmarks/plan_trace.py``):
   the critical path as the command's process walks it, start-up (interpreter, imports,
   arguments, kernels loaded, the run set up), the run, and after it (metrics, then waiting for
-  the figures), each wall and CPU; and the figures' process beside it: its set-up (matplotlib,
-  the grid and the GIF laid out), when it was ready, the frames it drew during the run, the
-  grid after the run and the GIF's process. ``STARTUP_BEFORE=path/to/src`` alternates each
-  sample with the same row on another copy of the sources (a before/after in the same minutes).
+  the figures), each wall and CPU; and the figures' process beside it: when it was forked and
+  its imports done (matplotlib and the rest, while the command sets its run up: since issue
+  28's fourth pass), its set-up (the grid and the GIF laid out), when it was ready, the frames
+  it drew during the run, the grid after the run and the GIF's process.
+  ``STARTUP_BEFORE=path/to/src`` alternates each sample with the same row on another copy of
+  the sources (a before/after in the same minutes).
 
 Every copy of the sources is byte-compiled first (``compileall``), as ``pip install`` does: with
 ``PYTHONDONTWRITEBYTECODE`` set (as on the machine these rows were measured on) and no ``.pyc``,
@@ -164,10 +166,18 @@ def _phase_row(name: str, wall: float, cpu: float, m: dict) -> None:
         f"(this process {end[1] - run1[1]:.2f} s CPU, then the figures)",
         flush=True,
     )
+    if "warm<" in fig:  # (imports while the parent sets its run up, before the set-up)
+        w0, w1 = fig["warm>"], fig["warm<"]
+        print(
+            f"  {'':38s} figures: forked at {w0[0]:.2f} s, imports done at {w1[0]:.2f} s "
+            f"({w1[1]:.2f} s CPU), set-up begun at {fig['setup>'][0]:.2f} s",
+            flush=True,
+        )
     if "setup<" in fig and "finish<" in fig:
         s0, s1, f0, f1 = fig["setup>"], fig["setup<"], fig["finish>"], fig["finish<"]
         print(
-            f"  {'':38s} figures: set up from {s0[0]:.2f} to {s1[0]:.2f} s ({s1[1]:.2f} s CPU),"
+            f"  {'':38s} figures: set up from {s0[0]:.2f} to {s1[0]:.2f} s "
+            f"({s1[1] - s0[1]:.2f} s CPU),"
             f" frames during the run {f0[1] - s1[1]:.2f} s CPU, after the run "
             f"{f1[1] - f0[1]:.2f} s CPU (grid), GIF process {gif.get('gif<', (0, 0))[1]:.2f} s"
             f" CPU; done at {f1[0]:.2f} s",

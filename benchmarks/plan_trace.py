@@ -7,6 +7,8 @@ A mark is ``pid name wall cpu``: ``wall`` in seconds since ``TRACE_T0`` (the par
 all processes, so the interpreter's own start-up is counted), ``cpu`` the marking process's
 CPU time (a forked process starts at 0). The hooks wrap functions of ``mawdo.cli.plan``,
 ``mawdo.planning.execute.Run`` and ``mawdo.planning.render.early`` and change nothing they do;
+the command runs as the ``mawdo`` program does (:mod:`mawdo.cli.quick_exit`: ``end`` is marked
+just before the program ends without its teardown);
 :func:`phases` reads the marks back (:mod:`benchmarks.bench_startup`).
 """
 
@@ -38,15 +40,16 @@ def _wrap(log, owner, name, label=None):
 
 
 def _figures(log, early) -> None:
-    """Marks in the figures' process: its set-up (``prepare``) and its work after the run."""
+    """Marks in the figures' process: its imports before the run is set up (``warm``), its
+    set-up (``prepare``) and its work after the run."""
     run_figures = early.run_figures
 
     def traced(*args, **kwargs):
         prepare = run_figures(*args, **kwargs)
 
-        def prepare_traced():
+        def prepare_traced(*given):
             mark(log, "setup>")
-            finish = prepare()
+            finish = prepare(*given)
             mark(log, "setup<")
 
             def finish_traced(payload):
@@ -59,6 +62,15 @@ def _figures(log, early) -> None:
             finish_traced.feed = finish.feed
             return finish_traced
 
+        warm = getattr(prepare, "warm", None)
+        if warm is not None:
+
+            def warm_traced():
+                mark(log, "warm>")
+                warm()
+                mark(log, "warm<")
+
+            prepare_traced.warm = warm_traced
         return prepare_traced
 
     early.run_figures = traced
@@ -79,12 +91,26 @@ def main(log: str, args: list[str]) -> None:
     _wrap(log, Run, "execute", "run")
     _wrap(log, animation, "_write_gif", "gif")
     _figures(log, early)
+    # as the mawdo program (mawdo.cli.program): the end without teardown where the command allows
+    try:
+        from mawdo.cli import quick_exit
+    except ImportError:  # (sources from before it, STARTUP_BEFORE)
+        quick_exit = None
+    if quick_exit is not None:
+        quick_exit.STATE.program = True
+        end = quick_exit.end
+
+        def marked_end(code):
+            mark(log, "end")
+            end(code)
+
+        quick_exit.end = marked_end
     try:
         cli.app(prog_name="mawdo", args=args)
     except SystemExit as exc:
         if exc.code:
             raise
-    mark(log, "end")
+    mark(log, "end")  # (a version without the quick end, or a command that did not allow it)
 
 
 def phases(log: str) -> dict:

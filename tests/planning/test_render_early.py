@@ -157,6 +157,58 @@ def test_the_early_figures_are_the_figures_of_the_run(run, tmp_path):
     assert gif.read_bytes() == render.animate(run, tmp_path / "direct.gif").read_bytes()
 
 
+@pytest.mark.parametrize("parallel", [True, False])
+def test_figures_begun_with_the_optimum_given_are_the_figures_of_the_run(run, tmp_path, parallel):
+    """What ``plan`` does: the process forked before the run is set up, the static optimum
+    handed to it once the parent has computed it (the figures' process loads no kernel)."""
+    from mawdo.planning.render.style import optimum_path
+
+    prepare = run_figures(run.scenario, "mawdo", 0, tmp_path / "g.png", tmp_path / "a.gif")
+    with EarlyFigures(prepare, parallel=parallel) as job:
+        job.begin(optimum_path(run.scenario, {}))
+        job.send((run, None, None))
+        grid, gif = job.result()
+    direct = render.snapshot_grid([run], tmp_path / "direct.png")
+    assert_same_picture(pixels(grid), pixels(direct))
+    assert gif.read_bytes() == render.animate(run, tmp_path / "direct.gif").read_bytes()
+
+
+def test_a_given_optimum_is_drawn_as_it_is_and_the_oracle_not_asked(run, monkeypatch):
+    from mawdo.planning import oracle
+    from mawdo.planning.render.style import know_optimum, optimum_path
+
+    sc = plan("paper", "mawdo", seed=0, config="quick", max_steps=2).scenario  # a new object
+    path = np.array([[1.0, 2.0], [3.0, 4.0]])
+    know_optimum(sc, path)
+    monkeypatch.setattr(oracle, "scenario_optimum", lambda *a, **k: pytest.fail("asked"))
+    assert optimum_path(sc, {}) is path
+
+
+def test_warm_runs_in_the_child_before_begin_and_prepare_takes_what_begin_gives(tmp_path):
+    warmed = tmp_path / "warmed"
+
+    def prepare(data=None):
+        return lambda payload: (data, payload)
+
+    prepare.warm = lambda: warmed.write_text(str(os.getpid()))
+    with EarlyFigures(prepare) as job:
+        if job.early:  # warmed at once, in the child, while the parent has not begun
+            end = time.monotonic() + 60
+            while not warmed.exists() and time.monotonic() < end:
+                time.sleep(0.01)
+            assert warmed.read_text() == str(job.proc.pid)
+        job.begin("given")
+        job.send(5)
+        assert job.result() == ("given", 5)
+    with EarlyFigures(prepare) as job:  # a parent that never begins: prepare()
+        job.send(6)
+        assert job.result() == (None, 6)
+    here = EarlyFigures(prepare, parallel=False)
+    here.begin("kept")
+    here.send(7)
+    assert here.result() == ("kept", 7)
+
+
 def test_the_early_process_hands_back_its_value_or_its_error(tmp_path):
     def prepare():
         mine = os.getpid()

@@ -220,6 +220,21 @@ def test_a_frame_packed_from_the_canvas_rgba_is_its_rgb_packed_by_hand():
     assert set(np.flatnonzero(seen)) == set((r * 65536 + g * 256 + b).ravel())
 
 
+def test_a_frame_flagged_against_the_one_before_flags_every_colour_of_both():
+    from mawdo.planning.render.animation import _Shot
+
+    rng = np.random.default_rng(6)
+    first = rng.integers(0, 1 << 24, (40, 30), dtype=np.uint32)
+    second = first.copy()
+    changed = rng.random(first.shape) < 0.1
+    second[changed] = rng.integers(0, 1 << 24, changed.sum(), dtype=np.uint32)
+    seen = np.zeros(1 << 24, dtype=bool)
+    _Shot(first, seen)
+    _Shot(second, seen, before=first)
+    want = set(first.ravel()) | set(second.ravel())
+    assert set(np.flatnonzero(seen)) == want
+
+
 def test_the_palette_maps_each_colour_to_its_nearest_entry_the_first_on_a_tie():
     from mawdo.planning.render.animation import _Palette, _Shot
 

@@ -1,6 +1,6 @@
 """``python -m mawdo.cli``: the ``mawdo`` command."""
 
-from mawdo.cli.main import app
+from mawdo.cli import program
 
 if __name__ == "__main__":  # guard: worker processes re-import the main module
-    app(prog_name="mawdo")
+    program()

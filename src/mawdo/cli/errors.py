@@ -18,6 +18,7 @@ from typing import NoReturn
 import typer
 from typer.core import TyperGroup
 
+from mawdo.cli import quick_exit
 from mawdo.interrupts import INTERRUPT_EXIT, is_interrupt
 
 # Typer vendors its own click; its ClickException is what Typer's main loop shows and exits on.
@@ -103,7 +104,9 @@ class GuardedGroup(TyperGroup):
             typer.echo("Aborted!", err=True)
             sys.exit(1)
         # non-standalone click returns an Exit's code, or the command's return value
-        sys.exit(code if isinstance(code, int) else 0)
+        code = code if isinstance(code, int) else 0
+        quick_exit.end(code)  # (returns unless the program runs and the command allowed it)
+        sys.exit(code)
 
     def invoke(self, ctx):
         try:

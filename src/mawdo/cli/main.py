@@ -256,7 +256,8 @@ def demo(
     """The main job: MAWDO plans through the moving obstacles of the `paper` scenario."""
     import time
 
-    from mawdo.cli.plan import draw_figures, early_figures
+    from mawdo.cli import quick_exit
+    from mawdo.cli.plan import begin_figures, draw_figures, early_figures
     from mawdo.cli.progress import notice_compiles
     from mawdo.planning import demo as job
     from mawdo.planning.scenario import get_scenario
@@ -270,10 +271,12 @@ def demo(
         f"{sc.height:g} px, {len(sc.static_indices)} static and "
         f"{len(sc.moving_indices)} moving obstacles), real-time receding-horizon replanning"
     )
-    with notice_compiles():  # a first run after installing compiles the kernels
-        ready = job.prepare_demo(seed)
-    # the figures' set-up starts now, in a second process, while this one plans
+    # the figures' process starts now: matplotlib imported while the run is set up, the
+    # figures laid out while it is planned
     with early_figures(True, sc, job.ALGORITHM, seed, grid, gif, label=job.LABEL) as drawing:
+        with notice_compiles():  # a first run after installing compiles the kernels
+            ready = job.prepare_demo(seed)
+        begin_figures(drawing, sc)
         run = _demo_run(ready, out, drawing)
         from mawdo.planning.render.animation import animation_times
 
@@ -283,6 +286,7 @@ def demo(
     console.print(f"animation     : {gif}")
     console.print(f"metrics       : {out / 'metrics.md'}, {out / 'metrics.json'}")
     console.print(f"done in {time.perf_counter() - t0:.1f} s")
+    quick_exit.allow()  # files written, the figures' processes joined
 
 
 @app.command()

@@ -29,9 +29,12 @@ from __future__ import annotations
 
 import multiprocessing
 import os
+import signal
 import warnings
 from collections.abc import Callable
+from contextlib import contextmanager
 
+from mawdo.planning.render import style
 from mawdo.planning.render.forked import can_fork, send_back
 
 #: ``prepare()`` runs early and returns ``finish(payload) -> value``; a ``finish`` with a
@@ -49,6 +52,12 @@ class News:
         self.data = data
 
 
+class Given(News):
+    """What ``prepare`` takes, learnt by the parent after the fork (:meth:`EarlyFigures.begin`)."""
+
+    __slots__ = ()
+
+
 #: The child's answer to each :class:`News`: it took it, the next may come.
 _TAKEN = None
 _NONE = object()
@@ -62,7 +71,11 @@ class EarlyFigures:
     prepare : callable
         Takes nothing and returns ``finish``, a callable that takes the payload (picklable)
         and returns a picklable value (the paths written). Neither may print (the child shares
-        the terminal) nor start Numba's parallel threads.
+        the terminal) nor start Numba's parallel threads. A ``prepare`` with a ``warm``
+        attribute (a callable: imports, say) is begun in two steps: the child calls ``warm()``
+        at once, then waits for :meth:`begin`'s data and calls ``prepare(data)``; so the child
+        can be forked before the parent knows all that ``prepare`` needs (a parent that sends
+        News or the payload without :meth:`begin` gets ``prepare()``).
     parallel : bool
         False: run both in this process, at :meth:`send` (what happens without ``fork``).
     """
@@ -70,19 +83,28 @@ class EarlyFigures:
     def __init__(self, prepare: Prepare, parallel: bool = True) -> None:
         self.prepare = prepare
         self.proc = self.conn = None
-        self.payload = None
+        self.payload = self.given = None
         self.waiting = False  # a News not yet taken by the child (None: no more News)
         self.answer = _NONE  # the child's answer, if feed() received it
         if not (parallel and can_fork()):
             return
         ctx = multiprocessing.get_context("fork")
         self.conn, child_end = ctx.Pipe()
-        with warnings.catch_warnings():  # Python >= 3.12 warns when other threads exist
-            warnings.simplefilter("ignore", DeprecationWarning)
-            # not a daemon: the child forks the GIF's drawing process itself
-            self.proc = ctx.Process(target=_child, args=(prepare, child_end, self.conn))
-            self.proc.start()
-        child_end.close()
+        # Ctrl-C held back while forking: one that came in between (the command's start, when
+        # the terminal's user is most likely to press it) would otherwise stop this process
+        # half-way through start() with a child it cannot end; now it comes after, to both
+        try:
+            with warnings.catch_warnings(), _sigint_held():
+                warnings.simplefilter("ignore", DeprecationWarning)  # (>= 3.12, other threads)
+                # not a daemon: the child forks the GIF's drawing process itself
+                self.proc = ctx.Process(target=_child, args=(prepare, child_end, self.conn))
+                self.proc.start()
+        except BaseException:  # that Ctrl-C: no child left behind
+            if self.proc is not None and self.proc.pid is not None:
+                self.cancel()
+            raise
+        finally:
+            child_end.close()
 
     @property
     def early(self) -> bool:
@@ -115,6 +137,17 @@ class EarlyFigures:
         except (BrokenPipeError, EOFError, ConnectionResetError):
             self.waiting = None  # the child ended: result() says how
 
+    def begin(self, data) -> None:
+        """Hand the child what its ``prepare`` takes (see the class); without a child, keep it
+        for :meth:`result`."""
+        if self.proc is None:
+            self.given = data
+            return
+        try:
+            self.conn.send(Given(data))
+        except (BrokenPipeError, EOFError):
+            pass  # the child ended early: result() says how
+
     def send(self, payload) -> None:
         """Hand the run to the child (without one: keep it for :meth:`result`)."""
         if self.proc is None:
@@ -128,7 +161,8 @@ class EarlyFigures:
     def result(self):
         """Wait for the figures and return ``finish``'s value, or raise the child's error."""
         if self.proc is None:
-            return self.prepare()(self.payload)
+            prepare = self.prepare
+            return (prepare() if self.given is None else prepare(self.given))(self.payload)
         try:
             answer = self.answer
             while answer is _NONE or answer is _TAKEN:  # (answers to the last News)
@@ -164,16 +198,39 @@ class EarlyFigures:
         self.cancel()  # a no-op once result() has joined the child
 
 
+@contextmanager
+def _sigint_held():
+    """Block SIGINT in this thread inside the block (where signal masks exist); one that
+    arrives meanwhile is delivered when the block ends. A child forked inside inherits the
+    mask: :func:`_child` unblocks it."""
+    held = hasattr(signal, "pthread_sigmask")
+    if held:
+        signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        if held:
+            signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+
+
 def _child(prepare: Prepare, conn, parent_end) -> None:
     """The child: ``prepare()``, then the payload from ``conn``, then ``(ok, value)`` back."""
     parent_end.close()  # so that the parent's death closes the pipe for us
     try:
+        if hasattr(signal, "pthread_sigmask"):  # (forked with SIGINT held: _sigint_held)
+            signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
         try:
-            finish, error = prepare(), None
+            first = _given(prepare, conn)
+            if isinstance(first, Given):
+                finish, error, first = prepare(first.data), None, _NONE
+            else:
+                finish, error = prepare(), None
+        except EOFError:  # the parent stopped before its run: nothing to draw
+            os._exit(0)
         except Exception as exc:  # said once the parent asks for the figures
-            finish, error = None, exc
+            finish, error, first = None, exc, _NONE
         try:
-            payload = _news(conn, getattr(finish, "feed", None))
+            payload = _news(conn, getattr(finish, "feed", None), first)
         except EOFError:  # the parent stopped before its run: nothing to draw
             os._exit(0)
         message = (False, error) if error else (True, finish(payload))
@@ -184,13 +241,27 @@ def _child(prepare: Prepare, conn, parent_end) -> None:
     send_back(conn, message)
 
 
-def _news(conn, feed):
-    """Receive until the payload, handing each :class:`News` to ``feed`` (if any) with
-    ``conn.poll`` and saying it was taken; return the payload. While ``feed`` works, the parent
-    waits for the answer before sending more News, so a message waiting is the payload:
-    ``feed`` may stop early when ``poll()`` says so (the run is over, its figures come first)."""
-    payload = conn.recv()
+def _given(prepare: Prepare, conn):
+    """A ``prepare`` with ``warm``: ``warm()``, then the parent's first message (its
+    :class:`Given`, or what it sent without one); else :data:`_NONE`, nothing received."""
+    warm = getattr(prepare, "warm", None)
+    if warm is None:
+        return _NONE
+    warm()
+    return conn.recv()
+
+
+def _news(conn, feed, first=_NONE):
+    """Receive until the payload (``first`` if it was received already), handing each
+    :class:`News` to ``feed`` (if any) with ``conn.poll`` and saying it was taken; return the
+    payload. While ``feed`` works, the parent waits for the answer before sending more News, so
+    a message waiting is the payload: ``feed`` may stop early when ``poll()`` says so (the run
+    is over, its figures come first). A :class:`Given` nobody waited for is dropped."""
+    payload = conn.recv() if first is _NONE else first
     while isinstance(payload, News):
+        if isinstance(payload, Given):
+            payload = conn.recv()  # (no answer: the parent waits for none)
+            continue
         if feed is not None:
             feed(payload.data, conn.poll)
         conn.send(_TAKEN)
@@ -220,19 +291,22 @@ def run_figures(scenario, algorithm: str, seed: int, grid, gif, label: str | Non
     Returns
     -------
     callable
-        ``prepare()`` for :class:`EarlyFigures`; its ``finish`` takes ``(result, metrics,
-        metadata)`` (metrics and PNG text may be None) and returns ``(grid path, gif path)``.
+        ``prepare(optimum=None)`` with ``warm`` (:class:`EarlyFigures`); ``optimum``: the
+        static optimum path if the parent computed it (the child then loads no kernel). Its
+        ``finish`` takes ``(result, metrics, metadata)`` (metrics and PNG text may be None) and
+        returns ``(grid path, gif path)``.
     """
 
-    def prepare():
+    def prepare(optimum=None):
         from mawdo.planning.render.animation import GifFrame
         from mawdo.planning.render.forked import Forked
         from mawdo.planning.render.live import PartialRun
         from mawdo.planning.render.snapshots import GridFrame, grid_blocks, save_grid
-        from mawdo.planning.render.style import IMAGE_SUFFIXES, checked_output_path, display_name
 
+        if optimum is not None:
+            style.know_optimum(scenario, optimum)
         frame = GridFrame([scenario])
-        movie = GifFrame(scenario, display_name(algorithm), seed)
+        movie = GifFrame(scenario, style.display_name(algorithm), seed)
         partial = PartialRun()
 
         def feed(news, run_over):  # the run so far: draw the GIF frames it fixes (.live)
@@ -241,8 +315,8 @@ def run_figures(scenario, algorithm: str, seed: int, grid, gif, label: str | Non
 
         def finish(payload):
             result, metrics, metadata = payload
-            grid_out = checked_output_path(grid, IMAGE_SUFFIXES)
-            gif_out = checked_output_path(gif, (".gif",))
+            grid_out = style.checked_output_path(grid, style.IMAGE_SUFFIXES)
+            gif_out = style.checked_output_path(gif, (".gif",))
             job = Forked(lambda: movie.write(result, gif_out, every=every))  # beside the grid
             key = label or result.algorithm
             blocks = grid_blocks([(key, result)], None, frame.rows * frame.cols, {key: metrics})
@@ -252,4 +326,24 @@ def run_figures(scenario, algorithm: str, seed: int, grid, gif, label: str | Non
         finish.feed = feed
         return finish
 
+    prepare.warm = warm_up
     return prepare
+
+
+def warm_up() -> None:
+    """What every figure's set-up imports and loads first (matplotlib, Pillow and its common
+    image formats, the optimizer catalog for the labels, the default font): 0.6-0.7 s of CPU,
+    done by a figures' process forked before its parent's run is set up, while the parent
+    sets it up (Pillow's formats were imported by the first save, after the run, twice: the
+    grid's and the GIF's process, 0.02 s each)."""
+    import matplotlib.backends.backend_agg  # noqa: F401
+    import matplotlib.figure  # noqa: F401
+    import matplotlib.lines  # noqa: F401
+    import matplotlib.patches  # noqa: F401
+    import PIL.Image
+    from matplotlib import font_manager
+
+    import mawdo.optimizers  # noqa: F401  (display_name)
+
+    PIL.Image.preinit()
+    font_manager.get_font(font_manager.findfont(font_manager.FontProperties()))

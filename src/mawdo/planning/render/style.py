@@ -3,6 +3,7 @@ outside pyplot, routes and replans at a time)."""
 
 from __future__ import annotations
 
+import weakref
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
@@ -182,13 +183,28 @@ def reference_point(obstacle) -> np.ndarray:
 
 
 def optimum_path(scenario: Scenario, cache: dict) -> np.ndarray | None:
-    """Static optimum path of a scenario (cached per scenario object)."""
+    """Static optimum path of a scenario (cached per scenario object; one given by
+    :func:`know_optimum` is used as it is)."""
     key = id(scenario)
     if key not in cache:
-        from mawdo.planning.oracle import scenario_optimum
+        known = _KNOWN.get(scenario)
+        if known is None:
+            from mawdo.planning.oracle import scenario_optimum
 
-        cache[key] = scenario_optimum(scenario, static_only=True).path
+            known = scenario_optimum(scenario, static_only=True).path
+        cache[key] = known
     return cache[key]
+
+
+#: Static optima computed elsewhere (another process), by scenario object.
+_KNOWN: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def know_optimum(scenario: Scenario, path: np.ndarray) -> None:
+    """Give :func:`optimum_path` the static optimum path of ``scenario`` (what
+    ``scenario_optimum(scenario, static_only=True).path`` returns), computed elsewhere: a
+    figures' process then needs neither the oracle nor its compiled kernels."""
+    _KNOWN[scenario] = path
 
 
 def format_time(t: float) -> str:
