@@ -42,6 +42,14 @@ def test_every_table_row_names_a_kernel_and_types_it_can_compile():
         assert len(parse(e.sig)) == disp.py_func.__code__.co_argcount, e
 
 
+def test_the_table_compiles_each_kernel_once():
+    # `plan paper` compiles one specialisation per kernel (recorded on an empty cache: 47
+    # kernels); a second row for a kernel is a signature no command passes any more (a stale
+    # `wind_step` row with bool gravity and pressure codes cost every install 4.7 s of CPU)
+    keys = [e.key for e in load_table()]
+    assert len(keys) == len(set(keys)), sorted(k for k in keys if keys.count(k) > 1)
+
+
 def test_shares_split_the_work_evenly_and_keep_the_recorded_order():
     secs = [40, 9, 8, 7, 6, 5, 4, 3]
     entries = [Entry("m", f"f{k}", s, "-", "()") for k, s in enumerate(secs)]

@@ -376,7 +376,9 @@ def _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, 
             verdict = cls[1]
             sidx = cls[3]
             vmap = cls[4]
-            nt = 0
+            # (an int64 from the start: a literal 0 made Numba compile classify_segments a
+            # second time, for the type Literal[int](0), before the loop widened it)
+            nt = np.int64(0)
             for e in range(ne):
                 d = qd2[e]
                 sax[nt] = qax[e]
