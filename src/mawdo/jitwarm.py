@@ -132,13 +132,11 @@ def shares(entries: list[Entry], jobs: int) -> list[list[Entry]]:
     """Split ``entries`` into at most ``jobs`` ordered lists, one per process, so that all end
     early: list scheduling by recorded compile time along the table's caller edges.
 
-    Entries go in order of their longest chain (their own time plus their callers' up to an
-    entry nobody calls): the longest chain first, and a kernel always after the kernels it
-    calls. Each goes to the process that can start it first, no sooner than its callees end
-    (the process compiling a caller waits for the callees another compiles: see
-    :func:`compile_entries`); of processes that can start it as early, the one that idles
-    least. So the cost kernel's parts compile in both processes at once and the kernel itself
-    after them, while the other kernels fill the gaps.
+    Entries go in order of their longest chain (own time plus their callers' up to an entry
+    nobody calls; so a kernel after its callees), each to the process that can start it
+    first, no sooner than its callees end (a caller's process waits for callees another
+    compiles, :func:`compile_entries`), of those the one that idles least. So the cost
+    kernel's parts compile in both processes and the kernel after them.
     """
     keys = {e.key for e in entries}
     callees: dict[str, list[Entry]] = {}
@@ -167,8 +165,7 @@ def shares(entries: list[Entry], jobs: int) -> list[list[Entry]]:
 
 
 def _below(entries: list[Entry]) -> dict[str, set[str]]:
-    """Per entry's key, the keys of the entries whose compile its compile makes (its callees
-    in the table, theirs, and so on)."""
+    """Per entry's key, the keys of its callees in the table, theirs, and so on."""
     caller = {e.key: e.caller for e in entries}
     out: dict[str, set[str]] = {e.key: set() for e in entries}
     for e in entries:
@@ -181,10 +178,9 @@ def _below(entries: list[Entry]) -> dict[str, set[str]]:
 
 
 def _wait_for(others: list[Entry], below: dict[str, set[str]], current: list, timeout: float):
-    """Make the dispatchers of ``others`` (entries another process compiles) wait, when this
-    process needs one of them while compiling a kernel above it (``current[0]``), until the
-    other process has cached it (at most ``timeout`` seconds); then load it (or compile it,
-    if it never came). Other needs compile at once, as Numba does."""
+    """Make the dispatchers of ``others`` (another process compiles them), when needed while
+    this process compiles a kernel above them (``current[0]``), wait until they are cached
+    (at most ``timeout`` s), then load them (or compile, if they never came)."""
     for e in others:
         disp = dispatcher(e)
         own = disp.compile
