@@ -42,6 +42,14 @@ def test_every_table_row_names_a_kernel_and_types_it_can_compile():
         assert len(parse(e.sig)) == disp.py_func.__code__.co_argcount, e
 
 
+def test_the_table_compiles_each_kernel_once():
+    # `plan paper` compiles one specialisation per kernel (recorded on an empty cache: 47
+    # kernels); a second row for a kernel is a signature no command passes any more (a stale
+    # `wind_step` row with bool gravity and pressure codes cost every install 4.7 s of CPU)
+    keys = [e.key for e in load_table()]
+    assert len(keys) == len(set(keys)), sorted(k for k in keys if keys.count(k) > 1)
+
+
 def test_shares_split_the_work_evenly_and_keep_the_recorded_order():
     secs = [40, 9, 8, 7, 6, 5, 4, 3]
     entries = [Entry("m", f"f{k}", s, "-", "()") for k, s in enumerate(secs)]
@@ -54,7 +62,7 @@ def test_shares_split_the_work_evenly_and_keep_the_recorded_order():
     assert shares(entries[:1], 4) == [entries[:1]]  # no empty shares
 
 
-def test_a_share_first_compiles_what_another_share_calls():
+def test_a_kernel_comes_after_its_callees_and_the_longest_chain_first():
     # recorded order: callees before their caller; c2 is called by c1, c1 by the root
     c2 = Entry("m", "c2", 3, "m.c1", "()")
     c1 = Entry("m", "c1", 5, "m.root", "()")
@@ -62,8 +70,22 @@ def test_a_share_first_compiles_what_another_share_calls():
     root = Entry("m", "root", 40, "-", "()")
     y = Entry("m", "y", 8, "-", "()")
     a, b = shares([x, c2, c1, root, y], 2)
-    assert a == [root]
-    assert b == [c2, c1, x, y]  # the root's callees first, ready when the root needs them
+    assert a == [c2, c1, root]  # the longest chain (48) in order, callees first
+    assert b == [x, y]  # the rest meanwhile
+
+
+def test_the_parts_of_a_kernel_compile_in_both_processes_before_it():
+    # the cost kernel's shape: two big callees side by side, the kernel after both
+    p1 = Entry("m", "p1", 20, "m.root", "()")
+    p2 = Entry("m", "p2", 12, "m.root", "()")
+    root = Entry("m", "root", 10, "-", "()")
+    x = Entry("m", "x", 8, "-", "()")
+    a, b = shares([p1, p2, root, x], 2)
+    assert a == [p1, root]  # root waits for p2 (ends at 12) only until p1 ends (20)
+    assert b == [p2, x]  # 12 + 8: the other process is free again at 20
+    # what a process waits for: the callees (and theirs) of the kernel it compiles
+    below = jitwarm._below([p1, p2, root, x])
+    assert below == {"m.p1": set(), "m.p2": set(), "m.root": {"m.p1", "m.p2"}, "m.x": set()}
 
 
 def _run(args, cache, **kw):
@@ -140,3 +162,47 @@ def test_a_warmed_cache_leaves_nothing_to_compile(tmp_path):
     run = _run(["-c", COUNT, str(tmp_path / "out")], cache)
     assert run.returncode == 0, run.stderr
     assert "COMPILED 0 []" in run.stdout, run.stdout[-2000:]
+
+
+# One process compiles a caller while another compiles its callee: the caller's process waits
+# for the callee's cache files and loads them instead of compiling the callee too.
+WAITER = """
+import sys, time
+from numba.core import event
+from mawdo import jitwarm
+K = "mawdo.planning.kernel.primitives"
+F6 = "(" + ", ".join(["float64"] * 6) + ")"
+F8 = "(" + ", ".join(["float64"] * 8) + ")"
+on_box = jitwarm.Entry(K, "_on_box", 0.2, K + "._segments_touch", F6)
+touch = jitwarm.Entry(K, "_segments_touch", 0.3, K + ".top", F8)
+top = jitwarm.Entry(K, "top", 0.3, "-", "(float64,)")
+seen = []
+class Count(event.Listener):
+    def on_start(self, ev): seen.append(ev.data["dispatcher"].py_func.__name__)
+    def on_end(self, ev): pass
+event.register("numba:compile", Count())
+t0 = time.perf_counter()
+if sys.argv[1] == "caller":  # a kernel above both: compiles nothing it can wait for
+    import mawdo.planning.kernel.primitives as prim
+    from numba import njit
+    prim.top = njit(lambda x: prim._segments_touch(x, 0.0, 1.0, 0.0, 0.0, -1.0, 0.0, 1.0))
+    jitwarm.compile_entries([top], others=[on_box, touch], timeout=60)
+else:  # the callees' process, a second late
+    time.sleep(float(sys.argv[2]))
+    jitwarm.compile_entries([on_box, touch])
+print("WAITED", round(time.perf_counter() - t0, 1), "COMPILED", sorted(set(seen)))
+"""
+
+
+def test_a_caller_waits_for_the_callee_another_process_compiles(tmp_path):
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path), "PYTHONPATH": SRC}
+    args = [sys.executable, "-c", WAITER]
+    callee = subprocess.Popen([*args, "callee", "1.5"], env=env, stdout=subprocess.PIPE, text=True)
+    caller = subprocess.run([*args, "caller"], env=env, capture_output=True, text=True, timeout=300)
+    out, _ = callee.communicate(timeout=300)
+    assert caller.returncode == 0 and callee.returncode == 0, caller.stderr
+    assert "'_segments_touch'" in out and "'_on_box'" in out  # the callee's process compiled them
+    words = caller.stdout.split()
+    assert float(words[1]) >= 1.5, caller.stdout  # the caller waited for them
+    assert "_segments_touch" not in caller.stdout and "_on_box" not in caller.stdout
+    assert "'<lambda>'" in caller.stdout  # and compiled its own kernel, the callee loaded

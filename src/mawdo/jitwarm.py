@@ -129,46 +129,86 @@ def todo() -> list[Entry]:
 
 
 def shares(entries: list[Entry], jobs: int) -> list[list[Entry]]:
-    """Split ``entries`` into at most ``jobs`` lists of about equal recorded compile time
-    (longest first to the least loaded list).
+    """Split ``entries`` into at most ``jobs`` ordered lists, one per process, so that all end
+    early: list scheduling by recorded compile time along the table's caller edges.
 
-    Each list first compiles what another list's kernels call (so that those find it in the
-    cache instead of compiling it too), then the rest, each part in the recorded order (a
-    kernel after the kernels it calls).
+    Entries go in order of their longest chain (own time plus their callers' up to an entry
+    nobody calls; so a kernel after its callees), each to the process that can start it
+    first, no sooner than its callees end (a caller's process waits for callees another
+    compiles, :func:`compile_entries`), of those the one that idles least. So the cost
+    kernel's parts compile in both processes and the kernel after them.
     """
-    loads = [0.0] * jobs
-    share: dict[Entry, int] = {}
-    for e in sorted(entries, key=lambda e: -e.seconds):
-        k = loads.index(min(loads))
-        share[e] = k
-        loads[k] += e.seconds
-    roots = _roots(entries)
-    where = {e.key: share[e] for e in entries}
-    parts: list[list[Entry]] = [[] for _ in range(jobs)]
-    for e in entries:  # recorded order
-        parts[share[e]].append(e)
-    for part in parts:
-        part.sort(key=lambda e: where.get(roots[e], share[e]) == share[e])  # stable
+    keys = {e.key for e in entries}
+    callees: dict[str, list[Entry]] = {}
+    for e in entries:
+        if e.caller in keys:
+            callees.setdefault(e.caller, []).append(e)
+    chain: dict[str, float] = {}
+
+    def longest(e: Entry, seen: frozenset = frozenset()) -> float:
+        if e.key not in chain:
+            up = [c for c in entries if c.key == e.caller and c.key not in seen]
+            chain[e.key] = e.seconds + max((longest(c, seen | {e.key}) for c in up), default=0)
+        return chain[e.key]
+
+    order = sorted(range(len(entries)), key=lambda i: (-longest(entries[i]), i))
+    free = [0.0] * max(1, jobs)
+    end: dict[str, float] = {}
+    parts: list[list[Entry]] = [[] for _ in free]
+    for i in order:
+        e = entries[i]
+        ready = max((end.get(c.key, 0.0) for c in callees.get(e.key, [])), default=0.0)
+        k = min(range(len(free)), key=lambda k: (max(free[k], ready), -free[k]))
+        end[e.key] = free[k] = max(free[k], ready) + e.seconds
+        parts[k].append(e)
     return [p for p in parts if p]
 
 
-def _roots(entries: list[Entry]) -> dict[Entry, str]:
-    """Per entry, the key of the outermost entry whose compile compiled it (its own if none)."""
+def _below(entries: list[Entry]) -> dict[str, set[str]]:
+    """Per entry's key, the keys of its callees in the table, theirs, and so on."""
     caller = {e.key: e.caller for e in entries}
-    out = {}
+    out: dict[str, set[str]] = {e.key: set() for e in entries}
     for e in entries:
-        key, seen = e.key, set()
-        while caller.get(key, "-") in caller and key not in seen:
+        key, seen = e.caller, set()
+        while key in out and key not in seen:
             seen.add(key)
+            out[key].add(e.key)
             key = caller[key]
-        out[e] = key
     return out
 
 
-def compile_entries(entries: list[Entry], done=None) -> None:
-    """Compile ``entries`` in this process (each into Numba's cache); ``done(entry)`` after each."""
+def _wait_for(others: list[Entry], below: dict[str, set[str]], current: list, timeout: float):
+    """Make the dispatchers of ``others`` (another process compiles them), when needed while
+    this process compiles a kernel above them (``current[0]``), wait until they are cached
+    (at most ``timeout`` s), then load them (or compile, if they never came)."""
+    for e in others:
+        disp = dispatcher(e)
+        own = disp.compile
+
+        def compile(sig, e=e, own=own):
+            if e.key in below.get(current[0], ()):
+                limit = time.monotonic() + timeout
+                while not is_cached(e) and time.monotonic() < limit:
+                    time.sleep(0.02)
+            return own(sig)
+
+        disp.compile = compile
+
+
+def compile_entries(
+    entries: list[Entry], done=None, others: list[Entry] = (), timeout: float = 120.0
+) -> None:
+    """Compile ``entries`` in this process (each into Numba's cache); ``done(entry)`` after each.
+
+    ``others`` are the entries other processes compile at the same time: a kernel here that
+    calls one of them waits until it is cached instead of compiling it too (at most
+    ``timeout`` seconds each; see :func:`shares` for the order that makes this safe).
+    """
+    current: list = [None]
+    _wait_for(list(others), _below([*entries, *others]), current, timeout)
     for e in entries:
         disp = dispatcher(e)
+        current[0] = e.key
         try:
             disp.compile(parse(e.sig))
         except Exception as exc:  # a stale row must not stop the others: the run compiles it
@@ -203,7 +243,8 @@ def warm(jobs: int = 2, entries: list[Entry] | None = None, tick=None, every: fl
         return 0
     t0 = last = time.perf_counter()
     counts: list[int] = []
-    procs = [_spawn(part, counts) for part in shares(pending, max(1, jobs))]
+    parts = shares(pending, max(1, jobs))
+    procs = [_spawn(part, [e for q in parts if q is not part for e in q], counts) for part in parts]
     try:
         while any(p.poll() is None for p, _ in procs):
             time.sleep(0.05)
@@ -222,11 +263,12 @@ def warm(jobs: int = 2, entries: list[Entry] | None = None, tick=None, every: fl
     return len(counts)
 
 
-def _spawn(part: list[Entry], counts: list[int]):
-    """Start a process compiling ``part``; a thread appends to ``counts`` per entry it did."""
+def _spawn(part: list[Entry], others: list[Entry], counts: list[int]):
+    """Start a process compiling ``part`` (waiting for what it needs of ``others``, compiled by
+    other processes); a thread appends to ``counts`` per entry it did."""
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join(filter(None, [_src(), env.get("PYTHONPATH")]))
-    rows = json.dumps([e.line() for e in part])
+    rows = json.dumps({"part": [e.line() for e in part], "others": [e.line() for e in others]})
     cmd = [sys.executable, "-m", "mawdo.jitwarm", "compile", rows]
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, env=env, text=True)
 
@@ -281,6 +323,8 @@ def record(argv: list[str], path: Path = SIGNATURES) -> list[Entry]:
                     break
 
     event.register("numba:compile", Recorder())
+    # the command compiles in this process (not in warm()'s children, which it would start)
+    os.environ["MAWDO_JIT_JOBS"] = "1"
     argv0 = sys.argv
     sys.argv = ["mawdo", *argv]
     try:  # the command as `python -m mawdo.cli ARGV` runs it (by name: commands sit above us)
@@ -322,9 +366,10 @@ def _line(done: int, total: int, seconds: float) -> None:
 def main(argv: list[str] | None = None) -> int:
     """``python -m mawdo.jitwarm [--jobs N] | record -- ARGS | compile ROWS``."""
     argv = sys.argv[1:] if argv is None else argv
-    if argv[:1] == ["compile"]:  # a child of warm(): compile these rows, say "done" after each
-        rows = [Entry.from_line(r) for r in json.loads(argv[1])]
-        compile_entries(rows, done=lambda e: print("done", flush=True))
+    if argv[:1] == ["compile"]:  # a child of warm(): compile its rows, say "done" after each
+        rows = json.loads(argv[1])
+        part, others = ([Entry.from_line(r) for r in rows[k]] for k in ("part", "others"))
+        compile_entries(part, done=lambda e: print("done", flush=True), others=others)
         return 0
     if argv[:1] == ["record"]:
         rest = argv[1:]

@@ -3,15 +3,17 @@ is at each path time, which segments come within reach of it (a lens test), and 
 of those, piece by piece of the obstacle's motion.
 
 One compiled function per step; :func:`moving_pass` runs them for one obstacle and one block.
-The steps are inlined into it (Numba IR inlining). The lens test of step 2 measures without a
-division (a filter with room to spare; see :func:`_near_segments`); the centres and the exact
-tests are computed as they always were, so every count is the same.
+The steps are inlined into it (Numba IR inlining; compiled on their own, called with the pass's
+long argument lists, crowd scenes' calls measured up to 20 % slower, for no shorter compile).
+The pass itself is a row of :mod:`mawdo.jitwarm`'s table (its arguments are plain tuples), so
+one process compiles it while another compiles the cost kernel's other parts. The lens test of
+step 2 measures without a division (a filter with room to spare; see :func:`_near_segments`);
+the centres and the exact tests are computed as they always were, so every count is the same.
 """
 
 from __future__ import annotations
 
 import math
-from collections import namedtuple
 
 import numpy as np
 from numba import njit
@@ -26,15 +28,16 @@ from mawdo.planning.kernel.primitives import (
     segment_reach_levels,
 )
 
-Block = namedtuple("Block", ["t0", "speed", "bn", "npts", "sane", "cmax", "tmax"])
-"""A block's scalars: planning time and robot speed (time steps, px per step), candidates in the
-block and points per path, whether all coordinates are sane, the largest coordinate (px) and the
-latest path time (time steps); as :func:`mawdo.planning.kernel.passes.block_paths` finds them."""
-
 
 @njit(cache=True, fastmath=False, error_model="numpy")
 def moving_pass(i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, grid, hits, ncol):
     """Hits of the block's segments on moving obstacle i (spacetime); adds them to ``ncol``.
+
+    ``blk`` is the block's scalars ``(t0, speed, bn, npts, sane, cmax, tmax)``: planning time
+    and robot speed (time steps, px per step), candidates in the block and points per path,
+    whether all coordinates are sane, the largest coordinate (px) and the latest path time
+    (time steps), as :func:`mawdo.planning.kernel.passes.block_paths` finds them (a plain
+    tuple: its type reads back from its ``repr``, so the steps are rows of the jit table).
 
     The exact test walks the robot's segments and the obstacle's constant-velocity pieces
     together (both are ordered in time): on each common piece the robot's position relative to
@@ -58,7 +61,7 @@ def _centres(i, blk, path, work, obs, motion, grid):
     Long because its three ways (count knots, interpolate in the grid, walk) share one set of
     outputs and are each a tight loop; splitting them would only pass the same arrays around.
     """
-    t0, tmax, bn, npts = blk.t0, blk.tmax, blk.bn, blk.npts
+    t0, _, bn, npts, _, _, tmax = blk
     tt = path[2]
     kpt, cxp, cyp, cep = work[4], work[5], work[6], work[7]
     bound = obs[4]
@@ -148,7 +151,7 @@ def _centres(i, blk, path, work, obs, motion, grid):
 def _room(i, blk, pre):
     """Room for rounding (pixels) of obstacle i's tests in this block."""
     vmax, omax = pre[0], pre[1]
-    sane, cmax, tmax, speed = blk.sane, blk.cmax, blk.tmax, blk.speed
+    _, speed, _, _, sane, cmax, tmax = blk
     vm = vmax[i]
     # relative to the coordinates and times involved
     room = (
@@ -195,10 +198,11 @@ def _near_segments(i, blk, room, a2, path, work, obs, pre, hits):
     cxp, cyp, cep = work[5], work[6], work[7]
     bound = obs[4]
     rho = bound[i, 6]
-    npt = blk.bn * blk.npts
+    _, _, bn, npts, sane, _, _ = blk
+    npt = bn * npts
     vm = pre[0][i]
     nnear = 0
-    if blk.sane:
+    if sane:
         acc = math.sqrt(a2) if a2 > 0.0 else -np.inf  # (a2 < 0: no accept disc)
         for p in range(npt - 1):
             dev = _lens_dev(p, vm, tt, cxp, cyp, cep)
@@ -376,7 +380,9 @@ def _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, 
             verdict = cls[1]
             sidx = cls[3]
             vmap = cls[4]
-            nt = 0
+            # (an int64 from the start: a literal 0 made Numba compile classify_segments a
+            # second time, for the type Literal[int](0), before the loop widened it)
+            nt = np.int64(0)
             for e in range(ne):
                 d = qd2[e]
                 sax[nt] = qax[e]

@@ -243,7 +243,7 @@ def static_pass(i, ox, oy, bn, npts, path, work, cls, obs, extra, a2, margin, hi
         nnear = _exact_distances(cx, cy, 0, npt - 1, px, py, real, a2, rho2, near, hits)
     if nnear == 0:
         return
-    nf = 0
+    nf = np.int64(0)  # (not a literal 0: see moving._exact_moving's nt)
     for p in range(bn * npts - 1):
         flagged[nf] = p
         nf += 1 if near[p] else 0

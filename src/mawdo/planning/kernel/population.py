@@ -9,7 +9,7 @@ from numba import njit
 
 from mawdo.planning.kernel.classify import prepare_obstacles
 from mawdo.planning.kernel.constants import BLOCK, GRID_CELLS, MARGIN
-from mawdo.planning.kernel.moving import Block, moving_pass
+from mawdo.planning.kernel.moving import moving_pass
 from mawdo.planning.kernel.passes import block_paths, box_tables, static_pass, stride
 
 
@@ -239,7 +239,7 @@ def population_cost(
         for i in range(n_obs):
             a2 = acc2[i] if sane or is_circle[i] else -1.0
             if moving[i]:
-                blk = Block(t0, speed, bn, npts, sane, cmax, tmax)
+                blk = (t0, speed, bn, npts, sane, cmax, tmax)
                 moving_pass(
                     i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, grid, hits, ncol
                 )

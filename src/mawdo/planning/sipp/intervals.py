@@ -241,7 +241,9 @@ def forbidden(ux, uy, ex, ey, T, lo, hi, mv):
     """Departures in ``[lo, hi]`` (time steps) at which the move ``u + s e``, ``0 <= s <= T``,
     meets a mover: sorted, disjoint closed intervals, shape ``(k, 2)``."""
     buf = np.empty((16, 2))
-    n = 0
+    # (an int64 from the start: a literal 0 made Numba compile _mover_forbidden, _polygon_piece
+    # and _push a second time each, for the type Literal[int](0))
+    n = np.int64(0)
     for m in range(len(mv[0])):
         buf, n = _mover_forbidden(ux, uy, ex, ey, T, lo, hi, m, mv, buf, n)
     order = np.argsort(buf[:n, 0])
