@@ -181,7 +181,8 @@ class Run(TimedRun, SafeRun, LimitedRun):
         # only where it can matter: the extra cost call then changes nothing in other presets
         self.stalled = not first and cfg.hold_gap > 0 and self._stalled(res.fun[0], x0[:1], pos, t)
         best, fun, nfev = self._polish(res, watched, pos, t)
-        cands = [best] + [x for x in elite.X if np.max(np.abs(x - best)) > 1e-12]
+        other = elite.X[np.abs(elite.X - best).max(axis=1) > 1e-12] if len(elite.X) else []
+        cands = [best, *other]  # (a NaN difference is not distinct)
         latency = time.perf_counter() - t_start
         length, ncol, _ = self.cost.parts(best[None, :], start=pos, t0=t)
         self.replans.append(

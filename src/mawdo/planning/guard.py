@@ -21,7 +21,7 @@ from numba import njit
 
 from mawdo.planning.check import check_trajectory
 from mawdo.planning.cost import PathCost
-from mawdo.planning.path import advance, densify, unit_headings
+from mawdo.planning.path import advance, densify, segment_lengths, unit_headings
 from mawdo.planning.scenario import Scenario
 
 __all__ = ["Elite", "Guard"]
@@ -146,7 +146,7 @@ class Guard:
         pts = np.concatenate((route[:1], passed, end[None]))
         if len(pts) - 2 > self.n_check:  # more vertices than the encoding: check it in pieces
             half = len(pts) // 2
-            d0 = float(np.hypot(*np.diff(pts[: half + 1], axis=0).T).sum())
+            d0 = float(segment_lengths(pts[: half + 1]).sum())
             first = self.stretch_hits(pts[: half + 1], t, d0)
             v = self.scenario.robot_speed
             return first + self.stretch_hits(pts[half:], t + d0 / v, distance - d0)
