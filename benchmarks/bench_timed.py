@@ -15,12 +15,14 @@ each case first), p95 over the runs, for
 ``mawdo`` and ``mawdo_time`` on the paper scenario (seeds 0-4; target <= 20 ms) and on
 ``crowd`` scenes 0-4 (seed 0; target <= 50 ms). One core; the wall figure moves with the
 load, so the CPU time of the same steps (``time.process_time``) is printed beside it, and the
-load average (``os.getloadavg``) above them.
+load average (``os.getloadavg``) above them. ``--split`` adds, per case, that CPU divided
+into the cost kernel's calls (:class:`KernelClock`) and the rest, the planner's Python.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import time
 from concurrent.futures import ProcessPoolExecutor
@@ -58,23 +60,54 @@ def _paper(planner):
     return planner, run_metrics(res, snapshots=0)
 
 
-def step_times(scenario, time_guide: bool, seed: int = 0) -> list[tuple[float, float]]:
+class KernelClock:
+    """CPU seconds spent in the compiled cost kernel's calls (``ThreadedKernel.__call__``,
+    its Python dispatch included), counted while the context is open."""
+
+    def __init__(self) -> None:
+        self.cpu = 0.0
+
+    def __enter__(self) -> KernelClock:
+        from mawdo.planning.kernel.threads import ThreadedKernel
+
+        self._cls, self._call = ThreadedKernel, ThreadedKernel.__call__
+        call = self._call
+
+        def timed(kernel, *args):
+            t = time.process_time()
+            try:
+                return call(kernel, *args)
+            finally:
+                self.cpu += time.process_time() - t
+
+        ThreadedKernel.__call__ = timed
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self._cls.__call__ = self._call
+
+
+def step_times(scenario, time_guide: bool, seed: int = 0, clock=None) -> list[tuple]:
     """Wall and CPU time (s) of each replanning step of one realtime run (see the module
-    docstring)."""
+    docstring); with a :class:`KernelClock` ``clock``, the step's kernel CPU third."""
     from mawdo.planning.planner import plan
 
     marks = []
 
     def mark(step, _, replans):
-        marks.append((time.perf_counter(), time.process_time(), replans))
+        kernel = clock.cpu if clock is not None else 0.0
+        marks.append((time.perf_counter(), time.process_time(), replans, kernel))
 
     plan(scenario, "mawdo", seed=seed, time_guide=time_guide, progress=mark)
     pairs = zip(marks[1:-1], marks[2:], strict=True)
-    return [(b[0] - a[0], b[1] - a[1]) for a, b in pairs if b[2] > a[2]]
+    out = [(b[0] - a[0], b[1] - a[1], b[3] - a[3]) for a, b in pairs if b[2] > a[2]]
+    return out if clock is not None else [t[:2] for t in out]
 
 
-def latency(runs: int = 5) -> None:
-    """Replan p95 of ``mawdo`` and ``mawdo_time`` on the paper scenario and on ``crowd``."""
+def latency(runs: int = 5, split: bool = False) -> None:
+    """Replan p95 of ``mawdo`` and ``mawdo_time`` on the paper scenario and on ``crowd``;
+    ``split``: a second row per case, the CPU of the steps in the cost kernel and the rest
+    (the Python around it), each as median and p95 over the steps."""
     from mawdo.planning import get_scenario
     from mawdo.planning.scenes import generate_scene
 
@@ -88,12 +121,19 @@ def latency(runs: int = 5) -> None:
     print("load average (1, 5, 15 min): " + ", ".join(f"{x:.2f}" for x in os.getloadavg()))
     for name, scenes, target in cases:
         for planner, on in (("mawdo", False), ("mawdo_time", True)):
-            lat = np.array([t for k, sc in enumerate(scenes) for t in step_times(sc, on, seed=k)])
+            with KernelClock() if split else contextlib.nullcontext() as clock:
+                lat = np.array([t for k, sc in enumerate(scenes)
+                                for t in step_times(sc, on, seed=k, clock=clock)])  # fmt: skip
             p95, med = 1e3 * np.percentile(lat, 95, axis=0), 1e3 * np.median(lat, axis=0)
             ok = "ok" if p95[0] <= target else "MISSED"
             print(f"replan {name:5s} {planner:11s} {len(lat):5d} replans  median {med[0]:6.1f} ms "
                   f"p95 {p95[0]:6.1f} ms (<= {target:g} {ok})  CPU median {med[1]:6.1f} ms "
                   f"p95 {p95[1]:6.1f} ms (<= {target:g})")  # fmt: skip
+            if split:
+                rest = 1e3 * (lat[:, 1] - lat[:, 2])
+                print(f"       {'':5s} {'':11s} CPU split: kernel median {med[2]:6.1f} ms p95 "
+                      f"{p95[2]:6.1f} ms, rest median {np.median(rest):6.1f} ms p95 "
+                      f"{np.percentile(rest, 95):6.1f} ms")  # fmt: skip
 
 
 def _row(name, runs) -> str:
@@ -116,9 +156,12 @@ def main(argv=None) -> None:
     ap.add_argument("--workers", type=int, default=1)
     ap.add_argument("--no-paper", action="store_true")
     ap.add_argument("--latency", action="store_true", help="only the replan latency figures")
+    ap.add_argument("--split", action="store_true",
+                    help="with the latency figures, each step's CPU in the cost kernel and in "
+                         "the rest")  # fmt: skip
     a = ap.parse_args([] if argv is None else argv)
     if a.latency or argv is None:
-        latency()
+        latency(split=a.split)
         if a.latency:
             return
     fams, plans = a.families.split(","), a.planners.split(",")

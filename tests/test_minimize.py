@@ -185,3 +185,31 @@ def test_compiled_driver_steps_equal_their_numpy_forms():
         take_best(X, F, active, best_f, best_x, nit, 11)
         for got, w in zip((best_f, best_x, nit), want, strict=True):
             np.testing.assert_array_equal(got, w)
+
+
+class _Spy:
+    """An objective that keeps every batch it is given; ``pure`` as declared."""
+
+    def __init__(self, pure):
+        self.pure, self.seen = pure, []
+
+    def __call__(self, X):
+        self.seen.append(X)
+        return sphere(X)
+
+
+def test_an_objective_that_declares_itself_pure_gets_the_candidates_without_a_copy():
+    from mawdo.minimize import make_problem
+
+    assert make_problem(_Spy(True), B3).pure
+    assert not make_problem(sphere, B3).pure  # no declaration: a copy, as before
+    assert not make_problem(_Spy("yes"), B3).pure  # only True itself declares it
+    kw = {"algorithm": "mawdo", "seed": 1, "max_iter": 5}
+    pure, copied = _Spy(True), _Spy(False)
+    a, b = minimize(pure, B3, **kw), minimize(copied, B3, **kw)
+    # the pure one saw views of the driver's candidates, the other fresh copies of them
+    assert all(X.base is not None for X in pure.seen)
+    assert all(X.base is None for X in copied.seen)
+    np.testing.assert_array_equal(a.x, b.x)  # and the search is the same
+    np.testing.assert_array_equal(a.fun, b.fun)
+    np.testing.assert_array_equal(a.nfev, b.nfev)

@@ -43,6 +43,8 @@ def make_problem(
     ----------
     fun : str, BenchmarkFunction or callable
         A registered benchmark name (``"sphere"``, ``"F7"``), a benchmark object, or an objective.
+        An objective with the attribute ``pure = True`` declares that it never writes into its
+        argument: the driver then hands it the candidates without copying them.
     bounds : sequence of (low, high) pairs, (low, high) scalars, or scipy.optimize.Bounds
         Box bounds (see :func:`~mawdo.problem.as_bounds`): ``[(-5, 5)] * 10``, ``(-5, 5)`` with
         ``dim=10``, or ``Bounds(lb, ub)``. Required for a plain callable (or ``lb``/``ub``);
@@ -101,7 +103,8 @@ def make_problem(
         )
     lo, hi = as_bounds(bounds, dim, lb=lb, ub=ub)
     name = getattr(fun, "__name__", "objective")
-    return Problem(fun=fun, lb=lo, ub=hi, vectorized=vectorized, name=name)
+    pure = getattr(fun, "pure", False) is True  # it says it never writes into its argument
+    return Problem(fun=fun, lb=lo, ub=hi, vectorized=vectorized, name=name, pure=pure)
 
 
 def minimize(

@@ -106,3 +106,19 @@ def test_bad_inputs_are_still_refused_by_name():
         bad = X.copy()
         bad[1, 5] = -400.0
         cost(bad)
+
+
+def test_bounds_are_laid_out_once_and_handed_out_as_fresh_copies():
+    # the box is built once per cost object; each caller gets its own arrays, so a caller that
+    # writes into them (or clips in place) cannot move the box of the next one
+    sc = get_scenario("paper")
+    cost = PathCost(sc, mode="spacetime", n_waypoints=5)
+    lb, ub = cost.bounds
+    np.testing.assert_array_equal(lb, np.zeros(10))
+    np.testing.assert_array_equal(ub, [sc.width, sc.height] * 5)
+    lb[:] = -1.0
+    ub[:] = 1e9
+    lb2, ub2 = cost.bounds
+    np.testing.assert_array_equal(lb2, np.zeros(10))
+    np.testing.assert_array_equal(ub2, [sc.width, sc.height] * 5)
+    assert not np.shares_memory(lb2, cost.bounds[0])

@@ -30,6 +30,27 @@ def test_midpoint_moves_by_hand():
     np.testing.assert_array_equal(x, [1.0, 2.0, 3.0, 2.0])  # the plan is not written
 
 
+@pytest.mark.parametrize("m", [1, 2, 7, 20])
+def test_midpoint_moves_equal_a_row_by_row_construction(m):
+    # the variants are built by one flat scatter into copies of the plan; written the plain
+    # way, row a m + i is the plan with waypoint i moved, w_i + f_a (midpoint - w_i)
+    rng = np.random.default_rng(m)
+    x, start, goal = rng.uniform(0, 366, 2 * m), rng.uniform(0, 366, 2), rng.uniform(0, 366, 2)
+    fractions = (0.25, 0.5, 1.0)
+    V = midpoint_moves(x, start, goal, fractions)
+    chain = [start] + [x[2 * i : 2 * i + 2] for i in range(m)] + [goal]
+    rows = []
+    for f in fractions:
+        for i in range(m):
+            row = x.copy()
+            w = chain[i + 1]
+            mid = 0.5 * (chain[i] + chain[i + 2])
+            row[2 * i : 2 * i + 2] = w + f * (mid - w)
+            rows.append(row)
+    np.testing.assert_array_equal(V, np.array(rows))  # the same doubles, not only close ones
+    assert V.flags.writeable and not np.shares_memory(V, x)
+
+
 def _length_cost(start, goal):
     """Route length, row by row: a cost whose optimum (the straight line) is known."""
 

@@ -222,6 +222,9 @@ class PathCost:
         # (a map narrower than that leaves an empty box, where every segment hits)
         reach = float(scenario.robot_radius) + self.clearance
         self._box = (reach, reach, float(scenario.width) - reach, float(scenario.height) - reach)
+        self._bounds: tuple | None = None
+        w = self.weights
+        self._weights = (float(w.alpha), float(w.beta), float(w.lam), float(w.k))
 
     @property
     def threads(self) -> int:
@@ -236,9 +239,13 @@ class PathCost:
     @property
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
         """Box ``(lb, ub)`` of a candidate: the map (pixels), each shape ``(dim,)``."""
-        lb = np.zeros(self.dim)
-        ub = np.tile([self.scenario.width, self.scenario.height], self.n_waypoints)
-        return lb, ub
+        # laid out once (np.tile costs ~10 us, asked a few times per replan); each call gets
+        # its own copies, which callers may change
+        if self._bounds is None:
+            lb = np.zeros(self.dim)
+            ub = np.tile([self.scenario.width, self.scenario.height], self.n_waypoints)
+            self._bounds = (lb, ub)
+        return self._bounds[0].copy(), self._bounds[1].copy()
 
     def __call__(self, X, start=None, t0: float = 0.0) -> np.ndarray:
         """Total cost C (Eq. 24) of each candidate.
@@ -356,7 +363,6 @@ class PathCost:
                 offsets = np.ascontiguousarray(self.scenario.offsets(t0), dtype=np.float64)
                 self._snap = (t0, offsets)
             snap = self._snap[1]
-        w = self.weights
         self._kernel(
             X2,
             start,
@@ -367,7 +373,7 @@ class PathCost:
             self.flat.arrays(),
             snap,
             motion,
-            (float(w.alpha), float(w.beta), float(w.lam), float(w.k)),
+            self._weights,
             self._box,
             (out_cost, out_len, out_ncol, out_turn),
         )

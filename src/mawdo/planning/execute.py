@@ -67,14 +67,17 @@ def _optimizers(algorithm: str, cfg: PlannerConfig) -> dict:
 
 
 class _Watched:
-    """The cost as the optimizer sees it; the elite sees every batch it evaluates."""
+    """The cost from ``start`` at ``t0`` as the optimizer sees it (``pure``: it only reads the
+    candidates, :func:`mawdo.minimize.make_problem`); the elite sees every batch it evaluates."""
 
-    def __init__(self, cost: PathCost, elite: Elite, extra=None) -> None:
-        self.cost, self.elite, self.bounds, self.extra = cost, elite, cost.bounds, extra
+    pure = True
 
-    def __call__(self, X, start=None, t0: float = 0.0):
-        f = self.cost(X, start=start, t0=t0)
-        f = f if self.extra is None else f + self.extra(X, start)  # kinematic limits
+    def __init__(self, cost: PathCost, elite: Elite, extra, start, t0: float) -> None:
+        self.cost, self.elite, self.extra, self.start, self.t0 = cost, elite, extra, start, t0
+
+    def __call__(self, X):
+        f = self.cost(X, start=self.start, t0=self.t0)
+        f = f if self.extra is None else f + self.extra(X, self.start)  # kinematic limits
         return self.elite.add(X, f)
 
 
@@ -166,10 +169,10 @@ class Run(TimedRun, SafeRun, LimitedRun):
         t_start = time.perf_counter()
         x0 = self._x0(pos, remainder, rng, pop, step)
         elite = Elite(cfg.elite_size)
-        watched = _Watched(self.cost, elite, self._turn_cost())
         t = float(step)
+        watched = _Watched(self.cost, elite, self._turn_cost(), pos, t)
         res = minimize(
-            lambda X: watched(X, start=pos, t0=t),
+            watched,
             lb=self.cost.bounds[0],
             ub=self.cost.bounds[1],
             algorithm=self.optimizers[pop],
@@ -181,7 +184,8 @@ class Run(TimedRun, SafeRun, LimitedRun):
         # only where it can matter: the extra cost call then changes nothing in other presets
         self.stalled = not first and cfg.hold_gap > 0 and self._stalled(res.fun[0], x0[:1], pos, t)
         best, fun, nfev = self._polish(res, watched, pos, t)
-        cands = [best] + [x for x in elite.X if np.max(np.abs(x - best)) > 1e-12]
+        other = elite.X[np.abs(elite.X - best).max(axis=1) > 1e-12] if len(elite.X) else []
+        cands = [best, *other]  # (a NaN difference is not distinct)
         latency = time.perf_counter() - t_start
         length, ncol, _ = self.cost.parts(best[None, :], start=pos, t0=t)
         self.replans.append(
@@ -206,16 +210,9 @@ class Run(TimedRun, SafeRun, LimitedRun):
         x, fx, nfev = res.x[0], float(res.fun[0]), int(res.nfev[0])
         if self.cfg.polish_rounds == 0:
             return x, fx, nfev
-        x, fx, extra = polish(
-            lambda X: watched(X, start=pos, t0=t),
-            x,
-            fx,
-            pos,
-            self.sc.goal,
-            self.cfg.polish_rounds,
-            self.cfg.polish_steps,
-            *self.cost.bounds,
-        )
+        cfg, (lb, ub) = self.cfg, self.cost.bounds
+        rounds, steps = cfg.polish_rounds, cfg.polish_steps
+        x, fx, extra = polish(watched, x, fx, pos, self.sc.goal, rounds, steps, lb, ub)
         return x, fx, nfev + extra
 
     def _stalled(self, best: float, warm, pos, t: float) -> bool:

@@ -21,7 +21,7 @@ from numba import njit
 
 from mawdo.planning.check import check_trajectory
 from mawdo.planning.cost import PathCost
-from mawdo.planning.path import advance, densify, unit_headings
+from mawdo.planning.path import advance, densify, segment_lengths, unit_headings
 from mawdo.planning.scenario import Scenario
 
 __all__ = ["Elite", "Guard"]
@@ -86,13 +86,17 @@ class Elite:
 
     def add(self, X: np.ndarray, f: np.ndarray) -> np.ndarray:
         """Offer a batch (candidates ``(n, D)``, costs ``(n,)``); returns ``f`` unchanged."""
-        fv = np.atleast_1d(np.asarray(f, dtype=float))
+        # (the usual batch, a 1-D float64 array, goes through without numpy's conversions)
+        fv = f
+        if not (type(f) is np.ndarray and f.dtype == np.float64 and f.ndim == 1):
+            fv = np.atleast_1d(np.asarray(f, dtype=float))
         # nothing in this batch would enter (the usual case late in a run): decided before any
         # other work. The elite holds finite costs only, so an inf here changes nothing, and a
         # NaN fails the test and takes the full path below.
         if len(self.f) == self.size and fv.min() >= self.f[-1]:
             return f
-        X = np.atleast_2d(X)
+        if not (type(X) is np.ndarray and X.ndim == 2):
+            X = np.atleast_2d(X)
         ok = np.isfinite(fv)
         if not ok.all():  # the usual batch is all finite: no masked copy of it then
             if not ok.any():
@@ -104,11 +108,13 @@ class Elite:
             part = np.argpartition(fv, self.size - 1)[: self.size]
         else:
             part = np.arange(len(fv))
-        old = self.X if self.X.size else np.empty((0, X.shape[1]))
+        old = self.X if self.X.size else np.empty((0, X.shape[1]))  # (C-contiguous float64)
+        if not (X.dtype == np.float64 and X.flags.c_contiguous):
+            X = np.ascontiguousarray(X, dtype=float)
         self.X, self.f = _merge(
-            np.ascontiguousarray(old, dtype=float),
+            old,
             self.f,
-            np.ascontiguousarray(X, dtype=float),
+            X,
             fv,
             part,
             self.size,
@@ -137,10 +143,10 @@ class Guard:
     def stretch_hits(self, route: np.ndarray, t: float, distance: float) -> int:
         """Kernel hits ``n`` of the first ``distance`` px of ``route``, driven from time ``t``."""
         end, _, passed, _ = advance(route, distance)
-        pts = np.vstack([route[:1], passed, end[None]])
+        pts = np.concatenate((route[:1], passed, end[None]))
         if len(pts) - 2 > self.n_check:  # more vertices than the encoding: check it in pieces
             half = len(pts) // 2
-            d0 = float(np.hypot(*np.diff(pts[: half + 1], axis=0).T).sum())
+            d0 = float(segment_lengths(pts[: half + 1]).sum())
             first = self.stretch_hits(pts[: half + 1], t, d0)
             v = self.scenario.robot_speed
             return first + self.stretch_hits(pts[half:], t + d0 / v, distance - d0)

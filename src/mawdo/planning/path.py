@@ -13,7 +13,9 @@ import numpy as np
 
 def segment_lengths(points: np.ndarray) -> np.ndarray:
     """Lengths of the ``k - 1`` segments of a polyline ``(k, 2)`` (pixels)."""
-    return np.hypot(*np.diff(points, axis=0).T)
+    p = np.asarray(points)
+    d = p[1:] - p[:-1]  # np.diff's own arithmetic, without its wrapper
+    return np.hypot(d[:, 0], d[:, 1])
 
 
 def polyline_length(points: np.ndarray) -> float:
@@ -53,17 +55,21 @@ def advance(points: np.ndarray, distance: float):
     """
     if distance <= 0:  # standing still passes no vertex (and has no fraction to speak of)
         return points[0].copy(), points.copy(), np.zeros((0, 2)), np.zeros(0)
+    # (called several times per replan on short polylines: numpy's methods, not its
+    # function wrappers; the same sums and products)
     seg = segment_lengths(points)
-    cum = np.concatenate([[0.0], np.cumsum(seg)])
+    cum = np.zeros(len(points))
+    seg.cumsum(out=cum[1:])
     if distance >= cum[-1]:
         inner = slice(1, len(points) - 1)
         frac = cum[inner] / distance if distance > 0 else np.zeros(len(points) - 2)
         return points[-1].copy(), points[-1:].copy(), points[inner].copy(), frac
-    j = int(np.searchsorted(cum, distance, side="right") - 1)  # segment j holds the point
+    j = int(cum.searchsorted(distance, side="right")) - 1  # segment j holds the point
     frac = (distance - cum[j]) / seg[j] if seg[j] > 0 else 0.0
     pos = points[j] + frac * (points[j + 1] - points[j])
     inner = slice(1, j + 1)
-    return pos, np.vstack([pos, points[j + 1 :]]), points[inner].copy(), cum[inner] / distance
+    rest = np.concatenate((pos[None], points[j + 1 :]))
+    return pos, rest, points[inner].copy(), cum[inner] / distance
 
 
 def respread(points: np.ndarray, m: int) -> np.ndarray:
@@ -93,14 +99,16 @@ def densify(points: np.ndarray, m: int) -> np.ndarray:
 
     pts = np.asarray(points, dtype=float)
     inner = pts[1:-1][-m:] if m > 0 else pts[:0]
-    base = np.vstack([pts[:1], inner, pts[-1:]])
+    base = np.concatenate((pts[:1], inner, pts[-1:]))
     need = m - len(inner)
     if need <= 0:
         return base[1:-1].copy()
     # split the longest piece at its midpoint, repeatedly (ties: the earliest piece on the
-    # route); a heap of pieces (segment j, parameters a..b) instead of re-measuring the list
-    seg = segment_lengths(base)
-    heap = [(-seg[j], j, 0.0, 1.0) for j in range(len(seg))]
+    # route); a heap of pieces (segment j, parameters a..b) instead of re-measuring the list.
+    # The few points are worked on as Python floats: numpy's per-call cost dominated here
+    # (the lengths, halvings, comparisons and interpolations are the same doubles)
+    d = base[1:] - base[:-1]
+    heap = [(-s, j, 0.0, 1.0) for j, s in enumerate(np.hypot(d[:, 0], d[:, 1]).tolist())]
     heapq.heapify(heap)
     cuts: list[tuple[int, float]] = []
     for _ in range(need):
@@ -110,19 +118,21 @@ def densify(points: np.ndarray, m: int) -> np.ndarray:
         heapq.heappush(heap, (0.5 * neg, j, a, c))
         heapq.heappush(heap, (0.5 * neg, j, c, b))
     cuts.sort()
-    j = np.fromiter((c[0] for c in cuts), np.int64, len(cuts))
-    t = np.fromiter((c[1] for c in cuts), np.float64, len(cuts))[:, None]
-    new = base[j] + t * (base[j + 1] - base[j])
-    # interleave: original vertex k (k >= 1) comes after every cut on segments < k, and the
-    # cuts are sorted by (segment, parameter), so vertex k lands at k - 1 + (cuts before it)
-    before = np.cumsum(np.bincount(j, minlength=len(base) - 1))[:-1]
-    vrow = np.arange(len(base) - 2) + before
-    out = np.empty((m, 2))
-    is_vertex = np.zeros(m, dtype=bool)
-    is_vertex[vrow] = True
-    out[vrow] = base[1:-1]
-    out[~is_vertex] = new
-    return out
+    # in route order: original vertex k (k >= 1) after every cut on the segments before it,
+    # then the cuts on segment k by parameter, each base[k] + t (base[k + 1] - base[k])
+    B = base.tolist()
+    out = []
+    c = 0
+    for k in range(len(B) - 1):
+        if k:
+            out.append(B[k])
+        (ax, ay), (bx, by) = B[k], B[k + 1]
+        dx, dy = bx - ax, by - ay
+        while c < need and cuts[c][0] == k:
+            t = cuts[c][1]
+            out.append((ax + t * dx, ay + t * dy))
+            c += 1
+    return np.array(out, dtype=np.float64)
 
 
 @functools.lru_cache(maxsize=8)

@@ -11,6 +11,8 @@ exactly as the optimizer judges them (docs/deviations.md#d-polish).
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 # a round must lower the cost by more than this (relative) to count: rounding can make a
@@ -39,13 +41,26 @@ def midpoint_moves(x, start, goal, fractions) -> np.ndarray:
     """
     w = np.asarray(x, float).reshape(-1, 2)
     m = len(w)
-    chain = np.vstack([np.asarray(start, float), w, np.asarray(goal, float)])
+    chain = np.empty((m + 2, 2))
+    chain[0], chain[1:-1], chain[-1] = start, w, goal
     pull = 0.5 * (chain[:-2] + chain[2:]) - w  # (m, 2): toward the midpoint
     f = np.asarray(fractions, float)
-    out = np.broadcast_to(w, (f.size, m, m, 2)).copy()
-    idx = np.arange(m)
-    out[:, idx, idx] = w[None, :, :] + f[:, None, None] * pull[None, :, :]
-    return out.reshape(f.size * m, 2 * m)
+    # every row a copy of the plan, then row a m + i's waypoint i replaced: one flat scatter
+    # (called once per polish round; a (F, m, m, 2) fancy-indexed copy cost more than the rest)
+    out = np.tile(w.reshape(-1), (f.size * m, 1))
+    moved = w[None, :, :] + f[:, None, None] * pull[None, :, :]  # (F, m, 2)
+    out.reshape(-1)[_diagonal(f.size, m)] = moved.reshape(-1)
+    return out
+
+
+@functools.lru_cache(maxsize=16)
+def _diagonal(n_fractions: int, m: int) -> np.ndarray:
+    """Flat indices, in a ``(n_fractions m, 2 m)`` array, of waypoint ``i``'s two coordinates
+    in row ``a m + i``, ordered as ``(a, i, coordinate)`` (read-only, shared)."""
+    a, i, k = np.meshgrid(np.arange(n_fractions), np.arange(m), np.arange(2), indexing="ij")
+    flat = ((a * m + i) * (2 * m) + 2 * i + k).reshape(-1)
+    flat.setflags(write=False)
+    return flat
 
 
 def polish(cost, x, fx: float, start, goal, rounds: int, fractions, lb=None, ub=None):
