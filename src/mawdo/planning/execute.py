@@ -18,7 +18,8 @@ from mawdo.planning.config import PLANNING_OPTIONS, PlannerConfig, step_limit, s
 from mawdo.planning.cost import PathCost, assemble_paths
 from mawdo.planning.guard import Elite, Guard
 from mawdo.planning.guide import Guide
-from mawdo.planning.ics import SafeContinuation, SafeRun
+from mawdo.planning.ics import SafeContinuation
+from mawdo.planning.ics_run import SafeRun
 from mawdo.planning.kinematics import LimitedRun, Limits, at_speed
 from mawdo.planning.path import densify, polyline_length
 from mawdo.planning.polish import polish
