@@ -186,20 +186,25 @@ def optimize(
 
         console.print(f"convergence plot: {plot_convergence(results, plot)}")
     if json_out:
-        payload = {
-            label: {
-                "fun": r.fun.tolist(),
-                "nfev": r.nfev.tolist(),
-                "x": r.x.tolist(),
-                "params": r.params,
-                "seed": seed,
-                "time": r.time,
-            }
-            for label, r in results.items()
-        }
-        json_out.parent.mkdir(parents=True, exist_ok=True)
-        json_out.write_text(json.dumps(payload, indent=1, default=str))
+        _write_json(json_out, results, seed)
         console.print(f"results: {json_out}")
+
+
+def _write_json(path: Path, results: dict, seed: int) -> None:
+    """Per-run results of each algorithm (label -> fun, nfev, x, params, seed, time) as JSON."""
+    payload = {
+        label: {
+            "fun": r.fun.tolist(),
+            "nfev": r.nfev.tolist(),
+            "x": r.x.tolist(),
+            "params": r.params,
+            "seed": seed,
+            "time": r.time,
+        }
+        for label, r in results.items()
+    }
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(payload, indent=1, default=str))
 
 
 def _print_table(function: str, results: dict) -> None:
