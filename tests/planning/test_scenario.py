@@ -348,7 +348,8 @@ def test_shapes_expose_bounds_and_distance():
 
 
 def test_the_documented_example_file_is_valid(tmp_path):
-    import mawdo.planning.scenario as module
+    # the file layout is documented in the schema module, where the fields are
+    import mawdo.planning.scenario_schema as module
 
     doc = module.__doc__
     block = doc.split("File layout (TOML)::\n")[1].split("\nOther motions")[0]
