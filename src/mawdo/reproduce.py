@@ -13,7 +13,7 @@ from pathlib import Path
 
 from mawdo.experiments import run_plan
 from mawdo.experiments.kinds.benchmark import preset_plan, write_report
-from mawdo.experiments.kinds.benchmark.report import PAPER_PROTOCOL, comparability_notes
+from mawdo.experiments.kinds.benchmark.paper_compare import PAPER_PROTOCOL, comparability_notes
 from mawdo.experiments.kinds.planning import study_preset, write_study_report
 from mawdo.experiments.kinds.planning.findings import planner_differences
 

@@ -138,7 +138,7 @@ def test_paper_comparison_marks_f12_to_f16_not_comparable(report_dir):
 
 
 def test_comparability_notes_sort_paper_ids_by_what_we_run():
-    from mawdo.experiments.kinds.benchmark.report import comparability_notes
+    from mawdo.experiments.kinds.benchmark.paper_compare import comparability_notes
 
     same, other, nc = comparability_notes(["F1", "F9", "F12", "F7", "F11", "sphere_x"])
     # F1-F7 run the printed formula; F8-F11 a standard one (docs/functions.md); F12-F16 n.c.

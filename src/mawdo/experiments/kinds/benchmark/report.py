@@ -3,7 +3,7 @@
 Reads only the store (its plan and its runs) and never recomputes a run, so a report can be
 regenerated at any time, also from a partial sweep. Every table is a deterministic function of
 the stored numbers; wall-clock times go to ``timing.csv`` alone.
-Long by design (about 520 lines): one writer per table of the paper, each short.
+The tables beside the paper's are :mod:`.paper_compare`; the store is read by :mod:`.data`.
 
 Files written to the output directory:
 
@@ -25,117 +25,36 @@ Files written to the output directory:
 
 from __future__ import annotations
 
-import re
 from collections.abc import Sequence
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from mawdo.experiments import stats
-from mawdo.experiments.kinds.benchmark.data import finals as read_finals
-from mawdo.experiments.kinds.benchmark.labels import function_label, label
-from mawdo.experiments.kinds.benchmark.paper_values import (
-    NOT_COMPARABLE,
-    OTHER_FORMULA,
-    paper_entry,
+from mawdo.experiments.kinds.benchmark.data import (
+    REFERENCE,
+    SweepData,
+    comparisons,
+    load,
+    summaries,
 )
-from mawdo.experiments.kinds.benchmark.plan import ExperimentPlan
+from mawdo.experiments.kinds.benchmark.labels import function_label, label
+from mawdo.experiments.kinds.benchmark.paper_compare import (
+    paper_table,
+    paper_totals_notes,
+)
 from mawdo.experiments.store import Store
 from mawdo.experiments.tables import Table, to_csv, to_latex, to_markdown
 from mawdo.optimizers import ABLATION_ALGORITHMS
 
-REFERENCE = "mawdo"
-PAPER_PROTOCOL = {
-    "pop_size": 50,
-    "max_iter": 500,
-    "runs": 30,
-    "budget": "iterations",
-    "bounds_preset": "paper",
-}
-
-
-@dataclass
-class SweepData:
-    """What a report needs, read from a store.
-
-    Attributes
-    ----------
-    plan : ExperimentPlan
-        The stored plan.
-    algorithms, functions : tuple of str
-        Plan order, restricted to those with at least one stored run.
-    finals : dict
-        ``(algorithm, function) -> {"run", "fun", "error", "nfev", "wall", "failed"}``.
-    reference : str
-        The algorithm the Wilcoxon tests are against (MAWDO, else the plan's last algorithm).
-    stored, total : int
-        Stored runs and runs in the plan.
-    """
-
-    plan: ExperimentPlan
-    algorithms: tuple[str, ...]
-    functions: tuple[str, ...]
-    finals: dict
-    reference: str
-    stored: int
-    total: int
-    plan_hash: str
-    library_version: str
-
-    def values(self, kind: str) -> dict[tuple[str, str], np.ndarray]:
-        return {k: v[kind] for k, v in self.finals.items()}
-
-
-def load(store: Store, reference: str | None = None) -> SweepData:
-    """Read a store into :class:`SweepData`."""
-    plan = store.plan
-    if plan.kind != ExperimentPlan.study_kind:
-        raise ValueError(
-            f"{store.path} holds a {plan.kind!r} study, not a benchmark sweep; "
-            f"write its report with its own command (mawdo plan report for planning studies)"
-        )
-    finals = read_finals(store)
-    have = {k for k, v in finals.items() if v["fun"].size}
-    algos = tuple(a for a in plan.algorithms if any((a, f) in have for f in plan.functions))
-    fns = tuple(f for f in plan.functions if any((a, f) in have for a in plan.algorithms))
-    if reference is None:
-        reference = REFERENCE if REFERENCE in algos else (algos[-1] if algos else REFERENCE)
-    elif reference.lower() not in algos:
-        raise ValueError(
-            f"reference {reference!r} is not an algorithm of this store ({', '.join(algos)})"
-        )
-    reference = reference.lower()
-    return SweepData(
-        plan,
-        algos,
-        fns,
-        finals,
-        reference,
-        store.count(),
-        plan.total_runs,
-        store.meta["plan_hash"],
-        store.meta["library_version"],
-    )
-
 
 # ---------------------------------------------------------------------- tables
-def _summaries(data: SweepData, kind: str) -> dict[tuple[str, str], stats.Summary]:
-    return {k: stats.summarize(v) for k, v in data.values(kind).items()}
-
-
-def _comparisons(data: SweepData) -> list[stats.Comparison]:
-    rivals = [a for a in data.algorithms if a != data.reference]
-    # Ranks of raw f and of f - f* agree; raw f is stored exactly, so the tests use it.
-    return stats.compare(data.values("fun"), data.reference, rivals, data.functions)
-
-
 def results_table(
     data: SweepData, kind: str, algorithms: Sequence[str], name: str, title: str, wilcoxon: bool
 ) -> Table:
     """Paper Table 3 / 5 layout: per function Best, Ave, Std (and P) rows, algorithms across."""
-    summ = _summaries(data, kind)
-    signs = {(c.function, c.rival): c.sign for c in _comparisons(data)} if wilcoxon else {}
+    summ = summaries(data, kind)
+    signs = {(c.function, c.rival): c.sign for c in comparisons(data)} if wilcoxon else {}
     idx = [("Best", "best"), ("Ave", "mean"), ("Std", "std")]
     t = Table(
         name,
@@ -182,7 +101,7 @@ def _note_partial(t: Table, data: SweepData) -> None:
 
 def wilcoxon_tables(data: SweepData) -> tuple[Table, Table]:
     """Per-cell test results and the per-rival ``+/=/-`` totals (plain and Holm-corrected)."""
-    comps = _comparisons(data)
+    comps = comparisons(data)
     ref = label(data.reference)
     detail = Table(
         "wilcoxon",
@@ -224,31 +143,9 @@ def wilcoxon_tables(data: SweepData) -> tuple[Table, Table]:
     return detail, totals
 
 
-def paper_totals_notes(data: SweepData) -> list[str]:
-    """The paper's own ``+/=/-`` counts of MAWDO on the same functions, beside ours.
-
-    Only for unshifted sweeps against MAWDO (the paper has no shifted suite); counted on the
-    paper ids of this sweep, F12-F16 included (the signs are the paper's own test on its rows).
-    """
-    if data.plan.shifted or data.reference != REFERENCE:
-        return []
-    ids = [function_label(f) for f in data.functions]
-    out = []
-    for rival in (a for a in data.algorithms if a != data.reference):
-        signs = [e[1].sign for e in (paper_entry(rival, p) for p in ids) if e and e[1].sign]
-        if signs:
-            counts = ", ".join(f"{signs.count(s)} {s}" for s in "+=-")
-            # the paper's own algorithm names (its MEWDO is not our reconstruction)
-            out.append(
-                f"The paper's Table 3 marks MAWDO against {rival.upper()}: {counts} over "
-                f"{len(signs)} of these {len(ids)} functions."
-            )
-    return out
-
-
 def friedman_table(data: SweepData) -> Table:
     """Average Friedman ranks of the mean error, best first."""
-    errs = _summaries(data, "error")
+    errs = summaries(data, "error")
     m = np.array(
         [
             [errs[a, f].mean if (a, f) in errs else np.nan for a in data.algorithms]
@@ -277,93 +174,6 @@ def friedman_table(data: SweepData) -> Table:
             f"have {len(data.algorithms)} and {fr.n_functions})."
         )
     return t
-
-
-def paper_table(data: SweepData) -> Table | None:
-    """Ours beside the paper's Table 3 / 5 values, for algorithms and functions the paper has."""
-    if data.plan.shifted:
-        return None
-    algos = [
-        a for a in data.algorithms if any(paper_entry(a, function_label(f)) for f in data.functions)
-    ]
-    if not algos:
-        return None
-    summ = _summaries(data, "fun")
-    signs = {(c.function, c.rival): c.sign for c in _comparisons(data)}
-    cols = ["Function", "Index"]
-    for a in algos:
-        cols += [f"{label(a)} ours", f"{label(a)} paper"]
-    t = Table(
-        "paper_comparison", "Our results beside the paper's (raw final values f)", cols, block=4
-    )
-    for fn in data.functions:
-        pid = function_label(fn)
-        for text, attr, field in (
-            ("Best", "best", "best"),
-            ("Ave", "mean", "ave"),
-            ("Std", "std", "std"),
-            ("P", None, "sign"),
-        ):
-            row: list = [pid, text]
-            for a in algos:
-                ours = (
-                    signs.get((fn, a), "")
-                    if attr is None
-                    else (getattr(summ[a, fn], attr) if (a, fn) in summ else None)
-                )
-                pe = paper_entry(a, pid)
-                if pe is None:
-                    theirs = ""
-                elif pid in NOT_COMPARABLE:
-                    theirs = "n.c."
-                else:
-                    v = getattr(pe[1], field)
-                    theirs = "" if v is None else v
-                row += [ours, theirs]
-            t.rows.append(row)
-    t.notes.append(
-        "Paper values from Tables 3 and 5 of arXiv 2511.20394 "
-        "(src/mawdo/experiments/kinds/benchmark/paper_values.py)."
-    )
-    t.notes += comparability_notes([function_label(f) for f in data.functions])
-    diffs = [
-        f"{k}={getattr(data.plan, k)} (paper {v})"
-        for k, v in PAPER_PROTOCOL.items()
-        if getattr(data.plan, k) != v
-    ]
-    if diffs:
-        t.notes.append("This plan differs from the paper's protocol: " + ", ".join(diffs) + ".")
-    if data.reference != REFERENCE:
-        t.notes.append(f"Our P row is against {label(data.reference)}, the paper's against MAWDO.")
-    return t
-
-
-def comparability_notes(paper_ids: Sequence[str]) -> list[str]:
-    """What the paper's numbers beside ours are worth, for the paper ids in the table."""
-    other = [p for p in paper_ids if p in OTHER_FORMULA]
-    nc = [p for p in paper_ids if p in NOT_COMPARABLE]
-    same = [
-        p for p in paper_ids if re.fullmatch(r"F\d+", p) and p not in OTHER_FORMULA and p not in nc
-    ]
-    out = []
-    if same:
-        out.append(
-            f"{', '.join(same)}: we run the formula the paper prints (F6 with our reading of its "
-            "noise, docs/functions.md#f-noise), so the paper's numbers are for the same function."
-        )
-    if other:
-        anchors = ", ".join(f"{p} {OTHER_FORMULA[p]}" for p in other)
-        out.append(
-            f"{', '.join(other)}: we run a standard function in place of the printed formula "
-            f"({anchors}); the paper's numbers may come from either, so they are not verified "
-            "to be comparable."
-        )
-    if nc:
-        out.append(
-            f"{', '.join(nc)}: not comparable (n.c. in the tables): the paper's rows for them do "
-            "not fit its own function table (docs/functions.md#f-f12-f16)."
-        )
-    return out
 
 
 def summary_table(data: SweepData) -> Table:
