@@ -88,7 +88,8 @@ def take_best(X, F, active, best_f, best_x, nit, it):  # pragma: no cover - comp
                 j = k
         if fj < best_f[r]:
             best_f[r] = fj
-            best_x[r, :] = X[r, j, :]
+            for d in range(X.shape[2]):  # (no slice assignment: compiles faster)
+                best_x[r, d] = X[r, j, d]
         nit[r] = it
 
 

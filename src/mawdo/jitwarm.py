@@ -325,8 +325,9 @@ def record(argv: list[str], path: Path = SIGNATURES) -> list[Entry]:
     event.register("numba:compile", Recorder())
     # the command compiles in this process (not in warm()'s children, which it would start)
     os.environ["MAWDO_JIT_JOBS"] = "1"
-    argv0 = sys.argv
-    sys.argv = ["mawdo", *argv]
+    argv0, sys.argv = sys.argv, ["mawdo", *argv]
+    # no end without teardown (mawdo.cli.quick_exit's os._exit) before the table is written
+    importlib.import_module("mawdo.cli.quick_exit").end = lambda code: None
     try:  # the command as `python -m mawdo.cli ARGV` runs it (by name: commands sit above us)
         runpy.run_module("mawdo.cli", run_name="__main__")
     except SystemExit as exc:

@@ -23,6 +23,7 @@ from mawdo.planning.check import check_trajectory
 from mawdo.planning.cost import PathCost
 from mawdo.planning.path import advance, densify, segment_lengths, unit_headings
 from mawdo.planning.scenario import Scenario
+from mawdo.stablesort import stable_argsort
 
 __all__ = ["Elite", "Guard"]
 
@@ -62,14 +63,21 @@ def _merge(EX, ef, X, fv, part, size, min_dist):
     ties, then :func:`_distinct_first`); one compiled call instead of a dozen small NumPy ones
     per batch. ``part`` comes from NumPy's ``argpartition``, so ties at its cut are broken as
     before."""
-    take = part[np.argsort(fv[part], kind="mergesort")]
+    # stable_argsort, and loops, not np.argsort(kind="mergesort") and slice assignments: the
+    # same order, and each process compiles 4-5 s less of Numba's own helpers
+    take = part[stable_argsort(fv[part])]
     n0, d = EX.shape[0], X.shape[1]
     allx = np.empty((n0 + len(take), d))
     allf = np.empty(n0 + len(take))
-    allx[:n0], allf[:n0] = EX, ef
+    for a in range(n0):
+        allf[a] = ef[a]
+        for c in range(d):
+            allx[a, c] = EX[a, c]
     for a in range(len(take)):
-        allx[n0 + a], allf[n0 + a] = X[take[a]], fv[take[a]]
-    keep = _distinct_first(allx, np.argsort(allf, kind="mergesort"), size, min_dist)
+        allf[n0 + a] = fv[take[a]]
+        for c in range(d):
+            allx[n0 + a, c] = X[take[a], c]
+    keep = _distinct_first(allx, stable_argsort(allf), size, min_dist)
     return allx[keep], allf[keep]
 
 

@@ -15,12 +15,13 @@ count), so the build is quadratic in the number of corner nodes. Above ``MAX_NOD
 
 from __future__ import annotations
 
-import heapq
 from dataclasses import dataclass
 
 import numpy as np
 import shapely
 from numba import njit
+
+from mawdo.planning.heap import heap_new, heap_pop, heap_push
 
 __all__ = ["MAX_NODES", "VisGraph", "build", "csr_dijkstra", "visible_from_point"]
 
@@ -183,17 +184,16 @@ def csr_dijkstra(indptr, indices, weights, init_nodes, init_dist):
     n = len(indptr) - 1
     dist = np.full(n, np.inf)
     pred = np.full(n, -2, dtype=np.int64)
-    heap = [(0.0, np.int64(0))]
-    heap.pop()
+    keys, ids, nh = heap_new()  # entries (distance, 0.0, node): heapq's (distance, node) order
     for k in range(len(init_nodes)):
         v = init_nodes[k]
         if init_dist[k] < dist[v]:
             dist[v] = init_dist[k]
             pred[v] = -1
-            heapq.heappush(heap, (init_dist[k], v))
+            keys, ids, nh = heap_push(keys, ids, nh, init_dist[k], 0.0, v)
     done = np.zeros(n, dtype=np.bool_)
-    while heap:
-        d, u = heapq.heappop(heap)
+    while nh > 0:
+        d, _, u, nh = heap_pop(keys, ids, nh)
         if done[u]:
             continue
         done[u] = True
@@ -203,7 +203,7 @@ def csr_dijkstra(indptr, indices, weights, init_nodes, init_dist):
             if nd < dist[v]:
                 dist[v] = nd
                 pred[v] = u
-                heapq.heappush(heap, (nd, v))
+                keys, ids, nh = heap_push(keys, ids, nh, nd, 0.0, v)
     return dist, pred
 
 

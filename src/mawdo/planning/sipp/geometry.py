@@ -103,8 +103,10 @@ def clip_range(d0x, d0y, ex, ey, wx, wy, T, ta, tb, planes):
     ys = np.empty(cap)
     nx_ = np.empty(cap)
     ny_ = np.empty(cap)
-    xs[:4] = (0.0, T, T, 0.0)
-    ys[:4] = (ta, ta, tb, tb)
+    # element by element: a slice assignment makes every process compile Numba's shape-error
+    # message (string formatting, about 4 s of CPU for all the kernels' slice assignments)
+    xs[0], xs[1], xs[2], xs[3] = 0.0, T, T, 0.0
+    ys[0], ys[1], ys[2], ys[3] = ta, ta, tb, tb
     n = 4
     for k in range(planes.shape[0]):
         nx, ny, h = planes[k, 0], planes[k, 1], planes[k, 2]
@@ -128,8 +130,9 @@ def clip_range(d0x, d0y, ex, ey, wx, wy, T, ta, tb, planes):
         n = m
         if n == 0:
             return _INF, -_INF
-        xs[:n] = nx_[:n]
-        ys[:n] = ny_[:n]
+        for i in range(n):
+            xs[i] = nx_[i]
+            ys[i] = ny_[i]
     lo, hi = _INF, -_INF
     for i in range(n):
         lo, hi = _update(lo, hi, ys[i] - xs[i])

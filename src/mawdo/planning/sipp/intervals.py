@@ -32,6 +32,7 @@ from mawdo.planning.kernel.primitives import (
 from mawdo.planning.motion import BoundedRandomWalk
 from mawdo.planning.scenario import Scenario
 from mawdo.planning.sipp.geometry import clip_range, cone_start, disc_range
+from mawdo.stablesort import stable_argsort
 
 __all__ = ["EPS", "Movers", "earliest_free", "forbidden", "safe_intervals", "segment_free"]
 
@@ -141,10 +142,54 @@ class Movers:
 
 
 @njit(cache=True)
+def _sweep_order(buf, a, b):
+    """Rows ``a..b-1`` of ``buf`` by their start (column 0), as indices of ``buf``.
+
+    Was ``np.argsort`` (quick sort) of the starts; a stable sort instead spares every process
+    compiling Numba's sort (1.7 s of CPU). Same order but among equal starts, which the sweeps
+    over these intervals do not see: of a run of equal starts the first is tested against the
+    end reached before the run (the others start before that end has grown past them), and the
+    run's ends all go into one ``max`` (so at most the sign of a zero start could differ)."""
+    keys = np.empty(b - a)
+    for r in range(a, b):
+        keys[r - a] = buf[r, 0]
+    order = stable_argsort(keys)
+    for r in range(b - a):
+        order[r] += a
+    return order
+
+
+@njit(cache=True)
+def _first_not_before(x, a, b, v):
+    """``a + np.searchsorted(x[a:b], v)``: the first ``k`` in ``a..b`` whose ``x[k]`` is not
+    below ``v`` (NaN above every number), by the same bisection as NumPy's and Numba's (the
+    same ``k`` on any input), without compiling Numba's generic ``searchsorted``."""
+    lo, hi = a, b
+    while lo < hi:
+        mid = lo + ((hi - lo) >> 1)
+        if x[mid] < v or (v != v and x[mid] == x[mid]):
+            lo = mid + 1
+        else:
+            hi = mid
+    return lo
+
+
+@njit(cache=True)
+def _doubled(x):
+    """``np.concatenate((x, np.empty(len(x))))`` without Numba's generic concatenate."""
+    out = np.empty(2 * len(x))
+    for i in range(len(x)):
+        out[i] = x[i]
+    return out
+
+
+@njit(cache=True)
 def _push(buf, n, lo, hi):
     if n == buf.shape[0]:
         grown = np.empty((2 * n + 8, 2))
-        grown[:n] = buf[:n]
+        for r in range(n):  # (no slice assignment: see _sweep_order)
+            grown[r, 0] = buf[r, 0]
+            grown[r, 1] = buf[r, 1]
         buf = grown
     buf[n, 0] = lo
     buf[n, 1] = hi
@@ -169,25 +214,25 @@ def _polygon_piece(d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, i, nv, thr, buf, 
         if length == 0.0:
             continue
         ux, uy = (bx - ax) / length, (by - ay) / length
-        planes[0] = (-ux, -uy, -(ux * ax + uy * ay))
-        planes[1] = (ux, uy, ux * bx + uy * by)
-        planes[2] = (-uy, ux, -uy * ax + ux * ay + half)
-        planes[3] = (uy, -ux, uy * ax - ux * ay + half)
+        planes[0, 0], planes[0, 1], planes[0, 2] = -ux, -uy, -(ux * ax + uy * ay)
+        planes[1, 0], planes[1, 1], planes[1, 2] = ux, uy, ux * bx + uy * by
+        planes[2, 0], planes[2, 1], planes[2, 2] = -uy, ux, -uy * ax + ux * ay + half
+        planes[3, 0], planes[3, 1], planes[3, 2] = uy, -ux, uy * ax - ux * ay + half
         lo, hi = clip_range(d0x, d0y, ex, ey, wx, wy, T, ta, tb, planes)
         if lo <= hi:
             buf, n = _push(buf, n, lo, hi)
-    edges = buf[first:n].copy()
-    edges = edges[np.argsort(edges[:, 0])]
+    m = n - first
+    edges = buf[_sweep_order(buf, first, n)]
     cur = ta - T
-    for j in range(len(edges) + 1):
-        g1 = edges[j, 0] if j < len(edges) else tb
+    for j in range(m + 1):
+        g1 = edges[j, 0] if j < m else tb
         if g1 > cur:  # a gap: one point of one move decides it
             tm = 0.5 * (cur + g1)
             s = 0.5 * (max(0.0, ta - tm) + min(T, tb - tm))
             t = tm + s
             if point_in_polygon(d0x + s * ex - t * wx, d0y + s * ey - t * wy, verts, i, nv):
                 buf, n = _push(buf, n, cur, g1)
-        if j < len(edges):
+        if j < m:
             cur = max(cur, edges[j, 1])
     return buf, n
 
@@ -205,7 +250,7 @@ def _mover_forbidden(ux, uy, ex, ey, T, lo, hi, m, mv, buf, n):
             buf, n = _push(buf, n, tc, math.inf)
         return buf, n
     a, b = pptr[m], pptr[m + 1]
-    k = a + np.searchsorted(pt1[a:b], lo)
+    k = _first_not_before(pt1, a, b, lo)
     # the move's bounding box: a piece whose swept box misses it cannot collide
     rx0, rx1 = min(ux, ux + T * ex), max(ux, ux + T * ex)
     ry0, ry1 = min(uy, uy + T * ey), max(uy, uy + T * ey)
@@ -246,7 +291,7 @@ def forbidden(ux, uy, ex, ey, T, lo, hi, mv):
     n = np.int64(0)
     for m in range(len(mv[0])):
         buf, n = _mover_forbidden(ux, uy, ex, ey, T, lo, hi, m, mv, buf, n)
-    order = np.argsort(buf[:n, 0])
+    order = _sweep_order(buf, np.int64(0), n)  # (an int64: a literal 0 compiles it twice)
     out = np.empty((n, 2))
     k = 0
     for j in order:
@@ -294,7 +339,7 @@ def segment_free(ux, uy, vx, vy, ta, tb, mv):
                 return False
             continue
         a, b = pptr[m], pptr[m + 1]
-        k = a + np.searchsorted(pt1[a:b], ta)
+        k = _first_not_before(pt1, a, b, ta)
         while k < b and pt0[k] <= tb:
             t1, t2 = max(ta, pt0[k]), min(tb, pt1[k])
             k += 1
@@ -328,8 +373,7 @@ def safe_intervals(nodes, t0, t_end, mv):
             end = F[j, 0] if j < len(F) else t_end
             if end > cur:
                 if k == len(lo):
-                    lo = np.concatenate((lo, np.empty(len(lo))))
-                    hi = np.concatenate((hi, np.empty(len(hi))))
+                    lo, hi = _doubled(lo), _doubled(hi)
                 lo[k] = cur
                 hi[k] = end
                 k += 1

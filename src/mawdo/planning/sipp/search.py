@@ -17,12 +17,12 @@ popped has the earliest arrival on this graph.
 
 from __future__ import annotations
 
-import heapq
 import math
 
 import numpy as np
 from numba import njit
 
+from mawdo.planning.heap import heap_new, heap_pop, heap_push
 from mawdo.planning.sipp.intervals import EPS, earliest_free, forbidden, segment_free
 
 __all__ = ["search", "start_state"]
@@ -116,10 +116,11 @@ def search(
     if s0 < 0:
         return -2, arrival, parent, depart
     arrival[s0] = t0
-    heap = [(t0 + to_goal[start] / speed, t0, s0)]
+    keys, ids, nh = heap_new()
+    keys, ids, nh = heap_push(keys, ids, nh, t0 + to_goal[start] / speed, t0, s0)
     state = (arrival, parent, depart, closed, banned)
-    while heap:
-        _, a, sid = heapq.heappop(heap)
+    while nh > 0:
+        _, a, sid, nh = heap_pop(keys, ids, nh)
         if closed[sid]:
             continue
         closed[sid] = True
@@ -134,15 +135,17 @@ def search(
             if top < a or not to_goal[v] < math.inf:
                 continue
             hv = to_goal[v] / speed
-            _relax(
-                ux, uy, nodes[v], ptr[v], ptr[v + 1], sid, a, T, top, hv, lo, hi, state, heap, mv
-            )
+            keys, ids, nh = _relax(
+                ux, uy, nodes[v], ptr[v], ptr[v + 1], sid, a, T, top, hv, lo, hi, state,
+                keys, ids, nh, mv,
+            )  # fmt: skip
     return -1, arrival, parent, depart
 
 
 @njit(cache=True)
-def _relax(ux, uy, pv, j0, j1, sid, a, T, top, hv, lo, hi, state, heap, mv):
-    """Arrivals in the safe intervals ``j0:j1`` of vertex ``pv`` by the move from ``u``."""
+def _relax(ux, uy, pv, j0, j1, sid, a, T, top, hv, lo, hi, state, keys, ids, nh, mv):
+    """Arrivals in the safe intervals ``j0:j1`` of vertex ``pv`` by the move from ``u``,
+    pushed on the heap ``(keys, ids, nh)`` (:mod:`mawdo.planning.heap`), which it returns."""
     arrival, parent, depart, closed, banned = state
     for J in range(j0, j1):
         if hi[J] <= a + T or closed[J] or banned[J]:
@@ -159,4 +162,5 @@ def _relax(ux, uy, pv, j0, j1, sid, a, T, top, hv, lo, hi, state, heap, mv):
             arrival[J] = tau + T
             parent[J] = sid
             depart[J] = tau
-            heapq.heappush(heap, (tau + T + hv, tau + T, J))
+            keys, ids, nh = heap_push(keys, ids, nh, tau + T + hv, tau + T, J)
+    return keys, ids, nh
