@@ -201,10 +201,63 @@ def _near_segments(i, blk, room, a2, path, work, obs, pre, hits):
     _, _, bn, npts, sane, _, _ = blk
     npt = bn * npts
     vm = pre[0][i]
-    nnear = 0
     if sane:
-        acc = math.sqrt(a2) if a2 > 0.0 else -np.inf  # (a2 < 0: no accept disc)
-        for p in range(npt - 1):
+        return _lens_sparse(npt, vm, rho, room, a2, px, py, tt, work, hits)
+    nnear = 0
+    for p in range(npt - 1):
+        reach = (rho + _lens_dev(p, vm, tt, cxp, cyp, cep)) * (1.0 + MARGIN) + room
+        d = point_segment_d2(
+            0.0, 0.0, px[p] - cxp[p], py[p] - cyp[p], px[p + 1] - cxp[p + 1],
+            py[p + 1] - cyp[p + 1],
+        )  # fmt: skip
+        close = d <= reach * reach and real[p]
+        nnear += 1 if close else 0
+        near[p] = close
+    if nnear == 0:
+        return 0
+    nf = 0
+    for p in range(npt - 1):
+        flagged[nf] = p
+        nf += 1 if near[p] else 0
+    return nf
+
+
+@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+def _lens_sparse(npt, vm, rho, room, a2, px, py, tt, work, hits):
+    """Step 2 in sane blocks: a cheap box test of every segment first, then the lens test of
+    :func:`_near_segments` for the few that pass it; returns how many segments it flagged.
+
+    The box test keeps every segment the lens test could find within reach (or sure): the
+    robot's relative segment ab comes within R of the obstacle's point only if, along x and
+    along y, ``|a + b| - |b - a| <= 2 R``, and R here bounds both radii of the lens test
+    (``dev <= |ha| + 3 max(ea, eb)``), with twice the room for rounding. The segments it keeps
+    go through the very same lens test as before, in the same order, so the hits and the
+    flagged list are bit for bit those of the full test.
+    """
+    near, flagged, real = work[0], work[1], work[2]
+    cxp, cyp, cep = work[5], work[6], work[7]
+    acc = math.sqrt(a2) if a2 > 0.0 else -np.inf  # (a2 < 0: no accept disc)
+    hv = 0.5 * vm
+    big = max(rho, acc) * (1.0 + 2.0 * MARGIN)
+    for p in range(npt - 1):
+        ax = px[p] - cxp[p]
+        ay = py[p] - cyp[p]
+        bx = px[p + 1] - cxp[p + 1]
+        by = py[p + 1] - cyp[p + 1]
+        r = 2.0 * (big + (abs(hv * (tt[p + 1] - tt[p])) + 3.0 * max(cep[p], cep[p + 1])) * (
+            1.0 + 2.0 * MARGIN) + 2.0 * room)  # fmt: skip
+        # (kept unless shown far: NaN keeps it)
+        far = (abs(ax + bx) - abs(bx - ax) > r) | (abs(ay + by) - abs(by - ay) > r)
+        near[p] = real[p] & ~far
+    nf = 0
+    nw = (npt - 1) >> 3
+    words = near[: nw * 8].view(np.uint64)  # (eight flags at a time: most are clear)
+    for w in range(nw + 1):
+        if w < nw and words[w] == 0:
+            continue
+        for p in range(8 * w, min(8 * w + 8, npt - 1)):
+            if not near[p]:
+                continue
             dev = _lens_dev(p, vm, tt, cxp, cyp, cep)
             reach = (rho + dev) * (1.0 + MARGIN) + room
             inner = (acc - dev) * (1.0 - MARGIN) - room
@@ -212,27 +265,9 @@ def _near_segments(i, blk, room, a2, path, work, obs, pre, hits):
                 px[p] - cxp[p], py[p] - cyp[p], px[p + 1] - cxp[p + 1], py[p + 1] - cyp[p + 1],
                 reach * reach, inner * inner if inner > 0.0 else -1.0,
             )  # fmt: skip
-            sure = sure & real[p]
-            close = close & real[p] & ~sure
             hits[p] += 1 if sure else 0
-            nnear += 1 if close else 0
-            near[p] = close
-    else:
-        for p in range(npt - 1):
-            reach = (rho + _lens_dev(p, vm, tt, cxp, cyp, cep)) * (1.0 + MARGIN) + room
-            d = point_segment_d2(
-                0.0, 0.0, px[p] - cxp[p], py[p] - cyp[p], px[p + 1] - cxp[p + 1],
-                py[p + 1] - cyp[p + 1],
-            )  # fmt: skip
-            close = d <= reach * reach and real[p]
-            nnear += 1 if close else 0
-            near[p] = close
-    if nnear == 0:
-        return 0
-    nf = 0
-    for p in range(npt - 1):
-        flagged[nf] = p
-        nf += 1 if near[p] else 0
+            flagged[nf] = p
+            nf += 1 if close and not sure else 0
     return nf
 
 
