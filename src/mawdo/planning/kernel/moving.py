@@ -81,29 +81,10 @@ def _centres(i, blk, path, work, obs, motion, grid):
     gneed = int((tmax - t0) * gi) + 2 if tmax - t0 < (GRID_CELLS - 2) * gdt[i] else -1
     on_grid = gneed > 0 and kw - ks > COUNT
     if kw - ks <= COUNT:
-        # few knots: place the centre on each piece in turn where the piece has begun
-        # (branch-free)
-        tw = kt[i, ks]
-        ox = bcx + ko[i, ks, 0]
-        oy = bcy + ko[i, ks, 1]
-        vx = kv[i, ks, 0]
-        vy = kv[i, ks, 1]
-        for p in range(npt):
-            kpt[p] = ks  # (a hint; the exact tests walk on from it)
-            cxp[p] = ox + vx * (tt[p] - tw)
-            cyp[p] = oy + vy * (tt[p] - tw)
-            cep[p] = 0.0
-        for w in range(ks + 1, kw + 1):
-            tw = kt[i, w]
-            ox = bcx + ko[i, w, 0]
-            oy = bcy + ko[i, w, 1]
-            vx = kv[i, w, 0]
-            vy = kv[i, w, 1]
-            for p in range(npt):
-                t = tt[p]
-                on = tw <= t
-                cxp[p] = ox + vx * (t - tw) if on else cxp[p]
-                cyp[p] = oy + vy * (t - tw) if on else cyp[p]
+        # few knots: each path time takes the last of pieces ks..kw that has begun by then (the
+        # piece ks if none), as placing the centre on each piece in turn did; chosen among four
+        # pieces at a time (branch-free), then placed once
+        _few_knots(i, ks, kw, bcx, bcy, npt, tt, kt, ko, kv, work)
     elif on_grid:
         # many knots: interpolate in the grid (extended as far as this block needs)
         g = gfill[i]
@@ -148,6 +129,55 @@ def _centres(i, blk, path, work, obs, motion, grid):
 
 
 @njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+def _few_knots(i, ks, kw, bcx, bcy, npt, tt, kt, ko, kv, work):
+    """Step 1 for pieces ks..kw: four at a time, the first four placing every point."""
+    kpt, cxp, cyp, cep = work[4], work[5], work[6], work[7]
+    for w in range(ks, kw + 1, 4):
+        # pieces w..w + 3 (past kw: a start time NaN, never begun, and piece kw's motion)
+        wb, wc, wd = min(w + 1, kw), min(w + 2, kw), min(w + 3, kw)
+        ta, tb, tc, td = kt[i, w], kt[i, wb], kt[i, wc], kt[i, wd]
+        tb = tb if w + 1 <= kw else np.nan
+        tc = tc if w + 2 <= kw else np.nan
+        td = td if w + 3 <= kw else np.nan
+        oxa, oxb, oxc, oxd = (
+            bcx + ko[i, w, 0],
+            bcx + ko[i, wb, 0],
+            bcx + ko[i, wc, 0],
+            bcx + ko[i, wd, 0],
+        )
+        oya, oyb, oyc, oyd = (
+            bcy + ko[i, w, 1],
+            bcy + ko[i, wb, 1],
+            bcy + ko[i, wc, 1],
+            bcy + ko[i, wd, 1],
+        )
+        vxa, vxb, vxc, vxd = kv[i, w, 0], kv[i, wb, 0], kv[i, wc, 0], kv[i, wd, 0]
+        vya, vyb, vyc, vyd = kv[i, w, 1], kv[i, wb, 1], kv[i, wc, 1], kv[i, wd, 1]
+        later = ((tb, oxb, oyb, vxb, vyb), (tc, oxc, oyc, vxc, vyc), (td, oxd, oyd, vxd, vyd))
+        for p in range(npt):
+            t = tt[p]
+            tw, ox, oy, vx, vy = ta, oxa, oya, vxa, vya
+            for tn, oxn, oyn, vxn, vyn in later:
+                on = tn <= t
+                tw = tn if on else tw
+                ox = oxn if on else ox
+                oy = oyn if on else oy
+                vx = vxn if on else vx
+                vy = vyn if on else vy
+            x = ox + vx * (t - tw)
+            y = oy + vy * (t - tw)
+            if w == ks:
+                cxp[p] = x
+                cyp[p] = y
+                cep[p] = 0.0
+                kpt[p] = ks  # (a hint; the exact tests walk on from it)
+            else:
+                on = (ta <= t) | (tb <= t) | (tc <= t) | (td <= t)
+                cxp[p] = x if on else cxp[p]
+                cyp[p] = y if on else cyp[p]
+
+
+@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
 def _room(i, blk, pre):
     """Room for rounding (pixels) of obstacle i's tests in this block."""
     vmax, omax = pre[0], pre[1]
@@ -183,59 +213,31 @@ def _near_segments(i, blk, room, a2, path, work, obs, pre, hits):
     While the robot is on a segment, the centre moves at most vmax from where it was at
     ta and where it will be at tb, so it stays within sqrt(a^2 - d^2) (a = vmax (tb - ta) / 2,
     d half the distance between the two) of the point that moves uniformly between them; the
-    robot, relative to that point, moves along a segment. Branch-free. Sane blocks measure the
-    distance without a division (:func:`segment_reach_levels`, with room to spare), others as
-    before (NaN and infinities compare as they always did).
+    robot, relative to that point, moves along a segment (the lens test). Sane blocks measure
+    the distance without a division (:func:`segment_reach_levels`, with room to spare), others
+    as before (NaN and infinities compare as they always did).
 
     In sane blocks a segment whose relative segment comes within the accept radius
     (``sqrt(a2)``) less that deviation and the room is a sure hit: at that moment the true
     centre is within the accept disc of the robot, so the exact tests would find the hit on
     the piece holding that moment. It is added to ``hits`` and not flagged (the exact tests
     gave the same count for it, a little later).
+
+    A cheap box test of every segment (branch-free, no root) runs first, and the lens test
+    only for the few it keeps (about 3 % on crowd scenes): the relative segment ab comes
+    within R of the moving point only if ``|a + b| - |b - a| <= 2 R`` along x and along y, and
+    R here bounds both radii of the lens test (``dev <= |ha| + 3 max(ea, eb)``) with twice the
+    room for rounding (in other blocks the room is infinite: all are kept). The segments it
+    keeps go through the very same lens test, in the same order, so the hits and the flagged
+    list are bit for bit those of testing every segment.
     """
     px, py, tt = path[0], path[1], path[2]
     near, flagged, real = work[0], work[1], work[2]
     cxp, cyp, cep = work[5], work[6], work[7]
-    bound = obs[4]
-    rho = bound[i, 6]
+    rho = obs[4][i, 6]
     _, _, bn, npts, sane, _, _ = blk
     npt = bn * npts
     vm = pre[0][i]
-    if sane:
-        return _lens_sparse(npt, vm, rho, room, a2, px, py, tt, work, hits)
-    nnear = 0
-    for p in range(npt - 1):
-        reach = (rho + _lens_dev(p, vm, tt, cxp, cyp, cep)) * (1.0 + MARGIN) + room
-        d = point_segment_d2(
-            0.0, 0.0, px[p] - cxp[p], py[p] - cyp[p], px[p + 1] - cxp[p + 1],
-            py[p + 1] - cyp[p + 1],
-        )  # fmt: skip
-        close = d <= reach * reach and real[p]
-        nnear += 1 if close else 0
-        near[p] = close
-    if nnear == 0:
-        return 0
-    nf = 0
-    for p in range(npt - 1):
-        flagged[nf] = p
-        nf += 1 if near[p] else 0
-    return nf
-
-
-@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
-def _lens_sparse(npt, vm, rho, room, a2, px, py, tt, work, hits):
-    """Step 2 in sane blocks: a cheap box test of every segment first, then the lens test of
-    :func:`_near_segments` for the few that pass it; returns how many segments it flagged.
-
-    The box test keeps every segment the lens test could find within reach (or sure): the
-    robot's relative segment ab comes within R of the obstacle's point only if, along x and
-    along y, ``|a + b| - |b - a| <= 2 R``, and R here bounds both radii of the lens test
-    (``dev <= |ha| + 3 max(ea, eb)``), with twice the room for rounding. The segments it keeps
-    go through the very same lens test as before, in the same order, so the hits and the
-    flagged list are bit for bit those of the full test.
-    """
-    near, flagged, real = work[0], work[1], work[2]
-    cxp, cyp, cep = work[5], work[6], work[7]
     acc = math.sqrt(a2) if a2 > 0.0 else -np.inf  # (a2 < 0: no accept disc)
     hv = 0.5 * vm
     big = max(rho, acc) * (1.0 + 2.0 * MARGIN)
@@ -260,11 +262,17 @@ def _lens_sparse(npt, vm, rho, room, a2, px, py, tt, work, hits):
                 continue
             dev = _lens_dev(p, vm, tt, cxp, cyp, cep)
             reach = (rho + dev) * (1.0 + MARGIN) + room
-            inner = (acc - dev) * (1.0 - MARGIN) - room
-            close, sure = segment_reach_levels(
-                px[p] - cxp[p], py[p] - cyp[p], px[p + 1] - cxp[p + 1], py[p + 1] - cyp[p + 1],
-                reach * reach, inner * inner if inner > 0.0 else -1.0,
-            )  # fmt: skip
+            ax = px[p] - cxp[p]
+            ay = py[p] - cyp[p]
+            bx = px[p + 1] - cxp[p + 1]
+            by = py[p + 1] - cyp[p + 1]
+            if sane:
+                inner = (acc - dev) * (1.0 - MARGIN) - room
+                r2 = inner * inner if inner > 0.0 else -1.0
+                close, sure = segment_reach_levels(ax, ay, bx, by, reach * reach, r2)
+            else:
+                close = point_segment_d2(0.0, 0.0, ax, ay, bx, by) <= reach * reach
+                sure = False
             hits[p] += 1 if sure else 0
             flagged[nf] = p
             nf += 1 if close and not sure else 0
