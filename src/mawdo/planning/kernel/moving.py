@@ -251,31 +251,38 @@ def _near_segments(i, blk, room, a2, path, work, obs, pre, hits):
         # (kept unless shown far: NaN keeps it)
         far = (abs(ax + bx) - abs(bx - ax) > r) | (abs(ay + by) - abs(by - ay) > r)
         near[p] = real[p] & ~far
-    nf = 0
+    # the kept segments listed (branch-free within each word of eight flags that has one),
+    # then tested in order; the list is compacted in place into the flagged ones
+    nk = 0
     nw = (npt - 1) >> 3
-    words = near[: nw * 8].view(np.uint64)  # (eight flags at a time: most are clear)
-    for w in range(nw + 1):
-        if w < nw and words[w] == 0:
-            continue
-        for p in range(8 * w, min(8 * w + 8, npt - 1)):
-            if not near[p]:
-                continue
-            dev = _lens_dev(p, vm, tt, cxp, cyp, cep)
-            reach = (rho + dev) * (1.0 + MARGIN) + room
-            ax = px[p] - cxp[p]
-            ay = py[p] - cyp[p]
-            bx = px[p + 1] - cxp[p + 1]
-            by = py[p + 1] - cyp[p + 1]
-            if sane:
-                inner = (acc - dev) * (1.0 - MARGIN) - room
-                r2 = inner * inner if inner > 0.0 else -1.0
-                close, sure = segment_reach_levels(ax, ay, bx, by, reach * reach, r2)
-            else:
-                close = point_segment_d2(0.0, 0.0, ax, ay, bx, by) <= reach * reach
-                sure = False
-            hits[p] += 1 if sure else 0
-            flagged[nf] = p
-            nf += 1 if close and not sure else 0
+    words = near[: nw * 8].view(np.uint64)
+    for w in range(nw):
+        if words[w] != 0:
+            for p in range(8 * w, 8 * w + 8):
+                flagged[nk] = p
+                nk += near[p]
+    for p in range(8 * nw, npt - 1):
+        flagged[nk] = p
+        nk += near[p]
+    nf = 0
+    for k in range(nk):
+        p = flagged[k]
+        dev = _lens_dev(p, vm, tt, cxp, cyp, cep)
+        reach = (rho + dev) * (1.0 + MARGIN) + room
+        ax = px[p] - cxp[p]
+        ay = py[p] - cyp[p]
+        bx = px[p + 1] - cxp[p + 1]
+        by = py[p + 1] - cyp[p + 1]
+        if sane:
+            inner = (acc - dev) * (1.0 - MARGIN) - room
+            r2 = inner * inner if inner > 0.0 else -1.0
+            close, sure = segment_reach_levels(ax, ay, bx, by, reach * reach, r2)
+        else:
+            close = point_segment_d2(0.0, 0.0, ax, ay, bx, by) <= reach * reach
+            sure = False
+        hits[p] += 1 if sure else 0
+        flagged[nf] = p
+        nf += 1 if close and not sure else 0
     return nf
 
 
