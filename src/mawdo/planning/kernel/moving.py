@@ -45,16 +45,17 @@ def moving_pass(i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, gr
     the table's last knot the last piece is extrapolated (callers size tables so that this does
     not happen). Filters in front of it only skip pieces whose outcome is certain.
     """
-    _centres(i, blk, path, work, obs, motion, grid)
+    emax = _centres(i, blk, path, work, obs, motion, grid)
     room = _room(i, blk, pre)
-    nf = _near_segments(i, blk, room, a2, path, work, obs, pre, hits)
+    nf = _near_segments(i, blk, room, a2, emax, path, work, obs, pre, hits)
     if nf > 0:
         _exact_moving(i, nf, room, a2, margin, path, work, cls, obs, extra, motion, pre, ncol)
 
 
 @njit(cache=True, fastmath=False, error_model="numpy", inline="always")
 def _centres(i, blk, path, work, obs, motion, grid):
-    """Step 1: obstacle i's centre at each path time into ``work`` (cxp, cyp, cep, kpt).
+    """Step 1: obstacle i's centre at each path time into ``work`` (cxp, cyp, cep, kpt);
+    returns the largest ``cep`` it can have written (pixels).
 
     Long by design: one fused Numba step; splitting it adds calls in the hot loop.
 
@@ -114,6 +115,7 @@ def _centres(i, blk, path, work, obs, motion, grid):
             cyp[p] = y0 + fr * (gyr[g + np.uint32(1)] - y0)
             cep[p] = ger[g]
             kpt[p] = gkr[g]  # the piece at the cell's start: at most one before (a hint)
+        return ggap[i]  # (each cell's is ggap or 0)
     else:
         # (times beyond the grid) walk
         for b in range(bn):
@@ -126,6 +128,7 @@ def _centres(i, blk, path, work, obs, motion, grid):
                 cxp[p] = bcx + ko[i, k, 0] + kv[i, k, 0] * (t - kt[i, k])
                 cyp[p] = bcy + ko[i, k, 1] + kv[i, k, 1] * (t - kt[i, k])
                 cep[p] = 0.0
+    return 0.0
 
 
 @njit(cache=True, fastmath=False, error_model="numpy", inline="always")
@@ -207,7 +210,7 @@ def _lens_dev(p, vm, tt, cxp, cyp, cep):
 
 
 @njit(cache=True, fastmath=False, error_model="numpy", inline="always")
-def _near_segments(i, blk, room, a2, path, work, obs, pre, hits):
+def _near_segments(i, blk, room, a2, emax, path, work, obs, pre, hits):
     """Step 2: flag the segments that come within reach of obstacle i; returns how many.
 
     While the robot is on a segment, the centre moves at most vmax from where it was at
@@ -226,10 +229,10 @@ def _near_segments(i, blk, room, a2, path, work, obs, pre, hits):
     A cheap box test of every segment (branch-free, no root) runs first, and the lens test
     only for the few it keeps (about 3 % on crowd scenes): the relative segment ab comes
     within R of the moving point only if ``|a + b| - |b - a| <= 2 R`` along x and along y, and
-    R here bounds both radii of the lens test (``dev <= |ha| + 3 max(ea, eb)``) with twice the
-    room for rounding (in other blocks the room is infinite: all are kept). The segments it
-    keeps go through the very same lens test, in the same order, so the hits and the flagged
-    list are bit for bit those of testing every segment.
+    R here bounds both radii of the lens test (``dev <= |ha| + 3 max(ea, eb)``, and ``emax``
+    bounds ``ea`` and ``eb``) with twice the room for rounding (in other blocks the room is
+    infinite: all are kept). The segments it keeps go through the very same lens test, in the
+    same order, so the hits and the flagged list are bit for bit those of testing every segment.
     """
     px, py, tt = path[0], path[1], path[2]
     near, flagged, real = work[0], work[1], work[2]
@@ -239,15 +242,15 @@ def _near_segments(i, blk, room, a2, path, work, obs, pre, hits):
     npt = bn * npts
     vm = pre[0][i]
     acc = math.sqrt(a2) if a2 > 0.0 else -np.inf  # (a2 < 0: no accept disc)
-    hv = 0.5 * vm
-    big = max(rho, acc) * (1.0 + 2.0 * MARGIN)
+    # 2 R, as k0 + k1 |tb - ta|
+    k0 = 2.0 * (max(rho, acc) + 3.0 * emax) * (1.0 + 2.0 * MARGIN) + 4.0 * room
+    k1 = vm * (1.0 + 2.0 * MARGIN)
     for p in range(npt - 1):
         ax = px[p] - cxp[p]
         ay = py[p] - cyp[p]
         bx = px[p + 1] - cxp[p + 1]
         by = py[p + 1] - cyp[p + 1]
-        r = 2.0 * (big + (abs(hv * (tt[p + 1] - tt[p])) + 3.0 * max(cep[p], cep[p + 1])) * (
-            1.0 + 2.0 * MARGIN) + 2.0 * room)  # fmt: skip
+        r = k0 + k1 * abs(tt[p + 1] - tt[p])
         # (kept unless shown far: NaN keeps it)
         far = (abs(ax + bx) - abs(bx - ax) > r) | (abs(ay + by) - abs(by - ay) > r)
         near[p] = real[p] & ~far
