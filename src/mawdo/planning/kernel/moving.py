@@ -210,6 +210,37 @@ def _lens_dev(p, vm, tt, cxp, cyp, cep):
 
 
 @njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+def _box_kept(npt, k0, k1, px, py, tt, work):
+    """The box test of :func:`_near_segments` (radius ``(k0 + k1 |tb - ta|) / 2``) on every
+    segment; lists those it keeps in ``flagged`` and returns how many."""
+    near, flagged, real = work[0], work[1], work[2]
+    cxp, cyp = work[5], work[6]
+    for p in range(npt - 1):
+        ax = px[p] - cxp[p]
+        ay = py[p] - cyp[p]
+        bx = px[p + 1] - cxp[p + 1]
+        by = py[p + 1] - cyp[p + 1]
+        r = k0 + k1 * abs(tt[p + 1] - tt[p])
+        # (kept unless shown far: NaN keeps it)
+        far = (abs(ax + bx) - abs(bx - ax) > r) | (abs(ay + by) - abs(by - ay) > r)
+        near[p] = real[p] & ~far
+    # the kept segments listed (branch-free within each word of eight flags that has one),
+    # then tested in order; the list is compacted in place into the flagged ones
+    nk = 0
+    nw = (npt - 1) >> 3
+    words = near[: nw * 8].view(np.uint64)
+    for w in range(nw):
+        if words[w] != 0:
+            for p in range(8 * w, 8 * w + 8):
+                flagged[nk] = p
+                nk += near[p]
+    for p in range(8 * nw, npt - 1):
+        flagged[nk] = p
+        nk += near[p]
+    return nk
+
+
+@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
 def _near_segments(i, blk, room, a2, emax, path, work, obs, pre, hits):
     """Step 2: flag the segments that come within reach of obstacle i; returns how many.
 
@@ -235,7 +266,7 @@ def _near_segments(i, blk, room, a2, emax, path, work, obs, pre, hits):
     same order, so the hits and the flagged list are bit for bit those of testing every segment.
     """
     px, py, tt = path[0], path[1], path[2]
-    near, flagged, real = work[0], work[1], work[2]
+    flagged = work[1]
     cxp, cyp, cep = work[5], work[6], work[7]
     rho = obs[4][i, 6]
     _, _, bn, npts, sane, _, _ = blk
@@ -245,28 +276,7 @@ def _near_segments(i, blk, room, a2, emax, path, work, obs, pre, hits):
     # 2 R, as k0 + k1 |tb - ta|
     k0 = 2.0 * (max(rho, acc) + 3.0 * emax) * (1.0 + 2.0 * MARGIN) + 4.0 * room
     k1 = vm * (1.0 + 2.0 * MARGIN)
-    for p in range(npt - 1):
-        ax = px[p] - cxp[p]
-        ay = py[p] - cyp[p]
-        bx = px[p + 1] - cxp[p + 1]
-        by = py[p + 1] - cyp[p + 1]
-        r = k0 + k1 * abs(tt[p + 1] - tt[p])
-        # (kept unless shown far: NaN keeps it)
-        far = (abs(ax + bx) - abs(bx - ax) > r) | (abs(ay + by) - abs(by - ay) > r)
-        near[p] = real[p] & ~far
-    # the kept segments listed (branch-free within each word of eight flags that has one),
-    # then tested in order; the list is compacted in place into the flagged ones
-    nk = 0
-    nw = (npt - 1) >> 3
-    words = near[: nw * 8].view(np.uint64)
-    for w in range(nw):
-        if words[w] != 0:
-            for p in range(8 * w, 8 * w + 8):
-                flagged[nk] = p
-                nk += near[p]
-    for p in range(8 * nw, npt - 1):
-        flagged[nk] = p
-        nk += near[p]
+    nk = _box_kept(npt, k0, k1, px, py, tt, work)
     nf = 0
     for k in range(nk):
         p = flagged[k]
