@@ -85,7 +85,7 @@ def _centres(i, blk, path, work, obs, motion, grid):
         # few knots: each path time takes the last of pieces ks..kw that has begun by then (the
         # piece ks if none), as placing the centre on each piece in turn did; chosen among four
         # pieces at a time (branch-free), then placed once
-        _few_knots(i, ks, kw, bcx, bcy, npt, tt, kt, ko, kv, work)
+        _few_knots(i, ks, kw, bcx, bcy, npt, tt, kt, ko, kv, kpt, cxp, cyp, cep)
     elif on_grid:
         # many knots: interpolate in the grid (extended as far as this block needs)
         g = gfill[i]
@@ -131,10 +131,13 @@ def _centres(i, blk, path, work, obs, motion, grid):
     return 0.0
 
 
-@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
-def _few_knots(i, ks, kw, bcx, bcy, npt, tt, kt, ko, kv, work):
-    """Step 1 for pieces ks..kw: four at a time, the first four placing every point."""
-    kpt, cxp, cyp, cep = work[4], work[5], work[6], work[7]
+@njit(cache=True, fastmath=False, error_model="numpy")
+def _few_knots(i, ks, kw, bcx, bcy, npt, tt, kt, ko, kv, kpt, cxp, cyp, cep):
+    """Step 1 for pieces ks..kw: four at a time, the first four placing every point.
+
+    Compiled on its own (not inlined): called once per obstacle and block, it spares the
+    pass's compile the inlining of its loops.
+    """
     for w in range(ks, kw + 1, 4):
         # pieces w..w + 3 (past kw: a start time NaN, never begun, and piece kw's motion)
         wb, wc, wd = min(w + 1, kw), min(w + 2, kw), min(w + 3, kw)
@@ -209,12 +212,11 @@ def _lens_dev(p, vm, tt, cxp, cyp, cep):
     return dev + max(ea, eb)
 
 
-@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
-def _box_kept(npt, k0, k1, px, py, tt, work):
+@njit(cache=True, fastmath=False, error_model="numpy")
+def _box_kept(npt, k0, k1, px, py, tt, cxp, cyp, real, near, flagged):
     """The box test of :func:`_near_segments` (radius ``(k0 + k1 |tb - ta|) / 2``) on every
-    segment; lists those it keeps in ``flagged`` and returns how many."""
-    near, flagged, real = work[0], work[1], work[2]
-    cxp, cyp = work[5], work[6]
+    segment; lists those it keeps in ``flagged`` and returns how many (compiled on its own,
+    as :func:`_few_knots`)."""
     for p in range(npt - 1):
         ax = px[p] - cxp[p]
         ay = py[p] - cyp[p]
@@ -276,7 +278,7 @@ def _near_segments(i, blk, room, a2, emax, path, work, obs, pre, hits):
     # 2 R, as k0 + k1 |tb - ta|
     k0 = 2.0 * (max(rho, acc) + 3.0 * emax) * (1.0 + 2.0 * MARGIN) + 4.0 * room
     k1 = vm * (1.0 + 2.0 * MARGIN)
-    nk = _box_kept(npt, k0, k1, px, py, tt, work)
+    nk = _box_kept(npt, k0, k1, px, py, tt, cxp, cyp, work[2], work[0], flagged)
     nf = 0
     for k in range(nk):
         p = flagged[k]
