@@ -1,15 +1,18 @@
 """The cost kernel's calls of real runs, replayed: CPU per call and a digest of every output.
 
-``python benchmarks/bench_moving.py [--calls N] [--repeat R] [--cases crowd,paper]``: records
-the first ``N`` calls of :class:`mawdo.planning.kernel.threads.ThreadedKernel` in a realtime run
-of ``mawdo`` on crowd scene 0 (seed 0) and on the paper scenario (seed 0, time guide on), then
-calls :func:`mawdo.planning.kernel.population.population_cost` on each recorded call ``R``
-times over (one scratch buffer kept, as the planner's kernel does) and prints, per case, the
-CPU per call (``time.process_time``: the fastest of the ``R`` sweeps divided by ``N``, and the
-median sweep) and a sha256 of the four output arrays of every call. The digest must not move
-when the kernel is made faster (issue 27: bit-identical); the CPU figure is the one the moving
-obstacles' pass changes, without the planner's Python around it. Run it with another copy's
-``src`` first on ``PYTHONPATH`` for a before/after, alternated in the same minutes.
+``python -m benchmarks moving`` (or ``python benchmarks/bench_moving.py [--calls N]
+[--repeat R] [--cases crowd,paper] [--store DIR]``): records the first ``N`` calls of
+:class:`mawdo.planning.kernel.threads.ThreadedKernel` in a realtime run of ``mawdo`` on crowd
+scene 0 (seed 0, no time guide) and on the paper scenario (seed 0, time guide on), then calls
+:func:`mawdo.planning.kernel.population.population_cost` on each recorded call ``R`` times
+over (one scratch buffer kept, as the planner's kernel does) and prints, per case, the CPU per
+call (``time.process_time``: the fastest of the ``R`` sweeps divided by ``N``, and the median
+sweep) and a sha256 of the four output arrays of every call. The digest must not move when the
+kernel is made faster (issue 27: bit-identical; with the defaults f11e697 prints ``ef71ae5f``
+for crowd and ``77263b97`` for paper); the CPU figure is the one the moving obstacles' pass
+changes, without the planner's Python around it. For a before/after, record once into
+``--store`` and replay it with each copy's ``src`` first on ``PYTHONPATH``, alternated in the
+same minutes (the stored calls take about 70 MB a case).
 """
 
 from __future__ import annotations
@@ -104,7 +107,7 @@ def main(argv=None) -> None:
         help="a folder: calls recorded once are kept there as pickles "
         "and replayed from them (to compare copies of the kernel on the same calls)",
     )
-    a = ap.parse_args(argv)
+    a = ap.parse_args([] if argv is None else argv)
     for case in a.cases.split(","):
         got = _recorded(case, a.calls, a.store)
         best, med, digest = replay(got, a.repeat)
