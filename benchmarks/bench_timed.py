@@ -17,6 +17,9 @@ each case first), p95 over the runs, for
 load, so the CPU time of the same steps (``time.process_time``) is printed beside it, and the
 load average (``os.getloadavg``) above them. ``--split`` adds, per case, that CPU divided
 into the cost kernel's calls (:class:`KernelClock`) and the rest, the planner's Python.
+``--cases paper`` (or ``crowd``) and ``--latency-planners mawdo_time`` (or ``mawdo``) time
+only those (``--cases paper --latency-planners mawdo_time``: the default planner on the paper
+scenario, about a minute).
 """
 
 from __future__ import annotations
@@ -104,23 +107,28 @@ def step_times(scenario, time_guide: bool, seed: int = 0, clock=None) -> list[tu
     return out if clock is not None else [t[:2] for t in out]
 
 
-def latency(runs: int = 5, split: bool = False) -> None:
+def latency(runs: int = 5, split: bool = False, cases=("paper", "crowd"), planners=None) -> None:
     """Replan p95 of ``mawdo`` and ``mawdo_time`` on the paper scenario and on ``crowd``;
     ``split``: a second row per case, the CPU of the steps in the cost kernel and the rest
-    (the Python around it), each as median and p95 over the steps."""
+    (the Python around it), each as median and p95 over the steps. ``cases``: which of the
+    two scenes; ``planners``: which of ``mawdo`` and ``mawdo_time`` (default both)."""
     from mawdo.planning import get_scenario
     from mawdo.planning.scenes import generate_scene
 
-    crowd = [generate_scene("crowd", i, seed=0).scenario for i in range(runs)]
-    cases = [("paper", [get_scenario("paper")] * runs, 20.0), ("crowd", crowd, 50.0)]
+    make = {
+        "paper": lambda: ([get_scenario("paper")] * runs, 20.0),
+        "crowd": lambda: ([generate_scene("crowd", i, seed=0).scenario for i in range(runs)], 50.0),
+    }
+    cases = [(name, *make[name]()) for name in cases]
+    kinds = [(p, p == "mawdo_time") for p in (planners or ("mawdo", "mawdo_time"))]
     # one untimed run of each kind first: a kernel compiled (or loaded from the cache) inside a
     # measured replan would be counted as latency
     for _, scenes, _ in cases:
-        for on in (False, True):
+        for _, on in kinds:
             step_times(scenes[0], on, seed=0)
     print("load average (1, 5, 15 min): " + ", ".join(f"{x:.2f}" for x in os.getloadavg()))
     for name, scenes, target in cases:
-        for planner, on in (("mawdo", False), ("mawdo_time", True)):
+        for planner, on in kinds:
             with KernelClock() if split else contextlib.nullcontext() as clock:
                 lat = np.array([t for k, sc in enumerate(scenes)
                                 for t in step_times(sc, on, seed=k, clock=clock)])  # fmt: skip
@@ -159,9 +167,17 @@ def main(argv=None) -> None:
     ap.add_argument("--split", action="store_true",
                     help="with the latency figures, each step's CPU in the cost kernel and in "
                          "the rest")  # fmt: skip
+    ap.add_argument("--cases", default="paper,crowd",
+                    help="with --latency, the scenes timed (paper, crowd)")  # fmt: skip
+    ap.add_argument("--latency-planners", default="mawdo,mawdo_time",
+                    help="with --latency, the planners timed (mawdo, mawdo_time)")  # fmt: skip
     a = ap.parse_args([] if argv is None else argv)
     if a.latency or argv is None:
-        latency(split=a.split)
+        cases, planners = a.cases.split(","), a.latency_planners.split(",")
+        for name, known in ((cases, ("paper", "crowd")), (planners, ("mawdo", "mawdo_time"))):
+            if bad := [x for x in name if x not in known]:
+                ap.error(f"unknown {bad[0]!r}: choose from {', '.join(known)}")
+        latency(split=a.split, cases=cases, planners=planners)
         if a.latency:
             return
     fams, plans = a.families.split(","), a.planners.split(",")

@@ -88,6 +88,20 @@ def test_as_dict_copies_mutable_and_nested_values():
     assert params.steps == [1.0, 2.0]  # the result does not alias the frozen params
 
 
+@pytest.mark.parametrize("name", ["wdo", "mawdo", "gwo"])
+def test_as_dict_kept_dict_is_copied_and_invisible(name):
+    params = make_optimizer(name, pop_size=30).params
+    twin = make_optimizer(name, pop_size=30).params
+    first = params.as_dict()
+    first["pop_size"] = -1  # a caller may change its dict: the next one is unchanged
+    second = params.as_dict()
+    assert second == dataclasses.asdict(params) and second is not first
+    assert second["pop_size"] == 30
+    # the kept dict is not a field: equality, hashing, repr and replace ignore it
+    assert params == twin and hash(params) == hash(twin) and repr(params) == repr(twin)
+    assert dataclasses.replace(params, pop_size=40).as_dict()["pop_size"] == 40
+
+
 # -- Evaluator ---------------------------------------------------------------------------------
 
 

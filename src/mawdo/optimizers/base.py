@@ -169,10 +169,16 @@ class Params:
 
     def as_dict(self) -> dict[str, Any]:
         """The fields as a new dict (what ``dataclasses.asdict`` gives)."""
+        # asdict's recursive deep copy costs ~0.2 ms per result; immutable values need none,
+        # and the fields of a frozen instance never change: their dict is made once (kept
+        # beside the fields, which equality, hashing and repr do not look at) and copied
+        kept = self.__dict__.get("_as_dict")
+        if kept is not None:
+            return dict(kept)
         out = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
-        # asdict's recursive deep copy costs ~0.2 ms per result; immutable values need none
         if all(_immutable(v) for v in out.values()):
-            return out
+            object.__setattr__(self, "_as_dict", out)
+            return dict(out)
         return dataclasses.asdict(self)
 
 

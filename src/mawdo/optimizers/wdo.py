@@ -187,6 +187,8 @@ class WindState:
     # the kernel's fixed per-group coefficients ``(R, N, 4)`` and the ``coef`` they were laid
     # out from: rebuilt only when ``coef`` is replaced (a redraw), not at every ask
     coef_kernel: tuple | None = None
+    # Wind._step_args: the kernel's arguments that stay the same at every ask
+    step_args: tuple | None = None
 
 
 class Wind(Optimizer):
@@ -244,31 +246,45 @@ class Wind(Optimizer):
         s.u = np.ascontiguousarray(s.u, dtype=float)
         perm, rng = self._permutation_draw(s)
         coef_draw, coef = self._coefficient_array(s, R, N, rng is not _NO_RNG)
-        gstarts = group_starts(N, P.groups)
-        rank = np.empty((R, N))
-        segment_ranks(s.f, gstarts if P.rank_scope == "group" else group_starts(N, 1), rank)
-        if P.guidance == "hierarchical":
-            w = wind.schedule_weights(s.t, s.T) if P.schedule else P.weights
-            guidance = 2
-        else:
-            w, guidance = (0.0, 0.0, 0.0), 0 if P.guidance == "global" else 1
+        if s.step_args is None:
+            s.step_args = self._step_args(s)
+        rank, rank_starts, gstarts, guidance, fixed_w, tail = s.step_args
+        segment_ranks(s.f, rank_starts, rank)
+        w = fixed_w if guidance != 2 or not P.schedule else wind.schedule_weights(s.t, s.T)
         restart = P.restart and s.t % P.restart_every == 0
         m = P.n_restart if restart else 0
         X = np.empty((R, N + (m if P.obl else 0), D))
-        lb, width = _box_arrays(s.space)
         wind_step(
             s.p, s.u, s.pbest, s.pbest_f, rank, perm, rng, rng is not _NO_RNG,
-            coef_draw, coef,
-            gstarts, guidance,
-            np.asarray(w, float), P.gate, 2.0 * math.sqrt(D), self._gravity_mode(s),
-            2 if P.pressure == "flat" else int(P.velocity == "awdo"),
-            float(s.vmax) if P.clamp else math.inf, P.boundary == "reflect", float(P.eta),
-            lb, width, X,
+            coef_draw, coef, gstarts, guidance, np.array(w, float), *tail, X,
         )  # fmt: skip
         s.restarted = None
         if restart:
             self._restart(s, X, m)
         return X
+
+    def _step_args(self, s: WindState) -> tuple:
+        """What every ask of ``s`` hands :func:`wind_step` unchanged, laid out once per state:
+        ``(rank, rank_starts, gstarts, guidance, fixed_w, tail)``; ``rank`` is the ranks'
+        work array (overwritten at each ask, read only by the kernel), ``fixed_w`` the
+        weights when they are not scheduled and ``tail`` the arguments after the weights
+        (``gate`` .. ``width``). The parameters and the box of a state never change."""
+        P = self.params
+        R, N, D = s.p.shape
+        gstarts = group_starts(N, P.groups)
+        rank_starts = gstarts if P.rank_scope == "group" else group_starts(N, 1)
+        if P.guidance == "hierarchical":
+            fixed_w, guidance = P.weights, 2
+        else:
+            fixed_w, guidance = (0.0, 0.0, 0.0), 0 if P.guidance == "global" else 1
+        lb, width = _box_arrays(s.space)
+        tail = (
+            P.gate, 2.0 * math.sqrt(D), self._gravity_mode(s),
+            2 if P.pressure == "flat" else int(P.velocity == "awdo"),
+            float(s.vmax) if P.clamp else math.inf, P.boundary == "reflect", float(P.eta),
+            lb, width,
+        )  # fmt: skip
+        return np.empty((R, N)), rank_starts, gstarts, guidance, fixed_w, tail
 
     def _gravity_mode(self, s: WindState) -> int:
         """The kernel's ``gravity`` code: 0 origin, 1 group centroid (low-D), 2 population

@@ -52,6 +52,7 @@ __all__ = ["CostWeights", "PathCost", "assemble_paths"]
 MODES = ("snapshot", "spacetime")
 #: Start times whose kernel arrays a cost keeps at once (see ``PathCost._motion_arrays``).
 MOTION_CACHE = 256
+_MIN, _MAX = np.minimum.reduce, np.maximum.reduce
 
 
 @dataclass(frozen=True)
@@ -225,6 +226,7 @@ class PathCost:
         self._bounds: tuple | None = None
         w = self.weights
         self._weights = (float(w.alpha), float(w.beta), float(w.lam), float(w.k))
+        self._obs = self.flat.arrays()  # (the kernel's shape arrays: one tuple, not one a call)
 
     @property
     def threads(self) -> int:
@@ -297,12 +299,14 @@ class PathCost:
         # reaches the goal before t0 + (m + 1) diag / v: a table to there covers every query.
         # One min/max over all coordinates gives a (square) box cheaply; the rest is done on
         # Python floats, since numpy's scalar operations cost microseconds per call here.
-        lo, hi = float(X.min()), float(X.max())
+        # (the ufuncs' reductions are what ndarray.min and max call, without their wrappers)
+        lo, hi = float(_MIN(X, axis=None)), float(_MAX(X, axis=None))
         if not (math.isfinite(lo) and math.isfinite(hi)):  # NaN candidates get a NaN cost
             finite = X[np.isfinite(X)]
             lo, hi = (float(finite.min()), float(finite.max())) if finite.size else (0.0, 0.0)
-        ends = (float(start[0]), float(start[1]), float(goal[0]), float(goal[1]))
-        elo, ehi = min(ends), max(ends)
+        sx, sy = start.tolist()
+        gx, gy = goal.tolist()
+        elo, ehi = min(sx, sy, gx, gy), max(sx, sy, gx, gy)
         if lo < self._reach[0] or hi > self._reach[1]:  # (the check, without its call)
             _check_reach(lo, hi, self.scenario, "a candidate coordinate")
         if elo < self._reach[0] or ehi > self._reach[1]:
@@ -370,7 +374,7 @@ class PathCost:
             t0,
             self._speed,
             spacetime,
-            self.flat.arrays(),
+            self._obs,
             snap,
             motion,
             self._weights,

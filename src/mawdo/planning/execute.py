@@ -25,7 +25,7 @@ from mawdo.planning.path import densify, polyline_length
 from mawdo.planning.polish import polish
 from mawdo.planning.result import Drive, PlanResult, Replan
 from mawdo.planning.scenario import Scenario
-from mawdo.planning.seeding import via_paths, warm_seeds
+from mawdo.planning.seeding import RunGuide, via_paths, warm_seeds
 from mawdo.planning.timeguide import TimedRun, TimeGuide
 from mawdo.streams import replan_seed_sequences
 
@@ -45,7 +45,7 @@ def guide_for(scenario: Scenario, clearance: float, k: int) -> Guide:
     per = _GUIDES.setdefault(scenario, {})
     key = (float(clearance), int(k))
     if key not in per:
-        per[key] = Guide(scenario, clearance=clearance, k=k)
+        per[key] = RunGuide(scenario, clearance=clearance, k=k)
     return per[key]
 
 

@@ -27,6 +27,8 @@ from mawdo.stablesort import stable_argsort
 
 __all__ = ["Elite", "Guard"]
 
+_MIN = np.minimum.reduce  # (what ndarray.min calls, without its Python wrapper)
+
 
 @njit(cache=True)
 def _distinct_first(X, order, size, min_dist):
@@ -101,7 +103,7 @@ class Elite:
         # nothing in this batch would enter (the usual case late in a run): decided before any
         # other work. The elite holds finite costs only, so an inf here changes nothing, and a
         # NaN fails the test and takes the full path below.
-        if len(self.f) == self.size and fv.min() >= self.f[-1]:
+        if len(self.f) == self.size and _MIN(fv) >= self.f[-1]:
             return f
         if not (type(X) is np.ndarray and X.ndim == 2):
             X = np.atleast_2d(X)
@@ -110,10 +112,10 @@ class Elite:
             if not ok.any():
                 return f
             X, fv = X[ok], fv[ok]
-            if len(self.f) == self.size and fv.min() >= self.f[-1]:
+            if len(self.f) == self.size and _MIN(fv) >= self.f[-1]:
                 return f  # -inf hid it above
         if len(fv) > self.size:  # the batch's best few, without sorting it all
-            part = np.argpartition(fv, self.size - 1)[: self.size]
+            part = fv.argpartition(self.size - 1)[: self.size]
         else:
             part = np.arange(len(fv))
         old = self.X if self.X.size else np.empty((0, X.shape[1]))  # (C-contiguous float64)

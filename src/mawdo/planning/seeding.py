@@ -7,9 +7,25 @@ from __future__ import annotations
 import numpy as np
 
 from mawdo.planning.config import PlannerConfig
+from mawdo.planning.guide import Guide
 from mawdo.planning.path import densify
 
-__all__ = ["via_paths", "warm_seeds"]
+__all__ = ["RunGuide", "via_paths", "warm_seeds"]
+
+
+class RunGuide(Guide):
+    """The run loop's :class:`~mawdo.planning.guide.Guide`: it keeps its last query. A step's
+    hold test (the shortest route from the robot) and its seeds (the routes from the robot)
+    ask from the same position; on paper about two queries in five repeat the one before.
+    The arrays returned are the query's own (its callers only read them)."""
+
+    _last: tuple = (None, None)
+
+    def query(self, pos):
+        key = np.asarray(pos, dtype=float).tobytes()
+        if self._last[0] != key:
+            self._last = (key, super().query(pos))
+        return self._last[1]
 
 
 def warm_seeds(route, m: int, config: PlannerConfig, rng, lb, ub) -> np.ndarray:
