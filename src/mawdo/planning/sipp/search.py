@@ -32,7 +32,7 @@ _RETRIES = 3
 _WINDOW = 8.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _depart(ux, uy, vx, vy, a, T, x, top, J_hi, mv):
     """Earliest checked departure ``>= x`` and ``<= top`` whose arrival precedes ``J_hi``
     (``inf`` if none). The forbidden departures are computed over windows growing from ``x``
@@ -142,7 +142,7 @@ def search(
     return -1, arrival, parent, depart
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _relax(ux, uy, pv, j0, j1, sid, a, T, top, hv, lo, hi, state, keys, ids, nh, mv):
     """Arrivals in the safe intervals ``j0:j1`` of vertex ``pv`` by the move from ``u``,
     pushed on the heap ``(keys, ids, nh)`` (:mod:`mawdo.planning.heap`), which it returns."""
