@@ -196,7 +196,7 @@ def _push(buf, n, lo, hi):
     return buf, n + 1
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _polygon_piece(d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, i, nv, thr, buf, n):
     """Forbidden departures of one piece against polygon ``i``: per vertex a disc, per edge a
     rectangle of half-width ``thr``, and the gaps between them whose moves run inside."""
@@ -237,7 +237,7 @@ def _polygon_piece(d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, i, nv, thr, buf, 
     return buf, n
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _mover_forbidden(ux, uy, ex, ey, T, lo, hi, m, mv, buf, n):
     """Append mover ``m``'s forbidden departures within ``[lo, hi]`` to ``buf``."""
     kind, box, circle, center, thr, verts, nverts, vmax, base, t_base, pptr, pt0, pt1, po, pv = mv
