@@ -107,6 +107,24 @@ def test_the_run_drives_the_guides_profile_and_arrives_when_it_said():
     assert kin.ok, kin.describe()
 
 
+def test_no_search_while_the_robot_is_kept_on_its_timed_route(monkeypatch):
+    """With a profile the followed route is kept whatever the swarm finds, so the run
+    searches only for its first plan (before: a search at each of the 69 steps, its plan
+    ignored) and drives exactly what it drove with the searches."""
+    from mawdo.planning.timeguide import TimedRun
+
+    for mover in (FAR, DOOR):
+        res = prepare(_lane(mover), "mawdo", seed=0, config="quick", **LIMITS).execute()
+        assert res.success and len(res.replans) == 1 and res.replans[0].step == 0
+        assert res.fallbacks == res.inevitable == res.waits == res.evasions == 0
+        with monkeypatch.context() as m:  # the search at every step, as before
+            m.setattr(TimedRun, "_kept_route", lambda self, pos, step: None)
+            old = prepare(_lane(mover), "mawdo", seed=0, config="quick", **LIMITS).execute()
+        assert len(old.replans) == old.steps
+        np.testing.assert_array_equal(res.trajectory, old.trajectory)
+        np.testing.assert_array_equal(res.route_times, old.route_times)
+
+
 def test_the_limited_guide_times_the_door_later_and_the_run_passes_it():
     """The disc crosses the lane at x = 120 around t = 37. At full speed from rest at once
     (the unlimited guide) the robot passes ahead of it: direct, arrival 200 / 3 = 66.7. The

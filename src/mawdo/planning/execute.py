@@ -268,6 +268,8 @@ class Run(TimedRun, SafeRun, LimitedRun):
             replan = remainder is None or force or (self.dynamic and step % cfg.replan_every == 0)
             if replan and self._holds(remainder, force, step):
                 self.counts["holds"] += 1
+            elif replan and (chosen := self._kept_route(pos, step)) is not None:
+                stuck, remainder, force = 0, chosen, False  # (no search: it would be ignored)
             elif replan:
                 cands, _ = self.optimise(pos, step, remainder)
                 left = cfg.replan_every - step % cfg.replan_every if self.dynamic else 0

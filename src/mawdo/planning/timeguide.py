@@ -250,6 +250,17 @@ class TimedRun:
         pts = np.vstack([position_at(route, t), route.points[ahead]])
         return TimedRoute(pts, np.concatenate([[t], route.times[ahead]]), route.states)
 
+    def _kept_route(self, pos, step: int):
+        """With a profile, the followed route's rest (a path from ``pos``) while the robot is
+        on it, else ``None``. :meth:`_timed_choice` keeps such a route whatever the guard
+        accepts, so the run makes no search for it: the swarm's plan would not be driven, and
+        the guard's verdict on it would count waits or inevitable steps that never happen."""
+        if not (self._profiled() and self._on_route(pos, float(step))):
+            return None
+        if self.following.times[-1] <= step:
+            return None
+        return self._timed_choice(None, pos, step)
+
     def _timed_choice(self, chosen, pos, step: int):
         """The guard's use of the safe-interval guide: a candidate the guard accepted is kept
         when it is collision-free to the goal (driven at full speed from now); else the robot
