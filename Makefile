@@ -20,7 +20,7 @@ $(DEVSTAMP): pyproject.toml | $(PY)
 	$(PY) -m pip install -q -e ".[dev]"
 	@touch $(STAMP) $@
 
-# Installing includes compiling the Numba kernels the first commands need (about 70 s of CPU,
+# Installing includes compiling the Numba kernels the first commands need (40-75 s of CPU by the machine,
 # in 2 processes at once, with a progress line every 2 s), so that no first run waits for it.
 # Numba caches them; later calls find them there and return in a second or two.
 install: $(STAMP)

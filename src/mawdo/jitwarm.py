@@ -1,17 +1,19 @@
 """Fill Numba's on-disk cache before anyone waits for it, compiling kernels in parallel processes.
 
-A first ``mawdo plan paper`` spends about 70 s of CPU compiling kernels, one after the other in
-one process, on one core. Numba caches each compiled function in its own files, so several
-processes can fill one cache at once, each compiling different functions; a later process then
-loads every kernel from the cache and compiles nothing.
+A first ``mawdo plan paper`` spends 40-75 s of CPU (by the machine) compiling kernels, one after
+the other in one process, on one core. Numba caches each compiled function in its own files, so
+several processes can fill one cache at once, each compiling different functions; a later
+process then loads every kernel from the cache and compiles nothing.
 
 What to compile is a table, :data:`SIGNATURES` (package data): per kernel its module, name,
-argument types (``repr`` of Numba's types, read back with :func:`parse`) and how long it took to
-compile when recorded, written by ``python -m mawdo.jitwarm record -- ARGS`` (runs ``mawdo ARGS``
-in this process on an empty cache and keeps every compile that Numba can compile again from the
-table: the commands' entry points and the functions they call that take plain arrays, tuples
-and scalars). ``tests/test_jitwarm.py`` checks that a warmed cache leaves nothing to compile for
-``mawdo plan paper``, so a table that fell behind a kernel's arguments fails a test.
+argument types (``repr`` of Numba's types, read back with :func:`parse`), its compile's CPU
+seconds and its caller. ``python -m mawdo.jitwarm record -- ARGS`` writes it
+(:mod:`mawdo.jitrecord`: runs ``mawdo ARGS`` on an empty cache, keeps every compile that Numba
+can compile again from the table, the commands' entry points and the functions they call that
+take plain arrays, tuples and scalars, then times each row alone in a fresh process;
+``python -m mawdo.jitwarm retime`` re-times only). ``tests/test_jitwarm.py`` checks that a
+warmed cache leaves nothing to compile for ``mawdo plan paper``, so a table that fell behind a
+kernel's arguments fails a test.
 
 Usage: ``python -m mawdo.jitwarm [--jobs N]`` (what ``make install`` and ``make demo`` run after
 installing), or :func:`warm` from a command that finds its kernels missing.
@@ -23,7 +25,6 @@ import argparse
 import importlib
 import json
 import os
-import runpy
 import subprocess
 import sys
 import threading
@@ -43,7 +44,7 @@ class Entry:
 
     module: str
     name: str
-    seconds: float  # CPU seconds of its compile less its callees' in the table (when recorded)
+    seconds: float  # CPU seconds of its compile alone, its callees compiled before (retime)
     caller: str  # "module.name" of the entry whose compile compiled it ("-": none, from Python)
     sig: str
 
@@ -267,7 +268,7 @@ def _spawn(part: list[Entry], others: list[Entry], counts: list[int]):
     """Start a process compiling ``part`` (waiting for what it needs of ``others``, compiled by
     other processes); a thread appends to ``counts`` per entry it did."""
     env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join(filter(None, [_src(), env.get("PYTHONPATH")]))
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [src_folder(), env.get("PYTHONPATH")]))
     rows = json.dumps({"part": [e.line() for e in part], "others": [e.line() for e in others]})
     cmd = [sys.executable, "-m", "mawdo.jitwarm", "compile", rows]
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, env=env, text=True)
@@ -282,82 +283,9 @@ def _spawn(part: list[Entry], others: list[Entry], counts: list[int]):
     return proc, reader
 
 
-def _src() -> str:
+def src_folder() -> str:
     """The folder this copy of mawdo is imported from (children import the same code)."""
     return str(_PACKAGE.parent)
-
-
-def record(argv: list[str], path: Path = SIGNATURES) -> list[Entry]:
-    """Run ``mawdo ARGV`` in this process and add every compile it made to the table at ``path``.
-
-    Run it on an empty cache (``NUMBA_CACHE_DIR`` a new folder): a kernel loaded from the cache
-    is not compiled, so not seen. Compiles whose types do not read back from their ``repr``
-    (named tuples) are left out: their callers compile them.
-    """
-    from numba.core import event
-
-    seen: list[Entry] = []
-    # per compile under way: [CPU at its start, its recorded callees' CPU, its key or None]
-    stack: list[list] = []
-
-    class Recorder(event.Listener):
-        def on_start(self, ev) -> None:
-            func = ev.data["dispatcher"].py_func
-            args = ev.data["args"]
-            keep = func.__module__.startswith("mawdo.") and _reads_back(repr(tuple(args)), args)
-            stack.append([time.process_time(), 0.0, keep and f"{func.__module__}.{func.__name__}"])
-
-        def on_end(self, ev) -> None:
-            start, children, key = stack.pop()
-            spent = time.process_time() - start  # CPU: the same on a busy machine
-            if not key:
-                return  # its time counts as its caller's
-            func = ev.data["dispatcher"].py_func
-            caller = next((s[2] for s in reversed(stack) if s[2]), "-")
-            sig = repr(tuple(ev.data["args"]))
-            # its own share: less what its recorded callees took (compiled on their own)
-            seen.append(Entry(func.__module__, func.__name__, spent - children, caller, sig))
-            for s in reversed(stack):
-                if s[2]:
-                    s[1] += spent
-                    break
-
-    event.register("numba:compile", Recorder())
-    # the command compiles in this process (not in warm()'s children, which it would start)
-    os.environ["MAWDO_JIT_JOBS"] = "1"
-    argv0, sys.argv = sys.argv, ["mawdo", *argv]
-    # no end without teardown (mawdo.cli.quick_exit's os._exit) before the table is written
-    importlib.import_module("mawdo.cli.quick_exit").end = lambda code: None
-    try:  # the command as `python -m mawdo.cli ARGV` runs it (by name: commands sit above us)
-        runpy.run_module("mawdo.cli", run_name="__main__")
-    except SystemExit as exc:
-        if exc.code:
-            raise
-    finally:
-        sys.argv = argv0
-        table = _merge(load_table(path), seen)
-        path.parent.mkdir(exist_ok=True)
-        header = "# module\tfunction\tCPU s\tcaller\targument types (python -m mawdo.jitwarm)\n"
-        path.write_text(header + "".join(e.line() + "\n" for e in table))
-    return table
-
-
-def _reads_back(sig: str, args) -> bool:
-    try:
-        return parse(sig) == tuple(args)
-    except Exception:
-        return False
-
-
-def _merge(old: list[Entry], new: list[Entry]) -> list[Entry]:
-    """``old`` then the entries of ``new`` it lacks (by module, name and types), in order."""
-    keys = {(e.module, e.name, e.sig) for e in old}
-    out = list(old)
-    for e in new:
-        if (e.module, e.name, e.sig) not in keys:
-            keys.add((e.module, e.name, e.sig))
-            out.append(e)
-    return out
 
 
 def _line(done: int, total: int, seconds: float) -> None:
@@ -365,17 +293,15 @@ def _line(done: int, total: int, seconds: float) -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """``python -m mawdo.jitwarm [--jobs N] | record -- ARGS | compile ROWS``."""
+    """``python -m mawdo.jitwarm [--jobs N] | record -- ARGS | retime | compile ROWS``."""
     argv = sys.argv[1:] if argv is None else argv
     if argv[:1] == ["compile"]:  # a child of warm(): compile its rows, say "done" after each
         rows = json.loads(argv[1])
         part, others = ([Entry.from_line(r) for r in rows[k]] for k in ("part", "others"))
         compile_entries(part, done=lambda e: print("done", flush=True), others=others)
         return 0
-    if argv[:1] == ["record"]:
-        rest = argv[1:]
-        record(rest[1:] if rest[:1] == ["--"] else rest)
-        return 0
+    if argv[:1] in (["record"], ["retime"]):  # the table's upkeep, a module above this one
+        return subprocess.call([sys.executable, "-m", "mawdo.jitrecord", *argv])
     parser = argparse.ArgumentParser(
         prog="python -m mawdo.jitwarm", description=__doc__.split("\n")[0]
     )
