@@ -100,7 +100,10 @@ def test_ctrl_c_in_compiled_code_stops_the_sweep_and_stores_nothing_false(tmp_pa
     interrupts = 0
     for delay in (0.05, 0.3, 0.6, 0.15, 0.45, 0.7):
         before = _rows(db)
-        if before + 1 >= RUNS:  # the next stored row would leave no run to interrupt
+        # after the next stored row a run must be left to interrupt (two, since a run takes
+        # about the longest delay on a fast machine: else the sweep may be ending, all runs
+        # stored, and die of the signal where it no longer catches it)
+        if before + 2 >= RUNS:
             break
         rc, err = _interrupt(db, before, delay)
         interrupts += 1
