@@ -257,10 +257,28 @@ def test_current_code_reruns_stored_tasks_bit_for_bit(stores):
         with Store.read(stores[name]) as store:
             old = {r.run: r for _, _, r in store.rows(algo, problem)}
             assert len(old) == 2
-            new = execute_suite_task(store.plan.task_spec(Task(algo, problem, 0, 2)))
+            spec = store.plan.task_spec(Task(algo, problem, 0, 2))
+            new = execute_suite_task(spec)
+        if algo == "cmaes":  # the reference library: see _same_on_this_machine
+            _same_on_this_machine(new, execute_suite_task(spec), old)
+            continue
         for r in new:
             o = old[r.run]
             assert r.error_text is None and r.fun == o.fun and r.nfev == o.nfev, (algo, problem)
             assert np.array_equal(r.evals, o.evals) and np.array_equal(r.best_so_far, o.best_so_far)
             assert np.array_equal(r.best_x, o.best_x)
             assert json.loads(json.dumps(r.params)) == o.params
+
+
+def _same_on_this_machine(new, again, old) -> None:
+    """The ``cmaes`` library's runs: its covariance's eigendecomposition runs in OpenBLAS,
+    which picks its kernels by CPU, so the stored rows (0.7.0's machine) are reproduced on
+    one machine, not bit for bit on every one. On an AMD EPYC with AVX-512 (OpenBLAS's
+    SkylakeX kernels) f16 at D = 20 takes other trajectories (final values 72.06 / 71.42
+    against the stored 71.87 / 71.64; with ``OPENBLAS_CORETYPE=Haswell`` or ``Zen`` the stored
+    values come back) and f7's best points move by 2e-13. Our own algorithms use no LAPACK:
+    checked bit for bit above."""
+    for r, q in zip(new, again, strict=True):
+        assert r.error_text is None and r.fun == q.fun and r.nfev == q.nfev
+        assert np.array_equal(r.best_x, q.best_x) and np.array_equal(r.evals, q.evals)
+        assert r.nfev == old[r.run].nfev  # the same budget, spent to the last evaluation
