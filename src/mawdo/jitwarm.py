@@ -33,6 +33,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from mawdo.jitcache import numba_cache_folder
+from mawdo.jitinline import fresh_ir_inlining
 
 _PACKAGE = Path(__file__).resolve().parent
 SIGNATURES = _PACKAGE / "data" / "jit_signatures.txt"
@@ -211,7 +212,8 @@ def compile_entries(
         disp = dispatcher(e)
         current[0] = e.key
         try:
-            disp.compile(parse(e.sig))
+            with fresh_ir_inlining():
+                disp.compile(parse(e.sig))
         except Exception as exc:  # a stale row must not stop the others: the run compiles it
             print(f"warning: {e.module}.{e.name} did not compile ({exc})", file=sys.stderr)
         if done:

@@ -177,12 +177,15 @@ def notice_compiles(enabled: bool = True, warm: bool = True):
         return
     from numba.core import event
 
+    from mawdo.jitinline import fresh_ir_inlining
+
     notice = _CompileNotice(enabled, warm)
     hooks = {"on_start": lambda _, e: notice.on_start(e), "on_end": lambda _, e: notice.on_end(e)}
     listener = type("CompileHook", (event.Listener,), hooks)()
     event.register("numba:compile", listener)
     try:
-        yield
+        with fresh_ir_inlining():  # what this process compiles, as jitwarm's processes do
+            yield
     finally:
         event.unregister("numba:compile", listener)
         notice.stop.set()
