@@ -206,3 +206,42 @@ def test_a_caller_waits_for_the_callee_another_process_compiles(tmp_path):
     assert float(words[1]) >= 1.5, caller.stdout  # the caller waited for them
     assert "_segments_touch" not in caller.stdout and "_on_box" not in caller.stdout
     assert "'<lambda>'" in caller.stdout  # and compiled its own kernel, the callee loaded
+
+
+# A compile announced on a cache miss, while another process puts that very kernel in the
+# cache (as the commands' warm-up does at their first compile): the kernel loads instead.
+LOADER = """
+import subprocess, sys
+import numpy as np
+from numba.core import event
+from mawdo import jitwarm
+from mawdo.planning.kernel.primitives import orient
+FILL = "from mawdo.planning.kernel.primitives import orient; orient(0., 0., 1., 0., 0., 1.)"
+passes, answers = [], []
+class Fill(event.Listener):
+    def on_start(self, ev):
+        if not answers:
+            subprocess.run([sys.executable, "-c", FILL], check=True)
+            answers.append(jitwarm.load_instead(ev.data["dispatcher"], ev.data["args"]))
+    def on_end(self, ev): pass
+class Passes(event.Listener):
+    def on_start(self, ev): passes.append(1)
+    def on_end(self, ev): pass
+event.register("numba:compile", Fill())
+event.register("numba:run_pass", Passes())
+got = orient(0.0, 0.0, 1.0, 0.0, 0.0, 1.0)
+again = jitwarm.load_instead(orient, orient.signatures[0])  # in memory now: nothing to load
+print("LOADED", answers, "PASSES", len(passes), "VALUE", got, "AGAIN", again)
+print("OWN", "compile" in vars(orient._compiler), "save_overload" in vars(orient._cache))
+"""
+
+
+def test_the_compile_that_started_the_warm_up_loads_what_it_cached(tmp_path):
+    run = _run(["-c", LOADER], tmp_path)
+    assert run.returncode == 0, run.stderr
+    from mawdo.planning.kernel.primitives import orient
+
+    assert f"VALUE {orient.py_func(0.0, 0.0, 1.0, 0.0, 0.0, 1.0)}" in run.stdout
+    assert "LOADED [True] PASSES 0" in run.stdout, run.stdout  # no compiler pass ran here
+    assert "AGAIN False" in run.stdout  # a kernel in memory is never compiled again
+    assert "OWN False False" in run.stdout  # Numba's own methods back after that one compile

@@ -116,28 +116,40 @@ def warm_kernels(enabled: bool = True) -> int:
 
 class _CompileNotice:
     """A Numba compile listener. At the first compile of the ``with`` body: the parallel warm-up
-    of the missing kernels (if ``warm``); then, if ``enabled``, one line when compiling in this
-    process starts, a line every :data:`EVERY` seconds while it goes on, the total when
-    asked."""
+    of the missing kernels (if ``warm``), after which that first kernel loads from the cache
+    the warm-up filled (:func:`mawdo.jitwarm.load_instead`) instead of compiling here again;
+    then, if ``enabled``, one line when compiling in this process starts, a line every
+    :data:`EVERY` seconds while it goes on, the total when asked."""
 
     def __init__(self, enabled: bool = True, warm: bool = True) -> None:
         self.enabled, self.warm = enabled, warm
         self.depth = 0
+        self.warmed = False  # the warm-up ran (at the first compile)
+        self.loading = False  # the compile under way is the first one, loaded instead
         self.started: float | None = None
         self.compiled = 0.0  # seconds spent compiling so far
         self.stop = threading.Event()
 
     def on_start(self, event) -> None:
         if self.depth == 0:
-            if self.started is None:
-                self._first()
+            if not self.warmed:
+                self.warmed = True
+                # the kernel whose compile starts now loads from the cache the warm-up fills
+                self.loading = self.warm and self._warm_then_load(event.data)
+            if not self.loading and self.started is None:
+                self._announce()
             self.t0 = time.perf_counter()
-            self.started = self.started or self.t0
+            self.started = self.started or (None if self.loading else self.t0)
         self.depth += 1
 
-    def _first(self) -> None:
-        if self.warm:  # the kernel compiling now goes on here; its callees load from the cache
-            warm_kernels(self.enabled)
+    def _warm_then_load(self, data) -> bool:
+        from mawdo import jitwarm
+
+        return warm_kernels(self.enabled) > 0 and jitwarm.load_instead(
+            data["dispatcher"], data["args"]
+        )
+
+    def _announce(self) -> None:
         if self.enabled:
             ERR.print(COMPILE_MESSAGE + " ...", highlight=False)
             threading.Thread(target=self._tick, daemon=True).start()
@@ -145,7 +157,9 @@ class _CompileNotice:
     def on_end(self, event) -> None:
         self.depth -= 1
         if self.depth == 0:
-            self.compiled += time.perf_counter() - self.t0
+            if not self.loading:
+                self.compiled += time.perf_counter() - self.t0
+            self.loading = False
 
     def _tick(self) -> None:
         while not self.stop.wait(EVERY):
