@@ -30,6 +30,7 @@ FLOORS = (
     ("mawdo.jitwarm", 0),  # fills the Numba cache in parallel processes (install, cold start)
     ("mawdo.jitrecord", 0),  # the jit table's upkeep: record a command's compiles, re-time
     ("mawdo.jitinline", 0),  # Numba's IR inlining without copies of a fresh callee IR (compiles)
+    ("mawdo.jitschedule", 0),  # which kernel a free compiling process takes next
     ("mawdo.stablesort", 0),  # a stable argsort for kernels, cheaper to compile than Numba's
     ("mawdo.shuffle", 0),  # O(d) permutations: drawn by streams, inlined by optimizer kernels
     ("mawdo.interrupts", 0),  # Ctrl-C told apart from errors (runner and commands)

@@ -5,6 +5,8 @@ timings (those are in ``python -m benchmarks startup``)."""
 from __future__ import annotations
 
 import re
+import sys
+import time
 
 import numpy as np
 import pytest
@@ -12,7 +14,7 @@ from numba import njit
 
 from mawdo.cli.progress import notice_compiles, step
 from mawdo.planning import render
-from tests.cli_run import ENV, mawdo
+from tests.cli_run import ENV, children, ctrl_c, interruptible, mawdo
 
 
 def test_a_compile_is_announced_once_with_its_total_time(capsys):
@@ -95,3 +97,15 @@ def test_a_first_plan_on_an_empty_numba_cache_says_it_compiles(tmp_path):
     again = mawdo(*args, env=env)
     assert again.returncode == 0 and "compiling kernels" not in again.stderr
     assert np.isfinite(float(again.stdout.split("length_px:")[1].split()[0]))
+
+
+def test_ctrl_c_while_the_kernels_compile_stops_every_process(tmp_path):
+    env = {**ENV, "NUMBA_CACHE_DIR": str(tmp_path / "numba")}
+    cmd = [sys.executable, "-m", "mawdo.cli", "plan", "paper", "--out", str(tmp_path / "out")]
+    proc = interruptible(cmd, env=env)
+    for line in proc.stderr:  # the warm-up's processes are started
+        if line.startswith("compiling kernels (first run only: about"):
+            break
+    time.sleep(2.0)
+    assert len(children(proc.pid)) >= 2  # compiling (and the figures' process)
+    ctrl_c(proc)  # exit 130, no traceback, no process of the command left

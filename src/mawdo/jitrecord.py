@@ -8,9 +8,9 @@ re-times the whole table (:func:`retime`); ``python -m mawdo.jitwarm retime`` re
 
 Why a fresh process: a compile timed inside the command also pays for whatever the command
 compiled first in that process (Numba's own helpers, shared callees), so ``moving_pass``
-read 35.6 s in ``plan paper`` against 14.3 s compiled on its own. :func:`mawdo.jitwarm.shares`
-balances its processes by these seconds, and with the in-command figures one process sat idle
-for 13 s. In table order on an empty cache, each row's callees are compiled (and timed) before
+read 35.6 s in ``plan paper`` against 14.3 s compiled on its own. :class:`mawdo.jitschedule
+.Schedule` orders the work by these seconds (the longest chain first), and with the in-command
+figures the critical chain looked far longer than it is. In table order on an empty cache, each row's callees are compiled (and timed) before
 it, so a row's seconds are its own compile, as a process of ``jitwarm`` will meet it.
 """
 

@@ -23,8 +23,8 @@ from __future__ import annotations
 
 import argparse
 import importlib
-import json
 import os
+import queue
 import subprocess
 import sys
 import threading
@@ -34,6 +34,7 @@ from pathlib import Path
 
 from mawdo.jitcache import numba_cache_folder
 from mawdo.jitinline import fresh_ir_inlining
+from mawdo.jitschedule import Schedule
 
 _PACKAGE = Path(__file__).resolve().parent
 SIGNATURES = _PACKAGE / "data" / "jit_signatures.txt"
@@ -130,90 +131,13 @@ def todo() -> list[Entry]:
     return [] if looks_cached(entries) else missing(entries)
 
 
-def shares(entries: list[Entry], jobs: int) -> list[list[Entry]]:
-    """Split ``entries`` into at most ``jobs`` ordered lists, one per process, so that all end
-    early: list scheduling by recorded compile time along the table's caller edges.
-
-    Entries go in order of their longest chain (own time plus their callers' up to an entry
-    nobody calls; so a kernel after its callees), each to the process that can start it
-    first, no sooner than its callees end (a caller's process waits for callees another
-    compiles, :func:`compile_entries`), of those the one that idles least. So the cost
-    kernel's parts compile in both processes and the kernel after them.
-    """
-    keys = {e.key for e in entries}
-    callees: dict[str, list[Entry]] = {}
+def compile_entries(entries: list[Entry], done=None) -> None:
+    """Compile ``entries`` in this process, in order (each into Numba's cache; one already
+    cached loads instead); ``done(entry)`` after each."""
     for e in entries:
-        if e.caller in keys:
-            callees.setdefault(e.caller, []).append(e)
-    chain: dict[str, float] = {}
-
-    def longest(e: Entry, seen: frozenset = frozenset()) -> float:
-        if e.key not in chain:
-            up = [c for c in entries if c.key == e.caller and c.key not in seen]
-            chain[e.key] = e.seconds + max((longest(c, seen | {e.key}) for c in up), default=0)
-        return chain[e.key]
-
-    order = sorted(range(len(entries)), key=lambda i: (-longest(entries[i]), i))
-    free = [0.0] * max(1, jobs)
-    end: dict[str, float] = {}
-    parts: list[list[Entry]] = [[] for _ in free]
-    for i in order:
-        e = entries[i]
-        ready = max((end.get(c.key, 0.0) for c in callees.get(e.key, [])), default=0.0)
-        k = min(range(len(free)), key=lambda k: (max(free[k], ready), -free[k]))
-        end[e.key] = free[k] = max(free[k], ready) + e.seconds
-        parts[k].append(e)
-    return [p for p in parts if p]
-
-
-def _below(entries: list[Entry]) -> dict[str, set[str]]:
-    """Per entry's key, the keys of its callees in the table, theirs, and so on."""
-    caller = {e.key: e.caller for e in entries}
-    out: dict[str, set[str]] = {e.key: set() for e in entries}
-    for e in entries:
-        key, seen = e.caller, set()
-        while key in out and key not in seen:
-            seen.add(key)
-            out[key].add(e.key)
-            key = caller[key]
-    return out
-
-
-def _wait_for(others: list[Entry], below: dict[str, set[str]], current: list, timeout: float):
-    """Make the dispatchers of ``others`` (another process compiles them), when needed while
-    this process compiles a kernel above them (``current[0]``), wait until they are cached
-    (at most ``timeout`` s), then load them (or compile, if they never came)."""
-    for e in others:
-        disp = dispatcher(e)
-        own = disp.compile
-
-        def compile(sig, e=e, own=own):
-            if e.key in below.get(current[0], ()):
-                limit = time.monotonic() + timeout
-                while not is_cached(e) and time.monotonic() < limit:
-                    time.sleep(0.02)
-            return own(sig)
-
-        disp.compile = compile
-
-
-def compile_entries(
-    entries: list[Entry], done=None, others: list[Entry] = (), timeout: float = 120.0
-) -> None:
-    """Compile ``entries`` in this process (each into Numba's cache); ``done(entry)`` after each.
-
-    ``others`` are the entries other processes compile at the same time: a kernel here that
-    calls one of them waits until it is cached instead of compiling it too (at most
-    ``timeout`` seconds each; see :func:`shares` for the order that makes this safe).
-    """
-    current: list = [None]
-    _wait_for(list(others), _below([*entries, *others]), current, timeout)
-    for e in entries:
-        disp = dispatcher(e)
-        current[0] = e.key
         try:
             with fresh_ir_inlining():
-                disp.compile(parse(e.sig))
+                dispatcher(e).compile(parse(e.sig))
         except Exception as exc:  # a stale row must not stop the others: the run compiles it
             print(f"warning: {e.module}.{e.name} did not compile ({exc})", file=sys.stderr)
         if done:
@@ -223,11 +147,14 @@ def compile_entries(
 def warm(jobs: int = 2, entries: list[Entry] | None = None, tick=None, every: float = 2.0) -> int:
     """Compile the table's missing kernels into Numba's cache, in ``jobs`` processes at once.
 
+    Each process is handed one entry at a time as it becomes free (:class:`mawdo.jitschedule
+    .Schedule`: the longest chain first, a kernel after the kernels it calls), so the actual
+    compile times balance the processes.
+
     Parameters
     ----------
     jobs : int
-        Processes compiling at once, >= 1 (each compiles its share; about the number of free
-        cores).
+        Processes compiling at once, >= 1 (about the number of free cores).
     entries : list of Entry, optional
         What to compile (default: the table's entries that are not cached).
     tick : callable, optional
@@ -245,44 +172,85 @@ def warm(jobs: int = 2, entries: list[Entry] | None = None, tick=None, every: fl
     if not pending:
         return 0
     t0 = last = time.perf_counter()
-    counts: list[int] = []
-    parts = shares(pending, max(1, jobs))
-    procs = [_spawn(part, [e for q in parts if q is not part for e in q], counts) for part in parts]
+    sched = Schedule(pending)
+    events: queue.Queue = queue.Queue()  # (process, "done" or "gone")
+    procs = [_spawn(k, events) for k in range(min(max(1, jobs), len(pending)))]
+    running: dict[int, Entry] = {}
+    alive = set(range(len(procs)))
+    count = 0
     try:
-        while any(p.poll() is None for p, _ in procs):
-            time.sleep(0.05)
+        while alive and (running or not sched.empty):
+            for k in sorted(alive - set(running)):
+                e = sched.next(busy=bool(running))
+                if e is None:
+                    break
+                running[k] = e
+                if not _hand(procs[k], e):
+                    alive.discard(k)
+                    sched.finish(running.pop(k))  # left to the command that needs it
+            try:
+                k, what = events.get(timeout=0.05)
+            except queue.Empty:
+                k, what = None, None
+            if what == "done" and k in running:
+                sched.finish(running.pop(k))
+                count += 1
+            elif what == "gone":  # a process that died: its entry is left to the command
+                alive.discard(k)
+                if k in running:
+                    sched.finish(running.pop(k))
             if tick and time.perf_counter() - last >= every:
                 last = time.perf_counter()
-                tick(len(counts), len(pending), last - t0)
+                tick(count, len(pending), last - t0)
     except BaseException:  # Ctrl-C: no child goes on compiling behind the user's back
-        for p, _ in procs:
+        for p in procs:
             p.kill()
             p.wait()
         raise
-    for _, reader in procs:
-        reader.join()
+    for p in procs:
+        _hand(p, None)
+        p.wait()
     if tick:
-        tick(len(counts), len(pending), time.perf_counter() - t0)
-    return len(counts)
+        tick(count, len(pending), time.perf_counter() - t0)
+    return count
 
 
-def _spawn(part: list[Entry], others: list[Entry], counts: list[int]):
-    """Start a process compiling ``part`` (waiting for what it needs of ``others``, compiled by
-    other processes); a thread appends to ``counts`` per entry it did."""
+_CHILD = ["-m", "mawdo.jitwarm", "compile"]  # a compiling process's arguments
+
+
+def _spawn(k: int, events: queue.Queue):
+    """Start compiling process ``k``: it compiles each entry written to its stdin (a line) and
+    answers ``done``; a thread puts ``(k, "done")`` on ``events`` for each, ``(k, "gone")``
+    when the process ends."""
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join(filter(None, [src_folder(), env.get("PYTHONPATH")]))
-    rows = json.dumps({"part": [e.line() for e in part], "others": [e.line() for e in others]})
-    cmd = [sys.executable, "-m", "mawdo.jitwarm", "compile", rows]
-    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, env=env, text=True)
+    cmd = [sys.executable, *_CHILD]
+    proc = subprocess.Popen(
+        cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, env=env, text=True, bufsize=1
+    )
 
     def read() -> None:
         for line in proc.stdout:
             if line.strip() == "done":
-                counts.append(1)
+                events.put((k, "done"))
+        events.put((k, "gone"))
 
-    reader = threading.Thread(target=read, daemon=True)
-    reader.start()
-    return proc, reader
+    threading.Thread(target=read, daemon=True).start()
+    return proc
+
+
+def _hand(proc, entry: Entry | None) -> bool:
+    """Write ``entry`` to a compiling process (None: no more, close its input); False if it
+    has gone."""
+    try:
+        if entry is None:
+            proc.stdin.close()
+        else:
+            proc.stdin.write(entry.line() + "\n")
+            proc.stdin.flush()
+        return True
+    except (OSError, ValueError):  # a broken pipe, or closed already
+        return False
 
 
 def load_instead(disp, args) -> bool:
@@ -326,6 +294,10 @@ def src_folder() -> str:
     return str(_PACKAGE.parent)
 
 
+def _say_done(entry: Entry) -> None:
+    print("done", flush=True)
+
+
 def _line(done: int, total: int, seconds: float) -> None:
     print(f"compiling kernels: {done}/{total} done after {seconds:.0f} s", flush=True)
 
@@ -333,10 +305,13 @@ def _line(done: int, total: int, seconds: float) -> None:
 def main(argv: list[str] | None = None) -> int:
     """``python -m mawdo.jitwarm [--jobs N] | record -- ARGS | retime | compile ROWS``."""
     argv = sys.argv[1:] if argv is None else argv
-    if argv[:1] == ["compile"]:  # a child of warm(): compile its rows, say "done" after each
-        rows = json.loads(argv[1])
-        part, others = ([Entry.from_line(r) for r in rows[k]] for k in ("part", "others"))
-        compile_entries(part, done=lambda e: print("done", flush=True), others=others)
+    if argv[:1] == ["compile"]:  # a child of warm(): compile each row it is given
+        try:
+            for line in sys.stdin:
+                if line.strip():
+                    compile_entries([Entry.from_line(line.rstrip("\n"))], done=_say_done)
+        except KeyboardInterrupt:  # Ctrl-C reaches the whole group: the command says it once
+            return 130
         return 0
     if argv[:1] in (["record"], ["retime"]):  # the table's upkeep, a module above this one
         return subprocess.call([sys.executable, "-m", "mawdo.jitrecord", *argv])
