@@ -107,28 +107,50 @@ def missing(entries: list[Entry] | None = None) -> list[Entry]:
     return [e for e in entries if not is_cached(e)]
 
 
+def _index_folder(e: Entry) -> tuple[Path, Path]:
+    """Where Numba keeps ``e``'s index file if it caches beside the sources or under
+    ``NUMBA_CACHE_DIR`` (no import), and ``e``'s source file."""
+    base = os.environ.get("NUMBA_CACHE_DIR")
+    source = _PACKAGE.parent.joinpath(*e.module.split(".")).with_suffix(".py")
+    if not source.is_file():  # a package's __init__
+        source = source.with_suffix("") / "__init__.py"
+    folder = numba_cache_folder(source.parent, Path(base)) if base else None
+    return folder or source.parent / "__pycache__", source
+
+
+def _has_index(e: Entry) -> bool:
+    folder, source = _index_folder(e)
+    return any(folder.glob(f"{source.stem}.{e.name}-*.nbi"))
+
+
 def looks_cached(entries: list[Entry]) -> bool:
     """Whether every entry has an index file where Numba caches it (a few ``stat`` calls, no
     import): in the ``__pycache__`` beside its module, or under ``NUMBA_CACHE_DIR``. False can
     be wrong (Numba may cache elsewhere, e.g. for a read-only install): check with
     :func:`missing`."""
-    base = os.environ.get("NUMBA_CACHE_DIR")
-    for e in entries:
-        source = _PACKAGE.parent.joinpath(*e.module.split(".")).with_suffix(".py")
-        if not source.is_file():  # a package's __init__
-            source = source.with_suffix("") / "__init__.py"
-        folder = numba_cache_folder(source.parent, Path(base)) if base else None
-        folder = folder or source.parent / "__pycache__"
-        if not any(folder.glob(f"{source.stem}.{e.name}-*.nbi")):
-            return False
-    return True
+    return all(_has_index(e) for e in entries)
 
 
-def todo() -> list[Entry]:
-    """The table's entries a process would compile now (none when the cache is warm; the quick
-    :func:`looks_cached` first, so that a warm start pays a few ``stat`` calls only)."""
-    entries = load_table()
-    return [] if looks_cached(entries) else missing(entries)
+def todo(entries: list[Entry] | None = None) -> list[Entry]:
+    """The entries of the table (or ``entries``) a process would compile now (none when the
+    cache is warm).
+
+    A few ``stat`` calls where Numba's cache folders are known (``NUMBA_CACHE_DIR``, or the
+    sources' folders writable): an entry without an index file there is missing; only those
+    with one are checked by :func:`missing` (which imports Numba and the kernels' modules, 0.3 s
+    on a cold cache, before the compiling processes could start). Elsewhere (a read-only
+    install: Numba caches in its user folder) :func:`missing` checks all of them."""
+    entries = load_table() if entries is None else entries
+    if looks_cached(entries):
+        return []
+    known = "NUMBA_CACHE_DIR" in os.environ or all(
+        os.access(_index_folder(e)[1].parent, os.W_OK) for e in entries
+    )
+    if not known:
+        return missing(entries)
+    indexed = [e for e in entries if _has_index(e)]
+    stale = set(missing(indexed)) if indexed else set()
+    return [e for e in entries if e in stale or not _has_index(e)]
 
 
 def compile_entries(entries: list[Entry], done=None) -> None:
