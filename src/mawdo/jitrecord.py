@@ -10,8 +10,9 @@ Why a fresh process: a compile timed inside the command also pays for whatever t
 compiled first in that process (Numba's own helpers, shared callees), so ``moving_pass``
 read 35.6 s in ``plan paper`` against 14.3 s compiled on its own. :class:`mawdo.jitschedule
 .Schedule` orders the work by these seconds (the longest chain first), and with the in-command
-figures the critical chain looked far longer than it is. In table order on an empty cache, each row's callees are compiled (and timed) before
-it, so a row's seconds are its own compile, as a process of ``jitwarm`` will meet it.
+figures the critical chain looked far longer than it is. In table order on an empty cache,
+each row's callees are compiled (and timed) before it, so a row's seconds are its own compile,
+as a process of ``jitwarm`` will meet it.
 """
 
 from __future__ import annotations
