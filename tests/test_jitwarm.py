@@ -251,3 +251,17 @@ def test_the_compile_that_started_the_warm_up_loads_what_it_cached(tmp_path):
     assert "LOADED [True] PASSES 0" in run.stdout, run.stdout  # no compiler pass ran here
     assert "AGAIN False" in run.stdout  # a kernel in memory is never compiled again
     assert "OWN False False" in run.stdout  # Numba's own methods back after that one compile
+
+
+def test_ctrl_c_during_the_install_step_ends_every_compiling_process(tmp_path):
+    from tests.cli_run import ENV, children, ctrl_c, interruptible
+
+    env = {**ENV, "NUMBA_CACHE_DIR": str(tmp_path), "PYTHONPATH": SRC}
+    proc = interruptible([sys.executable, "-m", "mawdo.jitwarm", "--jobs", "2"], env=env)
+    for line in proc.stdout:  # "compiling 56 kernels into Numba's cache in 2 processes ..."
+        if line.startswith("compiling") and "processes" in line:
+            break
+    time.sleep(2.0)
+    assert len(children(proc.pid)) == 2
+    err = ctrl_c(proc)  # exit 130, no traceback (none from a compiling process), none left
+    assert "interrupted: run it again" in err

@@ -25,6 +25,7 @@ import argparse
 import importlib
 import os
 import queue
+import signal
 import subprocess
 import sys
 import threading
@@ -328,12 +329,12 @@ def main(argv: list[str] | None = None) -> int:
     """``python -m mawdo.jitwarm [--jobs N] | record -- ARGS | retime | compile ROWS``."""
     argv = sys.argv[1:] if argv is None else argv
     if argv[:1] == ["compile"]:  # a child of warm(): compile each row it is given
-        try:
-            for line in sys.stdin:
-                if line.strip():
-                    compile_entries([Entry.from_line(line.rstrip("\n"))], done=_say_done)
-        except KeyboardInterrupt:  # Ctrl-C reaches the whole group: the command says it once
-            return 130
+        # Ctrl-C reaches the whole group; the command ends this process and says it once (as
+        # a KeyboardInterrupt it could land in an LLVM callback, which prints it and goes on)
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        for line in sys.stdin:
+            if line.strip():
+                compile_entries([Entry.from_line(line.rstrip("\n"))], done=_say_done)
         return 0
     if argv[:1] in (["record"], ["retime"]):  # the table's upkeep, a module above this one
         return subprocess.call([sys.executable, "-m", "mawdo.jitrecord", *argv])
@@ -352,7 +353,11 @@ def main(argv: list[str] | None = None) -> int:
     cpu = sum(e.seconds for e in pending)
     print(f"compiling {len(pending)} kernels into Numba's cache in {args.jobs} processes "
           f"(once per install; about {cpu:.0f} s of CPU)", flush=True)  # fmt: skip
-    n = warm(args.jobs, pending, tick=_line)
+    try:
+        n = warm(args.jobs, pending, tick=_line)
+    except KeyboardInterrupt:  # the compiling processes are ended; what they cached stays
+        print("interrupted: run it again to compile the rest", file=sys.stderr)
+        return 130
     print(f"{n} kernels compiled in {time.perf_counter() - t0:.1f} s", flush=True)
     return 0
 
