@@ -42,8 +42,10 @@ def _outer(a):
 
 def _asm(disp) -> str:
     """Machine code of a dispatcher's one signature, with the dispatcher's own version tag
-    (``B2v7``, one per compiled copy of a function) taken out of the symbol names."""
-    return re.sub(r"B\d+v\d+B", "B_v_B", disp.inspect_asm(disp.signatures[0]))
+    (``B2v7``, one per compiled copy of a function) taken out of the symbol names, and so
+    out of the sizes of the strings that hold a name (``v9`` and ``v10`` differ by a byte)."""
+    text = re.sub(r"B\d+v\d+B", "B_v_B", disp.inspect_asm(disp.signatures[0]))
+    return re.sub(r'(\.size\t"[^"\n]*B_v_B[^"\n]*", )\d+', r"\1N", text)
 
 
 def test_same_machine_code_and_results():
