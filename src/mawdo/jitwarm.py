@@ -149,9 +149,10 @@ def todo(entries: list[Entry] | None = None) -> list[Entry]:
     )
     if not known:
         return missing(entries)
-    indexed = [e for e in entries if _has_index(e)]
-    stale = set(missing(indexed)) if indexed else set()
-    return [e for e in entries if e in stale or not _has_index(e)]
+    unindexed = [e for e in entries if not _has_index(e)]
+    indexed = [e for e in entries if e not in unindexed]
+    left = set(unindexed) | (set(missing(indexed)) if indexed else set())
+    return [e for e in entries if e in left]
 
 
 def compile_entries(entries: list[Entry], done=None) -> None:
