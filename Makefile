@@ -24,7 +24,7 @@ $(DEVSTAMP): pyproject.toml | $(PY)
 # in 2 processes at once, with a progress line every 2 s), so that no first run waits for it.
 # Numba caches them; later calls find them there and return in a second or two.
 install: $(STAMP)
-	$(PY) -m mawdo.jitwarm --jobs 2
+	$(PY) -m mawdo.jit --jobs 2
 
 demo: install
 	$(VENV)/bin/mawdo demo --out out/demo

@@ -2,9 +2,9 @@
 
 ``python -m benchmarks moving`` (or ``python benchmarks/bench_moving.py [--calls N]
 [--repeat R] [--cases crowd,paper] [--store DIR]``): records the first ``N`` calls of
-:class:`mawdo.planning.kernel.threads.ThreadedKernel` in a realtime run of ``mawdo`` on crowd
+:class:`mawdo.planning.refine.kernel.threads.ThreadedKernel` in a realtime run of ``mawdo`` on crowd
 scene 0 (seed 0, no time guide) and on the paper scenario (seed 0, time guide on), then calls
-:func:`mawdo.planning.kernel.population.population_cost` on each recorded call ``R`` times
+:func:`mawdo.planning.refine.kernel.population.population_cost` on each recorded call ``R`` times
 over (one scratch buffer kept, as the planner's kernel does) and prints, per case, the CPU per
 call (``time.process_time``: the fastest of the ``R`` sweeps divided by ``N``, and the median
 sweep) and a sha256 of the four output arrays of every call. The digest must not move when the
@@ -34,8 +34,8 @@ class _Enough(Exception):
 def record(case: str, calls: int) -> list[tuple]:
     """The arguments of the first ``calls`` kernel calls of one realtime run (deep copies)."""
     from mawdo.planning import get_scenario
-    from mawdo.planning.kernel.threads import ThreadedKernel
-    from mawdo.planning.planner import plan
+    from mawdo.planning.refine.kernel.threads import ThreadedKernel
+    from mawdo.planning.run.planner import plan
     from mawdo.planning.scenes import generate_scene
 
     if case == "paper":
@@ -78,7 +78,7 @@ def _recorded(case: str, calls: int, store: str | None) -> list[tuple]:
 
 def replay(got: list[tuple], repeat: int) -> tuple[float, float, str]:
     """(fastest, median) CPU seconds per call over ``repeat`` sweeps, and the outputs' digest."""
-    from mawdo.planning.kernel.population import population_cost, scratch_size
+    from mawdo.planning.refine.kernel.population import population_cost, scratch_size
 
     need = max(scratch_size(a[0].shape[0], a[0].shape[1] // 2 + 2, a[8][3], a[5]) for a in got)
     buf = np.empty(need + need // 4 + 512)

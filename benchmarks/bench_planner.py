@@ -23,10 +23,10 @@ def _flag(ok: bool) -> str:
 def static_families(scenes: int = 20, algorithm: str = "mawdo", config: str = "fast") -> None:
     from tests.planning import maps
 
-    from mawdo.planning.execute import guide_for
-    from mawdo.planning.metrics import static_optimum
-    from mawdo.planning.path import polyline_length
-    from mawdo.planning.planner import PRESETS, plan
+    from mawdo.planning.judge.metrics import static_optimum
+    from mawdo.planning.run.execute import guide_for
+    from mawdo.planning.run.planner import PRESETS, plan
+    from mawdo.planning.world.path import polyline_length
 
     print(f"static single-shot, {algorithm}, preset {config!r}, {scenes} scenes per family")
     plan(maps.u_trap(999), algorithm, seed=0, dynamic=False, config=config)  # compile
@@ -60,8 +60,8 @@ def static_families(scenes: int = 20, algorithm: str = "mawdo", config: str = "f
 
 def paper_dynamic(seeds=range(10), algorithm: str = "mawdo") -> None:
     from mawdo.planning import get_scenario
-    from mawdo.planning.metrics import run_metrics, static_optimum
-    from mawdo.planning.planner import follow_oracle, plan
+    from mawdo.planning.judge.metrics import run_metrics, static_optimum
+    from mawdo.planning.run.planner import follow_oracle, plan
 
     sc = get_scenario("paper")
     l_star = static_optimum(sc)
@@ -129,7 +129,7 @@ def arena_runs(
 def oracle(polygons: int = 30, repeats: int = 20) -> None:
     import shapely
 
-    from mawdo.planning.oracle import shortest_path
+    from mawdo.planning.guide.oracle import shortest_path
 
     rng = np.random.default_rng(0)
     times = []

@@ -27,7 +27,7 @@ def _median_time(fn, repeats: int = 30) -> tuple[float, float]:
 
 def _populations() -> dict:
     from mawdo.planning import get_scenario, scenario_optimum
-    from mawdo.planning.path import densify
+    from mawdo.planning.world.path import densify
 
     sc = get_scenario("paper")
     rng = np.random.default_rng(0)
@@ -90,8 +90,8 @@ def planner(seeds=(0, 1, 2), threads: int = 1) -> None:
     from dataclasses import replace
 
     from mawdo.planning import get_scenario
-    from mawdo.planning.metrics import run_metrics, static_optimum
-    from mawdo.planning.planner import PRESETS, plan
+    from mawdo.planning.judge.metrics import run_metrics, static_optimum
+    from mawdo.planning.run.planner import PRESETS, plan
 
     cfg = replace(PRESETS["realtime"], threads=threads)
     l_star = static_optimum(get_scenario("paper"))

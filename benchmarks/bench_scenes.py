@@ -15,7 +15,7 @@ TARGET_MS = 50.0
 
 
 def generation(n: int = 8, seed: int = 0) -> None:
-    from mawdo.planning.oracle import scenario_optimum
+    from mawdo.planning.guide.oracle import scenario_optimum
     from mawdo.planning.scenes import FAMILIES, TIMED_FAMILIES, generate_scene
 
     print(f"scene generation + L*, default parameters, {n} scenes per family (seed {seed})")

@@ -71,8 +71,8 @@ def guide_build_query(
     """Per scene: the roadmap (once per map: inflation, visibility graph, static distances),
     then one query at t0 = 0: start joined, movers sliced, safe intervals (the build) and the
     search for ``k`` routes (the query); per scene the best of ``repeats`` runs."""
-    from mawdo.planning.sipp import SafeIntervalGuide
-    from mawdo.planning.sipp.roadmap import Roadmap
+    from mawdo.planning.guide.sipp import SafeIntervalGuide
+    from mawdo.planning.guide.sipp.roadmap import Roadmap
 
     SafeIntervalGuide(scene(999), walkers=walkers).routes(k=k)  # compile
     maps, build, query, found, waits, nodes = [], [], [], 0, 0, []
@@ -111,8 +111,8 @@ def guide_build_query(
 
 def time_optimum(n: int = 50, seed: int = 0) -> None:
     """Per timed family: ``n`` scenes generated with their T* (time, draws, T* / (L*/v))."""
+    from mawdo.planning.guide.sipp.optimum import scenario_time_optimum
     from mawdo.planning.scenes import TIMED_FAMILIES, generate_scene
-    from mawdo.planning.sipp.optimum import scenario_time_optimum
 
     print(f"timed families: {n} scenes each (seed {seed}), generation with T* per scene")
     for fam in TIMED_FAMILIES:

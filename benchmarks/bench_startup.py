@@ -8,7 +8,7 @@ Targets: first plan after installing <= 30 s wall on 2 cores, warm plan with its
 Rows (each a fresh, empty ``NUMBA_CACHE_DIR`` where it says cold; Numba then caches there and
 nowhere else):
 
-* ``install: python -m mawdo.jitwarm --jobs 2`` - what ``make install`` / ``make demo`` run after
+* ``install: python -m mawdo.jit --jobs 2`` - what ``make install`` / ``make demo`` run after
   ``pip install``: the kernels compiled in 2 processes at once. Counted as installing, not as
   the first plan; the next row is the first plan after it.
 * ``first plan paper after install`` - the target's row (installing included the compile).
@@ -62,6 +62,9 @@ ROOT = Path(__file__).resolve().parents[1]
 SRC = Path(os.environ.get("STARTUP_SRC", ROOT / "src")).resolve()
 
 
+_WARM = (("jit/warm.py", "mawdo.jit"), ("jitwarm.py", "mawdo.jitwarm"))
+
+
 def _flag(ok: bool) -> str:
     return "ok" if ok else "MISSED"
 
@@ -99,7 +102,7 @@ def _load() -> str:
 #: from other jobs (so wall times are several times the CPU times), printed beside each row.
 #: Rows absent here (``cold plan paper, one process``: not measured then) print "-".
 BEFORE = {
-    "install: python -m mawdo.jitwarm -j 2": (548.2, 82.7, 15),
+    "install: python -m mawdo.jit -j 2": (548.2, 82.7, 15),
     "first plan paper after install": (104.6, 9.9, 16),
     "cold plan paper, no install step": (525.9, 94.5, 12),
     "warm plan paper + GIF": (23.3, 9.1, 12),  # the better of 2 samples (27.0 s, 10.2 s)
@@ -216,11 +219,13 @@ def main() -> None:
     with tempfile.TemporaryDirectory(prefix="mawdo-startup-") as tmp:
         tmp = Path(tmp)
         cache = _cold(tmp, "numba-install")
-        if (SRC / "mawdo" / "jitwarm.py").is_file() and "install" not in skip:
-            warm = ["-m", "mawdo.jitwarm", "--jobs", "2"]
-            _row("install: python -m mawdo.jitwarm -j 2", *timed(warm, cache, tmp), None)
+        # the install step's module: mawdo.jit, or mawdo.jitwarm in sources from before the move
+        step = next((m for f, m in _WARM if (SRC / "mawdo" / f).is_file()), None)
+        if step and "install" not in skip:
+            warm = ["-m", step, "--jobs", "2"]
+            _row("install: python -m mawdo.jit -j 2", *timed(warm, cache, tmp), None)
             _row("first plan paper after install", *timed([*plan, "first"], cache, tmp), 30)
-        if (SRC / "mawdo" / "jitwarm.py").is_file() and "cold" not in skip:
+        if step and "cold" not in skip:
             one = _cold(tmp, "numba-cold")
             _row("cold plan paper, no install step", *timed([*plan, "cold"], one, tmp), 30)
             cache = one

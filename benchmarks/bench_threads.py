@@ -13,7 +13,7 @@ import os
 import subprocess
 import sys
 
-from mawdo.planning.kernel.threads import WAIT_VARIABLES
+from mawdo.planning.refine.kernel.threads import WAIT_VARIABLES
 
 HOGS = 2
 SEEDS = (0,)
@@ -36,7 +36,7 @@ def _child(threads: int) -> None:
     import numba
     import numpy as np
 
-    from mawdo.planning.planner import PRESETS, plan
+    from mawdo.planning.run.planner import PRESETS, plan
 
     cfg = replace(PRESETS["realtime"], threads=threads)
     plan("paper", "mawdo", seed=99, config=cfg)  # warm-up: compile or load, start the threads

@@ -38,8 +38,8 @@ PLANNERS = ("mawdo", "mawdo_time", "guide_only")
 
 def _one(args):
     family, index, planner = args
-    from mawdo.planning.metrics import run_metrics
-    from mawdo.planning.planners import run_planner
+    from mawdo.planning.judge.metrics import run_metrics
+    from mawdo.planning.run.planners import run_planner
     from mawdo.planning.scenes import generate_scene
 
     scene = generate_scene(family, index, seed=0)
@@ -48,7 +48,7 @@ def _one(args):
     wall = time.perf_counter() - t0
     m = run_metrics(res, l_star=scene.l_star, snapshots=0, t_star=scene.t_star)
     if scene.t_star is None and res.solved and res.route_times is not None:  # a static family
-        from mawdo.planning.check import check_trajectory
+        from mawdo.planning.judge.check import check_trajectory
 
         rep = check_trajectory(res.route, res.scenario, times=res.route_times)
         m |= {"active_collisions": len(rep.active), "passive_collisions": len(rep.passive)}
@@ -56,8 +56,8 @@ def _one(args):
 
 
 def _paper(planner):
-    from mawdo.planning.metrics import run_metrics
-    from mawdo.planning.planners import run_planner
+    from mawdo.planning.judge.metrics import run_metrics
+    from mawdo.planning.run.planners import run_planner
 
     res = run_planner(planner, "paper", seed=0)
     return planner, run_metrics(res, snapshots=0)
@@ -71,7 +71,7 @@ class KernelClock:
         self.cpu = 0.0
 
     def __enter__(self) -> KernelClock:
-        from mawdo.planning.kernel.threads import ThreadedKernel
+        from mawdo.planning.refine.kernel.threads import ThreadedKernel
 
         self._cls, self._call = ThreadedKernel, ThreadedKernel.__call__
         call = self._call
@@ -93,7 +93,7 @@ class KernelClock:
 def step_times(scenario, time_guide: bool, seed: int = 0, clock=None) -> list[tuple]:
     """Wall and CPU time (s) of each replanning step of one realtime run (see the module
     docstring); with a :class:`KernelClock` ``clock``, the step's kernel CPU third."""
-    from mawdo.planning.planner import plan
+    from mawdo.planning.run.planner import plan
 
     marks = []
 

@@ -1,7 +1,7 @@
 """Check that a speed change leaves every planning run bit for bit the same.
 
 ``python benchmarks/plan_identity.py dump OUT.pkl [--quick]`` runs a fixed set of realtime
-runs of ``mawdo`` and pickles every field of every :class:`~mawdo.planning.result.PlanResult`
+runs of ``mawdo`` and pickles every field of every :class:`~mawdo.planning.run.result.PlanResult`
 (trajectory, route, route times, success, reason, counters, and each replan's fields);
 ``python benchmarks/plan_identity.py compare BASE.pkl NEW.pkl`` prints
 ``N runs compared (R replans): D differ`` and, per differing run, the first fields that differ;
@@ -52,7 +52,11 @@ def cases(quick: bool = False) -> list[tuple[str, str, int, dict]]:
 
 
 def _plain(value):
-    """A picklable, comparable copy of a result: dataclasses become dicts of their fields."""
+    """A picklable, comparable copy of a result: dataclasses and pydantic models become dicts of
+    their fields (tagged with the class name, not its module, so that dumps made before and
+    after a module moves compare)."""
+    if hasattr(type(value), "model_fields") and hasattr(value, "model_dump"):  # pydantic
+        return {"__type__": type(value).__name__} | _plain(dict(value))
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         fields = dataclasses.fields(value)
         return {"__type__": type(value).__name__} | {
@@ -71,8 +75,7 @@ def _plain(value):
 
 def run_case(scene: str, seed: int, overrides: dict):
     """The plain fields of one realtime ``mawdo`` run."""
-    from mawdo.planning import get_scenario
-    from mawdo.planning.planner import plan
+    from mawdo.planning import get_scenario, plan
     from mawdo.planning.scenes import generate_scene
 
     if scene == "paper":

@@ -6,7 +6,7 @@ A mark is ``pid name wall cpu``: ``wall`` in seconds since ``TRACE_T0`` (the par
 ``time.perf_counter()`` when it started this process: Linux's monotonic clock is one clock for
 all processes, so the interpreter's own start-up is counted), ``cpu`` the marking process's
 CPU time (a forked process starts at 0). The hooks wrap functions of ``mawdo.cli.plan``,
-``mawdo.planning.execute.Run`` and ``mawdo.planning.render.early`` and change nothing they do;
+``mawdo.planning.run.execute.Run`` and ``mawdo.planning.render.early`` and change nothing they do;
 the command runs as the ``mawdo`` program does (:mod:`mawdo.cli.quick_exit`: ``end`` is marked
 just before the program ends without its teardown);
 :func:`phases` reads the marks back (:mod:`benchmarks.bench_startup`).
@@ -84,7 +84,7 @@ def main(log: str, args: list[str]) -> None:
     import mawdo.cli.plan as plan
     import mawdo.planning.render.animation as animation
     import mawdo.planning.render.early as early
-    from mawdo.planning.execute import Run
+    from mawdo.planning.run.execute import Run
 
     _wrap(log, plan, "_execute")
     _wrap(log, plan, "draw_figures")

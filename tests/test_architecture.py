@@ -26,11 +26,7 @@ FLOORS = (
     ("mawdo.viz", 0),
     ("mawdo.validate", 0),  # argument checks: used by the core itself
     ("mawdo.budget", 0),
-    ("mawdo.jitcache", 0),  # drops stale Numba caches before any kernel loads
-    ("mawdo.jitwarm", 0),  # fills the Numba cache in parallel processes (install, cold start)
-    ("mawdo.jitrecord", 0),  # the jit table's upkeep: record a command's compiles, re-time
-    ("mawdo.jitinline", 0),  # Numba's IR inlining without copies of a fresh callee IR (compiles)
-    ("mawdo.jitschedule", 0),  # which kernel a free compiling process takes next
+    ("mawdo.jit", 0),  # the Numba compile machinery: stale caches, the table's warm-up, inlining
     ("mawdo.stablesort", 0),  # a stable argsort for kernels, cheaper to compile than Numba's
     ("mawdo.shuffle", 0),  # O(d) permutations: drawn by streams, inlined by optimizer kernels
     ("mawdo.interrupts", 0),  # Ctrl-C told apart from errors (runner and commands)
@@ -203,8 +199,8 @@ def test_the_checks_catch_what_they_claim():
     assert floor_of("mawdo.cli.bench") > floor_of("mawdo.experiments.store")
     runner = floor_of("mawdo.experiments.runner")
     assert floor_of("mawdo.experiments.kinds.benchmark.report") > runner
-    assert floor_of("mawdo.planning.kernel") < floor_of("mawdo.experiments.runner")
-    assert floor_of("mawdo.optimizers.wdo") < floor_of("mawdo.planning.planner")
+    assert floor_of("mawdo.planning.refine.kernel") < floor_of("mawdo.experiments.runner")
+    assert floor_of("mawdo.optimizers.wdo") < floor_of("mawdo.planning.run.planner")
     assert floor_of("mawdo.registry") < floor_of("mawdo.optimizers.wdo")
     with pytest.raises(AssertionError, match="has no floor"):
         floor_of("mawdo.newcomer")  # a module nobody placed fails, not the facade's floor

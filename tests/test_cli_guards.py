@@ -129,7 +129,7 @@ def _edited_paper(tmp_path: Path, name: str) -> tuple[Path, dict]:
 @pytest.mark.parametrize("name", ["paper", "mymap"])
 def test_study_scenario_file_is_stored_and_run_as_edited(tmp_path, name):
     from mawdo.experiments import Store
-    from mawdo.planning.planner import result_from_bytes
+    from mawdo.planning.run.planner import result_from_bytes
 
     scen, edited = _edited_paper(tmp_path, name)
     res = mawdo(

@@ -18,14 +18,14 @@ from pathlib import Path
 
 import pytest
 
-from mawdo import jitwarm
+from mawdo.jit import warm as jitwarm
 
 SRC = str(Path(jitwarm.__file__).resolve().parents[1])
 
 COUNT = """
 import sys
 from numba.core import event
-from mawdo import jitwarm
+from mawdo.jit import warm as jitwarm
 seen = []
 class Count(event.Listener):
     def on_start(self, ev):

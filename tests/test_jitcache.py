@@ -2,7 +2,7 @@
 
 import os
 
-from mawdo.jitcache import PACKAGE, STAMP, drop_stale_caches, kernel_sources, sources_digest
+from mawdo.jit.cache import PACKAGE, STAMP, drop_stale_caches, kernel_sources, sources_digest
 
 
 def _package(tmp_path):
@@ -70,8 +70,8 @@ def test_caches_stay_when_a_module_no_kernel_imports_changes(tmp_path):
 
 def test_mawdo_kernels_sources_leave_out_the_commands_and_figures():
     names = {str(p.relative_to(PACKAGE)) for p in kernel_sources()}
-    assert "planning/kernel/moving.py" in names and "optimizers/wind_kernel.py" in names
-    assert "planning/kernel/constants.py" in names  # no Numba in it, but kernels read it
+    assert "planning/refine/kernel/moving.py" in names and "optimizers/wind_kernel.py" in names
+    assert "planning/refine/kernel/constants.py" in names  # no Numba in it, but kernels read it
     assert not any(n.startswith(("cli/", "planning/render/", "experiments/")) for n in names)
 
 

@@ -1,4 +1,4 @@
-"""mawdo.jitinline: Numba's IR inlining without the copies of a fresh callee IR changes nothing
+"""mawdo.jit.inline: Numba's IR inlining without the copies of a fresh callee IR changes nothing
 that is compiled (the same machine code, names aside), and only while asked."""
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ from numba import njit
 from numba.core import inline_closurecall as ic
 from numba.core import ir
 
-from mawdo.jitinline import fresh_ir_inlining
+from mawdo.jit.inline import fresh_ir_inlining
 
 
 @njit(inline="always")
@@ -106,7 +106,7 @@ def test_does_nothing_where_numba_differs(monkeypatch):
 def test_moving_pass_compiles_to_the_same_machine_code():
     """The largest kernel (the moving-obstacle pass, several inline callees deep), compiled
     with and without the copies: the same code. About a minute of CPU."""
-    from mawdo import jitwarm
+    from mawdo.jit import warm as jitwarm
 
     table = jitwarm.load_table()
     (row,) = [e for e in table if e.name == "moving_pass"]

@@ -1,8 +1,8 @@
-"""The jit table's upkeep (:mod:`mawdo.jitrecord`): rows re-timed alone in a fresh process, a
+"""The jit table's upkeep (:mod:`mawdo.jit.record`): rows re-timed alone in a fresh process, a
 recording merged into the table without losing or repeating a row."""
 
-from mawdo import jitwarm
-from mawdo.jitrecord import _merge, retime, write_table
+from mawdo.jit import warm as jitwarm
+from mawdo.jit.record import _merge, retime, write_table
 
 CHEAP = ("_less", "stride", "orient")  # three small kernels of the real table
 
@@ -47,12 +47,12 @@ def test_record_and_retime_are_reached_through_jitwarm(monkeypatch):
     monkeypatch.setattr(subprocess, "call", lambda cmd: calls.append(cmd) or 0)
     assert jitwarm.main(["record", "--", "plan", "paper"]) == 0
     assert jitwarm.main(["retime"]) == 0
-    module = [sys.executable, "-m", "mawdo.jitrecord"]
+    module = [sys.executable, "-m", "mawdo.jit.record"]
     assert calls == [[*module, "record", "--", "plan", "paper"], [*module, "retime"]]
 
 
 def test_the_command_line_runs_record_then_retime(monkeypatch):
-    import mawdo.jitrecord as jr
+    import mawdo.jit.record as jr
 
     calls = []
     monkeypatch.setattr(jr, "record", lambda argv, path=None: calls.append(("record", argv)))

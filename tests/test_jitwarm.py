@@ -1,4 +1,4 @@
-"""The kernel warm-up (mawdo.jitwarm): its table reads back, its schedule is fair, and a warmed
+"""The kernel warm-up (mawdo.jit.warm): its table reads back, its schedule is fair, and a warmed
 cache leaves nothing for `mawdo plan paper` to compile."""
 
 import os
@@ -11,9 +11,9 @@ import numba
 import numpy as np
 import pytest
 
-from mawdo import jitwarm
-from mawdo.jitschedule import Schedule, plan_order
-from mawdo.jitwarm import Entry, load_table, parse
+from mawdo.jit import warm as jitwarm
+from mawdo.jit.schedule import Schedule, plan_order
+from mawdo.jit.warm import Entry, load_table, parse
 
 SRC = str(Path(jitwarm.__file__).resolve().parents[1])
 
@@ -141,8 +141,8 @@ finally:
 # Two small kernels compiled by warm() in two processes, with a progress line every 0.2 s.
 SMALL = """
 import sys
-from mawdo import jitwarm
-K = "mawdo.planning.kernel.primitives"
+from mawdo.jit import warm as jitwarm
+K = "mawdo.planning.refine.kernel.primitives"
 rows = [
     jitwarm.Entry(K, "orient", 0.1, "-", "(" + ", ".join(["float64"] * 6) + ")"),
     jitwarm.Entry(K, "abs_atan2", 0.2, "-", "(float64, float64)"),
@@ -160,8 +160,8 @@ else:
 # by Numba's index where one does (another signature of a cached kernel is still missing).
 TODO = """
 import sys
-from mawdo import jitwarm
-K = "mawdo.planning.kernel.primitives"
+from mawdo.jit import warm as jitwarm
+K = "mawdo.planning.refine.kernel.primitives"
 F6 = "(" + ", ".join(["float64"] * 6) + ")"
 rows = [jitwarm.Entry(K, "orient", 0.1, "-", F6),
         jitwarm.Entry(K, "orient", 0.1, "-", F6.replace("float64", "float32")),
@@ -193,7 +193,8 @@ def test_warm_compiles_in_processes_into_the_cache_a_new_process_finds(tmp_path)
 
 
 PENDING = (
-    "from mawdo import jitwarm; print('PENDING', len(jitwarm.todo()), len(jitwarm.load_table()))"
+    "from mawdo.jit import warm as jitwarm; "
+    "print('PENDING', len(jitwarm.todo()), len(jitwarm.load_table()))"
 )
 
 
@@ -204,7 +205,7 @@ def test_a_warmed_cache_leaves_nothing_to_compile(tmp_path):
     before = _run(["-c", PENDING], cache)
     n = len(load_table())
     assert f"PENDING {n} {n}" in before.stdout, before.stderr  # an empty cache: all of them
-    warm = _run(["-m", "mawdo.jitwarm", "--jobs", "2"], cache)
+    warm = _run(["-m", "mawdo.jit", "--jobs", "2"], cache)
     assert warm.returncode == 0, warm.stderr
     assert f"{n} kernels compiled" in warm.stdout
     after = _run(["-c", PENDING], cache)
@@ -220,9 +221,9 @@ LOADER = """
 import subprocess, sys
 import numpy as np
 from numba.core import event
-from mawdo import jitwarm
-from mawdo.planning.kernel.primitives import orient
-FILL = "from mawdo.planning.kernel.primitives import orient; orient(0., 0., 1., 0., 0., 1.)"
+from mawdo.jit import warm as jitwarm
+from mawdo.planning.refine.kernel.primitives import orient
+FILL = "from mawdo.planning.refine.kernel.primitives import orient; orient(0., 0., 1., 0., 0., 1.)"
 passes, answers = [], []
 class Fill(event.Listener):
     def on_start(self, ev):
@@ -245,7 +246,7 @@ print("OWN", "compile" in vars(orient._compiler), "save_overload" in vars(orient
 def test_the_compile_that_started_the_warm_up_loads_what_it_cached(tmp_path):
     run = _run(["-c", LOADER], tmp_path)
     assert run.returncode == 0, run.stderr
-    from mawdo.planning.kernel.primitives import orient
+    from mawdo.planning.refine.kernel.primitives import orient
 
     assert f"VALUE {orient.py_func(0.0, 0.0, 1.0, 0.0, 0.0, 1.0)}" in run.stdout
     assert "LOADED [True] PASSES 0" in run.stdout, run.stdout  # no compiler pass ran here
@@ -257,7 +258,7 @@ def test_ctrl_c_during_the_install_step_ends_every_compiling_process(tmp_path):
     from tests.cli_run import ENV, children, ctrl_c, interruptible
 
     env = {**ENV, "NUMBA_CACHE_DIR": str(tmp_path), "PYTHONPATH": SRC}
-    proc = interruptible([sys.executable, "-m", "mawdo.jitwarm", "--jobs", "2"], env=env)
+    proc = interruptible([sys.executable, "-m", "mawdo.jit", "--jobs", "2"], env=env)
     for line in proc.stdout:  # "compiling 56 kernels into Numba's cache in 2 processes ..."
         if line.startswith("compiling") and "processes" in line:
             break

@@ -9,7 +9,7 @@
 import sys
 import types
 
-from mawdo.jitcache import drop_stale_caches, install_blas_hook
+from mawdo.jit.cache import drop_stale_caches, install_blas_hook
 
 # before any kernel module loads: a cached kernel may hold an old version of a helper it inlined
 drop_stale_caches()

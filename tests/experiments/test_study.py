@@ -10,7 +10,7 @@ from mawdo.experiments import PlanError, Store, StoreError, run_plan
 from mawdo.experiments.kinds.planning import BASELINE, StudyPlan, study_preset, write_study_report
 from mawdo.experiments.kinds.planning.report import study_runs
 from mawdo.planning import check_trajectory, get_scenario
-from mawdo.planning.planner import result_from_bytes
+from mawdo.planning.run.planner import result_from_bytes
 
 PNG = b"\x89PNG\r\n\x1a\n"
 
@@ -156,7 +156,7 @@ def test_first_plan_smoothness_and_dim_are_those_of_the_stored_first_plan(study)
 
 
 def test_literal_mawdo_runs_mawdo_with_the_paper_threshold_on_the_same_seeds(study):
-    from mawdo.planning.planner import plan as plan_path
+    from mawdo.planning.run.planner import plan as plan_path
 
     plan, db, _ = study
     t_lit = next(t for t in plan.tasks() if t.algorithm == "mawdo_literal")

@@ -66,13 +66,13 @@ def _spec(plan, algorithm="gwo"):
 
 def _route(row) -> list:
     """The executed route of a stored row (its bytes also hold wall-clock latencies)."""
-    from mawdo.planning.planner import result_from_bytes
+    from mawdo.planning.run.planner import result_from_bytes
 
     return result_from_bytes(row.route, SMOKE.scenario_object()).route.tolist()
 
 
 def test_failing_snapshot_metrics_keep_the_run(monkeypatch):
-    import mawdo.planning.metrics as metrics
+    import mawdo.planning.judge.metrics as metrics
 
     real = metrics.run_metrics
 
@@ -92,7 +92,7 @@ def test_failing_snapshot_metrics_keep_the_run(monkeypatch):
 
 
 def test_failing_metrics_and_oracle_still_store_the_route(monkeypatch):
-    import mawdo.planning.metrics as metrics
+    import mawdo.planning.judge.metrics as metrics
 
     def broken(*a, **k):
         raise MemoryError("no memory")
@@ -108,7 +108,7 @@ def test_failing_metrics_and_oracle_still_store_the_route(monkeypatch):
 
 
 def test_planner_progress_is_called_per_step_and_changes_nothing():
-    from mawdo.planning.planner import plan
+    from mawdo.planning.run.planner import plan
 
     calls = []
     sc = get_scenario("paper")

@@ -109,8 +109,8 @@ def test_the_throwaway_optimizer_is_a_planner_in_the_arena_by_its_name(shrink_re
     from mawdo.experiments import Store, run_plan
     from mawdo.experiments.kinds.arena import ArenaPlan
     from mawdo.planning import PLANNERS
-    from mawdo.planning.check import check_trajectory
-    from mawdo.planning.config import resolve_config
+    from mawdo.planning.judge.check import check_trajectory
+    from mawdo.planning.run.config import resolve_config
     from mawdo.planning.scenes import generate_scene
 
     assert PLANNERS["shrink"].optimizer == "shrink"

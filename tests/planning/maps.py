@@ -2,7 +2,7 @@
 a pocket where the only safe action is to wait, and moving obstacles crossing corridors.
 
 Every builder takes a ``numpy.random.Generator`` (or a seed) and returns a validated
-:class:`~mawdo.planning.scenario.Scenario`; the random choices (gap places and widths, trap
+:class:`~mawdo.planning.world.scenario.Scenario`; the random choices (gap places and widths, trap
 sizes, door places) keep a collision-free route for a robot of radius 4 with margin.
 """
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
-from mawdo.planning.scenario import CircleObstacle
+from mawdo.planning.world.scenario import CircleObstacle
 
 # Pairs whose distance is this close to the hit threshold are tangency cases (pixels): the
 # kernel and shapely may round them differently, so comparisons exclude them.

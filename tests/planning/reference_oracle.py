@@ -1,5 +1,5 @@
 """The first oracle (all node pairs, shapely visibility, scipy Dijkstra): a slow, independent
-reference for the compiled tangent visibility graph of :mod:`mawdo.planning.visgraph`."""
+reference for the compiled tangent visibility graph of :mod:`mawdo.planning.guide.visgraph`."""
 
 from __future__ import annotations
 

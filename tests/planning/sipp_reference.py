@@ -3,8 +3,8 @@
 States are (vertex, grid time ``k h``). From a state the robot may wait one grid step or drive
 an edge of the guide's graph at full speed, departing exactly at ``k h``; after arriving at
 ``k h + T`` it waits until the next grid time. Every wait and move is judged by the independent
-shapely checker (:func:`mawdo.planning.check.check_trajectory`): free iff its least clearance to
-every obstacle exceeds ``margin`` (the guide's clearance). Shares no code with the guide's
+shapely checker (:func:`mawdo.planning.judge.check.check_trajectory`): free iff its least clearance
+to every obstacle exceeds ``margin`` (the guide's clearance). Shares no code with the guide's
 geometry or search.
 """
 
@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from mawdo.planning.check import check_trajectory
+from mawdo.planning.judge.check import check_trajectory
 
 
 def _clear(points, times, scenario, margin) -> np.ndarray:

@@ -11,14 +11,14 @@ import pytest
 
 from mawdo.planning import PathCost, check_trajectory, scenario_optimum
 from mawdo.planning.baselines.result import make_result, route_times
-from mawdo.planning.config import PlannerConfig
-from mawdo.planning.guard import Guard
-from mawdo.planning.guide import SLACK, Guide
-from mawdo.planning.oracle import shortest_path
-from mawdo.planning.path import polyline_length
-from mawdo.planning.planner import plan
-from mawdo.planning.result import Drive
-from mawdo.planning.scenario import ScenarioError
+from mawdo.planning.guide.homotopy import SLACK, Guide
+from mawdo.planning.guide.oracle import shortest_path
+from mawdo.planning.run.config import PlannerConfig
+from mawdo.planning.run.planner import plan
+from mawdo.planning.run.result import Drive
+from mawdo.planning.safety.guard import Guard
+from mawdo.planning.world.path import polyline_length
+from mawdo.planning.world.scenario import ScenarioError
 
 from .test_check import scenario
 
@@ -128,7 +128,7 @@ def test_a_run_forced_against_the_border_is_no_success():
 
 
 def _inflated(sc):
-    from mawdo.planning.geometry import inflated_obstacles
+    from mawdo.planning.world.geometry import inflated_obstacles
 
     return inflated_obstacles(sc, indices=sc.static_indices)[0]
 

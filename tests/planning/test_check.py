@@ -7,7 +7,7 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from mawdo.planning import check_static_path, check_trajectory, scenario_from_dict
-from mawdo.planning.scenario import PolygonObstacle
+from mawdo.planning.world.scenario import PolygonObstacle
 
 
 def scenario(obstacles, radius=2.0, width=200.0, height=200.0, start=(5, 5), goal=(195, 195)):

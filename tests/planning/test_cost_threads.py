@@ -16,10 +16,10 @@ import numpy as np
 import pytest
 
 from mawdo.planning import PathCost, get_scenario
-from mawdo.planning.config import PlannerConfig
-from mawdo.planning.kernel.threads import MIN_ROWS, chunk_bounds
-from mawdo.planning.metrics import run_metrics_kept
-from mawdo.planning.planner import plan
+from mawdo.planning.judge.metrics import run_metrics_kept
+from mawdo.planning.refine.kernel.threads import MIN_ROWS, chunk_bounds
+from mawdo.planning.run.config import PlannerConfig
+from mawdo.planning.run.planner import plan
 from mawdo.planning.scenes import generate_scene
 from mawdo.validate import ArgumentTypeError
 

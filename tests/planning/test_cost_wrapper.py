@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from mawdo.planning import PathCost, get_scenario
-from mawdo.planning.kernel import scratch_size
+from mawdo.planning.refine.kernel import scratch_size
 from mawdo.planning.scenes import generate_scene
 
 

@@ -19,8 +19,8 @@ import pytest
 
 from mawdo.planning import render
 from mawdo.planning.demo import FIGURE, DemoRun, figure_text, write_figure
-from mawdo.planning.metrics import run_metrics
-from mawdo.planning.planner import plan
+from mawdo.planning.judge.metrics import run_metrics
+from mawdo.planning.run.planner import plan
 
 ROOT = Path(__file__).resolve().parents[2]
 README_IMAGE = ROOT / "docs" / "img" / FIGURE

@@ -11,9 +11,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mawdo.planning import get_scenario
-from mawdo.planning.geometry import inflate, inflated_obstacles
-from mawdo.planning.guard import Elite
-from mawdo.planning.motion import BoundedRandomWalk, fold_turn_times
+from mawdo.planning.safety.guard import Elite
+from mawdo.planning.world.geometry import inflate, inflated_obstacles
+from mawdo.planning.world.motion import BoundedRandomWalk, fold_turn_times
 
 
 class NumpyElite:

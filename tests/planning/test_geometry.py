@@ -7,14 +7,14 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mawdo.planning import get_scenario, inflate
-from mawdo.planning.geometry import (
+from mawdo.planning.world.geometry import (
     CIRCLE_SEGMENTS,
     FlatObstacles,
     MotionTable,
     circumscribed_polygon,
     inflated_obstacles,
 )
-from mawdo.planning.scenario import CircleObstacle, PolygonObstacle
+from mawdo.planning.world.scenario import CircleObstacle, PolygonObstacle
 
 EXCESS = 1.0 / np.cos(np.pi / CIRCLE_SEGMENTS)
 

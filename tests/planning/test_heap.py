@@ -1,4 +1,4 @@
-"""mawdo.planning.heap pops what heapq pops, for any sequence of pushes and pops."""
+"""mawdo.planning.guide.heap pops what heapq pops, for any sequence of pushes and pops."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import heapq
 
 import numpy as np
 
-from mawdo.planning.heap import heap_new, heap_pop, heap_push
+from mawdo.planning.guide.heap import heap_new, heap_pop, heap_push
 
 
 def test_pops_the_same_entries_in_the_same_order_as_heapq():

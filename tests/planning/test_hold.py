@@ -3,11 +3,11 @@
 import numpy as np
 import pytest
 
-from mawdo.planning.config import PRESETS, PlannerConfig
-from mawdo.planning.execute import Run
-from mawdo.planning.path import polyline_length
-from mawdo.planning.planner import plan
+from mawdo.planning.run.config import PRESETS, PlannerConfig
+from mawdo.planning.run.execute import Run
+from mawdo.planning.run.planner import plan
 from mawdo.planning.scenes import generate_scene
+from mawdo.planning.world.path import polyline_length
 
 from . import maps
 
@@ -75,7 +75,7 @@ def test_the_paper_presets_replan_every_step():
 def test_holds_are_stored_and_old_payloads_read_as_none_held():
     import io
 
-    from mawdo.planning.result import result_from_bytes, result_to_bytes
+    from mawdo.planning.run.result import result_from_bytes, result_to_bytes
 
     sc = generate_scene("forest", 1, 0).scenario
     res = plan(sc, "mawdo", seed=1, config="quick")

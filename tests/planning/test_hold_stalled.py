@@ -3,10 +3,10 @@
 import numpy as np
 import pytest
 
-from mawdo.planning.config import PRESETS, PlannerConfig
-from mawdo.planning.execute import Run
-from mawdo.planning.path import polyline_length
-from mawdo.planning.planner import plan
+from mawdo.planning.run.config import PRESETS, PlannerConfig
+from mawdo.planning.run.execute import Run
+from mawdo.planning.run.planner import plan
+from mawdo.planning.world.path import polyline_length
 
 from . import maps
 from .test_hold import _crossing_scene
@@ -88,7 +88,7 @@ def test_presets_and_validation():
 
 
 def test_the_guides_shortest_length_is_its_first_routes():
-    from mawdo.planning.execute import guide_for
+    from mawdo.planning.run.execute import guide_for
 
     sc = maps.u_trap(1)
     guide = guide_for(sc, 0.5, 6)

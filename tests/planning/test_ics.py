@@ -1,4 +1,4 @@
-"""Never drive into an inevitable collision (issue 27, item 2): :mod:`mawdo.planning.ics` in
+"""Never drive into an inevitable collision (issue 27, item 2): :mod:`mawdo.planning.safety.ics` in
 the run loop.
 
 Hand-built scenes whose outcome follows from the geometry by hand: a bar spanning the map's
@@ -11,17 +11,17 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mawdo.planning.check import check_trajectory
-from mawdo.planning.config import PlannerConfig
-from mawdo.planning.cost import assemble_paths
-from mawdo.planning.execute import Run
-from mawdo.planning.guard import Guard
-from mawdo.planning.ics import SafeContinuation
-from mawdo.planning.path import densify
-from mawdo.planning.planner import plan
-from mawdo.planning.result import Drive
-from mawdo.planning.scenario import scenario_from_dict
+from mawdo.planning.judge.check import check_trajectory
+from mawdo.planning.refine.cost import assemble_paths
+from mawdo.planning.run.config import PlannerConfig
+from mawdo.planning.run.execute import Run
+from mawdo.planning.run.planner import plan
+from mawdo.planning.run.result import Drive
+from mawdo.planning.safety.guard import Guard
+from mawdo.planning.safety.ics import SafeContinuation
 from mawdo.planning.scenes import generate_scene
+from mawdo.planning.world.path import densify
+from mawdo.planning.world.scenario import scenario_from_dict
 
 R, V, C = 4.0, 4.0, 0.5  # robot radius, speed (px, px per step), the planner's margin (px)
 
@@ -164,7 +164,7 @@ def test_the_rule_sees_random_walkers_as_the_guard_does():
     """A walker's seeded future, not a disc growing for ``ics_horizon`` steps: among seven
     walkers of ``dense`` no spot stays clear of 30-step discs, so with them the rule refused
     the stretches the guard accepted and the run gave up (arena-default, 0.9.0 before this)."""
-    from mawdo.planning.motion import BoundedRandomWalk
+    from mawdo.planning.world.motion import BoundedRandomWalk
 
     sc, seed = _dense_18()
     assert sum(isinstance(o.motion, BoundedRandomWalk) for o in sc.obstacles) >= 5

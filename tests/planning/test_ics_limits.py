@@ -1,5 +1,5 @@
 """The inevitable-collision rule within kinematic limits (issue 27, item 3):
-:mod:`mawdo.planning.ics_limits`. A robot at speed cannot stop at once: with an acceleration
+:mod:`mawdo.planning.safety.ics_limits`. A robot at speed cannot stop at once: with an acceleration
 limit ``a`` its speed falls by ``a`` per step, so from 4 px per step with ``a = 1`` it drives
 3 + 2 + 1 = 6 px before it rests. Expected values are worked out by hand in the comments."""
 
@@ -8,14 +8,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mawdo.planning.check import check_trajectory
-from mawdo.planning.config import PlannerConfig
-from mawdo.planning.execute import Run
-from mawdo.planning.ics import SafeContinuation
-from mawdo.planning.kinematics import Limits
-from mawdo.planning.planner import plan
-from mawdo.planning.scenario import scenario_from_dict
+from mawdo.planning.judge.check import check_trajectory
+from mawdo.planning.run.config import PlannerConfig
+from mawdo.planning.run.execute import Run
+from mawdo.planning.run.planner import plan
+from mawdo.planning.safety.ics import SafeContinuation
+from mawdo.planning.safety.kinematics import Limits
 from mawdo.planning.scenes import generate_scene
+from mawdo.planning.world.scenario import scenario_from_dict
 
 R, V, C = 4.0, 4.0, 0.5  # robot radius, speed (px, px per step), the planner's margin (px)
 

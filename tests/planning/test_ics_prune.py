@@ -7,10 +7,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import mawdo.planning.ics as ics
+import mawdo.planning.safety.ics as ics
 from mawdo.planning import get_scenario
-from mawdo.planning.ics import SafeContinuation
-from mawdo.planning.planner import plan
+from mawdo.planning.run.planner import plan
+from mawdo.planning.safety.ics import SafeContinuation
 from mawdo.planning.scenes import generate_scene
 
 C = 0.5  # the planner's margin (px)

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from mawdo.planning import PathCost, get_scenario, scenario_from_dict
-from mawdo.planning.kernel.primitives import segment_reaches_origin
+from mawdo.planning.refine.kernel.primitives import segment_reaches_origin
 
 
 def _exact_d2(ax, ay, bx, by) -> Fraction:

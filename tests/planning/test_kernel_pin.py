@@ -18,8 +18,8 @@ import hashlib
 import numpy as np
 
 from mawdo.planning import PathCost, get_scenario, scenario_optimum
-from mawdo.planning.cost import assemble_paths
-from mawdo.planning.path import densify
+from mawdo.planning.refine.cost import assemble_paths
+from mawdo.planning.world.path import densify
 
 from .reference import border_hits
 

@@ -10,11 +10,11 @@ import math
 import numpy as np
 import pytest
 
-from mawdo.planning.config import PlannerConfig
-from mawdo.planning.kincheck import check_kinematics
-from mawdo.planning.kinematics import Limits, project, turn_penalty
-from mawdo.planning.planner import plan
-from mawdo.planning.scenario import scenario_from_dict
+from mawdo.planning.judge.kincheck import check_kinematics
+from mawdo.planning.run.config import PlannerConfig
+from mawdo.planning.run.planner import plan
+from mawdo.planning.safety.kinematics import Limits, project, turn_penalty
+from mawdo.planning.world.scenario import scenario_from_dict
 
 
 def test_speed_limit_scales_the_velocity_down():

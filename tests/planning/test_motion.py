@@ -5,7 +5,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mawdo.planning.motion import (
+from mawdo.planning.world.motion import (
     BoundedRandomWalk,
     ConstantVelocity,
     Patrol,
@@ -13,7 +13,7 @@ from mawdo.planning.motion import (
     fold,
     fold_turn_times,
 )
-from mawdo.planning.scenario import scenario_from_dict
+from mawdo.planning.world.scenario import scenario_from_dict
 
 finite = st.floats(-50, 50, allow_nan=False)
 

@@ -1,4 +1,5 @@
-"""The planner's margin fitted to the scene's narrowest passage (:mod:`mawdo.planning.passage`).
+"""The planner's margin fitted to the scene's narrowest passage
+(:mod:`mawdo.planning.guide.passage`).
 
 The reference is a hand calculation: one full-height wall with one gap of width ``2 r + s``
 between two boxes. The guide inflates the boxes by ``r + m + SLACK``; the faces that bound the
@@ -14,9 +15,9 @@ import numpy as np
 import pytest
 
 from mawdo.planning import scenario_from_dict
-from mawdo.planning.config import PRESETS, resolve_scenario
-from mawdo.planning.guide import SLACK
-from mawdo.planning.passage import STEPS, fit_config, fitted_clearance, passage_margin
+from mawdo.planning.guide.homotopy import SLACK
+from mawdo.planning.guide.passage import STEPS, fit_config, fitted_clearance, passage_margin
+from mawdo.planning.run.config import PRESETS, resolve_scenario
 
 R = 4.0
 
@@ -68,7 +69,7 @@ def test_passage_margin_rejects_a_bad_bound():
 def test_a_gap_within_one_px_of_the_diameter_is_driven_through_and_accepted():
     """The planner (guide -> seeds -> refine -> guard) crosses a gap 0.3 px wider than the
     robot and the independent checker accepts the route (touching allowed, no overlap)."""
-    from mawdo.planning.planner import plan
+    from mawdo.planning.run.planner import plan
 
     sc = _wall(0.3)
     res = plan(sc, "mawdo", seed=0)

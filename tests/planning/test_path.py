@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mawdo.planning.path import advance, densify, polyline_length, respread, turning_angles
+from mawdo.planning.world.path import advance, densify, polyline_length, respread, turning_angles
 
 L_SHAPE = np.array([[0.0, 0.0], [3.0, 0.0], [3.0, 4.0]])
 

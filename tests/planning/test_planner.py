@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from mawdo.planning import get_scenario, scenario_from_dict
-from mawdo.planning.metrics import run_metrics, static_optimum
-from mawdo.planning.planner import PlannerConfig, plan
+from mawdo.planning.judge.metrics import run_metrics, static_optimum
+from mawdo.planning.run.planner import PlannerConfig, plan
 
 
 @pytest.fixture(scope="module")
@@ -56,7 +56,7 @@ def test_same_seed_same_run_and_the_route_matches_the_steps(paper):
 def test_static_mode_plans_once(paper, l_star):
     # single-shot on the map frozen at t = 0: the plan avoids that map; whether the moving
     # obstacles then hit it is the checker's verdict, and success follows that verdict
-    from mawdo.planning.check import check_static_path
+    from mawdo.planning.judge.check import check_static_path
 
     res = plan(paper, "woa", seed=0, dynamic=False)
     assert len(res.replans) == 1

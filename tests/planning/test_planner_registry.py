@@ -24,10 +24,10 @@ from mawdo.planning import (
     scenario_optimum,
 )
 from mawdo.planning.baselines import ompl_available
-from mawdo.planning.config import step_limit
-from mawdo.planning.path import advance
-from mawdo.planning.planners import PlannerSpec
-from mawdo.planning.result import Drive
+from mawdo.planning.run.config import step_limit
+from mawdo.planning.run.planners import PlannerSpec
+from mawdo.planning.run.result import Drive
+from mawdo.planning.world.path import advance
 
 NAME = "static_optimum_follower"
 

@@ -3,11 +3,11 @@
 import numpy as np
 import pytest
 
-from mawdo.planning.config import PRESETS, PlannerConfig
-from mawdo.planning.cost import assemble_paths
-from mawdo.planning.execute import Run
-from mawdo.planning.path import polyline_length
-from mawdo.planning.polish import midpoint_moves, polish
+from mawdo.planning.refine.cost import assemble_paths
+from mawdo.planning.refine.polish import midpoint_moves, polish
+from mawdo.planning.run.config import PRESETS, PlannerConfig
+from mawdo.planning.run.execute import Run
+from mawdo.planning.world.path import polyline_length
 
 from . import maps
 

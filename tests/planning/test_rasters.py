@@ -6,7 +6,7 @@ import shapely
 from PIL import Image
 
 from mawdo.planning import ScenarioError, from_movingai_map, from_occupancy_image
-from mawdo.planning.rasters import grid_to_polygons
+from mawdo.planning.world.rasters import grid_to_polygons
 
 
 def test_grid_to_polygons_merges_cells_and_flips_y():

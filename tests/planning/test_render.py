@@ -6,7 +6,7 @@ import pytest
 from PIL import Image
 
 from mawdo.planning import render
-from mawdo.planning.planner import plan
+from mawdo.planning.run.planner import plan
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 

@@ -19,11 +19,11 @@ import pytest
 from PIL import Image
 
 from mawdo.planning import render
-from mawdo.planning.planner import plan
+from mawdo.planning.guide.visgraph import component_labels
 from mawdo.planning.render.early import EarlyFigures, run_figures
 from mawdo.planning.render.snapshots import TIME_NOTE, GridFrame, grid_blocks, save_grid
 from mawdo.planning.render.world import draw_world, move_world, moving_layers
-from mawdo.planning.visgraph import component_labels
+from mawdo.planning.run.planner import plan
 from tests.cli_run import children, ctrl_c, group_gone, interruptible
 
 SRC = str(Path(__file__).resolve().parents[2] / "src")
@@ -174,7 +174,7 @@ def test_figures_begun_with_the_optimum_given_are_the_figures_of_the_run(run, tm
 
 
 def test_a_given_optimum_is_drawn_as_it_is_and_the_oracle_not_asked(run, monkeypatch):
-    from mawdo.planning import oracle
+    from mawdo.planning.guide import oracle
     from mawdo.planning.render.style import know_optimum, optimum_path
 
     sc = plan("paper", "mawdo", seed=0, config="quick", max_steps=2).scenario  # a new object

@@ -18,10 +18,10 @@ import numpy as np
 import pytest
 
 from mawdo.planning import render
-from mawdo.planning.planner import prepare
 from mawdo.planning.render.animation import GifFrame
 from mawdo.planning.render.early import EarlyFigures
 from mawdo.planning.render.live import PartialRun, RunStream
+from mawdo.planning.run.planner import prepare
 from tests.cli_run import ENV as CLI_ENV
 from tests.cli_run import children, ctrl_c, interruptible, mawdo
 
@@ -262,7 +262,7 @@ def _cpu_seconds(pid: int) -> float:
 
 @pytest.mark.slow  # a `plan paper` in a subprocess and the same run here: 20-40 s on 2 cores
 def test_the_command_writes_the_gif_of_its_run(tmp_path):
-    from mawdo.planning.planner import plan
+    from mawdo.planning.run.planner import plan
 
     out = tmp_path / "out"
     args = ["plan", "paper", "--preset", "quick", "--max-steps", "40", "--no-progress"]

@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 
 from mawdo.planning import get_scenario
-from mawdo.planning.cost import PathCost
-from mawdo.planning.geometry import MotionTable
-from mawdo.planning.planner import plan
+from mawdo.planning.refine.cost import PathCost
+from mawdo.planning.run.planner import plan
 from mawdo.planning.scenes import generate_scene
+from mawdo.planning.world.geometry import MotionTable
 
 FAMILIES = ("dense", "crossing", "corridor", "doorway", "chaser", "crowd", "parked", "slalom")
 

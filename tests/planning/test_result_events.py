@@ -7,8 +7,8 @@ import io
 import numpy as np
 
 from mawdo.planning import plan
-from mawdo.planning.metrics import METRICS, run_metrics
-from mawdo.planning.result import result_from_bytes, result_to_bytes
+from mawdo.planning.judge.metrics import METRICS, run_metrics
+from mawdo.planning.run.result import result_from_bytes, result_to_bytes
 from mawdo.planning.scenes import generate_scene
 
 

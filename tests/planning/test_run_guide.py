@@ -1,11 +1,11 @@
-"""The run loop's guide keeps its last query (:class:`mawdo.planning.seeding.RunGuide`): the
+"""The run loop's guide keeps its last query (:class:`mawdo.planning.refine.seeding.RunGuide`): the
 answers are the plain guide's, and a repeated position is not searched again."""
 
 import numpy as np
 
 from mawdo.planning import get_scenario
-from mawdo.planning.guide import Guide
-from mawdo.planning.seeding import RunGuide
+from mawdo.planning.guide.homotopy import Guide
+from mawdo.planning.refine.seeding import RunGuide
 
 
 def test_run_guide_answers_as_the_guide_and_searches_a_repeat_once(monkeypatch):

@@ -6,13 +6,13 @@ import shapely
 
 from mawdo.optimizers import OPTIMIZERS
 from mawdo.planning import get_scenario
-from mawdo.planning.check import check_static_path, check_trajectory
-from mawdo.planning.geometry import inflate
-from mawdo.planning.guard import Elite, Guard
-from mawdo.planning.guide import GUIDE_SEGMENTS, SLACK, Guide, winding
-from mawdo.planning.oracle import shortest_path
-from mawdo.planning.planner import plan
-from mawdo.planning.visgraph import build
+from mawdo.planning.guide.homotopy import GUIDE_SEGMENTS, SLACK, Guide, winding
+from mawdo.planning.guide.oracle import shortest_path
+from mawdo.planning.guide.visgraph import build
+from mawdo.planning.judge.check import check_static_path, check_trajectory
+from mawdo.planning.run.planner import plan
+from mawdo.planning.safety.guard import Elite, Guard
+from mawdo.planning.world.geometry import inflate
 
 from . import maps
 from .reference_oracle import brute_force_length
@@ -130,7 +130,7 @@ def test_guard_stretch_agrees_with_the_checker():
         p0 = rng.uniform(10, 356, 2)
         route = np.vstack([p0, p0 + rng.normal(0, 6, (3, 2)).cumsum(axis=0)])
         hits = guard.stretch_hits(route, t, 8.0)
-        from mawdo.planning.path import advance
+        from mawdo.planning.world.path import advance
 
         end, _, passed, frac = advance(route, 8.0)
         pts = np.vstack([route[:1], passed, end[None]])

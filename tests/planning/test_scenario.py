@@ -19,7 +19,7 @@ from mawdo.planning import (
     scenario_from_dict,
     scenario_optimum,
 )
-from mawdo.planning.scenario import CircleObstacle, PolygonObstacle
+from mawdo.planning.world.scenario import CircleObstacle, PolygonObstacle
 from mawdo.registry import UnknownNameError
 
 
@@ -349,7 +349,7 @@ def test_shapes_expose_bounds_and_distance():
 
 def test_the_documented_example_file_is_valid(tmp_path):
     # the file layout is documented in the schema module, where the fields are
-    import mawdo.planning.scenario_schema as module
+    import mawdo.planning.world.scenario_schema as module
 
     doc = module.__doc__
     block = doc.split("File layout (TOML)::\n")[1].split("\nOther motions")[0]

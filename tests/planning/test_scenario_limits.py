@@ -14,10 +14,10 @@ import numpy as np
 import pytest
 
 from mawdo.planning import ScenarioError, load_scenario, scenario_from_dict
-from mawdo.planning import config as planner_config
-from mawdo.planning.config import PRESETS, with_settings
-from mawdo.planning.planner import plan, prepare
-from mawdo.planning.scenario_text import MAX_NESTING, nesting_depth
+from mawdo.planning.run import config as planner_config
+from mawdo.planning.run.config import PRESETS, with_settings
+from mawdo.planning.run.planner import plan, prepare
+from mawdo.planning.world.scenario_text import MAX_NESTING, nesting_depth
 
 DEEP = 5000
 BASE = {"schema_version": 1, "start": [20.0, 20.0], "goal": [346.0, 346.0]}

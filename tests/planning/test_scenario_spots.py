@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 
 from mawdo.planning import ScenarioError, load_scenario, scenario_from_dict
+from mawdo.planning.guide.sipp.optimum import dodge_spots
+from mawdo.planning.guide.timeguide import TimeGuide
 from mawdo.planning.scenes import generate_scene
 from mawdo.planning.scenes.toml import write_scenario
-from mawdo.planning.sipp.optimum import dodge_spots
-from mawdo.planning.timeguide import TimeGuide
 
 
 def _spec(**extra) -> dict:
@@ -107,8 +107,8 @@ def test_the_scenes_bays_bring_the_run_guide_to_t_star():
     """corridor-2: the earliest timed route from the start waits in a bay; with the
     scenario's spots the run's guide (0.5 px margin) arrives within 2 % of T*, without them
     (dodge spots only) it arrives over 20 % later."""
-    from mawdo.planning.execute import guide_for
-    from mawdo.planning.sipp.guide import SafeIntervalGuide
+    from mawdo.planning.guide.sipp.guide import SafeIntervalGuide
+    from mawdo.planning.run.execute import guide_for
 
     scene = generate_scene("corridor", 2, seed=0)
     sc = scene.scenario

@@ -16,17 +16,17 @@ import shapely
 import shapely.ops
 
 from mawdo.planning import scenario_from_dict
-from mawdo.planning.check import check_trajectory
-from mawdo.planning.motion import ConstantVelocity, Patrol
-from mawdo.planning.oracle import scenario_optimum
+from mawdo.planning.guide.oracle import scenario_optimum
+from mawdo.planning.guide.sipp import SafeIntervalGuide
+from mawdo.planning.guide.sipp.optimum import dodge_spots, scenario_time_optimum
+from mawdo.planning.judge.check import check_trajectory
 from mawdo.planning.scenes import (
     TIMED_FAMILIES,
     describe_family,
     generate_scene,
     generate_scenes,
 )
-from mawdo.planning.sipp import SafeIntervalGuide
-from mawdo.planning.sipp.optimum import dodge_spots, scenario_time_optimum
+from mawdo.planning.world.motion import ConstantVelocity, Patrol
 from tests.planning.sipp_reference import grid_earliest_arrival
 
 SEED = 11

@@ -10,11 +10,11 @@ import pytest
 import shapely
 
 from mawdo.planning import scenario_from_dict
-from mawdo.planning.check import check_trajectory
-from mawdo.planning.motion import Motion
-from mawdo.planning.scenario import Scenario
-from mawdo.planning.sipp import SafeIntervalGuide
-from mawdo.planning.sipp.intervals import Movers, forbidden, segment_free
+from mawdo.planning.guide.sipp import SafeIntervalGuide
+from mawdo.planning.guide.sipp.intervals import Movers, forbidden, segment_free
+from mawdo.planning.judge.check import check_trajectory
+from mawdo.planning.world.motion import Motion
+from mawdo.planning.world.scenario import Scenario
 from tests.planning import maps
 from tests.planning.sipp_reference import grid_earliest_arrival
 
@@ -139,7 +139,7 @@ def test_safe_intervals_by_hand():
 def test_without_movers_it_is_the_static_shortest_route():
     """No mover: no wait, the arrival is the route's length over the speed, and the route is
     the static optimum up to the guide's coarser inflation (octagons + 0.05 px vs 32-gons)."""
-    from mawdo.planning.oracle import scenario_optimum
+    from mawdo.planning.guide.oracle import scenario_optimum
 
     sc = maps.u_trap(3)
     (route,) = SafeIntervalGuide(sc, clearance=0.0).routes(k=1)

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from mawdo.planning.kernel.threads import WAIT_VARIABLES
+from mawdo.planning.refine.kernel.threads import WAIT_VARIABLES
 
 SRC = str(Path(__file__).resolve().parents[2] / "src")
 
@@ -24,7 +24,7 @@ import json, os, sys
 if sys.argv[1] == "started":  # Numba's threads already running when mawdo is imported
     from numba.np.ufunc import parallel
     parallel._launch_threads()
-from mawdo.planning.kernel.threads import passive_wait
+from mawdo.planning.refine.kernel.threads import passive_wait
 print(json.dumps({"policy": os.environ.get("OMP_WAIT_POLICY"), "again": passive_wait()}))
 """
 

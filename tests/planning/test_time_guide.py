@@ -8,13 +8,13 @@ from functools import cache
 import numpy as np
 import pytest
 
-from mawdo.planning.check import check_trajectory
-from mawdo.planning.guard import Guard
-from mawdo.planning.metrics import run_metrics
-from mawdo.planning.planner import plan
-from mawdo.planning.planners import PLANNERS, run_planner
+from mawdo.planning.guide.timeguide import TimeGuide
+from mawdo.planning.judge.check import check_trajectory
+from mawdo.planning.judge.metrics import run_metrics
+from mawdo.planning.run.planner import plan
+from mawdo.planning.run.planners import PLANNERS, run_planner
+from mawdo.planning.safety.guard import Guard
 from mawdo.planning.scenes import generate_scene
-from mawdo.planning.timeguide import TimeGuide
 
 
 @cache
@@ -94,7 +94,7 @@ def test_time_guide_off_never_consults_the_guide(monkeypatch):
 def test_the_default_planner_consults_the_time_guide_and_the_paper_presets_do_not(monkeypatch):
     """Issue 27: the guide seeds every (re)plan of the default planner; the ``paper`` and
     ``study`` presets keep the planner the paper measures."""
-    from mawdo.planning.config import PRESETS, PlannerConfig
+    from mawdo.planning.run.config import PRESETS, PlannerConfig
 
     assert PlannerConfig().time_guide
     assert all(PRESETS[k].time_guide for k in ("realtime", "quick", "fast"))
@@ -140,15 +140,15 @@ def test_run_metrics_time_gap_and_collision_split():
 
 
 def test_time_routes_must_be_positive():
-    from mawdo.planning.config import PlannerConfig
+    from mawdo.planning.run.config import PlannerConfig
 
     with pytest.raises(ValueError, match="time_routes"):
         PlannerConfig(time_routes=0)
 
 
 def test_timed_route_clock_and_path_by_hand():
-    from mawdo.planning.sipp.guide import TimedRoute
-    from mawdo.planning.timeguide import passed_between, position_at, route_geometry
+    from mawdo.planning.guide.sipp.guide import TimedRoute
+    from mawdo.planning.guide.timeguide import passed_between, position_at, route_geometry
 
     # wait at the origin until t = 2, then drive to (3, 4) by t = 3
     r = TimedRoute(np.array([[0.0, 0.0], [0.0, 0.0], [3.0, 4.0]]), np.array([0.0, 2.0, 3.0]), ())
@@ -165,8 +165,8 @@ def test_slalom_gaps_within_a_pixel_of_the_diameter_are_timed_through():
     interval guide finds no route (the gaps are closed to it); at the margin the run fits to
     the scene (half its slack) it finds one, the checker accepts that timed route at the true
     radius, and the run reaches the goal without an active collision."""
-    from mawdo.planning.passage import fitted_clearance
-    from mawdo.planning.sipp.guide import SafeIntervalGuide
+    from mawdo.planning.guide.passage import fitted_clearance
+    from mawdo.planning.guide.sipp.guide import SafeIntervalGuide
 
     scene = _scene("slalom", 0)
     sc = scene.scenario

@@ -1,5 +1,5 @@
 """Opt-in kinematic limits in the time guide (issue 27, item 3): a speed limit below the
-robot's speed is the speed of every timing of the run (:func:`~mawdo.planning.kinematics.
+robot's speed is the speed of every timing of the run (:func:`~mawdo.planning.safety.kinematics.
 at_speed`): the safe-interval guide, the guard, the rule and the refinement's cost. Expected
 values are worked out by hand in the comments."""
 
@@ -8,13 +8,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mawdo.planning.check import check_trajectory
-from mawdo.planning.config import PlannerConfig
-from mawdo.planning.execute import Run
-from mawdo.planning.kinematics import SLACK, at_speed
-from mawdo.planning.planner import plan
-from mawdo.planning.scenario import scenario_from_dict
+from mawdo.planning.judge.check import check_trajectory
+from mawdo.planning.run.config import PlannerConfig
+from mawdo.planning.run.execute import Run
+from mawdo.planning.run.planner import plan
+from mawdo.planning.safety.kinematics import SLACK, at_speed
 from mawdo.planning.scenes import generate_scene
+from mawdo.planning.world.scenario import scenario_from_dict
 
 
 def _lane():

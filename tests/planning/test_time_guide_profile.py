@@ -15,15 +15,15 @@ import math
 import numpy as np
 import pytest
 
-from mawdo.planning.check import check_trajectory
-from mawdo.planning.kincheck import check_kinematics
-from mawdo.planning.planner import plan, prepare
-from mawdo.planning.scenario import scenario_from_dict
+from mawdo.planning.guide.sipp.intervals import Movers, safe_intervals
+from mawdo.planning.guide.sipp.profile import edge_pieces, edge_steps, profile_table
+from mawdo.planning.guide.sipp.search_limited import search_limited
+from mawdo.planning.guide.timeguide import position_at
+from mawdo.planning.judge.check import check_trajectory
+from mawdo.planning.judge.kincheck import check_kinematics
+from mawdo.planning.run.planner import plan, prepare
 from mawdo.planning.scenes import generate_scene
-from mawdo.planning.sipp.intervals import Movers, safe_intervals
-from mawdo.planning.sipp.profile import edge_pieces, edge_steps, profile_table
-from mawdo.planning.sipp.search_limited import search_limited
-from mawdo.planning.timeguide import position_at
+from mawdo.planning.world.scenario import scenario_from_dict
 
 LIMITS = {"max_speed": 3.0, "max_accel": 1.0, "max_turn": 0.6}  # robot speed 4 px per step
 
@@ -111,7 +111,7 @@ def test_no_search_while_the_robot_is_kept_on_its_timed_route(monkeypatch):
     """With a profile the followed route is kept whatever the swarm finds, so the run
     searches only for its first plan (before: a search at each of the 69 steps, its plan
     ignored) and drives exactly what it drove with the searches."""
-    from mawdo.planning.timeguide import TimedRun
+    from mawdo.planning.guide.timeguide import TimedRun
 
     for mover in (FAR, DOOR):
         res = prepare(_lane(mover), "mawdo", seed=0, config="quick", **LIMITS).execute()
@@ -152,7 +152,7 @@ def test_the_limited_guide_times_the_door_later_and_the_run_passes_it():
 def test_without_acceleration_or_turn_limits_the_profile_is_never_used(monkeypatch):
     """No limit, or a speed limit alone: the guide keeps its instant starts (no profile) and
     the limited search is never called (it would raise here); runs as before."""
-    import mawdo.planning.sipp.profiled as profiled
+    import mawdo.planning.guide.sipp.profiled as profiled
 
     def refuse(*args, **kwargs):
         raise AssertionError("the profiled search ran without acceleration or turn limits")

@@ -1,6 +1,6 @@
 """A followed timed route is safe under the guard's model (issue 27): between replans the run
 drives the safe-interval guide's route by its clock without a guard check
-(:meth:`~mawdo.planning.timeguide.TimedRun._drive`). Every step it drives so is checked here
+(:meth:`~mawdo.planning.guide.timeguide.TimedRun._drive`). Every step it drives so is checked here
 by the independent checker against the obstacles as they really move (random walkers on
 their seeded walk): the robot keeps at least the run's margin, as the guard demands."""
 
@@ -9,9 +9,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mawdo.planning.check import check_trajectory
-from mawdo.planning.execute import Run
-from mawdo.planning.planner import plan
+from mawdo.planning.judge.check import check_trajectory
+from mawdo.planning.run.execute import Run
+from mawdo.planning.run.planner import plan
 from mawdo.planning.scenes import generate_scene
 
 ROUND = 1e-6  # px: the checker's rounding, far below any margin

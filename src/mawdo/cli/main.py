@@ -265,7 +265,7 @@ def demo(
     from mawdo.cli.plan import begin_figures, draw_figures, early_figures
     from mawdo.cli.progress import notice_compiles
     from mawdo.planning import demo as job
-    from mawdo.planning.scenario import get_scenario
+    from mawdo.planning.world.scenario import get_scenario
 
     t0 = time.perf_counter()
     check_output_dir(out, "--out folder")

@@ -41,7 +41,7 @@ def _scenario(name_or_path: str):
 
 def _prepare(sc, algorithm, seed, preset, static, threads, max_steps):
     """The run, set up and checked; a run that may take minutes says so (stderr) first."""
-    from mawdo.planning.planner import prepare
+    from mawdo.planning.run.planner import prepare
 
     extra = {} if max_steps is None else {"max_steps": max_steps}
     run = prepare(sc, algorithm, seed, preset, not static, threads=threads, **extra)
@@ -165,7 +165,7 @@ def run_cmd(
     max_steps: int = typer.Option(
         None,
         min=1,
-        max=1_000_000,  # mawdo.planning.scenario.MAX_RUN_STEPS (not imported: startup time)
+        max=1_000_000,  # mawdo.planning.world.scenario.MAX_RUN_STEPS (not imported: startup time)
         help="step limit (default: 4 straight lines or 2 detours around the static obstacles, "
         "at most 20000)",
     ),
@@ -203,7 +203,7 @@ def _execute(run, sc, algorithm, seed, preset, static, threads, out, progress, j
     """Execute the run (its steps fed to the figures' process ``job`` as they are made, then
     the run itself: its figures need no metrics); print its metrics and save them in
     ``out/metrics.json``."""
-    from mawdo.planning.metrics import run_metrics_kept
+    from mawdo.planning.judge.metrics import run_metrics_kept
 
     bar = _StepBar(progress, f"{algorithm} on {sc.name}")
     try:

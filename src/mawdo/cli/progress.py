@@ -7,7 +7,7 @@ One place for the commands' progress lines (results go to stdout; this goes to s
   (:func:`mawdo.experiments.progress.say`) follows the name on the spinner, or in a log a line
   ``"<step>: <what>"`` at most every 2 s;
 * :func:`notice_compiles` - at the first compile on a cold Numba cache, compiles the kernels of
-  :mod:`mawdo.jitwarm`'s table in two processes at once (a line every 2 s), then says when
+  :mod:`mawdo.jit.warm`'s table in two processes at once (a line every 2 s), then says when
   Numba compiles anything else, with a line every 2 s while it does and the time it took
   (only a first run after installing or upgrading compiles; later runs load from the cache).
 
@@ -84,7 +84,7 @@ def jit_jobs() -> int:
 
 
 def warm_kernels(enabled: bool = True) -> int:
-    """Compile the missing kernels of :mod:`mawdo.jitwarm`'s table in :func:`jit_jobs`
+    """Compile the missing kernels of :mod:`mawdo.jit.warm`'s table in :func:`jit_jobs`
     processes at once, saying so on stderr with a line every :data:`EVERY` seconds.
 
     Returns
@@ -92,7 +92,7 @@ def warm_kernels(enabled: bool = True) -> int:
     int
         Number of kernels compiled (0 on a warm cache, or with one job).
     """
-    from mawdo import jitwarm
+    from mawdo.jit import warm as jitwarm
 
     jobs = jit_jobs()
     todo = jitwarm.todo() if jobs > 1 else []
@@ -117,7 +117,7 @@ def warm_kernels(enabled: bool = True) -> int:
 class _CompileNotice:
     """A Numba compile listener. At the first compile of the ``with`` body: the parallel warm-up
     of the missing kernels (if ``warm``), after which that first kernel loads from the cache
-    the warm-up filled (:func:`mawdo.jitwarm.load_instead`) instead of compiling here again;
+    the warm-up filled (:func:`mawdo.jit.warm.load_instead`) instead of compiling here again;
     then, if ``enabled``, one line when compiling in this process starts, a line every
     :data:`EVERY` seconds while it goes on, the total when asked."""
 
@@ -143,7 +143,7 @@ class _CompileNotice:
         self.depth += 1
 
     def _warm_then_load(self, data) -> bool:
-        from mawdo import jitwarm
+        from mawdo.jit import warm as jitwarm
 
         return warm_kernels(self.enabled) > 0 and jitwarm.load_instead(
             data["dispatcher"], data["args"]
@@ -180,7 +180,7 @@ def notice_compiles(enabled: bool = True, warm: bool = True):
 
     Numba compiles a kernel on its first call when its on-disk cache misses; a listener on
     Numba's ``numba:compile`` event sees each compile start and end. At the first one, the
-    missing kernels of :mod:`mawdo.jitwarm`'s table are compiled in parallel processes
+    missing kernels of :mod:`mawdo.jit.warm`'s table are compiled in parallel processes
     (:func:`warm_kernels`, also with ``enabled`` False: it is faster either way; not with
     ``warm=False``), so nothing is compiled before a command has checked its input. Then a line
     says that compiling goes on in this process, a line follows every :data:`EVERY` seconds
@@ -191,7 +191,7 @@ def notice_compiles(enabled: bool = True, warm: bool = True):
         return
     from numba.core import event
 
-    from mawdo.jitinline import fresh_ir_inlining
+    from mawdo.jit.inline import fresh_ir_inlining
 
     notice = _CompileNotice(enabled, warm)
     hooks = {"on_start": lambda _, e: notice.on_start(e), "on_end": lambda _, e: notice.on_end(e)}

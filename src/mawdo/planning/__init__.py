@@ -1,58 +1,57 @@
 """Path planning among moving obstacles: world model, cost kernel, oracle and checker.
 
-Modules, one job each:
+One folder per stage of the planning loop (guide -> refine -> guard -> move -> judge):
 
-* :mod:`~mawdo.planning.motion` - obstacle motion models (closed form, piecewise linear).
-* :mod:`~mawdo.planning.scenario` - scenario schema, validation, loaders, built-in scenarios.
-* :mod:`~mawdo.planning.rasters` - scenarios from occupancy images and MovingAI maps.
-* :mod:`~mawdo.planning.geometry` - inflation by the robot radius, flat arrays for the kernel.
-* :mod:`~mawdo.planning.kernel` / :mod:`~mawdo.planning.cost` - the paper's path cost (Numba).
-* :mod:`~mawdo.planning.oracle` - exact shortest path by visibility graph.
-* :mod:`~mawdo.planning.check` - independent collision checker (shapely).
-* :mod:`~mawdo.planning.planner` / :mod:`~mawdo.planning.execute` - the receding-horizon planner
-  (:func:`plan`) and its run loop; :mod:`~mawdo.planning.config` its settings.
-* :mod:`~mawdo.planning.planners` - every planner by name (:data:`PLANNERS`), each returning a
-  :class:`PlanResult` (:mod:`~mawdo.planning.result`).
-* :mod:`~mawdo.planning.metrics` - :func:`run_metrics`, the one measure of a run.
+* :mod:`~mawdo.planning.world` - the scenario: map, robot, obstacles and their motion, geometry,
+  raster maps, the file schema.
+* :mod:`~mawdo.planning.guide` - exact guidance: visibility graph, shortest paths (the oracle),
+  homotopy-distinct routes, the safe-interval search and its time guide.
+* :mod:`~mawdo.planning.refine` - the paper's path cost and its compiled kernel, seed candidates,
+  the greedy polish.
+* :mod:`~mawdo.planning.safety` - the guard, the inevitable-collision rule, kinematic limits.
+* :mod:`~mawdo.planning.run` - settings, the receding-horizon loop, results, every planner by name.
+* :mod:`~mawdo.planning.judge` - the independent checkers and the per-run metrics.
+* :mod:`~mawdo.planning.scenes`, :mod:`~mawdo.planning.baselines`, :mod:`~mawdo.planning.render` -
+  seeded scene families, baseline planners, figures.
 
 >>> from mawdo.planning import PLANNERS, plan, run_metrics
 >>> result = plan("paper", "mawdo", seed=0, config="quick")    # doctest: +SKIP
 >>> run_metrics(result)["gap"]                                 # doctest: +SKIP
 """
 
-# The names below are imported on first use (PEP 562): ``from mawdo.planning.scenario import
-# ...`` or ``from mawdo.planning import get_scenario`` then loads what it needs, not the planner,
-# the oracle and the checker with it (about 1 s of imports a command may not need yet).
+# The names below are imported on first use (PEP 562): ``from mawdo.planning.world.scenario
+# import ...`` or ``from mawdo.planning import get_scenario`` then loads what it needs, not the
+# planner, the oracle and the checker with it (about 1 s of imports a command may not need yet).
 _LAZY = {
-    "CheckReport": "check",
-    "check_static_path": "check",
-    "check_trajectory": "check",
-    "PRESETS": "config",
-    "PlannerConfig": "config",
-    "CostWeights": "cost",
-    "PathCost": "cost",
-    "assemble_paths": "cost",
-    "inflate": "geometry",
-    "inflated_obstacles": "geometry",
-    "run_metrics": "metrics",
-    "OracleResult": "oracle",
-    "scenario_optimum": "oracle",
-    "shortest_path": "oracle",
-    "plan": "planner",
-    "PLANNERS": "planners",
-    "PlannerSpec": "planners",
-    "run_planner": "planners",
-    "from_movingai_map": "rasters",
-    "from_occupancy_image": "rasters",
-    "PlanResult": "result",
-    "Replan": "result",
-    "SCENARIOS": "scenario",
-    "Obstacle": "scenario",
-    "Scenario": "scenario",
-    "ScenarioError": "scenario",
-    "get_scenario": "scenario",
-    "load_scenario": "scenario",
-    "scenario_from_dict": "scenario",
+    "CheckReport": "judge.check",
+    "check_static_path": "judge.check",
+    "check_trajectory": "judge.check",
+    "PRESETS": "run.config",
+    "PlannerConfig": "run.config",
+    "CostWeights": "refine.cost",
+    "PathCost": "refine.cost",
+    "assemble_paths": "refine.cost",
+    "inflate": "world.geometry",
+    "inflated_obstacles": "world.geometry",
+    "run_metrics": "judge.metrics",
+    "OracleResult": "guide.oracle",
+    "scenario_optimum": "guide.oracle",
+    "shortest_path": "guide.oracle",
+    "plan": "run.planner",
+    "PLANNERS": "run.planners",
+    "PlannerSpec": "run.planners",
+    "run_planner": "run.planners",
+    "from_movingai_map": "world.rasters",
+    "from_occupancy_image": "world.rasters",
+    "PlanResult": "run.result",
+    "Replan": "run.result",
+    "SCENARIOS": "world.scenario",
+    "Obstacle": "world.scenario",
+    "Scenario": "world.scenario",
+    "ScenarioError": "world.scenario",
+    "get_scenario": "world.scenario",
+    "load_scenario": "world.scenario",
+    "scenario_from_dict": "world.scenario",
 }
 
 

@@ -12,8 +12,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from mawdo.planning.config import PRESETS
-from mawdo.planning.result import PlanResult
+from mawdo.planning.run.config import PRESETS
+from mawdo.planning.run.result import PlanResult
 
 #: What the demo runs: the paper scenario, MAWDO, the real-time planner preset.
 SCENARIO = "paper"
@@ -33,7 +33,7 @@ class DemoRun:
     result : PlanResult
         The planner's run.
     metrics : dict
-        :func:`mawdo.planning.metrics.run_metrics` of it (lengths in px, angles in rad,
+        :func:`mawdo.planning.judge.metrics.run_metrics` of it (lengths in px, angles in rad,
         latencies in ms).
     """
 
@@ -94,16 +94,16 @@ def run_demo(seed: int = 0) -> DemoRun:
 
 
 def prepare_demo(seed: int = 0):
-    """The demo's run set up, not run (:func:`mawdo.planning.planner.prepare`): ``.execute()``
+    """The demo's run set up, not run (:func:`mawdo.planning.run.planner.prepare`): ``.execute()``
     runs it, :func:`finish_demo` measures it; :func:`run_demo` is both."""
-    from mawdo.planning.planner import prepare
+    from mawdo.planning.run.planner import prepare
 
     return prepare(SCENARIO, algorithm=ALGORITHM, seed=seed, config=PRESET)
 
 
 def finish_demo(result: PlanResult) -> DemoRun:
     """The demo run of an executed :func:`prepare_demo`, with its metrics."""
-    from mawdo.planning.metrics import run_metrics
+    from mawdo.planning.judge.metrics import run_metrics
 
     return DemoRun(result, run_metrics(result))
 

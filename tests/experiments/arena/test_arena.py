@@ -127,9 +127,9 @@ def test_a_rejected_scene_is_stored_apart_never_as_a_planner_failure(monkeypatch
 
 # ------------------------------------------------------------------ stored scenes and metrics
 def test_each_row_stores_its_scene_which_reruns_alone_to_the_same_numbers(reference):
-    from mawdo.planning.planner import plan
-    from mawdo.planning.scenario import scenario_from_dict
+    from mawdo.planning.run.planner import plan
     from mawdo.planning.scenes import generate_scene
+    from mawdo.planning.world.scenario import scenario_from_dict
 
     with Store.read(reference) as store:
         rows = [(a, f, r) for a, f, r in store.rows()]
@@ -144,11 +144,11 @@ def test_each_row_stores_its_scene_which_reruns_alone_to_the_same_numbers(refere
     res = plan(sc, algorithm="mawdo", seed=r.planner_seed, config="quick", max_steps=40)
     assert int(res.success) == r.success
     assert res.nfev == r.nfev
-    from mawdo.planning.path import polyline_length
+    from mawdo.planning.world.path import polyline_length
 
     assert polyline_length(res.route) == pytest.approx(r.length, rel=1e-12)
     # the stored verdict and clearance are the independent checker's on the re-planned route
-    from mawdo.planning.check import check_trajectory
+    from mawdo.planning.judge.check import check_trajectory
 
     check = check_trajectory(res.route, sc, times=res.route_times)
     assert r.collision_free == int(check.ok)

@@ -10,9 +10,9 @@ import pytest
 import shapely
 
 from mawdo.planning.baselines import BASELINES, plan_ompl, route_times, run_baseline
-from mawdo.planning.oracle import scenario_optimum
-from mawdo.planning.scenario import scenario_from_dict
+from mawdo.planning.guide.oracle import scenario_optimum
 from mawdo.planning.scenes import generate_scene
+from mawdo.planning.world.scenario import scenario_from_dict
 from mawdo.registry import UnknownNameError
 
 BOX = [[80.0, 70.0], [120.0, 70.0], [120.0, 130.0], [80.0, 130.0]]

@@ -13,7 +13,7 @@ import pytest
 import shapely
 from scipy.optimize import brentq
 
-from mawdo.planning.check import check_static_path
+from mawdo.planning.judge.check import check_static_path
 from mawdo.planning.scenes import FAMILIES, SceneRejected, generate_scene, generate_scenes
 from mawdo.planning.scenes.base import Family, Param, Redraw, build_scene, draft
 from mawdo.registry import UnknownNameError

@@ -8,10 +8,10 @@ import tomllib
 import numpy as np
 import pytest
 
-from mawdo.planning.oracle import scenario_optimum
-from mawdo.planning.scenario import get_scenario, load_scenario
+from mawdo.planning.guide.oracle import scenario_optimum
 from mawdo.planning.scenes import FAMILIES, generate_scene, scenario_to_toml
 from mawdo.planning.scenes.toml import toml_value
+from mawdo.planning.world.scenario import get_scenario, load_scenario
 
 FAST = {"forest": {"n": 8}, "rooms": {"rows": 2, "cols": 3}, "dense": {"n": 10}}
 

@@ -10,10 +10,10 @@ prmstar    no          OMPL PRM*, idem
 =========  ==========  =============================================================
 
 Every baseline returns a :class:`BaselineResult` (:func:`as_plan_result` turns it into the
-:class:`~mawdo.planning.result.PlanResult` every planner of
-:data:`mawdo.planning.planners.PLANNERS` returns); its route, followed at the robot's speed from
+:class:`~mawdo.planning.run.result.PlanResult` every planner of
+:data:`mawdo.planning.run.planners.PLANNERS` returns); its route, followed at the robot's speed from
 t = 0, is judged against all obstacles (moving ones included) by
-:func:`mawdo.planning.check.check_trajectory`. ``run_baseline(name, scenario, **options)``
+:func:`mawdo.planning.judge.check.check_trajectory`. ``run_baseline(name, scenario, **options)``
 dispatches by name; OMPL options are ``time_limit`` (s), ``resolution`` (px), ``clearance``
 (px) and ``simplify`` (see :func:`plan_ompl`).
 """
@@ -27,7 +27,7 @@ from functools import partial
 from mawdo.planning.baselines.result import BaselineResult, as_plan_result, judge, route_times
 from mawdo.planning.baselines.sampling import OMPL_PLANNERS, ompl_available, plan_ompl
 from mawdo.planning.baselines.straight import plan_straight
-from mawdo.planning.scenario import Scenario
+from mawdo.planning.world.scenario import Scenario
 from mawdo.registry import Registry
 
 __all__ = [

@@ -6,10 +6,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mawdo.planning.check import CheckReport, check_static_path, check_trajectory
-from mawdo.planning.config import PlannerConfig, step_limit
-from mawdo.planning.result import PlanResult, Replan
-from mawdo.planning.scenario import Scenario
+from mawdo.planning.judge.check import CheckReport, check_static_path, check_trajectory
+from mawdo.planning.run.config import PlannerConfig, step_limit
+from mawdo.planning.run.result import PlanResult, Replan
+from mawdo.planning.world.scenario import Scenario
 
 __all__ = ["BaselineResult", "as_plan_result", "judge", "route_times"]
 
@@ -33,7 +33,7 @@ class BaselineResult:
     sees_time : bool
         Whether the planner knows that obstacles move (no baseline here does).
     collision_free : bool
-        The independent checker (:func:`mawdo.planning.check.check_trajectory`) approves the
+        The independent checker (:func:`mawdo.planning.judge.check.check_trajectory`) approves the
         route followed at the robot's speed from t = 0 against every obstacle, moving ones
         included, and the robot's disc stays in the map.
     static_collision_free : bool
@@ -112,11 +112,11 @@ def make_result(
 def as_plan_result(
     scenario: Scenario, result: BaselineResult, config: PlannerConfig | None = None
 ) -> PlanResult:
-    """A single-shot baseline's route as a :class:`~mawdo.planning.result.PlanResult`: the
+    """A single-shot baseline's route as a :class:`~mawdo.planning.run.result.PlanResult`: the
     route followed at the robot's speed from t = 0, sampled at every step up to the one that
     reaches the goal, with the checker's verdict of ``result`` (not judged again).
 
-    The step limit is the rule every planner obeys (:func:`~mawdo.planning.config.step_limit`,
+    The step limit is the rule every planner obeys (:func:`~mawdo.planning.run.config.step_limit`,
     ``config.max_steps`` or the automatic value): a route the robot cannot drive within it
     does not reach the goal (``success`` False, the trajectory stops at the limit).
     """
@@ -151,7 +151,7 @@ def _limit(scenario: Scenario, max_steps: int | None, duration: float) -> int:
     straight, v = scenario.straight_line_length(), scenario.robot_speed
     limit, _ = step_limit(max_steps, straight, 0.0, v)
     if duration > limit and max_steps is None:
-        from mawdo.planning.oracle import scenario_optimum
+        from mawdo.planning.guide.oracle import scenario_optimum
 
         opt = scenario_optimum(scenario, static_only=True)
         limit, _ = step_limit(None, straight, opt.length if opt.reachable else 0.0, v)

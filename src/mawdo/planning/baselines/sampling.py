@@ -1,11 +1,11 @@
 """OMPL baselines: RRT*, BIT* and PRM*, single-shot on the static obstacles under a time budget.
 
 The robot is a point in the map shrunk by ``robot_radius`` on every side (OMPL
-``RealVectorStateSpace(2)`` bounds; :func:`mawdo.planning.geometry.centre_box`), so its disc
+``RealVectorStateSpace(2)`` bounds; :func:`mawdo.planning.world.geometry.centre_box`), so its disc
 stays in the map: the box is convex, so a motion between two states in it never leaves it and
 needs no margin. A state is valid when it lies in that box and outside every static obstacle
 inflated by ``robot_radius + clearance`` (containing polygons,
-:func:`mawdo.planning.geometry.inflate`; one prepared shapely union).
+:func:`mawdo.planning.world.geometry.inflate`; one prepared shapely union).
 Motions are checked by OMPL's discrete motion validator at ``resolution`` pixels: every point of
 a motion is within ``resolution / 2`` of a checked state, so with ``clearance >= resolution / 2``
 (default ``clearance = resolution``) no accepted motion can come closer than ``robot_radius``
@@ -25,8 +25,8 @@ import numpy as np
 import shapely
 
 from mawdo.planning.baselines.result import BaselineResult, make_result
-from mawdo.planning.geometry import centre_box, inflate
-from mawdo.planning.scenario import Scenario
+from mawdo.planning.world.geometry import centre_box, inflate
+from mawdo.planning.world.scenario import Scenario
 
 __all__ = ["OMPL_PLANNERS", "ompl_available", "plan_ompl"]
 

@@ -7,7 +7,7 @@ import time
 import numpy as np
 
 from mawdo.planning.baselines.result import BaselineResult, make_result
-from mawdo.planning.scenario import Scenario
+from mawdo.planning.world.scenario import Scenario
 
 __all__ = ["plan_straight"]
 

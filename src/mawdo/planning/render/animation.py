@@ -29,7 +29,7 @@ from mawdo.planning.render.world import (
     set_layer,
     world_state,
 )
-from mawdo.planning.result import PlanResult
+from mawdo.planning.run.result import PlanResult
 
 #: Colours of the shared palette taken exactly as drawn (the rest of the 256 by median cut).
 _EXACT_COLOURS = 96

@@ -3,8 +3,8 @@
 Each panel shows the world at ``t = 0`` (:func:`~mawdo.planning.render.world.draw_world`:
 obstacles, their inflation, start, goal, the static optimum), each moving obstacle's future
 track up to the earliest arrival ``T*`` with an arrow for where it heads first, the waiting
-spots of the scene, and the earliest-arrival route (:mod:`mawdo.planning.sipp.optimum`) with its
-waits marked. Made outside ``pyplot`` like every planning figure.
+spots of the scene, and the earliest-arrival route (:mod:`mawdo.planning.guide.sipp.optimum`) with
+its waits marked. Made outside ``pyplot`` like every planning figure.
 
 >>> timed_gallery("docs/img/families_time.png")  # doctest: +SKIP
 """

@@ -9,7 +9,7 @@ has passed its time, and after the run only the palette and the file are left (i
 :class:`RunStream` is the planner's progress callback in the command's process: it hands what
 the run added since its last call (route points, their times, new plans) to
 :meth:`EarlyFigures.feed <.early.EarlyFigures.feed>`; :class:`PartialRun` gathers them in the
-figures' process and reads like the :class:`~mawdo.planning.result.PlanResult` that
+figures' process and reads like the :class:`~mawdo.planning.run.result.PlanResult` that
 :func:`~.world.world_state` draws from.
 """
 
@@ -21,7 +21,7 @@ import numpy as np
 
 
 class Plan(NamedTuple):
-    """What a frame draws of a :class:`~mawdo.planning.result.Replan`: when it was made (time
+    """What a frame draws of a :class:`~mawdo.planning.run.result.Replan`: when it was made (time
     step) and from where (px) through which waypoints (``(m, 2)`` px)."""
 
     step: int
@@ -36,7 +36,7 @@ class RunStream:
     Parameters
     ----------
     run : prepared run
-        From :func:`mawdo.planning.planner.prepare`; a run that keeps no ``drive`` (its moves)
+        From :func:`mawdo.planning.run.planner.prepare`; a run that keeps no ``drive`` (its moves)
         feeds nothing, and its frames are all drawn after it.
     job : EarlyFigures
     then : callable, optional
@@ -67,7 +67,7 @@ class RunStream:
 
 class PartialRun:
     """The run so far, gathered from :meth:`RunStream.news`; reads like a
-    :class:`~mawdo.planning.result.PlanResult` for :func:`~.world.world_state` (not
+    :class:`~mawdo.planning.run.result.PlanResult` for :func:`~.world.world_state` (not
     successful: a frame before the run's end draws no finish)."""
 
     success = False

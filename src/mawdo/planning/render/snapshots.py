@@ -21,7 +21,7 @@ from mawdo.planning.render.style import (
     save_figure,
 )
 from mawdo.planning.render.world import draw_world, legend_handles, move_world, moving_layers
-from mawdo.planning.result import PlanResult
+from mawdo.planning.run.result import PlanResult
 
 #: Printed under the legend of every snapshot grid. A panel freezes the obstacles at its time
 #: while the lines span other times, so a plan drawn across an obstacle is not a collision.
@@ -248,7 +248,7 @@ def snapshot_grid(
         Draw the exact shortest path around the static obstacles.
     metrics : dict label -> dict, optional
         Headline metrics per label (``length_px``, ``gap``, ``smoothness_rad``), as returned by
-        :func:`mawdo.planning.metrics.run_metrics`.
+        :func:`mawdo.planning.judge.metrics.run_metrics`.
     dpi : int
         Resolution; the image is ``figure size x dpi`` pixels (about 1600 px wide for 4 columns).
     metadata : dict str -> str, optional

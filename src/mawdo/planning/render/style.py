@@ -9,8 +9,8 @@ from pathlib import Path
 
 import numpy as np
 
-from mawdo.planning.result import PlanResult, Replan
-from mawdo.planning.scenario import Scenario
+from mawdo.planning.run.result import PlanResult, Replan
+from mawdo.planning.world.scenario import Scenario
 
 #: Resolution of the snapshot grid (dots per inch); 4 panels of PANEL_IN are ~1600 px wide.
 GRID_DPI = 120
@@ -189,7 +189,7 @@ def optimum_path(scenario: Scenario, cache: dict) -> np.ndarray | None:
     if key not in cache:
         known = _KNOWN.get(scenario)
         if known is None:
-            from mawdo.planning.oracle import scenario_optimum
+            from mawdo.planning.guide.oracle import scenario_optimum
 
             known = scenario_optimum(scenario, static_only=True).path
         cache[key] = known

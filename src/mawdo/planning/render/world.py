@@ -7,7 +7,6 @@ import weakref
 
 import numpy as np
 
-from mawdo.planning.geometry import inflate
 from mawdo.planning.render.style import (
     LEGEND_LABELS,
     STYLE,
@@ -19,8 +18,9 @@ from mawdo.planning.render.style import (
     route_of,
     trail_until,
 )
-from mawdo.planning.result import PlanResult
-from mawdo.planning.scenario import Scenario
+from mawdo.planning.run.result import PlanResult
+from mawdo.planning.world.geometry import inflate
+from mawdo.planning.world.scenario import Scenario
 
 # drawing order of the line layers (obstacles: 2 static, 3 moving; robot 8)
 _ZORDER = {"track": 1.5, "optimum": 4, "plan": 5, "trail": 6, "start": 7, "goal": 7}

@@ -26,8 +26,13 @@ from typing import Any
 
 import numpy as np
 
-from mawdo.planning.oracle import scenario_optimum
-from mawdo.planning.scenario import SCHEMA_VERSION, Scenario, ScenarioError, scenario_from_dict
+from mawdo.planning.guide.oracle import scenario_optimum
+from mawdo.planning.world.scenario import (
+    SCHEMA_VERSION,
+    Scenario,
+    ScenarioError,
+    scenario_from_dict,
+)
 from mawdo.streams import keyed_seed_sequence
 
 __all__ = [
@@ -138,7 +143,7 @@ class Family:
         a solvable scene (e.g. a door narrower than the robot).
     timed : bool
         Time decides the scene (issue 27): a draw is valid only if the earliest arrival ``T*``
-        exists (:func:`mawdo.planning.sipp.optimum.scenario_time_optimum`, with the draft's
+        exists (:func:`mawdo.planning.guide.sipp.optimum.scenario_time_optimum`, with the draft's
         waiting spots, key ``"_spots"``, and dodge spots along the static optimum), and the
         scene stores it.
     """
@@ -230,11 +235,11 @@ class Scene:
     attempts : int
         Draws used (1 = the first draw was valid).
     t_star : float or None
-        Earliest arrival at the goal (time steps; :mod:`mawdo.planning.sipp.optimum`) for the
+        Earliest arrival at the goal (time steps; :mod:`mawdo.planning.guide.sipp.optimum`) for the
         families where time decides (``Family.timed``); ``None`` for the others.
     spots : numpy.ndarray, shape (k, 2)
         Waiting spots (pixels) ``T*`` was computed with: the family's (bays, a lattice of
-        free points) and :func:`~mawdo.planning.sipp.optimum.dodge_spots` along the static
+        free points) and :func:`~mawdo.planning.guide.sipp.optimum.dodge_spots` along the static
         optimum.
     time_route : TimedRoute or None
         The earliest-arrival route (timed families).
@@ -281,7 +286,7 @@ def _describe(family: Family, p: dict, seed: int, index: int, l_star: float, t_s
 def _time_optimum(scenario: Scenario, spots: np.ndarray, path: np.ndarray):
     """``(TimeOptimum, spots, None)`` or ``(None, spots, reason)`` for a timed family's draw:
     its spots, with dodge spots along the static optimum ``path`` added."""
-    from mawdo.planning.sipp.optimum import dodge_spots, scenario_time_optimum
+    from mawdo.planning.guide.sipp.optimum import dodge_spots, scenario_time_optimum
 
     spots = np.vstack([spots, dodge_spots(path, scenario)])
     opt = scenario_time_optimum(scenario, spots=spots)

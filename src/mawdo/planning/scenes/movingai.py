@@ -3,8 +3,8 @@
 The maps ship as package data (``data/*.map``, made for this package, not downloaded):
 ``warehouse`` (48 x 48 cells, eight shelves and their aisles) and ``rooms`` (40 x 40 cells, four
 rooms joined by doorways, two pillars). They go through the existing loader
-(:func:`mawdo.planning.rasters.from_movingai_map`), so blocked cells become exact polygons. A cell
-is ``size / max(rows, cols)`` pixels. Start and goal are centres of free cells at least
+(:func:`mawdo.planning.world.rasters.from_movingai_map`), so blocked cells become exact polygons. A
+cell is ``size / max(rows, cols)`` pixels. Start and goal are centres of free cells at least
 ``robot_radius + clearance`` from every blocked cell and at least half the map's diagonal apart;
 moving discs start in free space and move with constant velocity (reflecting at the map border,
 passing over walls: the scenario motion models know no walls).
@@ -19,9 +19,9 @@ from importlib import resources
 import numpy as np
 from scipy.ndimage import distance_transform_edt
 
-from mawdo.planning.rasters import from_movingai_map, read_movingai_grid
 from mawdo.planning.scenes.base import Family, Param, Redraw
 from mawdo.planning.scenes.shapes import circle
+from mawdo.planning.world.rasters import from_movingai_map, read_movingai_grid
 
 __all__ = ["MAPS", "MOVINGAI", "map_grid"]
 

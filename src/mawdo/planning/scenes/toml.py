@@ -13,7 +13,7 @@ import json
 import math
 from pathlib import Path
 
-from mawdo.planning.scenario import Scenario
+from mawdo.planning.world.scenario import Scenario
 
 __all__ = ["scenario_to_toml", "toml_value", "write_scenario"]
 

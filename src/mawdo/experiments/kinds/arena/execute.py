@@ -5,8 +5,8 @@ scene can be re-run alone with ``mawdo plan FILE`` and the report never regenera
 scene the generator rejects (no valid draw in ``MAX_ATTEMPTS``) is stored with
 ``status = "rejected"`` and the generator's reasons: it is not a planner failure and counts in
 no rate. A failed or colliding run also keeps its trace (``result_to_bytes``) for the gallery.
-Every planner is run through :data:`mawdo.planning.planners.PLANNERS` and measured by
-:func:`mawdo.planning.metrics.run_metrics`.
+Every planner is run through :data:`mawdo.planning.run.planners.PLANNERS` and measured by
+:func:`mawdo.planning.judge.metrics.run_metrics`.
 """
 
 from __future__ import annotations
@@ -82,8 +82,8 @@ def is_timed(rows) -> bool:
 
 
 def scenario_from_toml(text: str, name: str):
-    """A stored scene's TOML text as a :class:`~mawdo.planning.scenario.Scenario`."""
-    from mawdo.planning.scenario import scenario_from_dict
+    """A stored scene's TOML text as a :class:`~mawdo.planning.world.scenario.Scenario`."""
+    from mawdo.planning.world.scenario import scenario_from_dict
 
     return scenario_from_dict(tomllib.loads(text), source=name)
 
@@ -93,7 +93,7 @@ def scene_hash(toml_text: str) -> str:
     return hashlib.sha256(toml_text.encode("utf-8")).hexdigest()
 
 
-#: Arena column -> :func:`~mawdo.planning.metrics.run_metrics` name (the columns keep the
+#: Arena column -> :func:`~mawdo.planning.judge.metrics.run_metrics` name (the columns keep the
 #: names stored since the arena's first schema, so old stores stay readable).
 COLUMNS = {
     "success": "success",
@@ -120,9 +120,9 @@ _NONE_IF_NAN = ("latency_p50_ms", "latency_p95_ms", "latency_p99_ms", "first_pla
 
 def row_metrics(res, l_star: float, t_star: float | None = None) -> dict[str, Any]:
     """The arena columns of a run of any planner, from
-    :func:`~mawdo.planning.metrics.run_metrics` (no snapshot ratios, the scene's ``l_star`` and,
-    for a timed scene, its ``t_star``)."""
-    from mawdo.planning.metrics import run_metrics
+    :func:`~mawdo.planning.judge.metrics.run_metrics` (no snapshot ratios, the scene's ``l_star``
+    and, for a timed scene, its ``t_star``)."""
+    from mawdo.planning.judge.metrics import run_metrics
 
     m = run_metrics(res, l_star=l_star, snapshots=0, t_star=t_star)
     out = {col: m[name] for col, name in COLUMNS.items()}
@@ -136,12 +136,12 @@ def row_metrics(res, l_star: float, t_star: float | None = None) -> dict[str, An
 
 def plan_scene(name: str, sc, l_star: float, seed: int, preset: str, overrides: dict,
                options: dict | None = None, t_star: float | None = None):  # fmt: skip
-    """Run the planner ``name`` (:data:`~mawdo.planning.planners.PLANNERS`) on ``sc`` with the
+    """Run the planner ``name`` (:data:`~mawdo.planning.run.planners.PLANNERS`) on ``sc`` with the
     preset and its overrides, passing it those of ``options`` it takes; returns the
-    :class:`~mawdo.planning.result.PlanResult` and its arena columns (:func:`row_metrics`;
+    :class:`~mawdo.planning.run.result.PlanResult` and its arena columns (:func:`row_metrics`;
     ``t_star`` for a timed scene)."""
-    from mawdo.planning.config import resolve_config
-    from mawdo.planning.planners import PLANNERS
+    from mawdo.planning.run.config import resolve_config
+    from mawdo.planning.run.planners import PLANNERS
 
     planner = PLANNERS[name]
     opts = {k: v for k, v in (options or {}).items() if k in planner.options}
@@ -151,7 +151,7 @@ def plan_scene(name: str, sc, l_star: float, seed: int, preset: str, overrides: 
 
 def _plan_one(spec: dict[str, Any], scene, seed: int) -> tuple[dict[str, Any], bytes | None]:
     """The metrics of the task's planner on ``scene`` and, if it failed, its trace."""
-    from mawdo.planning.result import result_to_bytes
+    from mawdo.planning.run.result import result_to_bytes
 
     res, m = plan_scene(spec["algorithm"], scene.scenario, scene.l_star, seed, spec["preset"],
                         spec["overrides"], spec["planner_options"], scene.t_star)  # fmt: skip
@@ -168,7 +168,7 @@ def execute_arena_task(spec: dict[str, Any]) -> list[ArenaRow]:
     from mawdo.planning.scenes import SceneRejected, generate_scene
 
     fam, rows = spec["problem"], []
-    from mawdo.planning.planners import PLANNERS
+    from mawdo.planning.run.planners import PLANNERS
 
     sees = PLANNERS[spec["algorithm"]].sees_time
     for i, seed in enumerate(spec["planner_seeds"]):

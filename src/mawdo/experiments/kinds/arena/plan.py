@@ -45,8 +45,8 @@ def check_family(name: str) -> str:
 
 def check_baseline(name: str) -> str:
     """A baseline's canonical name: a registered planner not driven by an optimizer
-    (:data:`~mawdo.planning.planners.PLANNERS`; ``oracle`` is the oracle follower)."""
-    from mawdo.planning.planners import PLANNERS
+    (:data:`~mawdo.planning.run.planners.PLANNERS`; ``oracle`` is the oracle follower)."""
+    from mawdo.planning.run.planners import PLANNERS
 
     key = str(name).strip().lower()
     key = BASELINE_ALIASES.get(key, key)
@@ -73,7 +73,7 @@ def _unique(names, check, field: str) -> tuple[str, ...]:
 def _check_algorithm(name: str) -> str:
     """A planner driven by an optimizer (a registered optimizer or a variant such as
     ``mawdo_literal``); ``KeyError`` with close names otherwise."""
-    from mawdo.planning.planners import PLANNERS
+    from mawdo.planning.run.planners import PLANNERS
 
     spec = PLANNERS[str(name).strip()]
     if spec.optimizer is None:
@@ -93,7 +93,7 @@ class ArenaPlan(StudyPlanBase):
     n : int
         Scenes per family, >= 1.
     algorithms : sequence of str
-        Planners driven by an optimizer (:data:`~mawdo.planning.planners.PLANNERS`: any
+        Planners driven by an optimizer (:data:`~mawdo.planning.run.planners.PLANNERS`: any
         registered optimizer, ``mawdo_literal``); may be empty if baselines are given.
     baselines : sequence of str
         The other planners: ``oracle`` (the oracle follower), ``straight``, ``rrtstar``,
@@ -103,9 +103,9 @@ class ArenaPlan(StudyPlanBase):
     seed : int
         Master seed (scenes and planner seeds), >= 0.
     planner : {"realtime", "study", "paper", "quick"}
-        Planner preset (:data:`mawdo.planning.config.PRESETS`).
+        Planner preset (:data:`mawdo.planning.run.config.PRESETS`).
     overrides : dict
-        Fields of :class:`~mawdo.planning.config.PlannerConfig` to change.
+        Fields of :class:`~mawdo.planning.run.config.PlannerConfig` to change.
     ompl_time : float
         Time budget of each OMPL solve (seconds, (0, 60]).
     ompl_resolution : float
@@ -147,7 +147,7 @@ class ArenaPlan(StudyPlanBase):
     @field_validator("overrides")
     @classmethod
     def _over(cls, overrides, info: ValidationInfo):
-        from mawdo.planning.config import check_overrides
+        from mawdo.planning.run.config import check_overrides
 
         # against the plan's own preset (an invalid preset is reported on its own field)
         return check_overrides(overrides, info.data.get("planner", "realtime"))

@@ -95,7 +95,7 @@ def _plan_of(store: Store) -> ArenaPlan:
 
 def arena_tables(store: Store) -> list[Table]:
     """The per family and planner table (one row each, in plan order)."""
-    from mawdo.planning.planners import PLANNERS, PREDICTED
+    from mawdo.planning.run.planners import PLANNERS, PREDICTED
 
     plan = _plan_of(store)
     t = Table(
@@ -144,7 +144,7 @@ def arena_tables(store: Store) -> list[Table]:
 
 def first_collision_time(result) -> float | None:
     """Time (time steps, to 0.5) of the first checker-rejected contact of a run's route."""
-    from mawdo.planning.check import check_trajectory
+    from mawdo.planning.judge.check import check_trajectory
 
     times = result.route_times
     if result.route is None or times is None or len(times) < 2:
@@ -171,7 +171,7 @@ def failure_gallery(store: Store, out: Path, limit: int | None = None) -> list[t
     Returns ``(image file, scene file)`` pairs relative to ``out``; ``limit`` caps the images.
     """
     from mawdo.planning import render
-    from mawdo.planning.result import result_from_bytes
+    from mawdo.planning.run.result import result_from_bytes
 
     plan = _plan_of(store)
     items = []

@@ -82,7 +82,7 @@ def timed_lines(store: Store) -> list[str]:
     """Per planner that sees time, on the timed families together: success over the scenes
     with a ``T*``, active collisions (the robot moving) in all runs, successful or not, and
     the arrival-time gap T/T* median and p95; then its weakest timed family."""
-    from mawdo.planning.planners import PLANNERS, PREDICTED
+    from mawdo.planning.run.planners import PLANNERS, PREDICTED
 
     fams = _timed_families(store)
     if not fams:

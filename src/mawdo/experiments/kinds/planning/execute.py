@@ -26,10 +26,10 @@ class PlanningRow(RunRow):
     settings : dict
         Planner preset and overrides the run used.
     metrics : dict or None
-        :func:`mawdo.planning.metrics.run_metrics` of the run (length, gap, smoothness,
+        :func:`mawdo.planning.judge.metrics.run_metrics` of the run (length, gap, smoothness,
         collisions, latency ...); None for a failed run.
     route : bytes or None
-        The serialised :class:`~mawdo.planning.planner.PlanResult` (``result_to_bytes``).
+        The serialised :class:`~mawdo.planning.run.planner.PlanResult` (``result_to_bytes``).
     first_plan_curve : numpy.ndarray
         Best-so-far cost after each iteration of the first replan (empty for the baseline).
     first_plan_smoothness_rad : float or None
@@ -64,11 +64,11 @@ def execute_planning_task(spec: dict[str, Any]) -> list[PlanningRow]:
     A computed run is never thrown away by its metrics (issue 12, defect 4): the route is
     stored first, and metrics that fail (the oracle on a huge map, say) fall back to those
     that need no oracle, with the failure in ``metrics["metrics_error"]``
-    (:func:`~mawdo.planning.metrics.run_metrics_kept`).
+    (:func:`~mawdo.planning.judge.metrics.run_metrics_kept`).
     """
     from mawdo.planning import scenario_from_dict
-    from mawdo.planning.metrics import static_optimum
-    from mawdo.planning.planners import PLANNERS
+    from mawdo.planning.judge.metrics import static_optimum
+    from mawdo.planning.run.planners import PLANNERS
 
     sc = scenario_from_dict(spec["scenario"], source=f"scenario {spec['problem']!r}")
     try:
@@ -84,7 +84,7 @@ def execute_planning_task(spec: dict[str, Any]) -> list[PlanningRow]:
         try:
             res = _plan_one(planner, sc, spec, seed)
         except Exception as exc:  # noqa: BLE001 - a failing run is a row, not a dead study
-            from mawdo.planning.metrics import one_line
+            from mawdo.planning.judge.metrics import one_line
 
             rows.append(
                 PlanningRow(
@@ -102,17 +102,17 @@ def execute_planning_task(spec: dict[str, Any]) -> list[PlanningRow]:
 
 
 def _plan_one(planner, sc, spec: dict[str, Any], seed: int):
-    """One run of ``planner`` (:class:`~mawdo.planning.planners.PlannerSpec`); the task's
+    """One run of ``planner`` (:class:`~mawdo.planning.run.planners.PlannerSpec`); the task's
     overrides already hold a variant's optimizer options."""
-    from mawdo.planning.config import resolve_config
+    from mawdo.planning.run.config import resolve_config
 
     return planner.run(sc, seed, resolve_config(spec["planner"], spec["overrides"]))
 
 
 def _row(run, t1, seed, settings, res, l_star, snapshots) -> PlanningRow:
     """The stored row of a computed run: route first, then whatever metrics can be had."""
-    from mawdo.planning.metrics import run_metrics_kept
-    from mawdo.planning.result import result_to_bytes
+    from mawdo.planning.judge.metrics import run_metrics_kept
+    from mawdo.planning.run.result import result_to_bytes
 
     route = result_to_bytes(res)
     curve = res.replans[0].history if res.replans else np.zeros(0)
@@ -131,7 +131,7 @@ def _row(run, t1, seed, settings, res, l_star, snapshots) -> PlanningRow:
 
 def _with_first_plan(row: PlanningRow, res, sc, baseline: bool) -> PlanningRow:
     """Add the first plan's smoothness (Eq. 28, rad) and its dimension to a stored row."""
-    from mawdo.planning.path import turning_angles
+    from mawdo.planning.world.path import turning_angles
 
     first = first_plan_path(res, sc)
     smooth = None if first is None else float(turning_angles(first).sum())

@@ -35,7 +35,7 @@ def label(algorithm: str, dims: tuple[int, ...] = ()) -> str:
     at = f"D = {'/'.join(str(d) for d in dims)}" if dims else "the planner's D"
     if algorithm == "mawdo":
         return f"MAWDO (low-D stabilisation on at {at})"
-    from mawdo.planning.planners import PLANNERS
+    from mawdo.planning.run.planners import PLANNERS
 
     spec = PLANNERS[algorithm] if algorithm in PLANNERS else None
     if spec is not None and (spec.optimizer, spec.optimizer_options) == ("mawdo", {"low_dim": 3}):
@@ -54,7 +54,7 @@ def planner_differences(plan: StudyPlan) -> str:
     """How the study's planner differs from the paper's, read from the plan's own settings."""
     from dataclasses import replace
 
-    from mawdo.planning.planner import PRESETS
+    from mawdo.planning.run.planner import PRESETS
 
     cfg = replace(PRESETS[plan.planner], **plan.overrides)
     first = cfg.first_pop_size or cfg.pop_size
@@ -167,7 +167,7 @@ def generated_findings(by: dict[str, list[dict]]) -> list[str]:
 
 def identical_pairs(by: dict[str, list[dict]]) -> list[str]:
     """Algorithms whose runs (same seeds) drove routes of exactly the same lengths."""
-    from mawdo.planning.planners import PLANNERS
+    from mawdo.planning.run.planners import PLANNERS
 
     # seeded planners only: deterministic ones (the oracle follower) share no seeds
     lengths = {

@@ -33,8 +33,8 @@ BASELINE = "oracle_follower"
 
 
 def _check_algorithm(name: str) -> str:
-    """A registered planner's name (:data:`~mawdo.planning.planners.PLANNERS`)."""
-    from mawdo.planning.planners import PLANNERS
+    """A registered planner's name (:data:`~mawdo.planning.run.planners.PLANNERS`)."""
+    from mawdo.planning.run.planners import PLANNERS
 
     try:
         return PLANNERS[name].name
@@ -95,7 +95,7 @@ class StudyPlan(StudyPlanBase):
     name : str
         Label for reports.
     algorithms : sequence of str
-        Registered planners (:data:`~mawdo.planning.planners.PLANNERS`): optimizers, variants
+        Registered planners (:data:`~mawdo.planning.run.planners.PLANNERS`): optimizers, variants
         such as ``"mawdo_literal"``, and baselines such as ``"oracle_follower"`` (a
         deterministic planner makes one run, whatever ``runs`` says).
     scenario : str
@@ -109,9 +109,9 @@ class StudyPlan(StudyPlanBase):
     runs : int
         Runs per algorithm (the paper: 50).
     planner : {"study", "realtime", "paper", "quick"}
-        Planner preset (:data:`mawdo.planning.planner.PRESETS`).
+        Planner preset (:data:`mawdo.planning.run.planner.PRESETS`).
     overrides : dict
-        Fields of :class:`~mawdo.planning.planner.PlannerConfig` to change.
+        Fields of :class:`~mawdo.planning.run.planner.PlannerConfig` to change.
     seed : int
         Master seed; run ``k`` of every algorithm uses the same seed (common random seeds).
     snapshots : int
@@ -172,7 +172,7 @@ class StudyPlan(StudyPlanBase):
     @field_validator("overrides")
     @classmethod
     def _over(cls, overrides, info: ValidationInfo):
-        from mawdo.planning.config import check_overrides
+        from mawdo.planning.run.config import check_overrides
 
         # against the plan's own preset (an invalid preset is reported on its own field)
         return check_overrides(overrides, info.data.get("planner", "study"))
@@ -189,7 +189,7 @@ class StudyPlan(StudyPlanBase):
     # ---------------------------------------------------------------- work
     def runs_of(self, algorithm: str) -> int:
         """``runs``, or 1 for a deterministic planner (the oracle follower)."""
-        from mawdo.planning.planners import PLANNERS
+        from mawdo.planning.run.planners import PLANNERS
 
         return self.runs if PLANNERS[algorithm].seeded else 1
 
@@ -212,7 +212,7 @@ class StudyPlan(StudyPlanBase):
         return out
 
     def task_spec(self, task: Task) -> dict[str, Any]:
-        from mawdo.planning.planners import PLANNERS
+        from mawdo.planning.run.planners import PLANNERS
 
         planner = PLANNERS[task.algorithm]
         options = planner.optimizer_options

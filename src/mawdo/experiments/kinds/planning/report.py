@@ -143,7 +143,7 @@ def _table6_row(a: str, runs: list[dict], dims: tuple[int, ...]) -> list:
 
 def _wilcoxon_table(plan: StudyPlan, by: dict[str, list[dict]]) -> Table:
     """Wilcoxon rank-sum of MAWDO against each rival on length, gap and smoothness."""
-    from mawdo.planning.planners import PLANNERS
+    from mawdo.planning.run.planners import PLANNERS
 
     wil = Table(
         name="table6_wilcoxon",
@@ -194,8 +194,8 @@ def _pick(runs, how: str):
 def study_figures(store: Store, out: Path, gif: bool = True) -> list[Path]:
     """Every figure of the study, from stored runs only."""
     from mawdo.planning import render
-    from mawdo.planning.planners import PLANNERS
-    from mawdo.planning.result import result_from_bytes
+    from mawdo.planning.run.planners import PLANNERS
+    from mawdo.planning.run.result import result_from_bytes
 
     plan = store.plan
     sc = plan.scenario_object()

@@ -1,0 +1,1 @@
+"""Exact guidance: visibility graph, oracle, homotopy-distinct routes, safe-interval search."""

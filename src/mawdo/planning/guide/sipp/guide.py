@@ -1,0 +1,222 @@
+"""The safe-interval guide: earliest-arrival timed routes among moving obstacles (SIPP).
+
+The roadmap (:mod:`mawdo.planning.guide.sipp.roadmap`, built once per map) gets the query's start as
+one more free vertex. Each vertex gets its safe intervals from the moving obstacles' predicted
+motion over ``[t0, t0 + horizon]``; A* over (vertex, safe interval) states gives the earliest
+arrival at the goal on this graph (:mod:`mawdo.planning.guide.sipp.search`), with waits explicit,
+and up to ``k - 1`` alternatives, each found with every interval state inside the routes before it
+barred, so that each passes its vertices at other times (or other vertices: another homotopy
+class).
+
+Guarantees and assumptions: see ``docs/planning.md`` (safe-interval guide).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from mawdo.planning.guide.homotopy import GUIDE_SEGMENTS
+from mawdo.planning.guide.sipp.intervals import safe_intervals
+from mawdo.planning.guide.sipp.profile import profile_table
+from mawdo.planning.guide.sipp.profiled import lead_clear, profiled_route, profiled_search
+from mawdo.planning.guide.sipp.roadmap import Roadmap
+from mawdo.planning.guide.sipp.search import search
+from mawdo.planning.world.scenario import Scenario
+
+__all__ = ["SafeIntervalGuide", "TimedRoute"]
+
+
+@dataclass(frozen=True)
+class TimedRoute:
+    """A timed route: straight moves at the robot's speed and explicit waits.
+
+    Attributes
+    ----------
+    points : numpy.ndarray, shape (k, 2)
+        Positions (pixels); a wait repeats a position.
+    times : numpy.ndarray, shape (k,)
+        Time at each position (time steps), non-decreasing.
+    states : tuple of int
+        The (vertex, safe interval) states passed, as interval indices of the guide.
+    """
+
+    points: np.ndarray
+    times: np.ndarray
+    states: tuple[int, ...]
+
+    @property
+    def arrival(self) -> float:
+        """Arrival time at the goal (time steps)."""
+        return float(self.times[-1])
+
+    @property
+    def waiting(self) -> float:
+        """Total time spent waiting (time steps)."""
+        same = np.all(self.points[1:] == self.points[:-1], axis=1)
+        return float(np.sum(np.diff(self.times)[same]))
+
+
+class SafeIntervalGuide:
+    """Safe intervals of a scenario's roadmap from one start and time, and the timed search.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        Map, robot (radius, speed), obstacles and their motion.
+    start : array_like, shape (2,), optional
+        Robot position (pixels) at ``t0``; default the scenario's start.
+    t0 : float
+        Planning time (time steps), >= 0.
+    clearance : float
+        Margin (px, >= 0) added to the robot radius, for static and moving obstacles alike.
+    spots : sequence of (x, y)
+        Extra free vertices (pixels) where the robot may wait: bays, pockets, corners.
+    horizon : float, optional
+        Time steps planned ahead (> 0); default twice the static shortest route's time plus
+        60 steps. Nothing is known after ``t0 + horizon``: no route arrives later.
+    walkers : {"reachable", "known"}
+        Random walkers as discs (shapes) growing at their top speed from where they are at
+        ``t0`` (default; conservative), or as their seeded walk (what the checker judges).
+    segments : int
+        Sides (>= 3) of the polygons standing in for the inflated obstacles' rounded corners
+        (:class:`~mawdo.planning.guide.sipp.roadmap.Roadmap`); more is closer to exact, slower.
+    profile : tuple, optional
+        ``(accel, turn)``: acceleration (px per step squared) and turn rate (radians per
+        step), ``inf`` for a free one: every edge is driven from rest to rest in whole steps
+        and the robot turns in place at its vertices
+        (:mod:`~mawdo.planning.guide.sipp.search_limited`); ``t0`` must then be a whole step.
+        None (default): straight moves at full speed, instant starts, stops and turns.
+    lead : array_like, shape (j, 2), optional
+        With ``profile``: the robot's positions at ``t0, t0 + 1, ...`` before it comes to
+        rest (braking from its velocity at ``t0``); the search starts at the last one,
+        ``j - 1`` steps after ``t0``, heading as the last move. Each step is checked like an
+        edge; ``start`` is then ignored.
+
+    Raises
+    ------
+    ValueError
+        A bad argument, or a start, goal or spot outside the map or inside a static obstacle.
+    """
+
+    def __init__(
+        self,
+        scenario: Scenario,
+        start=None,
+        t0: float = 0.0,
+        clearance: float = 0.5,
+        spots=(),
+        horizon: float | None = None,
+        walkers: str = "reachable",
+        segments: int = GUIDE_SEGMENTS,
+        profile=None,
+        lead=None,
+    ) -> None:
+        if not math.isfinite(t0) or t0 < 0:
+            raise ValueError(f"t0 must be finite and >= 0 time steps, got {t0!r}")
+        self.scenario, self.t0 = scenario, float(t0)
+        self.roadmap = Roadmap.of(scenario, clearance, spots, segments)
+        start = scenario.start if start is None else start
+        self.profile, self.lead = profile, None
+        if profile is not None:
+            self.lead = np.reshape(np.asarray(start if lead is None else lead, float), (-1, 2))
+            start = self.lead[-1]
+        self.nodes, self.indptr, self.indices, self.weights, self.to_goal = self.roadmap.with_start(
+            start
+        )
+        self.start = len(self.nodes) - 1
+        if horizon is None:
+            reach = self.to_goal[self.start]
+            if not np.isfinite(reach):
+                reach = math.hypot(scenario.width, scenario.height)
+            horizon = 2.0 * reach / scenario.robot_speed + 60.0
+        if not math.isfinite(horizon) or horizon <= 0:
+            raise ValueError(f"horizon must be finite and > 0 time steps, got {horizon!r}")
+        self.t_end = self.t0 + float(horizon)
+        self.movers = self.roadmap.movers(self.t0, self.t_end, walkers)
+        self._mv = self.movers.arrays()
+        self.ptr, self.lo, self.hi = safe_intervals(self.nodes, self.t0, self.t_end, self._mv)
+        if profile is not None:
+            accel, turn = (float(x) for x in profile)
+            v = float(scenario.robot_speed)
+            self._lim = (v, bool(accel < math.inf), turn)
+            self._table = profile_table(self.weights, v, accel)
+
+    @property
+    def graph(self):
+        """The static tangent visibility graph
+        (:class:`~mawdo.planning.guide.visgraph.VisGraph`)."""
+        return self.roadmap.graph
+
+    def intervals(self, v: int) -> np.ndarray:
+        """Safe intervals ``(lo, hi)`` of vertex ``v`` (open; time steps), shape ``(j, 2)``."""
+        a, b = self.ptr[v], self.ptr[v + 1]
+        return np.column_stack([self.lo[a:b], self.hi[a:b]])
+
+    def _search(self, banned: np.ndarray):
+        if self.profile is not None:
+            return profiled_search(self, banned)
+        return search(
+            self.nodes, self.indptr, self.indices, self.weights, self.to_goal,
+            float(self.scenario.robot_speed), self.start, 0, self.t0, self.t_end, self.ptr,
+            self.lo, self.hi, banned, self._mv,
+        )  # fmt: skip
+
+    def _route(self, goal_state, arrival, parent, depart) -> TimedRoute:
+        if self.profile is not None:
+            return TimedRoute(*profiled_route(self, goal_state, arrival, parent, depart))
+        chain = [int(goal_state)]
+        while parent[chain[-1]] >= 0:
+            chain.append(int(parent[chain[-1]]))
+        chain.reverse()
+        owner = np.searchsorted(self.ptr, chain, side="right") - 1  # each state's vertex
+        pts, times = [self.nodes[owner[0]]], [self.t0]
+        for j in range(1, len(chain)):
+            if depart[chain[j]] > times[-1]:  # an explicit wait
+                pts.append(pts[-1])
+                times.append(float(depart[chain[j]]))
+            pts.append(self.nodes[owner[j]])
+            times.append(float(arrival[chain[j]]))
+        return TimedRoute(np.array(pts), np.array(times), tuple(chain))
+
+    def routes(self, k: int = 1) -> list[TimedRoute]:
+        """The earliest-arrival route and up to ``k - 1`` time-diverse alternatives.
+
+        Parameters
+        ----------
+        k : int
+            Most routes (>= 1).
+
+        Returns
+        -------
+        list of TimedRoute
+            Earliest arrival first; empty when the goal cannot be reached within the horizon.
+
+        Raises
+        ------
+        ValueError
+            When the start is inside a mover (inflated) at ``t0``.
+        """
+        if isinstance(k, bool) or not isinstance(k, int | np.integer) or k < 1:
+            raise ValueError(f"k must be an integer >= 1, got {k!r}")
+        banned = np.zeros(len(self.lo), np.bool_)
+        out: list[TimedRoute] = []
+        if self.profile is not None and not lead_clear(self):
+            return out
+        for _ in range(int(k)):
+            goal_state, arrival, parent, depart = self._search(banned)
+            if goal_state == -2:
+                raise ValueError(
+                    f"the start is inside a moving obstacle (grown by robot radius + clearance) "
+                    f"at t0 = {self.t0:g}; no timed route can leave it safely"
+                )
+            if goal_state < 0:
+                break
+            route = self._route(goal_state, arrival, parent, depart)
+            out.append(route)
+            banned[list(route.states[1:-1])] = True
+            if len(route.states) <= 2:  # a direct move: nothing left to bar
+                break
+        return out

@@ -1,0 +1,208 @@
+"""The safe-interval guide's roadmap: what depends on the map only, built once per scenario.
+
+The static obstacles, inflated by robot radius + clearance (+ the static guide's slack, with
+its polygon for round corners, as :class:`mawdo.planning.guide.homotopy.Guide` inflates them), give
+the tangent visibility graph (:mod:`mawdo.planning.guide.visgraph`) with the goal and the waiting
+spots as free vertices. A free point (goal, spot, and each query's start) is joined to *every*
+vertex it sees, tangent at the corner or not: the tangent graph keeps every shortest path, but a
+timed route may reach a corner, wait, and then head straight for the goal or a spot. The static
+distance to the goal over this graph is the search's heuristic (admissible and consistent: no
+timed route is shorter than the static one on the same graph). The moving obstacles' pieces are
+cached over a growing window, so each query only slices them.
+"""
+
+from __future__ import annotations
+
+import math
+import weakref
+
+import numpy as np
+import shapely
+
+from mawdo.planning.guide.homotopy import GUIDE_SEGMENTS, SLACK
+from mawdo.planning.guide.sipp.intervals import Movers
+from mawdo.planning.guide.visgraph import VisGraph, build, csr_dijkstra, visible_from_point
+from mawdo.planning.world.geometry import FlatObstacles, centre_box, inflate
+from mawdo.planning.world.scenario import Scenario
+
+__all__ = ["Roadmap", "usable_spots"]
+
+_CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _free_point(p, name: str, graph: VisGraph, scenario: Scenario) -> np.ndarray:
+    p = np.asarray(p, dtype=float)
+    if p.shape != (2,) or not np.all(np.isfinite(p)):
+        raise ValueError(f"{name} must be a finite (x, y) pair, got {p!r}")
+    x0, y0, x1, y1 = graph.bounds
+    if not (x0 <= p[0] <= x1 and y0 <= p[1] <= y1) or graph.inside(p):
+        raise ValueError(
+            f"{name} {tuple(p)} is outside the map (shrunk by robot radius + clearance) or "
+            "inside an inflated static obstacle; give a free point (or a smaller clearance)"
+        )
+    return p
+
+
+def usable_spots(
+    scenario: Scenario, clearance: float, spots, segments: int = GUIDE_SEGMENTS
+) -> np.ndarray:
+    """The spots (pixels, ``(k, 2)``) the roadmap at ``clearance`` can take: inside the map
+    shrunk by ``rho`` and outside every static obstacle inflated by ``rho`` (as the roadmap
+    inflates them; ``rho`` = robot radius + clearance + the guide's slack). A spot valid for the
+    bare robot (:class:`~mawdo.planning.world.scenario.Scenario` checks that) may be too close to a
+    wall for a larger margin; it is dropped rather than failing the whole guide."""
+    pts = np.reshape(np.asarray(spots, dtype=float), (-1, 2))
+    rho = scenario.robot_radius + clearance + SLACK
+    x0, y0, x1, y1 = centre_box(scenario, rho)
+    keep = (pts[:, 0] > x0) & (pts[:, 0] < x1) & (pts[:, 1] > y0) & (pts[:, 1] < y1)
+    statics = [
+        inflate(scenario.obstacles[i].shape, rho, n=segments) for i in scenario.static_indices
+    ]
+    if statics and keep.any():
+        keep &= ~shapely.intersects(shapely.union_all(statics), shapely.points(pts))
+    return pts[keep]
+
+
+def _csr(pairs: np.ndarray, nodes: np.ndarray):
+    """Directed pairs (sorted, unique) as CSR ``(indptr, indices, weights)``."""
+    indptr = np.zeros(len(nodes) + 1, np.int64)
+    np.add.at(indptr, pairs[:, 0] + 1, 1)
+    w = np.hypot(*(nodes[pairs[:, 1]] - nodes[pairs[:, 0]]).T)
+    return np.cumsum(indptr), np.ascontiguousarray(pairs[:, 1], dtype=np.int64), w
+
+
+class Roadmap:
+    """Map-only part of the safe-interval guide (see the module docstring).
+
+    Parameters
+    ----------
+    scenario : Scenario
+    clearance : float
+        Margin (px, >= 0) added to the robot radius, for static and moving obstacles alike.
+    spots : sequence of (x, y)
+        Free vertices (pixels) where the robot may wait: bays, pockets.
+    segments : int
+        Sides (>= 3) of the polygon standing in for a disc in the inflation: the rounded
+        corners are replaced by circumscribing ones, lengthening routes by up to
+        ``rho (1 / cos(pi / segments) - 1)`` px per corner (``rho``: radius + clearance).
+
+    Attributes
+    ----------
+    nodes : numpy.ndarray, shape (n, 2)
+        Goal (index 0), spots, then static-obstacle corners (pixels).
+    to_goal : numpy.ndarray, shape (n,)
+        Static distance to the goal over the graph (pixels; ``inf`` if cut off).
+    """
+
+    def __init__(
+        self, scenario: Scenario, clearance: float = 0.5, spots=(), segments: int = GUIDE_SEGMENTS
+    ) -> None:
+        if not math.isfinite(clearance) or clearance < 0:
+            raise ValueError(f"clearance must be finite and >= 0 px, got {clearance!r}")
+        if isinstance(segments, bool) or not isinstance(segments, int) or segments < 3:
+            raise ValueError(f"segments must be an integer >= 3, got {segments!r}")
+        self.scenario, self.clearance = scenario, float(clearance)
+        rho = scenario.robot_radius + clearance + SLACK
+        static = [
+            inflate(scenario.obstacles[i].shape, rho, n=segments) for i in scenario.static_indices
+        ]
+        self._static, self._box = static, centre_box(scenario, rho)
+        pts = np.reshape(np.asarray([scenario.goal, *spots], dtype=float), (-1, 2))
+        # the map's border is a wall (as in the checker): the centre keeps rho from it
+        self.graph = build(static, centre_box(scenario, rho), points=pts)
+        names = ["goal"] + [f"spots[{j}]" for j in range(len(pts) - 1)]
+        for p, name in zip(pts, names, strict=True):
+            _free_point(p, name, self.graph, scenario)
+        self.nodes = self.graph.nodes
+        g = self.graph
+        src = [np.repeat(np.arange(len(g.nodes)), np.diff(g.indptr))]
+        dst = [g.indices]
+        for i in range(len(pts)):
+            seen = self.sees(g.nodes[i])
+            seen = seen[seen != i]
+            src += [np.full(len(seen), i), seen]
+            dst += [seen, np.full(len(seen), i)]
+        pairs = np.unique(np.column_stack([np.concatenate(src), np.concatenate(dst)]), axis=0)
+        self.indptr, self.indices, self.weights = _csr(pairs, self.nodes)
+        self.to_goal = csr_dijkstra(
+            self.indptr, self.indices, self.weights, np.zeros(1, np.int64), np.zeros(1)
+        )[0]
+        moving = tuple(scenario.obstacles[i] for i in scenario.moving_indices)
+        self.flat = FlatObstacles.from_obstacles(moving, scenario.robot_radius + clearance)
+        self._moving = moving
+        self._knots: dict[int, tuple[float, np.ndarray, np.ndarray]] = {}
+        # pieces over a window that holds a usual query (twice the default horizon of a
+        # route across the map), so that queries only slice them
+        diag = math.hypot(scenario.width, scenario.height)
+        reach = 2.0 * (2.0 * diag / scenario.robot_speed + 60.0)
+        for m in range(len(moving)):
+            self._pieces(m, 0.0, reach)
+
+    @classmethod
+    def of(
+        cls, scenario: Scenario, clearance: float = 0.5, spots=(), segments: int = GUIDE_SEGMENTS
+    ) -> Roadmap:
+        """The roadmap of ``(scenario, clearance, spots, segments)``, built at the first call,
+        then kept as long as the scenario lives."""
+        spots_key = tuple(map(tuple, np.reshape(np.asarray(spots, float), (-1, 2))))
+        key = (float(clearance), spots_key, segments)
+        per = _CACHE.setdefault(scenario, {})
+        if key not in per:
+            per[key] = cls(scenario, clearance, spots, segments)
+        return per[key]
+
+    def sees(self, p) -> np.ndarray:
+        """Indices of the nodes a free point ``p`` sees (tangent at the corner or not)."""
+        g = self.graph
+        plain = np.zeros(len(g.nodes), np.bool_)  # no corner rule: visibility alone decides
+        p = np.ascontiguousarray(p, dtype=float)
+        return visible_from_point(
+            p, g.nodes, g.prev, g.nxt, plain, g.edges, g.ring_ptr, g.ring_box, g.eps2
+        )
+
+    def with_start(self, start) -> tuple:
+        """The graph with ``start`` appended as the last node, joined to every node it sees
+        by edges *out* of it (nothing leads back to it: a route that returns to its start to
+        wait there could have waited there first): ``(nodes, indptr, indices, weights,
+        to_goal)``; the start's heuristic is its shortest static distance to the goal."""
+        start = _free_point(start, "start", self.graph, self.scenario)
+        seen = self.sees(start)
+        nodes = np.vstack([self.nodes, start])
+        w = np.hypot(*(self.nodes[seen] - start).T)
+        indptr = np.append(self.indptr, self.indptr[-1] + len(seen))
+        indices = np.concatenate([self.indices, seen])
+        weights = np.concatenate([self.weights, w])
+        to_goal = np.append(self.to_goal, np.min(w + self.to_goal[seen]) if len(seen) else np.inf)
+        return nodes, indptr, indices, weights, to_goal
+
+    def segment_clear(self, a, b) -> bool:
+        """The straight move ``a -> b`` (pixels) stays in the map shrunk by robot radius +
+        clearance + slack and meets no static obstacle inflated by as much (touching is a
+        hit), as the roadmap's edges do."""
+        x0, y0, x1, y1 = self._box
+        for p in (a, b):
+            if not (x0 <= p[0] <= x1 and y0 <= p[1] <= y1):
+                return False
+        if not self._static:
+            return True
+        if not hasattr(self, "_union"):  # built at the first use: runs without limits never ask
+            self._union = shapely.union_all(self._static)
+        line = shapely.LineString([a, b]) if np.any(a != b) else shapely.Point(a)
+        return not shapely.intersects(self._union, line)
+
+    def _pieces(self, m: int, t0: float, t_end: float):
+        """Knots of moving obstacle ``m`` covering ``[t0, t_end]`` (from a cached window)."""
+        cap, t, off = self._knots.get(m, (-1.0, None, None))
+        if cap < t_end:
+            cap = max(2.0 * t_end, cap)
+            t, off = self._moving[m].knots(0.0, cap)
+            self._knots[m] = (cap, t, off)
+        i0 = max(int(np.searchsorted(t, t0, side="right")) - 1, 0)
+        i1 = int(np.searchsorted(t, t_end, side="left"))
+        return t[i0 : i1 + 1], off[i0 : i1 + 1]
+
+    def movers(self, t0: float, t_end: float, walkers: str) -> Movers:
+        """The moving obstacles over ``[t0, t_end]`` (see :class:`Movers`)."""
+        return Movers.from_scenario(
+            self.scenario, self.clearance, t0, t_end, walkers, knots=self._pieces, flat=self.flat
+        )

@@ -1,0 +1,1 @@
+"""Judging a run: the independent collision and kinematic checkers, per-run metrics."""

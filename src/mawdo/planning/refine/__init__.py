@@ -1,0 +1,1 @@
+"""Refinement: the paper's path cost and its compiled kernel, seed candidates, polish."""

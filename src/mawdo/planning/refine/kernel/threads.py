@@ -1,0 +1,145 @@
+"""The cost kernel over a population on several threads: rows in chunks, one kernel call each.
+
+A candidate's cost, length, count and turning depend on that candidate alone (the filters in
+front of the exact tests only skip work whose outcome is certain), so chunks of rows can run at
+once and give the very numbers of one call. The chunks run in a Numba ``prange`` loop, on
+Numba's threading layer (a pool of Python threads took about 0.1 ms to hand a chunk over, as
+long as a whole call of 240 candidates). The parallel function is compiled on the first call
+with ``threads > 1``; with ``threads = 1`` the kernel is called directly.
+
+OpenMP's threads, left to themselves, wait spinning after a call (libgomp: 300,000 spins) so
+that the next one starts at once. On a machine whose cores are busy that spinning takes the
+cores from the thread with work and from everyone else: the realtime planner's replans became
+3-8x slower (median) with ``threads=2`` than with one thread (issue 28, ``python -m benchmarks
+threads``). So this module asks the OpenMP runtime to sleep at once (``OMP_WAIT_POLICY=passive``)
+unless the user chose a policy (``OMP_WAIT_POLICY``, ``GOMP_SPINCOUNT`` or ``KMP_BLOCKTIME`` set)
+or Numba's threads are already running (the runtime reads the variable when it starts).
+
+Numba's threading layers differ in safety (its documentation, "The Threading Layers"): the
+``workqueue`` layer, the fallback where neither TBB nor OpenMP is installed, must not be
+entered from two threads at once, so calls go through a process-wide lock; and the OpenMP layer
+must not be used on both sides of a ``fork()`` (mawdo's study runner starts its workers with
+``forkserver`` or ``spawn``).
+"""
+
+from __future__ import annotations
+
+import os
+import threading
+
+import numpy as np
+from numba import njit, prange
+
+from mawdo.planning.refine.kernel.population import population_cost, scratch_size
+from mawdo.validate import check_int
+
+# Fewer rows than this per chunk do not repay the hand-over.
+MIN_ROWS = 16
+
+_lock = threading.Lock()
+
+# environment variables through which a user picks how OpenMP threads wait
+WAIT_VARIABLES = ("OMP_WAIT_POLICY", "GOMP_SPINCOUNT", "KMP_BLOCKTIME")
+
+
+def passive_wait() -> bool:
+    """Make Numba's OpenMP threads sleep, not spin, between calls, unless told otherwise.
+
+    Sets ``OMP_WAIT_POLICY=passive`` in this process's environment when none of
+    :data:`WAIT_VARIABLES` is set and Numba has not started its threads yet (the runtime reads
+    it when it starts; child processes inherit it). Called at import of this module.
+
+    Returns
+    -------
+    bool
+        Whether the variable was set.
+    """
+    from numba.np.ufunc import parallel
+
+    if any(v in os.environ for v in WAIT_VARIABLES) or getattr(parallel, "_is_initialized", True):
+        return False
+    os.environ["OMP_WAIT_POLICY"] = "passive"
+    return True
+
+
+passive_wait()
+
+
+@njit(cache=True, parallel=True, nogil=True)
+def _chunked(
+    bounds, X, start, goal, t0, speed, spacetime, obs, snap, motion, weights, box, out, buf
+):
+    """:func:`population_cost` on rows ``bounds[j]:bounds[j + 1]`` for every ``j`` at once,
+    chunk ``j`` working in row ``j`` of ``buf``."""
+    cost, length, ncol, turn = out
+    for j in prange(bounds.shape[0] - 1):
+        lo = bounds[j]
+        hi = bounds[j + 1]
+        part = (cost[lo:hi], length[lo:hi], ncol[lo:hi], turn[lo:hi])
+        population_cost(
+            X[lo:hi], start, goal, t0, speed, spacetime, obs, snap, motion, weights, box, part,
+            buf[j],
+        )  # fmt: skip
+
+
+def chunk_bounds(n: int, threads: int) -> np.ndarray:
+    """Row boundaries ``[0, ..., n]`` of the chunks: as even as rows allow, at most
+    ``threads`` chunks and at least :data:`MIN_ROWS` rows in each (one chunk below that)."""
+    k = max(1, min(threads, n // MIN_ROWS))
+    return np.array([(j * n) // k for j in range(k + 1)], dtype=np.int64)
+
+
+class ThreadedKernel:
+    """Calls :func:`population_cost` on chunks of rows in parallel, keeping the scratch space
+    from call to call.
+
+    Parameters
+    ----------
+    threads : int
+        Chunks a call is split into, >= 1; they run on up to that many of Numba's threads
+        (``numba.get_num_threads()``, the number of cores unless set lower).
+    """
+
+    def __init__(self, threads: int = 1) -> None:
+        self.threads = check_int(
+            "threads", threads, 1, what="an integer >= 1 (1: the calling thread only)"
+        )
+        self._buf = np.empty((0, 0))
+        # per population size: its chunk bounds and the scratch floats a chunk needs (keyed
+        # by the knot counts' array too: a new motion table brings a new one); a planner
+        # alternates a few sizes (populations, one-candidate guard checks), so both are kept
+        self._plans: dict = {}
+
+    def _scratch(self, rows: int, need: int) -> np.ndarray:
+        if self._buf.shape[0] < rows or self._buf.shape[1] < need:
+            # a whole number of 4 KiB pages per row (the kernel lays its arrays out within a
+            # page), and a quarter more, so that slightly larger populations do not reallocate
+            cols = (need + need // 4 + 511) // 512 * 512
+            self._buf = np.empty((rows, cols))
+        return self._buf
+
+    def __call__(self, X, start, goal, t0, speed, spacetime, obs, snap, motion, weights, box, out):
+        """Fill ``out = (cost, length, n_collisions, turning)`` for the rows of ``X``; the
+        arguments are those of :func:`population_cost` without the scratch buffer."""
+        n, npts = X.shape[0], X.shape[1] // 2 + 2
+        key = (n, npts, spacetime)
+        plan = self._plans.get(key)
+        if plan is None or plan[0] is not motion[3]:
+            if len(self._plans) >= 16:  # (sizes seen long ago)
+                self._plans.clear()
+            bounds = chunk_bounds(n, self.threads)
+            k = bounds.size - 1
+            plan = self._plans[key] = (
+                motion[3],
+                bounds,
+                scratch_size(-(-n // k), npts, motion[3], spacetime),
+            )
+        bounds = plan[1]
+        k = bounds.size - 1
+        buf = self._scratch(k, plan[2])
+        args = (X, start, goal, t0, speed, spacetime, obs, snap, motion, weights, box, out)
+        if k == 1:
+            population_cost(*args, buf[0])
+            return
+        with _lock:
+            _chunked(bounds, *args, buf)

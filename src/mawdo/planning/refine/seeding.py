@@ -1,0 +1,51 @@
+"""Seed candidates of a (re)plan: perturbed copies of a route, and via-point paths.
+
+The run loop (:mod:`mawdo.planning.run.execute`) draws them from its own replan streams."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mawdo.planning.guide.homotopy import Guide
+from mawdo.planning.run.config import PlannerConfig
+from mawdo.planning.world.path import densify
+
+__all__ = ["RunGuide", "via_paths", "warm_seeds"]
+
+
+class RunGuide(Guide):
+    """The run loop's :class:`~mawdo.planning.guide.homotopy.Guide`: it keeps its last query. A
+    step's hold test (the shortest route from the robot) and its seeds (the routes from the robot)
+    ask from the same position; on paper about two queries in five repeat the one before.
+    The arrays returned are the query's own (its callers only read them)."""
+
+    _last: tuple = (None, None)
+
+    def query(self, pos):
+        key = np.asarray(pos, dtype=float).tobytes()
+        if self._last[0] != key:
+            self._last = (key, super().query(pos))
+        return self._last[1]
+
+
+def warm_seeds(route, m: int, config: PlannerConfig, rng, lb, ub) -> np.ndarray:
+    """A route's ``m`` waypoints (geometry kept) plus ``config.warm_copies`` copies perturbed
+    by N(0, ``config.warm_sigma``) px, clipped to ``[lb, ub]``; shape ``(1 + copies, 2 m)``."""
+    base = densify(route, m).reshape(-1)
+    noise = rng.normal(0.0, config.warm_sigma, (config.warm_copies, base.size))
+    return np.clip(np.vstack([base, base + noise]), lb, ub)
+
+
+def via_paths(start, goal, m: int, n: int, rng, lb, ub, width: float, height: float):
+    """``n`` path-like candidates: start -> one or two random via points -> goal, densified
+    to ``m`` waypoints and clipped to ``[lb, ub]`` (pixels); shape ``(n, 2 m)``.
+
+    Uniform random waypoints make zig-zags that cross every obstacle; routes through random via
+    points are short, diverse, and often collision-free, the usual way to seed a waypoint planner.
+    """
+    out = np.empty((n, 2 * m))
+    for i in range(n):
+        k = 1 + int(rng.random() < 0.5)
+        via = rng.random((k, 2)) * [width, height]
+        out[i] = densify(np.vstack([start, via, goal]), m).reshape(-1)
+    return np.clip(out, lb, ub)

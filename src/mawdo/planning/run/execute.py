@@ -1,0 +1,398 @@
+"""One planning run: guide -> seeds -> refine -> polish -> guard -> move, then the checker's
+judgement.
+
+:func:`mawdo.planning.run.planner.plan` builds a :class:`Run` and calls :meth:`Run.execute`. The
+steps of each (re)plan are those of the planner module's docstring; this module holds the loop
+and the safety contract (a move is driven only after the guard verified it; the route is judged
+by the independent checker at the end).
+"""
+
+from __future__ import annotations
+
+import time
+import weakref
+
+import numpy as np
+
+from mawdo.planning.guide.homotopy import Guide
+from mawdo.planning.guide.timeguide import TimedRun, TimeGuide
+from mawdo.planning.refine.cost import PathCost, assemble_paths
+from mawdo.planning.refine.polish import polish
+from mawdo.planning.refine.seeding import RunGuide, via_paths, warm_seeds
+from mawdo.planning.run.config import PLANNING_OPTIONS, PlannerConfig, step_limit, step_limit_note
+from mawdo.planning.run.result import Drive, PlanResult, Replan
+from mawdo.planning.safety.guard import Elite, Guard
+from mawdo.planning.safety.ics import SafeContinuation
+from mawdo.planning.safety.ics_run import SafeRun
+from mawdo.planning.safety.kinematics import LimitedRun, Limits, at_speed
+from mawdo.planning.world.path import densify, polyline_length
+from mawdo.planning.world.scenario import Scenario
+from mawdo.streams import replan_seed_sequences
+
+NO_ROUTE = "no collision-free route found"
+# a plan whose waypoints lie within this of the straight line to the goal (px), and no longer
+# than it by more than this, is straight (see Run._holds)
+STRAIGHT_TOL = 1e-6
+# a replan whose best cost is below its warm start's by less than this (relative) found nothing
+STALL_TOL = 1e-9
+
+# one guide per (scenario, clearance, k): the graph and the goal's tree are built once
+_GUIDES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def guide_for(scenario: Scenario, clearance: float, k: int) -> Guide:
+    """The cached :class:`Guide` of a scenario (built on first use)."""
+    per = _GUIDES.setdefault(scenario, {})
+    key = (float(clearance), int(k))
+    if key not in per:
+        per[key] = RunGuide(scenario, clearance=clearance, k=k)
+    return per[key]
+
+
+def _waypoints_needed(routes, cfg: PlannerConfig) -> int:
+    if not (cfg.auto_waypoints and routes):
+        return cfg.n_waypoints
+    inner = max(len(r) - 2 for r in routes)
+    return max(cfg.n_waypoints, min(cfg.max_waypoints, int(np.ceil(1.5 * inner))))
+
+
+def _optimizers(algorithm: str, cfg: PlannerConfig) -> dict:
+    """The run's optimizers, built once: one per population size (first plan, replans), with
+    the planner's options for the algorithm (:data:`~mawdo.planning.run.config.PLANNING_OPTIONS`)
+    under the config's own."""
+    from mawdo.optimizers import make_optimizer
+
+    opts = {**PLANNING_OPTIONS.get(algorithm, {}), **cfg.options}
+    sizes = {cfg.first_pop_size or cfg.pop_size, cfg.pop_size}
+    return {p: make_optimizer(algorithm, pop_size=p, **opts) for p in sizes}
+
+
+class _Watched:
+    """The cost from ``start`` at ``t0`` as the optimizer sees it (``pure``: it only reads the
+    candidates, :func:`mawdo.minimize.make_problem`); the elite sees every batch it evaluates."""
+
+    pure = True
+
+    def __init__(self, cost: PathCost, elite: Elite, extra, start, t0: float) -> None:
+        self.cost, self.elite, self.extra, self.start, self.t0 = cost, elite, extra, start, t0
+
+    def __call__(self, X):
+        f = self.cost(X, start=self.start, t0=self.t0)
+        f = f if self.extra is None else f + self.extra(X, self.start)  # kinematic limits
+        return self.elite.add(X, f)
+
+
+class Run(TimedRun, SafeRun, LimitedRun):
+    """State of one run (see :func:`mawdo.planning.run.planner.plan` for the parameters)."""
+
+    def __init__(self, sc: Scenario, algorithm: str, seed, cfg: PlannerConfig, dynamic: bool):
+        # a lower speed limit times every path of the run (kinematics.at_speed)
+        self.given, sc = sc, (at_speed(sc, cfg.max_speed) if dynamic else sc)
+        self.sc, self.algorithm, self.seed, self.cfg = sc, algorithm, seed, cfg
+        self.dynamic = dynamic
+        self.guide = guide_for(sc, cfg.clearance, cfg.guide_routes) if cfg.guide_routes else None
+        self.routes = self.guide.routes(sc.start) if self.guide else []
+        self.m = _waypoints_needed(self.routes, cfg)
+        self.cost = PathCost(
+            sc,
+            mode=cfg.mode if dynamic else "snapshot",
+            weights=cfg.weights,
+            n_waypoints=self.m,
+            clearance=cfg.clearance,
+            threads=cfg.threads,
+        )
+        self.guard = Guard(sc, cfg.clearance)
+        self.optimizers = self._make_optimizers()
+        self.replans: list[Replan] = []
+        self.counts = {"waits": 0, "evasions": 0, "fallbacks": 0, "holds": 0, "inevitable": 0}
+        on = dynamic and cfg.ics_horizon > 0  # the rule of issue 27: no inevitable collisions
+        self.ics = SafeContinuation(sc, cfg.clearance, cfg.ics_horizon) if on else None
+        self.limits = limits = Limits.of(cfg) if dynamic else None
+        if self.ics is not None and self.limits is not None:  # stops and turns take time
+            self.ics.limits = self.limits if (cfg.max_accel, cfg.max_turn) != (None, None) else None
+        self.stalled = False  # the last search found nothing cheaper than its warm start
+        self.chosen_index = 0  # which candidate the guard accepted at the last replan
+        self._reach = None  # the oracle's answer, when the guide found no route
+        self._per_pop = None  # seconds of one population's cost (estimate_seconds)
+        # the safe-interval guide (time_guide): the timed route being followed, and the last
+        # query's (step, routes), asked at most once per replan. Without moving obstacles the
+        # earliest arrival is the static guide's shortest route at full speed, already a seed
+        timed = cfg.time_guide and dynamic and bool(sc.moving_indices)
+        args = (sc, cfg.clearance, cfg.time_routes, self.routes, limits)  # limits: as driven
+        self.timer = TimeGuide(*args) if timed else None
+        self.following = None
+        self.timed_follows = 0  # replans at which the guard chose a timed route
+        self._timed = (-1, [])
+
+    def _make_optimizers(self) -> dict:
+        return _optimizers(self.algorithm, self.cfg)
+
+    # -- seeds ---------------------------------------------------------------------------------
+
+    def _guide_seeds(self, pos, rng, lb, ub) -> np.ndarray:
+        if self.guide is None:
+            return np.empty((0, 2 * self.m))
+        rows = []
+        for r in self.guide.routes(pos):
+            base = densify(r, self.m).reshape(-1)
+            noise = rng.normal(0.0, self.cfg.warm_sigma, (self.cfg.guide_copies, base.size))
+            rows.append(np.vstack([base, base + noise]))
+        return np.clip(np.vstack(rows), lb, ub) if rows else np.empty((0, 2 * self.m))
+
+    def _x0(self, pos, remainder, rng, pop, step: int = 0) -> np.ndarray:
+        cfg, lb, ub = self.cfg, *self.cost.bounds
+        guide = self._guide_seeds(pos, rng, lb, ub)
+        if self.timer is not None:
+            timed = np.clip(self._timed_seeds(pos, step, remainder is None), lb, ub)
+            guide = np.vstack([timed, guide])
+        if remainder is None:
+            n_via = max(0, int(cfg.seed_fraction * pop) - 1 - len(guide))
+            line = densify(np.array([pos, self.sc.goal]), self.m).reshape(1, -1)
+            via = via_paths(pos, self.sc.goal, self.m, n_via, rng, lb, ub, *self.sc.bounds[2:])
+            x0 = np.vstack([guide, line, via])
+        else:
+            x0 = np.vstack([warm_seeds(remainder, self.m, cfg, rng, lb, ub), guide])
+        # the straight line to a goal on the map's edge may pass it by an ulp; minimize
+        # refuses warm starts outside the box
+        return np.clip(x0[:pop], lb, ub)
+
+    # -- one optimisation ----------------------------------------------------------------------
+
+    def optimise(self, pos, step: int, remainder) -> tuple[np.ndarray, Elite]:
+        """Run the optimizer from ``pos`` at time ``step``; the best candidates, best first."""
+        from mawdo.minimize import minimize
+
+        cfg, k = self.cfg, len(self.replans)
+        ss, own = replan_seed_sequences(self.seed, k)
+        rng = np.random.default_rng(own)
+        first = remainder is None
+        pop = (cfg.first_pop_size or cfg.pop_size) if first else cfg.pop_size
+        t_start = time.perf_counter()
+        x0 = self._x0(pos, remainder, rng, pop, step)
+        elite = Elite(cfg.elite_size)
+        t = float(step)
+        watched = _Watched(self.cost, elite, self._turn_cost(), pos, t)
+        res = minimize(
+            watched,
+            lb=self.cost.bounds[0],
+            ub=self.cost.bounds[1],
+            algorithm=self.optimizers[pop],
+            seed=ss,
+            max_iter=cfg.first_iters if first else cfg.replan_iters,
+            max_time=None if first else cfg.replan_time,
+            x0=x0,
+        )
+        # only where it can matter: the extra cost call then changes nothing in other presets
+        self.stalled = not first and cfg.hold_gap > 0 and self._stalled(res.fun[0], x0[:1], pos, t)
+        best, fun, nfev = self._polish(res, watched, pos, t)
+        other = elite.X[np.abs(elite.X - best).max(axis=1) > 1e-12] if len(elite.X) else []
+        cands = [best, *other]  # (a NaN difference is not distinct)
+        latency = time.perf_counter() - t_start
+        length, ncol, _ = self.cost.parts(best[None, :], start=pos, t0=t)
+        self.replans.append(
+            Replan(
+                step=step,
+                position=np.array(pos, dtype=float),
+                waypoints=best.reshape(-1, 2).copy(),
+                cost=fun,
+                length=float(length[0]),
+                collisions=int(ncol[0]),
+                latency=latency,
+                nfev=nfev,
+                history=res.history[0].copy(),
+            )
+        )
+        return np.array(cands), latency
+
+    def _polish(self, res, watched: _Watched, pos, t: float):
+        """The search's best after :func:`~mawdo.planning.refine.polish.polish` (its cost and the
+        evaluations of both); the elite sees every variant. The stall flag stays the search's:
+        a polished plan was still one the search could not improve."""
+        x, fx, nfev = res.x[0], float(res.fun[0]), int(res.nfev[0])
+        if self.cfg.polish_rounds == 0:
+            return x, fx, nfev
+        cfg, (lb, ub) = self.cfg, self.cost.bounds
+        rounds, steps = cfg.polish_rounds, cfg.polish_steps
+        x, fx, extra = polish(watched, x, fx, pos, self.sc.goal, rounds, steps, lb, ub)
+        return x, fx, nfev + extra
+
+    def _stalled(self, best: float, warm, pos, t: float) -> bool:
+        """True when the search found nothing better than its warm start (the previous
+        plan's remainder): rounding may make a collinear variant an ulp cheaper, which is not
+        a better route, hence the relative tolerance."""
+        cost = float(self.cost(warm, start=pos, t0=t)[0])
+        return bool(best >= cost - STALL_TOL * abs(cost))
+
+    # -- the guard -----------------------------------------------------------------------------
+
+    def choose(self, cands, pos, step: int, horizon: float):
+        """First candidate whose next ``horizon`` px are safe and keep a safe continuation
+        (route), or ``None``; the least bad when no option keeps one (:class:`SafeRun`)."""
+        least = None
+        for i, x in enumerate(cands):
+            route = assemble_paths(x[None, :], pos, self.sc.goal)[0]
+            if self.dynamic:
+                safe = self.guard.stretch_hits(route, float(step), horizon) == 0
+            else:  # single-shot: the whole plan on the frozen map at t = 0
+                safe = int(self.cost.parts(x[None, :], start=pos, t0=0.0)[1][0]) == 0
+            if safe and least is None:  # the least bad, should no option keep a continuation
+                least = (i, route)
+            if safe and self._continues(route, step, horizon):
+                self.counts["fallbacks"] += i > 0
+                self.chosen_index = i
+                return route
+        return self._least_bad(least, pos, step, self._target(pos, cands))
+
+    def execute(self, progress=None) -> PlanResult:
+        """Drive the run; ``progress(step, max_steps, replans)`` is called before each step."""
+        sc, cfg = self.sc, self.cfg
+        v = sc.robot_speed
+        reach = self._reachable()
+        if isinstance(reach, str):
+            return self._finish(Drive(sc.start.copy()), f"{NO_ROUTE}: static obstacles: {reach}")
+        max_steps, rule = self.step_limit()
+        pos = sc.start.copy()
+        # kept on the run: a progress callback may read the moves so far (the GIF's frames
+        # are drawn while the run goes on: mawdo.planning.render.live)
+        self.drive = drive = Drive(pos)
+        remainder, stuck, force = None, 0, False
+        reason = step_limit_note(cfg.max_steps, max_steps, rule)
+        for step in range(max_steps + 1):
+            if progress is not None:
+                progress(step, max_steps, len(self.replans))
+            if np.hypot(*(sc.goal - pos)) <= 1e-9:
+                reason = "goal reached"
+                break
+            if step == max_steps:
+                break
+            replan = remainder is None or force or (self.dynamic and step % cfg.replan_every == 0)
+            if replan and self._holds(remainder, force, step):
+                self.counts["holds"] += 1
+            elif replan and (chosen := self._kept_route(pos, step)) is not None:
+                stuck, remainder, force = 0, chosen, False  # (no search: it would be ignored)
+            elif replan:
+                cands, _ = self.optimise(pos, step, remainder)
+                left = cfg.replan_every - step % cfg.replan_every if self.dynamic else 0
+                chosen = self.choose(cands, pos, step, v * left)
+                if self.timer is not None:
+                    chosen = self._timed_choice(chosen, pos, step)
+                if chosen is None and not self.dynamic:
+                    n = self.replans[-1].collisions
+                    reason = f"{NO_ROUTE}: the best plan hits obstacles {n} times"
+                    break
+                if chosen is None:
+                    pos = self._fallback(drive, pos, step, cands)
+                    stuck, force = stuck + 1, True
+                    if stuck >= cfg.give_up_steps:
+                        pos, note = self._settle(drive, pos, step + 1)
+                        reason = f"{NO_ROUTE}: gave up after {stuck} steps of waiting or evading"
+                        reason += note
+                        break
+                    remainder = assemble_paths(cands[:1], pos, sc.goal)[0]
+                    continue
+                self.stalled = self.stalled and self.chosen_index == 0
+                stuck, remainder, force = 0, chosen, False
+            prev, (pos, remainder, passed, frac) = pos, self._drive(remainder, step)
+            if self.limits is not None:  # the step the kinematic limits allow
+                pos, remainder, passed, frac = self._limited_step(prev, pos, remainder, step)
+            drive.move(step, pos, passed, frac)
+        return self._finish(drive, reason)
+
+    def step_limit(self) -> tuple[int, int]:
+        """The run's step limit and the uncapped automatic one
+        (:func:`~mawdo.planning.run.config.step_limit`)."""
+        reach = self._reachable()
+        reach = 0.0 if isinstance(reach, str) else reach
+        sc = self.sc
+        return step_limit(self.cfg.max_steps, sc.straight_line_length(), reach, sc.robot_speed)
+
+    def estimate_seconds(self, steps: int) -> float:
+        """An upper estimate of the run's wall time (s) if it uses ``steps`` steps: the time of
+        one population's cost (measured now, after a warm-up call) times the iterations of the
+        first plan and of a replan at every ``replan_every`` steps (held replans cost less)."""
+        cfg = self.cfg
+        if self._per_pop is None:  # measured once: estimates of one run stay comparable
+            X = np.random.default_rng(0).uniform(*self.cost.bounds, (cfg.pop_size, self.cost.dim))
+            self.cost(X[:2], start=self.sc.start)  # compiles once per process
+            t0 = time.perf_counter()
+            self.cost(X, start=self.sc.start)
+            self._per_pop = time.perf_counter() - t0
+        per_pop = self._per_pop
+        first = cfg.first_iters * (cfg.first_pop_size or cfg.pop_size) / cfg.pop_size
+        return per_pop * (first + cfg.replan_iters * steps / cfg.replan_every)
+
+    def _holds(self, remainder, force: bool, step: int) -> bool:
+        """Keep the plan without optimising: it runs straight to the goal
+        (:attr:`PlannerConfig.hold_straight`) or the last search could not improve it and it is
+        near the shortest static route (:attr:`PlannerConfig.hold_gap`), and the guard finds it
+        collision-free to its end.
+
+        A straight plan has the least cost any candidate can have: C1 equals the straight-line
+        distance, its lower bound, and C2 = C3 = 0. The predictions a plan was verified against
+        are the same at every later step, so it stays verified until the goal.
+        """
+        if remainder is None or force or not self.dynamic or self.following is not None:
+            return False
+        if self.cfg.mode != "spacetime":  # the frozen-map planner judges by another model
+            return False
+        length = polyline_length(remainder)
+        if not (self._straight(remainder, length) or self._near_shortest(remainder, length)):
+            return False
+        return self.guard.stretch_hits(remainder, float(step), length) == 0
+
+    def _straight(self, remainder, length: float) -> bool:
+        if not self.cfg.hold_straight:
+            return False
+        a, b = remainder[0], remainder[-1]
+        d = b - a
+        direct = float(np.hypot(d[0], d[1]))
+        if len(remainder) > 2:
+            inner = remainder[1:-1] - a
+            off = np.abs(inner[:, 0] * d[1] - inner[:, 1] * d[0]) / max(direct, 1e-300)
+            if off.max() > STRAIGHT_TOL:
+                return False
+        return length <= direct + STRAIGHT_TOL  # else collinear but doubling back
+
+    def _near_shortest(self, remainder, length: float) -> bool:
+        gap = self.cfg.hold_gap
+        if not (self.stalled and gap > 0 and self.guide is not None):
+            return False
+        return length <= (1.0 + gap) * self.guide.shortest(remainder[0])
+
+    def _reachable(self):
+        """Length (px) of a route around the static obstacles, or why there is none.
+
+        The guide's shortest route answers when there is one; only when it finds none (the
+        margin may close a narrow passage) does the exact oracle at the true radius decide.
+        """
+        if self.routes:
+            return float(np.hypot(*np.diff(self.routes[0], axis=0).T).sum())
+        if self._reach is None:
+            from mawdo.planning.guide.oracle import scenario_optimum
+
+            opt = scenario_optimum(self.sc, static_only=True)
+            self._reach = opt.length if opt.reachable else opt.reason
+        return self._reach
+
+    def _fallback(self, drive, pos, step: int, cands):
+        """No candidate is safe: wait if that is safe, else the least-bad evasive move (with
+        the rule on, one that keeps a safe continuation if any does: :class:`SafeRun`)."""
+        to, waited, kept = self._pending_escape(pos, step, self._target(pos, cands))
+        to = self._limited(pos, to, step)
+        self.counts["inevitable"] += not kept
+        self.counts["waits" if waited else "evasions"] += 1
+        drive.move(step, to.copy())
+        return to
+
+    def _finish(self, drive, reason: str) -> PlanResult:
+        return drive.result(
+            reason,
+            self.given,
+            margin=self.cfg.clearance,
+            limits=self.limits,
+            algorithm=self.algorithm,
+            seed=self.seed,
+            config=self.cfg,
+            replans=self.replans,
+            **self.counts,
+        )

@@ -1,0 +1,1 @@
+"""Safety: the guard, the inevitable-collision rule and the robot's kinematic limits."""

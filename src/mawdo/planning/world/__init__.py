@@ -1,0 +1,1 @@
+"""The world a plan runs in: scenario, obstacle motion, geometry, raster maps, file schema."""

@@ -1,0 +1,331 @@
+"""World model for path planning: map, start and goal, robot, obstacles and their motion.
+
+A scenario is read from a dict (TOML or JSON file, schema version 1), validated field by field by
+pydantic and then checked as a whole (start and goal inside the map with the whole robot disc
+(its centre at least the radius from the border) and clear of obstacles,
+polygons simple, moving obstacles inside the map). Every problem is reported with the path of the
+offending field, e.g. ``obstacles[2].radius: must be > 0``, in one :class:`ScenarioError`.
+
+Units: positions and sizes in pixels (x right, y up, origin at the lower-left map corner), time in
+time steps, speeds in pixels per time step.
+
+The file format (fields, validation and messages) is :mod:`mawdo.planning.world.scenario_schema`;
+its layout is shown there.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from collections.abc import Callable
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from pydantic import ValidationError
+
+from mawdo.planning.world.motion import BoundedRandomWalk, ConstantVelocity, Motion, Patrol, Static
+from mawdo.planning.world.scenario_schema import (
+    MAX_RUN_STEPS,
+    SCHEMA_VERSION,
+    CircleObstacle,
+    ConstantVelocityMotion,
+    PatrolMotion,
+    PolygonObstacle,
+    RandomWalkMotion,
+    ScenarioError,
+    ScenarioSpec,
+    field_errors,
+    offset_bounds,
+    semantic_errors,
+)
+from mawdo.planning.world.scenario_text import ScenarioTextError, parse_scenario_text
+from mawdo.registry import Registry
+
+__all__ = [
+    "MAX_RUN_STEPS",
+    "SCENARIOS",
+    "SCHEMA_VERSION",
+    "CircleObstacle",
+    "Obstacle",
+    "PolygonObstacle",
+    "Scenario",
+    "ScenarioError",
+    "ScenarioSpec",
+    "get_scenario",
+    "load_scenario",
+    "scenario_from_dict",
+]
+
+
+# --------------------------------------------------------------------------------------------
+# runtime objects
+
+
+@dataclass(frozen=True, eq=False)
+class Obstacle:
+    """One obstacle of a scenario: its shape (at offset zero) and its motion.
+
+    Attributes
+    ----------
+    index : int
+        Position in ``Scenario.obstacles``.
+    id : str
+        Name from the file, or ``obstacle-<index>``.
+    shape : CircleObstacle or PolygonObstacle
+        The validated shape spec (pixels), as written in the file.
+    motion : Motion
+        Translation of the shape over time (see :mod:`mawdo.planning.world.motion`).
+    """
+
+    index: int
+    id: str
+    shape: CircleObstacle | PolygonObstacle
+    motion: Motion
+
+    @property
+    def is_static(self) -> bool:
+        return self.motion.is_static
+
+    @property
+    def is_circle(self) -> bool:
+        return isinstance(self.shape, CircleObstacle)
+
+    def offset(self, t) -> np.ndarray:
+        """Translation of the shape at times ``t`` (time steps): ``t.shape + (2,)`` pixels."""
+        return self.motion.offset(t)
+
+    def knots(self, t0: float, t1: float) -> tuple[np.ndarray, np.ndarray]:
+        """Constant-velocity pieces of ``[t0, t1]``; see :meth:`Motion.knots`."""
+        return self.motion.knots(t0, t1)
+
+
+@dataclass(frozen=True, eq=False)
+class Scenario:
+    """A validated scenario ready for planning.
+
+    Build one with :func:`scenario_from_dict`, :func:`load_scenario`, :func:`get_scenario` or the
+    raster loaders in :mod:`mawdo.planning.world.rasters`.
+
+    Attributes
+    ----------
+    spec : ScenarioSpec
+        The validated file contents (round-trips with :meth:`to_dict`).
+    obstacles : tuple of Obstacle
+        Runtime obstacles, in file order.
+    """
+
+    spec: ScenarioSpec
+    obstacles: tuple[Obstacle, ...]
+
+    @property
+    def name(self) -> str:
+        return self.spec.name
+
+    @property
+    def width(self) -> float:
+        """Map width (pixels)."""
+        return self.spec.width
+
+    @property
+    def height(self) -> float:
+        """Map height (pixels)."""
+        return self.spec.height
+
+    @property
+    def bounds(self) -> tuple[float, float, float, float]:
+        """Map box ``(0, 0, width, height)`` (pixels)."""
+        return (0.0, 0.0, self.spec.width, self.spec.height)
+
+    @property
+    def start(self) -> np.ndarray:
+        """Start position (pixels), shape (2,)."""
+        return np.array(self.spec.start, dtype=float)
+
+    @property
+    def goal(self) -> np.ndarray:
+        """Goal position (pixels), shape (2,)."""
+        return np.array(self.spec.goal, dtype=float)
+
+    @property
+    def robot_radius(self) -> float:
+        """Robot disc radius ``r`` (pixels); obstacles are inflated by it."""
+        return self.spec.robot.radius
+
+    @property
+    def robot_speed(self) -> float:
+        """Robot speed ``v`` (pixels per time step)."""
+        return self.spec.robot.speed
+
+    @property
+    def seed(self) -> int:
+        return self.spec.seed
+
+    @property
+    def static_indices(self) -> list[int]:
+        """Indices of obstacles that never move."""
+        return [o.index for o in self.obstacles if o.is_static]
+
+    @property
+    def moving_indices(self) -> list[int]:
+        """Indices of obstacles that move."""
+        return [o.index for o in self.obstacles if not o.is_static]
+
+    @property
+    def spots(self) -> np.ndarray:
+        """Waiting spots (pixels), shape ``(k, 2)``; ``(0, 2)`` when the file gives none."""
+        return np.asarray(self.spec.spots or [], dtype=float).reshape(-1, 2)
+
+    def straight_line_length(self) -> float:
+        """Length of the straight start-goal segment (pixels)."""
+        return float(np.hypot(*(self.goal - self.start)))
+
+    def offsets(self, t) -> np.ndarray:
+        """Every obstacle's translation at times ``t`` (time steps).
+
+        Parameters
+        ----------
+        t : float or array_like
+            Times (time steps), any shape.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape ``t.shape + (n_obstacles, 2)``, pixels. Deterministic in the scenario's seed.
+        """
+        t = np.asarray(t, dtype=float)
+        if not self.obstacles:
+            return np.zeros(t.shape + (0, 2))
+        return np.stack([o.offset(t) for o in self.obstacles], axis=-2)
+
+    def to_dict(self) -> dict:
+        """The scenario as a plain dict (JSON-compatible) that validates back to an equal one."""
+        return self.spec.model_dump(mode="json", exclude_none=True)
+
+
+# --------------------------------------------------------------------------------------------
+# building and loading
+
+
+def _build_motion(ob, index: int, spec: ScenarioSpec) -> Motion:
+    m = ob.motion
+    lo, hi = offset_bounds(ob, spec.width, spec.height)
+    if isinstance(m, ConstantVelocityMotion):
+        return ConstantVelocity(tuple(m.velocity), tuple(lo), tuple(hi))
+    if isinstance(m, PatrolMotion):
+        way = np.asarray(m.waypoints, dtype=float)
+        route = np.vstack([np.zeros((1, 2)), way])
+        waits = None if m.waits is None else np.asarray(m.waits, dtype=float)
+        if m.cycle == "back_and_forth":
+            route = np.vstack([route, route[-2:0:-1]])  # retrace, the closing leg ends at (0, 0)
+            waits = None if waits is None else np.concatenate([waits, waits[-2:0:-1]])
+        return Patrol(route, m.speed, waits)
+    if isinstance(m, RandomWalkMotion):
+        # one independent stream per obstacle, derived from the scenario seed
+        seed = np.random.SeedSequence(spec.seed, spawn_key=(index,))
+        return BoundedRandomWalk(m.step, tuple(lo), tuple(hi), seed, m.hold)
+    return Static()
+
+
+def scenario_from_spec(spec: ScenarioSpec, source: str | None = None) -> Scenario:
+    """Check a parsed spec as a whole and build the runtime :class:`Scenario`."""
+    errors = semantic_errors(spec)
+    if errors:
+        raise ScenarioError(errors, source)
+    obstacles = tuple(
+        Obstacle(i, ob.id or f"obstacle-{i}", ob, _build_motion(ob, i, spec))
+        for i, ob in enumerate(spec.obstacles)
+    )
+    return Scenario(spec, obstacles)
+
+
+def scenario_from_dict(data: Any, source: str | None = None) -> Scenario:
+    """Validate a scenario dict (the parsed TOML/JSON file) and build the :class:`Scenario`.
+
+    Parameters
+    ----------
+    data : dict
+        Scenario contents, schema version 1.
+    source : str, optional
+        Name of the origin, used in error messages.
+
+    Raises
+    ------
+    ScenarioError
+        With every problem found, each prefixed by its field path.
+    """
+    if not isinstance(data, dict):
+        raise ScenarioError([("", f"expected a table/object, got {type(data).__name__}")], source)
+    try:
+        spec = ScenarioSpec.model_validate(data)
+    except ValidationError as exc:
+        raise ScenarioError(field_errors(exc), source) from None
+    return scenario_from_spec(spec, source)
+
+
+def load_scenario(path: str | Path) -> Scenario:
+    """Read and validate a scenario file (``.toml`` or ``.json``).
+
+    Raises
+    ------
+    FileNotFoundError
+        If the file does not exist.
+    ScenarioError
+        If the file cannot be parsed or does not validate.
+    """
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in (".toml", ".json"):
+        raise ScenarioError(
+            [("", f"unsupported file type {suffix!r} (use .toml or .json)")], str(path)
+        )
+    if not path.is_file():
+        raise FileNotFoundError(f"no such scenario file: {str(path)!r}")
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise ScenarioError([("", f"cannot read file: {exc}")], str(path)) from None
+    try:
+        data = parse_scenario_text(raw.decode("utf-8"), suffix[1:])
+    except UnicodeDecodeError as exc:
+        raise ScenarioError(
+            [("", f"cannot parse {suffix[1:].upper()}: {exc}")], str(path)
+        ) from None
+    except ScenarioTextError as exc:
+        raise ScenarioError([("", str(exc))], str(path)) from None
+    return scenario_from_dict(data, source=str(path))
+
+
+# --------------------------------------------------------------------------------------------
+# built-in scenarios
+
+#: Named scenarios: each entry is a zero-argument factory returning a fresh :class:`Scenario`.
+SCENARIOS: Registry[Callable[[], Scenario]] = Registry("scenario")
+
+
+def _builtin(filename: str) -> Callable[[], Scenario]:
+    def factory() -> Scenario:
+        text = resources.files("mawdo.planning").joinpath("data", filename).read_text("utf-8")
+        return scenario_from_dict(tomllib.loads(text), source=f"builtin:{filename}")
+
+    return factory
+
+
+SCENARIOS.register("paper", _builtin("paper.toml"))
+
+
+def get_scenario(name: str | Path) -> Scenario:
+    """A built-in scenario by name (see :data:`SCENARIOS`) or a scenario file by path.
+
+    Raises
+    ------
+    mawdo.registry.UnknownNameError
+        For an unknown name that is not an existing file; the message lists close names.
+    """
+    if not isinstance(name, str | Path):
+        raise TypeError(f"scenario name must be a string, got {type(name).__name__}")
+    name = str(name)
+    if name.lower() not in SCENARIOS and Path(name).suffix.lower() in (".toml", ".json"):
+        return load_scenario(name)
+    return SCENARIOS[name]()
