@@ -166,3 +166,14 @@ def waiting_pocket():
 
 
 FAMILIES = {"maze": serpentine_maze, "u-trap": u_trap, "rooms": rooms}
+
+
+def around_a_block():
+    """A 200 px map, one 40 px block in the middle, start and goal at opposite corners (the
+    straight line passes through the block): the kinematic limits' test map."""
+    return scenario_from_dict({
+        "schema_version": 1, "width": 200.0, "height": 200.0, "start": [20.0, 20.0],
+        "goal": [180.0, 180.0], "robot": {"radius": 4.0, "speed": 4.0},
+        "obstacles": [{"shape": "polygon", "vertices": [[80, 80], [120, 80], [120, 120],
+                                                         [80, 120]]}],
+    })  # fmt: skip

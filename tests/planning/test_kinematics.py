@@ -14,7 +14,7 @@ from mawdo.planning.judge.kincheck import check_kinematics
 from mawdo.planning.run.config import PlannerConfig
 from mawdo.planning.run.planner import plan
 from mawdo.planning.safety.kinematics import Limits, project, turn_penalty
-from mawdo.planning.world.scenario import scenario_from_dict
+from tests.planning.maps import around_a_block
 
 
 def test_speed_limit_scales_the_velocity_down():
@@ -80,20 +80,11 @@ def test_config_refuses_bad_limits(name, value):
         PlannerConfig(**{name: value})
 
 
-def _around_a_block():
-    return scenario_from_dict({
-        "schema_version": 1, "width": 200.0, "height": 200.0, "start": [20.0, 20.0],
-        "goal": [180.0, 180.0], "robot": {"radius": 4.0, "speed": 4.0},
-        "obstacles": [{"shape": "polygon", "vertices": [[80, 80], [120, 80], [120, 120],
-                                                         [80, 120]]}],
-    })  # fmt: skip
-
-
 def test_a_run_with_limits_keeps_them_and_reaches_the_goal():
     """Limits speed 3, accel 0.5, turn 0.2 on a robot of speed 4: the run without limits
     breaks them (4 px per step from rest at once), the limited run keeps them all (the
     checker) and still reaches the goal; its first step from rest is at most 0.5 px."""
-    sc = _around_a_block()
+    sc = around_a_block()
     lim = {"max_speed": 3.0, "max_accel": 0.5, "max_turn": 0.2}
     free = plan(sc, "mawdo", seed=0, config="quick")
     assert not check_kinematics(free.trajectory, 3.0, 0.5, 0.2).ok

@@ -4,6 +4,10 @@ rate of an executed trajectory, from its positions alone (NumPy only; shares no 
 
 The trajectory is the robot's positions at integer time steps, straight and uniform in
 between; the robot starts at rest. Step ``s`` is the move from position ``s`` to ``s + 1``.
+A step of at most :data:`REST_TOL` px is the robot standing; it keeps the heading of its
+last move, so a turn made while standing is counted against the steps it took: between two
+moves ``i < j`` with only standing steps in between, the turn rate is the angle between them
+over ``j - i``.
 """
 
 from __future__ import annotations
@@ -26,11 +30,12 @@ class KinematicReport:
     ----------
     speed, accel, turn : tuple of int
         Steps ``s`` (the move from position ``s`` to ``s + 1``) whose speed, change of
-        velocity from step ``s - 1`` (step 0 from rest) or change of heading from step
-        ``s - 1`` exceed the limit.
+        velocity from step ``s - 1`` (step 0 from rest) or turn rate exceed the limit; a move's
+        turn rate is the angle from the robot's previous move over the steps between them
+        (standing steps turn in place).
     worst : dict
-        Largest speed (px per step), acceleration (px per step squared) and turn (radians per
-        step) of the trajectory.
+        Largest speed (px per step), acceleration (px per step squared) and turn rate (radians
+        per step) of the trajectory.
     """
 
     speed: tuple[int, ...]
@@ -73,8 +78,9 @@ def check_kinematics(
         Most change of velocity per step (px per step squared), the velocity before the first
         step being zero.
     max_turn : float, optional
-        Most angle between two consecutive moves (radians per step); a step from rest or to
-        rest (a move shorter than ``REST_TOL``) has no heading and never counts.
+        Most change of heading per step (radians per step): two consecutive moves ``i < j``
+        (the steps between them standing: shorter than ``REST_TOL``) may differ by at most
+        ``(j - i) max_turn``; the first move may take any heading.
     tol : float
         Relative slack: a value counts as over a limit only above ``limit * (1 + tol)``.
 
@@ -89,12 +95,11 @@ def check_kinematics(
     speed = np.linalg.norm(u, axis=1)
     accel = np.linalg.norm(np.diff(np.vstack([np.zeros((1, 2)), u]), axis=0), axis=1)
     turn = np.zeros(len(u))
-    if len(u) > 1:
-        a, b = u[:-1], u[1:]
-        na, nb = speed[:-1], speed[1:]
-        both = (na > REST_TOL) & (nb > REST_TOL)
-        cos = np.sum(a * b, axis=1) / np.where(both, na * nb, 1.0)
-        turn[1:] = np.where(both, np.arccos(np.clip(cos, -1.0, 1.0)), 0.0)
+    moves = np.nonzero(speed > REST_TOL)[0]
+    if len(moves) > 1:  # each move against the robot's previous move, standing steps between
+        i, j = moves[:-1], moves[1:]
+        cross = u[i, 0] * u[j, 1] - u[i, 1] * u[j, 0]
+        turn[j] = np.abs(np.arctan2(cross, np.sum(u[i] * u[j], axis=1))) / (j - i)
     over = {}
     for name, values, limit in (
         ("speed", speed, max_speed),

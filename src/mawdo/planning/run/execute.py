@@ -107,9 +107,9 @@ class Run(TimedRun, SafeRun, LimitedRun):
         self.counts = {"waits": 0, "evasions": 0, "fallbacks": 0, "holds": 0, "inevitable": 0}
         on = dynamic and cfg.ics_horizon > 0  # the rule of issue 27: no inevitable collisions
         self.ics = SafeContinuation(sc, cfg.clearance, cfg.ics_horizon) if on else None
-        self.limits = limits = Limits.of(cfg) if dynamic else None
-        if self.ics is not None and self.limits is not None:  # stops and turns take time
-            self.ics.limits = self.limits if (cfg.max_accel, cfg.max_turn) != (None, None) else None
+        self.limits = limits = Limits.of(cfg, self.given.robot_speed) if dynamic else None
+        if self.ics is not None and limits is not None:  # stops and turns take time
+            self.ics.limits = limits if (limits.accel, limits.turn) != (None, None) else None
         self.stalled = False  # the last search found nothing cheaper than its warm start
         self.chosen_index = 0  # which candidate the guard accepted at the last replan
         self._reach = None  # the oracle's answer, when the guide found no route

@@ -33,6 +33,7 @@ from mawdo.planning.run.result import (  # noqa: F401  (public names re-exported
     result_from_bytes,
     result_to_bytes,
 )
+from mawdo.planning.safety.kinematics import limits_refusal
 from mawdo.planning.world.path import polyline_length
 
 
@@ -93,8 +94,10 @@ def prepare(
     Raises
     ------
     ValueError
-        An unknown algorithm, preset or setting, a setting out of its range, a bad seed, or a
-        map the guide cannot handle (too many obstacle corners).
+        An unknown algorithm, preset or setting, a setting out of its range, a bad seed, a
+        map the guide cannot handle (too many obstacle corners), or kinematic limits that cannot
+        reach the goal within the step limit (:func:`~mawdo.planning.safety.kinematics
+        .limits_refusal`).
     """
     from mawdo.optimizers import OPTIMIZERS
     from mawdo.validate import check_seed
@@ -103,7 +106,12 @@ def prepare(
     OPTIMIZERS[algorithm]  # an unknown name fails here, listing the known ones
     check_seed(seed)
     cfg = fit_config(sc, resolve_config(config, overrides))
-    return Run(sc, algorithm, seed, cfg, dynamic)
+    run = Run(sc, algorithm, seed, cfg, dynamic)
+    if run.limits is not None:  # limits that cannot reach the goal are refused, not run
+        refusal = limits_refusal(run.limits, sc.straight_line_length(), run.step_limit()[0])
+        if refusal is not None:
+            raise ValueError(refusal)
+    return run
 
 
 def executed_length(result: PlanResult) -> float:

@@ -239,7 +239,9 @@ class SafeContinuation:
 
     # -- continuations ---------------------------------------------------------------------
 
-    def find(self, p, t: float, t0: float, route=None, wait_first: bool = False, vel=None):
+    def find(
+        self, p, t: float, t0: float, route=None, wait_first: bool = False, vel=None, turn=None
+    ):
         """A safe continuation from ``p`` (pixels) at time ``t`` up to ``t0 + horizon``, or
         ``None`` when there is none of the three kinds.
 
@@ -247,12 +249,14 @@ class SafeContinuation:
         (a run that gives up wants to stop, not to drive on); ``t0`` is the decision's time.
         ``vel`` (px per step): the robot's velocity at ``p``; with :attr:`limits` set it makes
         the search :func:`~mawdo.planning.safety.ics_limits.limited_find` (continuations within the
-        kinematic limits from that velocity); otherwise it is not looked at.
+        kinematic limits from that velocity); otherwise it is not looked at. ``turn``: the
+        robot's ``(heading, still)`` state (:func:`~mawdo.planning.safety.kinematics.turned`;
+        None: no heading yet), for the turn-rate limit from rest.
         """
         if self.limits is not None and vel is not None:
             from mawdo.planning.safety.ics_limits import limited_find
 
-            found = limited_find(self, p, t, t0, vel, route=route, wait_first=wait_first)
+            found = limited_find(self, p, t, t0, vel, route, wait_first, turn=turn)
             return None if found is None else Continuation(*found)
         p = np.asarray(p, dtype=float)
         end = t0 + self.horizon

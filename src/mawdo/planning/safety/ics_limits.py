@@ -35,7 +35,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mawdo.planning.safety.kinematics import project, wanted_step
+from mawdo.planning.safety.kinematics import project, turned, wanted_step
 from mawdo.planning.world.path import advance, polyline_length
 
 __all__ = ["limited_find"]
@@ -66,10 +66,11 @@ def _ends_at_rest(ics, kind: str, points: list, t: float, end: float, t0: float,
     return kind, pts, times
 
 
-def _follow(ics, route, p, vel, t: float, end: float, t0: float, mv):
+def _follow(ics, route, p, vel, t: float, end: float, t0: float, mv, turn):
     """The plan's rest from ``p`` followed within the limits until the goal or ``end``."""
     lim, v = ics.limits, ics.v
     pts, u, rest = [np.asarray(p, float)], np.asarray(vel, float), np.asarray(route, float)
+    heading, still = turn
     goal = rest[-1]
     for _ in range(int(np.ceil(max(end - t, 0.0)))):
         if np.hypot(*(goal - pts[-1])) <= 1e-9:
@@ -77,7 +78,8 @@ def _follow(ics, route, p, vel, t: float, end: float, t0: float, mv):
         target, after, _, _ = advance(rest, v)
         want = target - pts[-1]
         left = float(np.hypot(*want)) + polyline_length(after)
-        u = project(wanted_step(want, left, u, lim), u, lim)
+        u = project(wanted_step(want, left, u, lim), u, lim, heading, still)
+        heading, still = turned(u, heading, still)
         to = pts[-1] + u
         pts.append(to)
         rest = after if np.max(np.abs(to - target)) <= 1e-12 else np.vstack([to, after])
@@ -88,16 +90,21 @@ def _follow(ics, route, p, vel, t: float, end: float, t0: float, mv):
     return "goal", arr, times
 
 
-def limited_find(ics, p, t: float, t0: float, vel, route=None, wait_first=False, mv=None):
+def limited_find(
+    ics, p, t: float, t0: float, vel, route=None, wait_first=False, mv=None, turn=None
+):  # fmt: skip
     """:meth:`~mawdo.planning.safety.ics.SafeContinuation.find` for a robot at ``p`` (pixels) moving
     at ``vel`` (px per step) at time ``t``, under ``ics.limits`` (module docstring); the same
-    order: the plan's rest (unless ``wait_first``), braking, escape moves. Returns ``(kind,
+    order: the plan's rest (unless ``wait_first``), braking, escape moves. ``turn``: the robot's
+    ``(heading, still)`` (:func:`~mawdo.planning.safety.kinematics.turned`; None: not moved
+    yet), so that a continuation from rest turns in place as the run would. Returns ``(kind,
     points, times)`` (a :class:`~mawdo.planning.safety.ics.Continuation`'s fields) or None."""
     p, vel = np.asarray(p, dtype=float), np.asarray(vel, dtype=float)
+    turn = (None, 0) if turn is None else turn
     end = t0 + ics.horizon
     mv = ics.movers(t0, near=(p, t)) if mv is None else mv
     cap = int(np.ceil(end - t)) + 1
-    along = None if route is None else _follow(ics, route, p, vel, t, end, t0, mv)
+    along = None if route is None else _follow(ics, route, p, vel, t, end, t0, mv, turn)
     if along is not None and not wait_first:
         return along
     found = _ends_at_rest(ics, "wait", _brake([p], vel, ics.limits, cap), t, end, t0, mv)
@@ -107,9 +114,10 @@ def limited_find(ics, p, t: float, t0: float, vel, route=None, wait_first=False,
         if t + k >= end:
             break
         for off in offsets / k:
-            pts, u = [p], vel
+            pts, u, (heading, still) = [p], vel, turn
             for _ in range(k):
-                u = project(off, u, ics.limits)
+                u = project(off, u, ics.limits, heading, still)
+                heading, still = turned(u, heading, still)
                 pts.append(pts[-1] + u)
             pts = _brake(pts, u, ics.limits, cap)
             found = _ends_at_rest(ics, "spot", pts, t, end, t0, mv)

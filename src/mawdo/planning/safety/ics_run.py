@@ -93,7 +93,8 @@ class SafeRun:
         if self.ics is None:
             return pos, ""
         t = float(step)
-        c = self.ics.find(pos, t, t, wait_first=True, vel=self._vel)
+        turn = (self._heading, self._still)
+        c = self.ics.find(pos, t, t, wait_first=True, vel=self._vel, turn=turn)
         if c is None:
             self.counts["inevitable"] += 1
             return pos, "; it found no spot where waiting is safe"

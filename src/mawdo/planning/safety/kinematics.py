@@ -7,17 +7,21 @@ limits (:class:`Limits`, from ``PlannerConfig.max_speed``, ``max_accel``, ``max_
 * speed: ``|u_s| <= max_speed``;
 * acceleration: ``|u_s - u_{s-1}| <= max_accel`` (px per step squared; ``u_{-1} = 0``: the
   robot starts at rest);
-* turn rate: the angle between ``u_{s-1}`` and ``u_s`` is at most ``max_turn`` (radians per
-  step) whenever both are moves (from rest any heading may be taken).
+* turn rate: the heading turns by at most ``max_turn`` radians per step, standing steps
+  included: between two moves ``u_i`` and ``u_j`` (``i < j``, the robot at rest in between) the
+  angle is at most ``(j - i) max_turn``. A robot at rest keeps the heading of its last move
+  and turns in place; only before its first move may it take any heading.
 
 :func:`project` turns a wanted velocity into the nearest one the limits allow, in that order
 (speed clamp, acceleration projection, turn clamp): the acceleration projection stays inside
 the speed disc (a point between two points of a disc), and turning toward the previous
 heading at the same speed only brings the velocity closer to the previous one, so the result
-meets all three. :class:`LimitedRun` drives every step of a run through it (the guard checks
-the move actually driven); :func:`turn_penalty` is the refinement's share (the candidate cost
-grows with each corner's turn beyond what one step allows). The independent checker's verdict
-is :func:`mawdo.planning.judge.kincheck.check_kinematics`.
+meets all three. From rest, a move whose heading is beyond what the standing steps have turned
+is not taken: the robot stands one more step, turning in place (:func:`turned` keeps the
+heading and the standing steps). :class:`LimitedRun` drives every step of a run through it (the
+guard checks the move actually driven); :func:`turn_penalty` is the refinement's share (the
+candidate cost grows with each corner's turn beyond what one step allows). The independent
+checker's verdict is :func:`mawdo.planning.judge.kincheck.check_kinematics`.
 
 A speed limit below the scenario's robot speed is the robot's speed for the whole run
 (:func:`at_speed`): the refinement's cost, the guard, the inevitable-collision rule and the
@@ -47,9 +51,11 @@ __all__ = [
     "Limits",
     "LimitedRun",
     "at_speed",
+    "limits_refusal",
     "project",
     "stopping_speed",
     "turn_penalty",
+    "turned",
     "wanted_step",
 ]
 
@@ -57,6 +63,8 @@ __all__ = [
 TURN_WEIGHT = 100.0
 #: Slack (relative) left inside each limit, so that rounding never reads as a violation.
 SLACK = 1e-9
+#: A move this short (pixels) is the robot at rest: it keeps its heading.
+REST_TOL = 1e-9
 
 
 @dataclass(frozen=True)
@@ -78,10 +86,22 @@ class Limits:
     turn: float | None = None
 
     @classmethod
-    def of(cls, config) -> Limits | None:
-        """The limits of a :class:`~mawdo.planning.run.config.PlannerConfig`, or ``None`` when
-        it sets none (the planner then runs as without this module)."""
-        lim = cls(config.max_speed, config.max_accel, config.max_turn)
+    def of(cls, config, speed: float | None = None) -> Limits | None:
+        """The limits of a :class:`~mawdo.planning.run.config.PlannerConfig` that constrain
+        anything, or ``None`` when none does (the planner then runs as without this module).
+
+        With the robot's ``speed`` (px per step) given, a limit that constrains nothing is
+        dropped: a speed cap at or above it, an acceleration of ``2 v`` or more (``v`` the
+        speed within the cap: no change of velocity exceeds ``2 v``) and a turn rate of
+        ``pi`` or more (no change of heading exceeds ``pi``).
+        """
+        top, accel, turn = config.max_speed, config.max_accel, config.max_turn
+        if speed is not None:
+            v = speed if top is None else min(speed, top)
+            top = None if top is not None and top >= speed else top
+            accel = None if accel is not None and accel >= 2.0 * v else accel
+            turn = None if turn is not None and turn >= math.pi else turn
+        lim = cls(top, accel, turn)
         return None if lim == cls() else lim
 
 
@@ -106,14 +126,51 @@ def at_speed(scenario, max_speed: float | None):
     return type(scenario)(spec=spec, obstacles=scenario.obstacles)
 
 
+def limits_refusal(limits: Limits, distance: float, steps: int) -> str | None:
+    """Why ``limits`` cannot bring the robot to a goal ``distance`` px away (straight line, a
+    lower bound on any route) within ``steps`` steps, naming the range that can; None when
+    they can.
+
+    From rest to rest in ``n`` steps the robot covers at most ``n max_speed`` px and, speeding
+    up and slowing down by ``max_accel`` per step, at most ``max_accel (n + 1)^2 / 4`` px; every
+    turn up to a half turn (``pi``) must fit in the step limit at ``max_turn`` per step.
+    """
+    n = int(steps)
+    how = f"within the run's step limit of {n:,} steps"
+    more = "; or allow more steps (max_steps, CLI --max-steps)"
+    if limits.speed is not None and distance > n * limits.speed:
+        return (
+            f"max_speed={limits.speed:g} px per step cannot cover the {distance:.1f} px from "
+            f"start to goal {how}: use max_speed >= {distance / n:.3g}{more}"
+        )
+    if limits.accel is not None and distance > limits.accel * (n + 1) ** 2 / 4.0:
+        need = 2.0 * math.sqrt(distance / limits.accel) - 1.0
+        return (
+            f"max_accel={limits.accel:g} px per step squared cannot bring the robot from rest "
+            f"over the {distance:.1f} px from start to goal {how} (it needs at least "
+            f"{need:,.0f}): use max_accel >= {4.0 * distance / (n + 1) ** 2:.3g}{more}"
+        )
+    if limits.turn is not None and limits.turn * n < math.pi:
+        return (
+            f"max_turn={limits.turn:g} radians per step cannot fit a half turn {how} (it "
+            f"needs {math.pi / limits.turn:,.0f}): use max_turn >= {math.pi / n:.3g}{more}"
+        )
+    return None
+
+
 def _rotate(v: np.ndarray, ang: float) -> np.ndarray:
     c, s = math.cos(ang), math.sin(ang)
     return np.array([c * v[0] - s * v[1], s * v[0] + c * v[1]])
 
 
-def project(want, prev, limits: Limits) -> np.ndarray:
+def project(want, prev, limits: Limits, heading=None, still: int = 0) -> np.ndarray:
     """The velocity (px per step) nearest ``want`` that ``limits`` allow after ``prev`` (the
-    previous step's velocity; zeros at rest); see the module docstring for the order."""
+    previous step's velocity; zeros at rest); see the module docstring for the order.
+
+    ``heading`` (a unit vector, or None before the first move) and ``still`` (steps stood since
+    the last move, >= 0) are the robot's :func:`turned` state: from rest a move is taken only
+    within ``(still + 1) max_turn`` of the heading, else the robot stands (zero velocity).
+    """
     u = np.asarray(want, dtype=float).copy()
     prev = np.asarray(prev, dtype=float)
     if limits.speed is not None:
@@ -128,13 +185,30 @@ def project(want, prev, limits: Limits) -> np.ndarray:
         if n > top:
             u = prev + d * (top / n)
     speed, before = math.hypot(*u), math.hypot(*prev)
-    if limits.turn is not None and speed > 0.0 and before > 0.0:
+    if limits.turn is None or speed <= REST_TOL:
+        return u
+    if before > REST_TOL:
         cross = prev[0] * u[1] - prev[1] * u[0]
         ang = math.atan2(cross, float(prev @ u))
         top = limits.turn * (1.0 - SLACK)
         if abs(ang) > top:
             u = _rotate(prev * (speed / before), math.copysign(top, ang))
+    elif heading is not None:  # at rest: the standing steps turned it in place
+        h = heading
+        ang = abs(math.atan2(h[0] * u[1] - h[1] * u[0], h[0] * u[0] + h[1] * u[1]))
+        if ang > (still + 1) * limits.turn * (1.0 - SLACK):
+            return np.zeros(2)
     return u
+
+
+def turned(u, heading, still: int):
+    """The robot's heading state after a step of velocity ``u`` (px per step): ``(unit heading
+    of u, 0)`` after a move, ``(heading, still + 1)`` after a standing step (a move of at most
+    :data:`REST_TOL` px); ``heading`` None is a robot that has not moved yet."""
+    n = math.hypot(*u)
+    if n > REST_TOL:
+        return np.asarray(u, dtype=float) / n, 0
+    return heading, still + 1
 
 
 def stopping_speed(distance: float, accel: float) -> float:
@@ -150,7 +224,8 @@ def wanted_step(want, left: float, prev, limits: Limits) -> np.ndarray:
     slower so as to stop at the goal within ``max_accel`` (:func:`stopping_speed`), and
     slower where the heading is beyond one step's ``max_turn`` (the last speed less
     ``max_accel``, or rest without an acceleration limit): the robot brakes while it turns,
-    and from rest it may take any heading, so it never circles a point it cannot turn to."""
+    and from rest it turns in place (:func:`project`), so it never circles a point it cannot
+    turn to."""
     want = np.asarray(want, dtype=float)
     n = float(np.hypot(*want))
     if limits.accel is not None and n > 0.0:
@@ -198,6 +273,8 @@ class LimitedRun:
     """
 
     _vel = np.zeros(2)  # the last step's velocity (px per step)
+    _heading = None  # the last move's unit heading (None before the first move)
+    _still = 0  # steps stood since the last move
 
     def _limited(self, pos, to, step: int, remainder=None):
         """Where the robot ends the step from ``pos`` (pixels) that wanted to end at ``to``;
@@ -206,14 +283,15 @@ class LimitedRun:
         if self.limits is None:
             return to
         t, lim = float(step), self.limits
-        first = pos + project(to - pos, self._vel, lim)
+        state = (self._heading, self._still)
+        first = pos + project(to - pos, self._vel, lim, *state)
         keeps = self._keeps_driven(pos, step, remainder)
         if self.guard.step_clearance(pos, first, t, 1.0) >= self.cfg.clearance and keeps(first):
             return self._take(pos, first)
         v = self.sc.robot_speed
         dirs = unit_headings(16)
         wants = np.vstack([-self._vel, v * dirs, 0.5 * v * dirs])
-        moves = np.array([pos + project(w, self._vel, lim) for w in wants])
+        moves = np.array([pos + project(w, self._vel, lim, *state) for w in wants])
         clear = np.array([self.guard.step_clearance(pos, m, t, 1.0) for m in moves])
         ok = np.nonzero(clear >= self.cfg.clearance)[0]
         rest = pos + project(np.zeros(2), self._vel, lim)  # braking toward rest
@@ -243,7 +321,8 @@ class LimitedRun:
             if self._timed_keeps(to, step):  # the followed timed route's own rest
                 return True
             route = None if remainder is None else np.vstack([to, remainder])
-            return self.ics.find(to, t + 1.0, t, route=route, vel=to - pos) is not None
+            turn = turned(to - pos, self._heading, self._still)
+            return self.ics.find(to, t + 1.0, t, route=route, vel=to - pos, turn=turn) is not None
 
         return keeps
 
@@ -268,4 +347,5 @@ class LimitedRun:
 
     def _take(self, pos, to):
         self._vel = to - pos
+        self._heading, self._still = turned(self._vel, self._heading, self._still)
         return to

@@ -51,6 +51,8 @@ from pydantic import (
     ValidationError,
 )
 
+from mawdo.planning.world.motion_bounds import motion_errors
+
 __all__ = [
     "MAX_RUN_STEPS",
     "SCHEMA_VERSION",
@@ -342,7 +344,7 @@ def semantic_errors(spec: ScenarioSpec) -> list[tuple[str, str]]:
             if ob.distance(getattr(spec, name)) <= r:
                 who = f"obstacles[{i}]" + (f" ({ob.id!r})" if ob.id else "")
                 errors.append((name, f"inside {who} inflated by the robot radius {r:g} px at t=0"))
-    return errors + _spot_errors(spec)
+    return errors + _spot_errors(spec) + motion_errors(spec, offset_bounds)
 
 
 def _spot_errors(spec: ScenarioSpec) -> list[tuple[str, str]]:

@@ -23,9 +23,10 @@ same closed-form tests as a straight uniform move (:mod:`mawdo.planning.guide.si
 At a vertex where the heading changes the robot stands :func:`rest_steps` whole steps: it
 turns in place at ``max_turn`` (``ceil(angle / max_turn)`` steps), and with an acceleration
 limit it stands at least one step (its last step in, at up to ``a`` px, and its first step
-out, at up to ``a``, would differ by up to ``2 a``). The checker lets a robot at rest take any
-heading (:mod:`mawdo.planning.judge.kincheck`), so the turn time is conservative there; it is what
-a robot turning in place needs.
+out, at up to ``a``, would differ by up to ``2 a``). The checker counts a turn made at rest
+against the steps it took (:mod:`mawdo.planning.judge.kincheck`): ``k`` steps at rest between
+the last step in and the first step out allow ``(k + 1) max_turn``, one step more than this
+turn time needs.
 """
 
 from __future__ import annotations
@@ -54,7 +55,8 @@ def edge_steps(L, v, a):
     of its speeds; ``(0, 0.0)`` for ``L <= 0``."""
     if L <= 0.0:
         return 0, 0.0
-    n = max(1, int(math.ceil(L / v)))
+    # D(n) <= n v and D(n) <= a (n + 1)^2 / 4: the least n is at least either bound
+    n = max(1, int(math.ceil(L / v)), int(math.ceil(2.0 * math.sqrt(L / a) - 1.0)) - 1)
     while _reach(n, v, a) < L:
         n += 1
     return n, L / _reach(n, v, a)
