@@ -9,12 +9,15 @@
 import sys
 import types
 
+from mawdo.jit import heal
 from mawdo.jit.cache import drop_stale_caches, install_blas_hook
 
 # before any kernel module loads: a cached kernel may hold an old version of a helper it inlined
 drop_stale_caches()
 # Numba's first kernel then loads scipy's BLAS wrappers, not all of scipy.linalg (0.3 s)
 install_blas_hook()
+# a damaged entry of Numba's cache is dropped and compiled again, not a traceback in every run
+heal.install()
 
 __version__ = "0.9.0"
 

@@ -304,23 +304,29 @@ class BlasHook:
             sys.meta_path.remove(self)  # its work is done, and the next finders find the package
             spec = importlib.util.find_spec(name)
             if spec is not None and spec.loader is not None:
-                spec.loader = _Binding(spec.loader)
+                spec.loader = AfterExec(spec.loader, _bind_blas)
             return spec
         return None
 
 
-class _Binding:
-    """A package's loader that binds the preloaded BLAS module to the package it loads."""
+class AfterExec:
+    """A module's loader that calls ``after(module)`` once the module has run (an import hook's
+    way to change a module right after it is imported)."""
 
-    def __init__(self, loader) -> None:
-        self.loader = loader
+    def __init__(self, loader, after) -> None:
+        self.loader, self.after = loader, after
 
     def create_module(self, spec):
         return self.loader.create_module(spec)
 
     def exec_module(self, module) -> None:
         self.loader.exec_module(module)
-        module.cython_blas = sys.modules[BLAS]
+        self.after(module)
+
+
+def _bind_blas(package) -> None:
+    """Bind the preloaded BLAS module to the ``scipy.linalg`` package just loaded."""
+    package.cython_blas = sys.modules[BLAS]
 
 
 def install_blas_hook() -> None:

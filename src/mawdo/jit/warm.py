@@ -97,9 +97,17 @@ def is_cached(entry: Entry) -> bool:
     cache = getattr(disp, "_cache", None)
     if cache is None or not hasattr(cache, "_index_key"):
         return False
-    # Numba's own check without loading the code: the index file lists (signature, machine)
+    # Numba's own check without rebuilding the code: the index file lists (signature, machine)
+    # and the data file unpickles (a damaged one is dropped: mawdo.jit.heal)
     key = cache._index_key(sig, disp.targetctx.codegen())
-    return key in cache._cache_file._load_index()
+    name = cache._cache_file._load_index().get(key)
+    if name is None:
+        return False
+    try:
+        cache._cache_file._load_data(name)
+    except OSError:  # missing, or damaged and dropped
+        return False
+    return True
 
 
 def missing(entries: list[Entry] | None = None) -> list[Entry]:
@@ -345,7 +353,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.jobs < 1:
         parser.error(f"--jobs must be an integer >= 1, got {args.jobs}")
     t0 = time.perf_counter()
-    pending = todo()
+    pending = missing()  # every entry read back, so a damaged one is dropped and compiled
     if not pending:
         print("kernels already compiled (Numba's cache is warm)")
         return 0
