@@ -13,7 +13,7 @@ Three tables, each figure beside its target:
    cannot run in this venv) and the ratio to them is printed.
 2. us/eval of WDO, MAWDO and GWO at 1, 30, 300 and 1000 runs (100 iterations each): 1000 runs
    must cost no more per evaluation than 30. Large batches go in cache-sized blocks of runs
-   (mawdo.blocks); the last column is 1000 runs forced into one block, for comparison.
+   (mawdo.util.blocks); the last column is 1000 runs forced into one block, for comparison.
 3. peak traced memory (``tracemalloc``) of a whole ``minimize`` call per run, in copies of one
    ``(N, D)`` float64 state array (30 runs, 60 iterations so MAWDO's restart is included).
    Target <= 6 copies.

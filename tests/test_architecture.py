@@ -24,18 +24,19 @@ FLOORS = (
     ("mawdo.problem", 0),
     ("mawdo.result", 0),
     ("mawdo.viz", 0),
-    ("mawdo.validate", 0),  # argument checks: used by the core itself
+    ("mawdo.util", 0),  # internal helpers' package (each module placed below)
+    ("mawdo.util.validate", 0),  # argument checks: used by the core itself
     ("mawdo.budget", 0),
     ("mawdo.jit", 0),  # the Numba compile machinery: stale caches, the table's warm-up, inlining
-    ("mawdo.stablesort", 0),  # a stable argsort for kernels, cheaper to compile than Numba's
-    ("mawdo.shuffle", 0),  # O(d) permutations: drawn by streams, inlined by optimizer kernels
-    ("mawdo.interrupts", 0),  # Ctrl-C told apart from errors (runner and commands)
+    ("mawdo.util.stablesort", 0),  # a stable argsort for kernels, cheap to compile
+    ("mawdo.util.shuffle", 0),  # O(d) permutations: drawn by streams, inlined by kernels
+    ("mawdo.util.interrupts", 0),  # Ctrl-C told apart from errors (runner and commands)
     ("mawdo.optimizers", 1),
     ("mawdo.functions", 1),
     ("mawdo.suites", 2),  # BBOB/CEC problems (ioh/opfunu); run_problem drives minimize
     # the driver resolves algorithm and function names in their registries, so it sits on them
     ("mawdo.minimize", 2),
-    ("mawdo.blocks", 2),  # the driver's blocks of runs
+    ("mawdo.util.blocks", 2),  # the driver's blocks of runs
     ("mawdo", 2),  # the package facade only (EXACT): re-exports minimize, OPTIMIZERS, FUNCTIONS
     ("mawdo.planning", 3),
     ("mawdo.experiments", 4),  # the harness: protocol, plans, rows, store, runner, stats, tables
@@ -51,6 +52,11 @@ FLOORS = (
 # prefixes that name one module, not the modules under it: a new top-level module must be
 # given its floor explicitly (the facade's name is a prefix of every module's)
 EXACT = {"mawdo"}
+# the modules at the package root: public API only (internal helpers live in mawdo.util)
+PUBLIC_ROOT = {
+    "__init__", "__main__", "budget", "minimize", "problem", "registry", "reproduce", "result",
+    "streams", "viz",
+}  # fmt: skip
 NAMES = {
     0: "core",
     1: "optimizers/functions",
@@ -132,6 +138,15 @@ def imports_of(name: str, path: Path, modules: dict[str, Path]) -> set[str]:
 def graph() -> dict[str, set[str]]:
     modules = all_modules()
     return {name: imports_of(name, path, modules) for name, path in modules.items()}
+
+
+def test_the_package_root_holds_only_public_modules_and_packages():
+    root = {p.stem for p in SRC.glob("*.py")}
+    assert root <= PUBLIC_ROOT, (
+        f"internal modules at the package root: {sorted(root - PUBLIC_ROOT)}"
+    )
+    planning = {p.stem for p in (SRC / "planning").glob("*.py")}
+    assert len(planning) <= 8, f"planning's root holds {len(planning)} modules: {sorted(planning)}"
 
 
 def test_every_module_has_a_floor(graph):

@@ -1,4 +1,4 @@
-"""Blocks of runs (mawdo.blocks): a batch split into blocks gives the numbers of one batch."""
+"""Blocks of runs (mawdo.util.blocks): a batch split into blocks gives the numbers of one batch."""
 
 import dataclasses
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from mawdo import minimize
-from mawdo.blocks import BLOCK_BYTES, MIN_BLOCK, block_sizes, join_results
+from mawdo.util.blocks import BLOCK_BYTES, MIN_BLOCK, block_sizes, join_results
 
 
 def test_block_sizes_are_even_and_cover_the_batch():

@@ -17,7 +17,7 @@ from mawdo.optimizers import registry
 from mawdo.optimizers.base import Params
 from mawdo.problem import Evaluator, Problem
 from mawdo.streams import RunStreams
-from mawdo.validate import ArgumentTypeError
+from mawdo.util.validate import ArgumentTypeError
 
 # -- make_optimizer's cache of validated Params ------------------------------------------------
 

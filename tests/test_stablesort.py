@@ -1,4 +1,5 @@
-"""mawdo.stablesort: the permutation of NumPy's stable argsort (and of Numba's own, compiled)."""
+"""mawdo.util.stablesort: the permutation of NumPy's stable argsort (and of Numba's own,
+compiled)."""
 
 from __future__ import annotations
 
@@ -6,7 +7,7 @@ import numpy as np
 import pytest
 from numba import njit
 
-from mawdo.stablesort import stable_argsort
+from mawdo.util.stablesort import stable_argsort
 
 
 @njit

@@ -14,7 +14,7 @@ from mawdo.budget import Budget
 from mawdo.minimize import make_problem
 from mawdo.optimizers.registry import OPTIMIZERS, make_optimizer
 from mawdo.problem import as_bounds
-from mawdo.validate import ArgumentTypeError, check_int, check_real, check_seed
+from mawdo.util.validate import ArgumentTypeError, check_int, check_real, check_seed
 
 NAN, INF = float("nan"), float("inf")
 B3 = [(-5, 5)] * 3

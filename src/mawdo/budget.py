@@ -16,7 +16,7 @@ import numpy as np
 from numba import njit
 
 from mawdo.result import STATUS_MESSAGES, EvaluationTrace
-from mawdo.validate import check_int, check_real
+from mawdo.util.validate import check_int, check_real
 
 DEFAULT_MAX_ITER = 500
 

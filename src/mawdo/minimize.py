@@ -2,7 +2,7 @@
 
 Budgets (``max_iter``, ``max_evals``, ``target``, ``max_time``; :mod:`mawdo.budget`) and the
 callback are applied here, not in the algorithms, so every optimizer is stopped and counted the
-same way. Arguments are checked before anything runs (:mod:`mawdo.validate`).
+same way. Arguments are checked before anything runs (:mod:`mawdo.util.validate`).
 """
 
 from __future__ import annotations
@@ -12,14 +12,14 @@ from collections.abc import Callable
 
 import numpy as np
 
-from mawdo.blocks import block_sizes, join_results
 from mawdo.budget import CALLBACK, DEFAULT_MAX_ITER, Budget, RunLog
 from mawdo.optimizers.base import Optimizer, Space
 from mawdo.optimizers.registry import make_optimizer
 from mawdo.problem import Evaluator, Problem, as_bounds, box_scale, check_x0
 from mawdo.result import OptimizeResult
 from mawdo.streams import RunStreams, run_seed_sequences
-from mawdo.validate import ArgumentTypeError, check_bool, check_int, check_seed
+from mawdo.util.blocks import block_sizes, join_results
+from mawdo.util.validate import ArgumentTypeError, check_bool, check_int, check_seed
 
 __all__ = ["DEFAULT_MAX_ITER", "make_problem", "minimize"]
 
@@ -171,7 +171,7 @@ def minimize(
         Show a progress bar (rich).
     runs_per_block : int, optional
         Most runs evaluated together, >= 1: a larger batch goes in blocks of runs, one after
-        another, with the same results (:mod:`mawdo.blocks`). Default: blocks whose state fits
+        another, with the same results (:mod:`mawdo.util.blocks`). Default: blocks whose state fits
         in a core's cache (about 1 MiB per state array), which keeps the time per evaluation
         flat in ``runs``; one block with ``callback`` or ``max_time``, which see the whole
         batch. Pass ``runs`` for an objective that must see every run in each call.

@@ -16,7 +16,7 @@ import numpy as np
 from numba import njit
 
 from mawdo.streams import RunStreams
-from mawdo.validate import check_int, real_array
+from mawdo.util.validate import check_int, real_array
 
 
 class ObjectiveError(RuntimeError):

@@ -14,7 +14,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from mawdo.validate import check_int, check_seed
+from mawdo.util.validate import check_int, check_seed
 
 
 def run_seed_sequences(seed, runs: int, first: int = 0) -> list[np.random.SeedSequence]:
@@ -145,7 +145,7 @@ class RunStreams:
         out : numpy.ndarray
             Integer array ``(R, n, d)`` (int16 is enough for ``d < 32768``), overwritten.
         """
-        from mawdo.shuffle import fisher_yates_batch, words_per_permutation
+        from mawdo.util.shuffle import fisher_yates_batch, words_per_permutation
 
         if out.ndim != 3 or out.shape[0] != self.runs:
             raise ValueError(f"out must have shape ({self.runs}, n, d); got {out.shape}")

@@ -15,7 +15,7 @@ import pytest
 
 from mawdo.experiments import Store, execute_task, run_plan
 from mawdo.experiments.kinds.benchmark import execute as bench_exec_mod
-from mawdo.interrupts import SigintWatch, is_interrupt
+from mawdo.util.interrupts import SigintWatch, is_interrupt
 
 from .conftest import small_plan, stored_values
 

@@ -13,7 +13,7 @@ import pytest
 from mawdo import OPTIMIZERS, minimize
 from mawdo.optimizers.base import Optimizer, Params, initial_population, option
 from mawdo.optimizers.registry import AlgorithmSpec, register, unregister
-from mawdo.validate import ArgumentTypeError
+from mawdo.util.validate import ArgumentTypeError
 
 
 @dataclass(frozen=True)

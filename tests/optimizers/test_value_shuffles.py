@@ -11,7 +11,7 @@ from mawdo.optimizers.kernels import (
     words_per_permutation,
 )
 from mawdo.optimizers.wind_kernel import shuffle_values
-from mawdo.shuffle import fisher_yates_batch
+from mawdo.util.shuffle import fisher_yates_batch
 
 from .test_kernels import python_xoshiro
 

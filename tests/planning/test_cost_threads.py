@@ -21,7 +21,7 @@ from mawdo.planning.refine.kernel.threads import MIN_ROWS, chunk_bounds
 from mawdo.planning.run.config import PlannerConfig
 from mawdo.planning.run.planner import plan
 from mawdo.planning.scenes import generate_scene
-from mawdo.validate import ArgumentTypeError
+from mawdo.util.validate import ArgumentTypeError
 
 
 def _scenario(name):

@@ -19,7 +19,7 @@ import typer
 from typer.core import TyperGroup
 
 from mawdo.cli import quick_exit
-from mawdo.interrupts import INTERRUPT_EXIT, is_interrupt
+from mawdo.util.interrupts import INTERRUPT_EXIT, is_interrupt
 
 # Typer vendors its own click; its ClickException is what Typer's main loop shows and exits on.
 _ClickException = next(c for c in typer.BadParameter.__mro__ if c.__name__ == "ClickException")

@@ -25,7 +25,7 @@ from mawdo.experiments.progress import RunBar
 from mawdo.experiments.protocol import STUDY_KINDS, Study, kind_of
 from mawdo.experiments.store import Store, library_version
 from mawdo.experiments.workers import worker_init
-from mawdo.interrupts import SigintWatch, is_interrupt
+from mawdo.util.interrupts import SigintWatch, is_interrupt
 
 TASK_KEYS = ("algorithm", "problem", "first_run", "n_runs")
 

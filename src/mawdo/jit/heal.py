@@ -18,8 +18,8 @@ import importlib.util
 import sys
 from pathlib import Path
 
-from mawdo.interrupts import is_interrupt
 from mawdo.jit.cache import AfterExec
+from mawdo.util.interrupts import is_interrupt
 
 __all__ = ["CACHING", "HealHook", "drop_entry", "install", "patch"]
 

@@ -18,7 +18,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from mawdo.streams import RunStreams
-from mawdo.validate import ArgumentTypeError, check_bool, check_int, check_real
+from mawdo.util.validate import ArgumentTypeError, check_bool, check_int, check_real
 
 
 @dataclass

@@ -15,14 +15,14 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from mawdo.shuffle import (  # noqa: F401  (re-exported)
+from mawdo.util.shuffle import (  # noqa: F401  (re-exported)
     SHUFFLE_BATCH,
     fisher_yates_batch,
     shuffle_from_words,
     shuffle_values_from_words,
     words_per_permutation,
 )
-from mawdo.stablesort import stable_argsort
+from mawdo.util.stablesort import stable_argsort
 
 _LOW32 = np.uint64(0xFFFFFFFF)
 _SHIFT32 = np.uint64(32)

@@ -90,7 +90,7 @@ def make_optimizer(algorithm: str | Optimizer, **options) -> Optimizer:
     ------
     ValueError
         An unknown option, or a value out of its range (NaN and inf included).
-    mawdo.validate.ArgumentTypeError
+    mawdo.util.validate.ArgumentTypeError
         A value of the wrong type (also a ``ValueError``).
     """
     # Building the Params checks every option (Params.__post_init__ -> check_options).

@@ -34,7 +34,7 @@ import numpy as np
 
 from mawdo.optimizers.base import Optimizer, Params, Space, as_x0, option
 from mawdo.streams import RunStreams
-from mawdo.validate import check_real
+from mawdo.util.validate import check_real
 
 STRATEGIES = (
     "best1bin", "randtobest1bin", "currenttobest1bin", "best2bin", "rand2bin", "rand1bin",

@@ -12,7 +12,7 @@ import numpy as np
 from numba import njit
 
 from mawdo.optimizers.kernels import SHIFT11, U53, xoshiro_step
-from mawdo.shuffle import SHUFFLE_BATCH, bounded_draw
+from mawdo.util.shuffle import SHUFFLE_BATCH, bounded_draw
 
 
 @njit(cache=True, nogil=True, error_model="numpy")

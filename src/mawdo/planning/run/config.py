@@ -10,7 +10,7 @@ import numpy as np
 
 from mawdo.planning.refine.cost import CostWeights
 from mawdo.planning.world.scenario import MAX_RUN_STEPS, Scenario, get_scenario
-from mawdo.validate import check_int
+from mawdo.util.validate import check_int
 
 
 @dataclass(frozen=True)

@@ -100,7 +100,7 @@ def prepare(
         .limits_refusal`).
     """
     from mawdo.optimizers import OPTIMIZERS
-    from mawdo.validate import check_seed
+    from mawdo.util.validate import check_seed
 
     sc = resolve_scenario(scenario)
     OPTIMIZERS[algorithm]  # an unknown name fails here, listing the known ones

@@ -23,7 +23,7 @@ from mawdo.planning.judge.check import check_trajectory
 from mawdo.planning.refine.cost import PathCost
 from mawdo.planning.world.path import advance, densify, segment_lengths, unit_headings
 from mawdo.planning.world.scenario import Scenario
-from mawdo.stablesort import stable_argsort
+from mawdo.util.stablesort import stable_argsort
 
 __all__ = ["Elite", "Guard"]
 

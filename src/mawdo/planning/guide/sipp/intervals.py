@@ -32,7 +32,7 @@ from mawdo.planning.refine.kernel.primitives import (
 from mawdo.planning.world.geometry import FlatObstacles
 from mawdo.planning.world.motion import BoundedRandomWalk
 from mawdo.planning.world.scenario import Scenario
-from mawdo.stablesort import stable_argsort
+from mawdo.util.stablesort import stable_argsort
 
 __all__ = ["EPS", "Movers", "earliest_free", "forbidden", "safe_intervals", "segment_free"]
 

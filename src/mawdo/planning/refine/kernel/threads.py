@@ -31,7 +31,7 @@ import numpy as np
 from numba import njit, prange
 
 from mawdo.planning.refine.kernel.population import population_cost, scratch_size
-from mawdo.validate import check_int
+from mawdo.util.validate import check_int
 
 # Fewer rows than this per chunk do not repay the hand-over.
 MIN_ROWS = 16
