@@ -6,7 +6,7 @@ STAMP  := $(VENV)/.installed
 DEVSTAMP := $(VENV)/.installed-dev
 export MPLBACKEND ?= Agg
 
-.PHONY: install demo readme-img test test-all bench lint clean
+.PHONY: install demo readme-img test test-all bench lint docs clean
 
 $(PY):
 	$(PYTHON) -m venv $(VENV)
@@ -46,9 +46,13 @@ test-all: $(DEVSTAMP)
 bench: $(DEVSTAMP)
 	$(PY) -m benchmarks
 
+# The documentation site into site/, warnings as errors; `mkdocs serve` previews it.
+docs: $(DEVSTAMP)
+	$(PY) -m mkdocs build --strict
+
 lint: $(DEVSTAMP)
 	$(PY) -m ruff check src tests benchmarks
 	$(PY) -m ruff format --check src tests benchmarks
 
 clean:
-	rm -rf $(VENV) out build *.egg-info src/*.egg-info
+	rm -rf $(VENV) out build site *.egg-info src/*.egg-info

@@ -23,7 +23,7 @@ def _anchors(name: str) -> set[str]:
 
 
 def _citing_files() -> list[Path]:
-    files = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+    files = [ROOT / "README.md", ROOT / "CHANGELOG.md", *sorted((ROOT / "docs").rglob("*.md"))]
     files += sorted((ROOT / "src").rglob("*.py")) + sorted((ROOT / "tests").rglob("*.py"))
     return [f for f in files if f.name != Path(__file__).name]
 

@@ -1,10 +1,15 @@
-"""Every generated headline sentence of a committed report is quoted verbatim in the README.
+"""The committed results as the README and the results page state them.
 
-The reports write their claims as sentences computed from the store (``summary.md``); the README
-quotes them, so a regenerated report that changes a number fails here until the README follows.
+The reports write their claims as sentences computed from the store (``summary.md``); the
+results page (docs/results.md) quotes them verbatim, so a regenerated report that changes a
+number fails here until the page follows. The README's tables are rendered from the committed
+result files by docs/readme_tables.py; they must be exactly its rendering, and the numbers it
+reads are recomputed here from the raw rows and tables.
 """
 
+import csv
 import hashlib
+import importlib.util
 import lzma
 import re
 import shutil
@@ -15,10 +20,22 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from scipy.stats import rankdata
 
 ROOT = Path(__file__).resolve().parents[1]
 SUMMARIES = sorted((ROOT / "docs" / "results").glob("**/summary.md"))
 BBOB = ROOT / "docs" / "results" / "bbob"
+RESULTS_PAGE = ROOT / "docs" / "results.md"
+
+
+def readme_tables():
+    """docs/readme_tables.py, the README tables' renderer."""
+    spec = importlib.util.spec_from_file_location(
+        "readme_tables", ROOT / "docs" / "readme_tables.py"
+    )
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
 def unpack(packed: Path, folder: Path) -> Path:
@@ -30,12 +47,59 @@ def unpack(packed: Path, folder: Path) -> Path:
 
 
 @pytest.mark.parametrize("summary", SUMMARIES, ids=lambda p: str(p.relative_to(ROOT)))
-def test_readme_quotes_the_generated_sentences(summary):
-    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+def test_the_results_page_quotes_the_generated_sentences(summary):
+    page = RESULTS_PAGE.read_text(encoding="utf-8")
     lines = [s for s in summary.read_text(encoding="utf-8").splitlines() if s.strip()]
     assert lines, f"{summary} is empty"
-    missing = [s for s in lines if s not in readme]
-    assert not missing, f"README does not quote {summary}: {missing}"
+    missing = [s for s in lines if s not in page]
+    assert not missing, f"docs/results.md does not quote {summary}: {missing}"
+
+
+def test_the_readme_tables_are_rendered_from_the_committed_results():
+    """Run `python docs/readme_tables.py` after regenerating a report."""
+    tables = readme_tables()
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    written = tables.tables_in(readme)
+    assert set(written) == set(tables.TABLES) == {"paper", "suites", "arena"}
+    for name, render in tables.TABLES.items():
+        rows = render()
+        assert len(rows) >= 5, name  # header, rule and at least three rows
+        assert written[name] == "\n".join(rows) + "\n", f"README table {name!r} is stale"
+    assert tables.render(readme) == readme
+
+
+def test_the_paper_table_ranks_are_those_of_the_committed_errors():
+    """Friedman mean ranks recomputed from results_error.csv (mean error per function, rank 1 =
+    best, ties averaged) agree with what the README's paper table states."""
+    tables = readme_tables()
+    for folder in ("paper-table3", "paper-table3-shifted", "paper-ablation"):
+        path = ROOT / "docs" / "results" / folder / "results_error.csv"
+        if folder == "paper-ablation":
+            path = path.with_name("ablation_error.csv")
+        with open(path, newline="", encoding="utf-8") as f:
+            rows = [r for r in csv.DictReader(f) if r["Index"] == "Ave"]
+        algos = [k for k in rows[0] if k not in ("Function", "Index")]
+        ranks = np.mean([rankdata([float(r[a]) for a in algos]) for r in rows], axis=0)
+        rank, place, of, best, best_rank = tables.friedman(folder, "MAWDO")
+        mine = ranks[algos.index("MAWDO")]
+        assert float(rank) == pytest.approx(mine, abs=0.005), folder
+        assert (place, of) == (1 + int(np.sum(ranks < mine - 1e-12)), len(algos)), folder
+        assert float(best_rank) == pytest.approx(ranks.min(), abs=0.005), folder
+
+
+def test_the_readme_arena_table_is_the_store_s_headline():
+    """Each arena row's success, colliding share and median gap is the headline sentence's."""
+    tables = readme_tables()
+    summary = (ROOT / "docs" / "results" / "arena-default" / "summary.md").read_text("utf-8")
+    rows = tables.arena_table()[2:]
+    assert len(rows) == 7
+    for row in rows:
+        planner, success, colliding, gap = (c.strip() for c in row.strip("|").split("|"))
+        sentence = (
+            f"- {planner}: {success.removesuffix(' %')} % success and "
+            f"{colliding.removesuffix(' %')} % colliding runs over 600 scenes, median gap {gap};"
+        )
+        assert sentence in summary, row
 
 
 @pytest.fixture(scope="module")
@@ -64,8 +128,8 @@ def expand(listing: str) -> set[int]:
     return out
 
 
-def test_readme_names_every_win_and_loss_against_random_search(bbob_stores):
-    """Issue 28: "median final precision is lower on 19 of 24" read as worse and hid the five
+def test_the_results_name_every_win_and_loss_against_random_search(bbob_stores):
+    """ "median final precision is lower on 19 of 24" once read as worse and hid the five
     D = 5 functions where MAWDO's median error is above uniform random search's. Recomputed
     here from the raw rows with sqlite3 and numpy."""
     final: dict[tuple[str, int, int], list[float]] = {}
@@ -79,7 +143,7 @@ def test_readme_names_every_win_and_loss_against_random_search(bbob_stores):
         for algo, fid, dim, f_star, best in rows:
             error = np.frombuffer(best, "<f8")[-1] - f_star
             final.setdefault((algo, fid, dim), []).append(max(error, 1e-8))
-    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    readme = RESULTS_PAGE.read_text(encoding="utf-8")
     claims = re.findall(
         r"D = (\d+): median final error f - f_opt over instances and runs \(lower is better\), "
         r"mawdo against random: better on (\d+) of 24 functions \(([^)]*)\), worse on (\d+) "

@@ -1,0 +1,154 @@
+"""The README's result tables, rendered from the committed result files.
+
+Each number comes from a file that a report wrote from its store (``friedman.md``,
+``wilcoxon_totals.md``, ``table6.md``, and the headline sentences ``summary.md``, which the
+tests recompute from the committed stores). The README holds each table between
+``<!-- table: NAME -->`` and ``<!-- /table -->``; ``tests/test_readme_results.py`` checks that
+it is exactly what :func:`render` gives, and ``python docs/readme_tables.py`` rewrites the
+README's tables after a report was regenerated.
+"""
+
+from __future__ import annotations
+
+import re
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+RESULTS = ROOT / "docs" / "results"
+BLOCK = re.compile(r"(<!-- table: ([\w-]+) -->\n)(.*?)(<!-- /table -->)", re.S)
+
+
+def _rows(path: Path) -> list[dict[str, str]]:
+    """The body rows of the Markdown table in ``path``, each a dict by column header."""
+    lines = [s for s in path.read_text(encoding="utf-8").splitlines() if s.startswith("|")]
+    cells = [[c.strip() for c in s.strip("|").split("|")] for s in lines]
+    return [dict(zip(cells[0], row, strict=True)) for row in cells[2:]]
+
+
+def friedman(folder: str, algorithm: str) -> tuple[str, int, int, str, str]:
+    """(rank, place, of, best algorithm, its rank) of ``algorithm`` in ``folder/friedman.md``."""
+    rows = _rows(RESULTS / folder / "friedman.md")
+    ranks = {r["Algorithm"]: float(r["Average rank"]) for r in rows}
+    place = 1 + sum(r < ranks[algorithm] for r in ranks.values())
+    best = min(ranks, key=ranks.get)
+    return f"{ranks[algorithm]:.2f}", place, len(rows), best, f"{ranks[best]:.2f}"
+
+
+def wins(folder: str, rival: str) -> tuple[int, int, int]:
+    """MAWDO's (+, =, -) against ``rival`` in ``folder/wilcoxon_totals.md`` (Wilcoxon, 5 %)."""
+    for row in _rows(RESULTS / folder / "wilcoxon_totals.md"):
+        if row["Rival"] == rival:
+            return int(row["+"]), int(row["="]), int(row["-"])
+    raise KeyError(f"{rival} not in {folder}/wilcoxon_totals.md")
+
+
+def _place(n: int) -> str:
+    return f"{n}{ {1: 'st', 2: 'nd', 3: 'rd'}.get(n if n < 20 else n % 10, 'th') }"
+
+
+def paper_table() -> list[str]:
+    """One line per table of the paper: where MAWDO stands in our reproduction."""
+    lines = ["| paper | our reproduction |", "|---|---|"]
+    for label, folder in [
+        ("Table 3: F1-F16, D = 30, 30 runs", "paper-table3"),
+        ("Table 3, optimum moved off the box centre", "paper-table3-shifted"),
+    ]:
+        rank, place, of, best, best_rank = friedman(folder, "MAWDO")
+        plus, tie, minus = wins(folder, "WDO")
+        lead = "" if place == 1 else f" (best: {best} {best_rank})"
+        lines.append(
+            f"| {label} | MAWDO's Friedman rank {rank}, {_place(place)} of {of}{lead}; better "
+            f"than WDO on {plus} of {plus + tie + minus} functions, worse on {minus} "
+            "(Wilcoxon, 5 %) |"
+        )
+    rank, place, of, best, best_rank = friedman("paper-ablation", "MAWDO")
+    lines.append(
+        f"| Table 5: ablation | full MAWDO's rank {rank}, {_place(place)} of {of} "
+        f"(best: {best} {best_rank}) |"
+    )
+    rows = _rows(RESULTS / "paper-table6" / "table6.md")
+    gaps = {r["algorithm"]: float(r["gap L/L*"]) for r in rows}
+    ours = next(r for r in rows if "stabilisation on at" in r["algorithm"])
+    best = min(gaps, key=gaps.get).split(" (")[0]
+    place = 1 + sum(g < float(ours["gap L/L*"]) for g in gaps.values())
+    lines.append(
+        f"| Table 6: planning on the paper's map, {ours['runs']} runs | MAWDO (stabilised): "
+        f"{ours['success']} success, {ours['collision-free']} collision-free, gap L/L* "
+        f"{ours['gap L/L*']}, {_place(place)} of {len(rows)} (best: {best} "
+        f"{min(gaps.values()):.3f}) |"
+    )
+    return lines
+
+
+SUITE = re.compile(
+    r"^(?P<suite>.+?), \d+ evaluations per run .*?: WDO\+ (?P<rank>[\d.]+), "
+    r"place (?P<place>\d+) of (?P<of>\d+)"
+)
+BBOB = re.compile(
+    r"^- D = (?P<dim>\d+): mawdo has Friedman mean rank (?P<rank>[\d.]+) .*?, place "
+    r"(?P<place>\d+) of (?P<of>\d+) \(best: (?P<best>\w+) (?P<best_rank>[\d.]+)\)"
+)
+BEHIND = re.compile(r"behind (?P<best>[^(;]+?) (?P<rank>[\d.]+)[ ,(;]")
+
+
+def suites_table() -> list[str]:
+    """Standard suites: MAWDO on BBOB, WDO+ on the suites it was not designed on (CEC 2017,
+    CEC 2022, the paper's F1-F16), each by its Friedman mean rank among the study's algorithms
+    (1 = best)."""
+    lines = ["| suite | algorithm | Friedman mean rank | place | best (rank) |"]
+    lines.append("|---|---|---|---|---|")
+    for s in (RESULTS / "bbob" / "summary.md").read_text(encoding="utf-8").splitlines():
+        if m := BBOB.match(s):
+            lines.append(
+                f"| BBOB f1-f24, D = {m['dim']} | MAWDO | {m['rank']} | {m['place']} of "
+                f"{m['of']} | {m['best']} ({m['best_rank']}) |"
+            )
+    for s in (RESULTS / "holdout" / "summary.md").read_text(encoding="utf-8").splitlines():
+        if m := SUITE.match(s):
+            behind = BEHIND.search(s)
+            best = f"{behind['best']} ({behind['rank']})" if behind else "WDO+"
+            lines.append(
+                f"| {m['suite']} | WDO+ | {m['rank']} | {m['place']} of {m['of']} | {best} |"
+            )
+    return lines
+
+
+ARENA = re.compile(
+    r"^- (?P<planner>\w+): (?P<success>[\d.]+) % success and (?P<colliding>[\d.]+) % colliding "
+    r"runs over (?P<n>\d+) scenes, median gap (?P<gap>[\d.]+);"
+)
+
+
+def arena_table() -> list[str]:
+    """The planning arena: each planner's success, colliding runs and median gap."""
+    lines = ["| planner | success | colliding runs | median gap |", "|---|---|---|---|"]
+    summary = (RESULTS / "arena-default" / "summary.md").read_text(encoding="utf-8")
+    for s in summary.splitlines():
+        if m := ARENA.match(s):
+            lines.append(f"| {m['planner']} | {m['success']} % | {m['colliding']} % | {m['gap']} |")
+    return lines
+
+
+TABLES = {
+    "paper": paper_table,
+    "suites": suites_table,
+    "arena": arena_table,
+}
+
+
+def render(readme: str) -> str:
+    """``readme`` with each marked table replaced by its rendering from the result files."""
+    return BLOCK.sub(lambda m: m[1] + "\n".join(TABLES[m[2]]()) + "\n" + m[4], readme)
+
+
+def tables_in(readme: str) -> dict[str, str]:
+    """The README's marked tables by name, as written."""
+    return {m[2]: m[3] for m in BLOCK.finditer(readme)}
+
+
+if __name__ == "__main__":
+    path = ROOT / "README.md"
+    new = render(path.read_text(encoding="utf-8"))
+    path.write_text(new, encoding="utf-8")
+    sys.stdout.write(f"README tables rewritten: {', '.join(tables_in(new))}\n")
