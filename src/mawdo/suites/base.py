@@ -101,6 +101,12 @@ class SuiteSpec:
     groups : dict of str to tuple of int
         Named groups of function ids that reports break results down by (BBOB: COCO's five);
         empty when the suite defines none.
+    prepare : callable or None
+        ``prepare(function_id, dim)`` reads and checks what the problem needs from files
+        (CEC: the official data), raising an error that names the file; None: nothing to read.
+    numbering : str
+        How the suite's function ids relate to the official ones, for reports ("" when they
+        are the official ids).
     """
 
     name: str
@@ -113,11 +119,32 @@ class SuiteSpec:
     max_instance: int | None = None
     default_instances: tuple[int, ...] = (1,)
     groups: dict[str, tuple[int, ...]] = dataclasses.field(default_factory=dict)
+    prepare: Callable[[int, int], None] | None = None
+    numbering: str = ""
 
     def require(self) -> None:
         """Import the suite's library now; :class:`MissingExtraError` names the ``pip install``
         that fixes a missing one."""
         require(self.library, self.name)
+
+    def check_problems(self, functions, dims) -> None:
+        """Import the library and read every data file the ``functions x dims`` problems need
+        (those the suite defines), so a missing or damaged file stops a study before it runs.
+
+        Raises
+        ------
+        MissingExtraError
+            The library (or the package holding the data) is not installed.
+        ValueError
+            A data file is missing or damaged (the message names the function and the file).
+        """
+        self.require()
+        if self.prepare is None:
+            return
+        for fid in functions:
+            for dim in dims:
+                if dim in self.dims(fid):
+                    self.prepare(fid, dim)
 
     @property
     def functions(self) -> tuple[int, ...]:

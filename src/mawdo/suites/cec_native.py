@@ -1,0 +1,114 @@
+"""CEC 2017 (F1-F30) and CEC 2022 (F1-F12) computed by mawdo on a whole population, in the
+official numbering: the suites ``cec2017`` and ``cec2022``.
+
+One call evaluates a batch ``(n, D)`` with NumPy (:mod:`.cec_compose`), from the official input
+data (:mod:`.cec_data`); values agree with the official C code to about 1e-15 relative
+(tests/suites/test_cec_official.py) at 70-400 times less cost per point than ``opfunu``'s
+one-point calls (benchmarks/bench_cec.py). Bounds are ``[-100, 100]^D``; ``f_star`` is the
+function's bias (``100 * F`` in CEC 2017). The dimensions are those the official data cover.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mawdo.suites.base import SuiteFunction, SuiteSpec, register_suite
+from mawdo.suites.cec_compose import Composition, Hybrid, Plain, evaluate
+from mawdo.suites.cec_data import CECDataError, load
+from mawdo.suites.cec_tables import TABLES, CECFunction
+
+BOUND = 100.0
+
+
+def cec_function(year: int, fid: int) -> CECFunction:
+    """The table entry of CEC ``year`` F``fid`` (official numbering)."""
+    table = TABLES[year]
+    if not 1 <= fid <= len(table):
+        raise CECDataError(f"CEC {year} has functions F1-F{len(table)}; got F{fid}")
+    return table[fid - 1]
+
+
+class CECFormula:
+    """``X (n, D) -> (n,)`` for one official function; picklable (data reloaded per process)."""
+
+    def __init__(self, year: int, fid: int, dim: int) -> None:
+        self.year, self.fid, self.dim = year, fid, dim
+        self.function = cec_function(year, fid)
+
+    @property
+    def data(self):
+        """The function's official data in this dimension (read once per process)."""
+        return load(self.function.data, self.dim)
+
+    def __call__(self, X: np.ndarray) -> np.ndarray:
+        X = np.asarray(X, dtype=float)
+        if X.ndim != 2 or X.shape[1] != self.dim:
+            raise ValueError(
+                f"CEC {self.year} F{self.fid} (D={self.dim}) takes points of shape (n, "
+                f"{self.dim}); got {X.shape}"
+            )
+        return evaluate(self.function.node, X, self.data) + self.function.bias
+
+    def optimum(self) -> np.ndarray:
+        """A point where the value is the bias: the (first component's) shift vector, or for
+        CEC 2017's Levy (minimum at ``z = 1``) the shift plus ``M^-1 1``."""
+        data = self.data
+        if self.function.node == Plain("levy2017"):
+            return data.shift[0] + np.linalg.solve(data.matrix[0], np.ones(self.dim))
+        return data.shift[0].copy()
+
+    def __getstate__(self) -> dict:
+        return {"year": self.year, "fid": self.fid, "dim": self.dim}
+
+    def __setstate__(self, state: dict) -> None:
+        self.__init__(**state)
+
+    def __repr__(self) -> str:
+        return f"CECFormula(CEC{self.year} F{self.fid}, D={self.dim})"
+
+
+def _builder(year: int):
+    def build(fid: int, iid: int, dim: int) -> SuiteFunction:
+        formula = CECFormula(year, fid, dim)
+        fn = formula.function
+        kind = {Composition: "composition", Hybrid: "hybrid"}.get(type(fn.node), "basic")
+        return SuiteFunction(
+            name=f"cec{year}_f{fid}_d{dim}",
+            paper_id=None,
+            dim=dim,
+            lb=-BOUND,
+            ub=BOUND,
+            f_star=fn.bias,
+            x_star=formula.optimum(),
+            func=formula,
+            multimodal=not (year == 2017 and fid <= 3) and not (year == 2022 and fid == 1),
+            description=f"CEC {year} F{fid} {fn.name} ({kind}; official code, batched)",
+            suite=f"cec{year}",
+            function_id=fid,
+            instance=iid,
+            function_name=fn.name,
+        )
+
+    return build
+
+
+def _spec(year: int) -> SuiteSpec:
+    table = TABLES[year]
+    n = len(table)
+    dims = {f.fid: f.data.dims() for f in table}
+    return SuiteSpec(
+        name=f"cec{year}",
+        description=f"CEC {year} bound-constrained, F1-F{n} (official numbering), batched "
+        "NumPy port of the official code",
+        function_names=tuple(f.name for f in table),
+        dims=dims.__getitem__,
+        build=_builder(year),
+        library="numpy",
+        label=f"CEC{year}",
+        max_instance=1,
+        prepare=lambda fid, dim: load(table[fid - 1].data, dim) and None,
+    )
+
+
+CEC2017 = register_suite(_spec(2017))
+CEC2022 = register_suite(_spec(2022))
