@@ -114,13 +114,17 @@ def data_folder(year: int) -> Path:
             )
         return path
     spec = importlib.util.find_spec("opfunu")
-    if spec is None or not spec.submodule_search_locations:
+    folder = None
+    if spec is not None and spec.submodule_search_locations:
+        folder = Path(spec.submodule_search_locations[0]) / "cec_based" / f"data_{year}"
+    if folder is None or not folder.is_dir():
         raise MissingExtraError(
-            f"suite 'cec{year}' reads the official CEC {year} data from the package 'opfunu', "
-            f"which is not installed (it comes with the optional extra 'bbob'): {INSTALL_HINT}; "
-            f"or set {ENV[year]} to a folder holding the official input_data files"
+            f"suite 'cec{year}' needs the package 'opfunu' for the official CEC {year} data "
+            f"files it ships, which is not installed (it comes with the optional extra 'bbob'): "
+            f"{INSTALL_HINT}; or set {ENV[year]} to a folder holding the official input_data "
+            "files"
         )
-    return Path(spec.submodule_search_locations[0]) / "cec_based" / f"data_{year}"
+    return folder
 
 
 def read_checked(year: int, fid: int, name: str) -> str:

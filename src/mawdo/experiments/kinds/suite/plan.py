@@ -18,7 +18,7 @@ import difflib
 from collections.abc import Iterable
 from typing import Annotated, Any, ClassVar, Literal
 
-from pydantic import Field, field_validator, model_validator
+from pydantic import Field, ValidationInfo, field_validator, model_validator
 
 from mawdo.experiments.kinds.suite.components import component_presets
 from mawdo.experiments.kinds.suite.holdout import HOLDOUT_HELP, HOLDOUT_PRESETS
@@ -30,6 +30,7 @@ from mawdo.optimizers import PAPER_ALGORITHMS, make_optimizer
 from mawdo.streams import name_word
 from mawdo.suites import SUITES, evaluation_budget
 from mawdo.suites.base import format_dims
+from mawdo.suites.cec import OPFUNU_NUMBERING, official_id
 
 PLAN_SCHEMA = 1
 """Bumped when the meaning of a plan field changes; part of the plan hash."""
@@ -39,6 +40,10 @@ BBOB_SEED = 20251125
 
 KIND = "suite"
 """The kind's name (its plans' ``kind``)."""
+
+CEC_SUITES = ("cec2017", "cec2022")
+"""Suites whose name meant opfunu's functions (and, for CEC 2017, opfunu's numbers) in stores
+written before the batched official suites: see :attr:`SuitePlan.numbering`."""
 
 OLD_KIND_NAMES = ("bbob",)
 """Names the kind had before (stores and plan files made then say ``kind = "bbob"``): read as
@@ -85,6 +90,12 @@ class SuitePlan(StudyPlanBase):
         Per-algorithm (or per-variant) coefficients (``{"mawdo": {"groups": 4}}``).
     batch_size : int
         Runs per task (one vectorised batch on one worker). Does not affect numbers.
+    numbering : {"official", "opfunu"} or None
+        CEC suites only, set by the plan itself: ``"official"`` for every new plan (official
+        function numbers, values of the official code). ``"opfunu"`` marks a plan read back from
+        a store written when ``cec2017`` / ``cec2022`` meant ``opfunu``'s functions under
+        ``opfunu``'s numbers (CEC 2017: F1-F29 = official F1, F3-F30); such a store is
+        reported as it is, with that said, and never computed further.
     """
 
     study_kind: ClassVar[str] = KIND
@@ -103,14 +114,19 @@ class SuitePlan(StudyPlanBase):
     seed: Annotated[int, Field(strict=True, ge=0)] = BBOB_SEED
     options: dict[str, dict[str, Any]] = Field(default_factory=dict)
     batch_size: PositiveInt = 5
+    numbering: Literal["official", "opfunu"] | None = None
 
     @model_validator(mode="before")
     @classmethod
-    def _old_kind_and_default_instances(cls, data: Any) -> Any:
+    def _old_kind_and_default_instances(cls, data: Any, info: ValidationInfo) -> Any:
         if not isinstance(data, dict):
             return data
         if data.get("kind") in OLD_KIND_NAMES:
             data = {**data, "kind": KIND}
+        suite = str(data.get("suite", "bbob")).strip().lower()
+        if suite in CEC_SUITES and data.get("numbering") is None:
+            stored = bool(info.context and info.context.get("stored"))
+            data = {**data, "numbering": "opfunu" if stored else "official"}
         if data.get("instances") is None:  # the suite's own (CEC: its one; BBOB: COCO's 1-5)
             suite = SUITES.get(str(data.get("suite", "bbob")).strip().lower())
             if suite is not None:  # an unknown suite is named by the suite field's check
@@ -121,6 +137,20 @@ class SuitePlan(StudyPlanBase):
     @classmethod
     def _check_suite(cls, suite: str) -> str:
         return SUITES[suite.strip().lower()].name
+
+    @field_validator("numbering")
+    @classmethod
+    def _check_numbering(cls, numbering: str | None, info: ValidationInfo) -> str | None:
+        suite = info.data.get("suite")
+        if numbering is not None and suite is not None and suite not in CEC_SUITES:
+            raise ValueError(f"applies to the suites {', '.join(CEC_SUITES)} only, not {suite}")
+        if numbering == "opfunu" and not (info.context and info.context.get("stored")):
+            raise ValueError(
+                "'opfunu' marks stores written when cec2017/cec2022 meant opfunu's functions; "
+                "a new plan uses the official suites (cec2017, cec2022) or cec2017-opfunu / "
+                "cec2022-opfunu"
+            )
+        return numbering
 
     @field_validator("budget", mode="before")
     @classmethod
@@ -174,6 +204,8 @@ class SuitePlan(StudyPlanBase):
     @model_validator(mode="after")
     def _check_grid(self) -> SuitePlan:
         spec = SUITES[self.suite]
+        if self.numbering == "opfunu":
+            return self  # a store's plan: its functions are opfunu's ids, checked when it ran
         for i, iid in enumerate(self.instances):
             if iid < 1 or (spec.max_instance is not None and iid > spec.max_instance):
                 top = {None: "instances >= 1", 1: "only instance 1"}.get(
@@ -259,12 +291,37 @@ class SuitePlan(StudyPlanBase):
             "options": {k: self.options[k] for k in sorted(self.options)},
             # only when used, so the plans (and stores) from before variants keep their hash
             **({"variants": dict(sorted(self.variants.items()))} if self.variants else {}),
+            # new CEC plans only: a store of opfunu's cec2017 keeps its hash, and a new plan
+            # with the same fields gets another (its function ids mean other functions)
+            **({"numbering": "official"} if self.numbering == "official" else {}),
         }
 
+    def computed_by(self, fid: int) -> tuple[str, int]:
+        """The registered suite and function id that compute the plan's function ``fid``
+        (a store of opfunu's numbering: ``cec2017-opfunu`` and the official id)."""
+        if self.numbering == "opfunu":
+            return f"{self.suite}-opfunu", official_id(int(self.suite[3:]), fid)
+        return self.suite, fid
+
+    def numbering_note(self) -> str:
+        """How the plan's function ids relate to the official ones ("" for official ids)."""
+        if self.numbering != "opfunu":
+            return ""
+        how = OPFUNU_NUMBERING + "; " if self.suite == "cec2017" else ""
+        return (
+            f"Functions as opfunu 1.0.4 computes them ({how}its values depart from the official "
+            f"code's, docs/deviations.md#d-cec-opfunu): this store was made when the suite "
+            f"{self.suite} meant opfunu's functions; the suite {self.suite} now is the official "
+            f"code's, and {self.suite}-opfunu is opfunu's under the official numbers."
+        )
+
     def check_libraries(self) -> None:
-        """Import the suite's library now; raises :class:`~mawdo.suites.MissingExtraError`
-        naming the ``pip install`` that fixes it (before any worker starts)."""
-        SUITES[self.suite].require()
+        """Import the suite's library and read the data of every problem now (before any worker
+        starts); raises :class:`~mawdo.suites.MissingExtraError` naming the ``pip install``
+        that fixes a missing library, :class:`ValueError` naming a missing or damaged file."""
+        if self.numbering == "opfunu":
+            raise ValueError(self.numbering_note() + " Run the official suite into a new store.")
+        SUITES[self.suite].check_problems(self.functions, self.dims)
 
     # ----------------------------------------------------------------------- work
     @property
@@ -303,6 +360,7 @@ class SuitePlan(StudyPlanBase):
     def task_spec(self, task: Task) -> dict[str, Any]:
         """Everything a worker needs to compute ``task``, as plain picklable data."""
         fid, iid, dim = parse_key(task.problem)
+        suite, fid = self.computed_by(fid)
         opts = dict(self.options.get(task.algorithm, {}))
         if self.pop_size is not None:
             opts["pop_size"] = self.pop_size
@@ -310,7 +368,7 @@ class SuitePlan(StudyPlanBase):
             "kind": self.kind,
             **task.key(),
             "optimizer": self.variants.get(task.algorithm, task.algorithm),
-            "suite": self.suite,
+            "suite": suite,
             "function_id": fid,
             "instance": iid,
             "dim": dim,

@@ -155,6 +155,7 @@ def write_suite_report(
         f"made by mawdo {' and '.join(study.versions)}). Precision is the error f - f_opt "
         "(lower is better).",
         "",
+        *([study.numbering, ""] if study.numbering else []),
         *_setup_lines(study),
         *summary,
         "",
