@@ -16,8 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mawdo.suites import cec_basic as B
-
-INF = 1.0e99
+from mawdo.suites import cec_kernels as K
 
 
 @dataclass(frozen=True)
@@ -59,29 +58,29 @@ class Composition:
     components: tuple[Component, ...]
 
 
-def _sr(x, shift, matrix, rate, shifted=True, rotated=True):
+def _sr(x, shift, matrix_t, rate, shifted=True, rotated=True):
     """``sr_func``: ``(y, z)`` with ``y`` the shifted, scaled point the C code leaves in its
     buffer (None when it leaves it alone) and ``z`` the function's input."""
     d = (x - shift) * rate if shifted else x * rate
     if rotated:
-        return d, B.rotate(d, matrix)
+        return d, K.rotate(d, matrix_t)
     return None, d
 
 
-def plain(node: Plain, x, shift, matrix, shifted=True):
+def plain(node: Plain, x, shift, matrix_t, shifted=True):
     """Value of a shifted (and rotated) basic function at the rows of ``x``."""
     if node.name == "bi_rastrigin":
-        return B.bi_rastrigin(x, shift, matrix, shifted, node.rotated)
+        return K.bi_rastrigin(x, shift, matrix_t, shifted, node.rotated)
     if node.name == "schaffer_f7":  # reads the buffer y: the shifted point, never rotated
-        y, z = _sr(x, shift, matrix, 1.0, shifted, node.rotated)
+        y, z = _sr(x, shift, matrix_t, 1.0, shifted, node.rotated)
         return B.schaffer_f7(z if y is None else y)
-    _, z = _sr(x, shift, matrix, B.RATE.get(node.name, 1.0), shifted, node.rotated)
+    _, z = _sr(x, shift, matrix_t, B.RATE.get(node.name, 1.0), shifted, node.rotated)
     return B.BASIC[node.name](z)
 
 
-def hybrid(node: Hybrid, x, shift, matrix, perm):
+def hybrid(node: Hybrid, x, shift, matrix_t, perm):
     """``hf01``..``hf10``: shift and rotate, shuffle by ``perm``, one function per group."""
-    _, z = _sr(x, shift, matrix, 1.0)
+    _, z = _sr(x, shift, matrix_t, 1.0)
     y = z[:, perm]
     total = np.zeros(x.shape[0])
     start = 0
@@ -90,7 +89,7 @@ def hybrid(node: Hybrid, x, shift, matrix, perm):
         if name == "schaffer_f7":  # the C code reads y[0..size), not this group
             total = total + B.schaffer_f7(y[:, :size])
         elif name == "bi_rastrigin":
-            total = total + B.bi_rastrigin(part, shift, matrix, False, False)
+            total = total + K.bi_rastrigin(part, shift, matrix_t, False, False)
         else:
             total = total + B.BASIC[name](part * B.RATE.get(name, 1.0))
         start += size
@@ -99,25 +98,16 @@ def hybrid(node: Hybrid, x, shift, matrix, perm):
 
 def composition(node: Composition, x, data):
     """``cf01``..``cf10``: the components' values weighted by closeness to their optima."""
-    n, dim = x.shape
-    fits, weights = [], []
+    fits = np.empty((x.shape[0], len(node.components)))
     for i, c in enumerate(node.components):
         if isinstance(c.function, Hybrid):
-            f = hybrid(c.function, x, data.shift[i], data.matrix[i], data.shuffle[i])
+            f = hybrid(c.function, x, data.shift[i], data.matrix_t[i], data.shuffle[i])
         else:
-            f = plain(c.function, x, data.shift[i], data.matrix[i])
+            f = plain(c.function, x, data.shift[i], data.matrix_t[i])
         a, b = c.scale
-        fits.append(a * f / b + c.bias if (a, b) != (1.0, 1.0) else f + c.bias)
-        d2 = B.seqsum((x - data.shift[i]) ** 2)
-        safe = np.where(d2 != 0, d2, 1.0)
-        w = np.power(1.0 / safe, 0.5) * np.exp(-safe / 2.0 / dim / c.delta**2)
-        weights.append(np.where(d2 != 0, w, INF))
-    w = np.stack(weights, axis=1)
-    w_sum = B.seqsum(w)
-    flat = np.max(w, axis=1) == 0  # every weight underflowed: equal weights
-    w = np.where(flat[:, None], 1.0, w)
-    w_sum = np.where(flat, len(fits), w_sum)
-    return B.seqsum(w / w_sum[:, None] * np.stack(fits, axis=1))
+        fits[:, i] = (a * f / b if (a, b) != (1.0, 1.0) else f) + c.bias
+    deltas = np.array([c.delta for c in node.components], dtype=float)
+    return K.cf_cal(x, data.shift[: len(deltas)], deltas, fits)
 
 
 def evaluate(node, x, data):
@@ -126,5 +116,5 @@ def evaluate(node, x, data):
         if isinstance(node, Composition):
             return composition(node, x, data)
         if isinstance(node, Hybrid):
-            return hybrid(node, x, data.shift[0], data.matrix[0], data.shuffle[0])
-        return plain(node, x, data.shift[0], data.matrix[0])
+            return hybrid(node, x, data.shift[0], data.matrix_t[0], data.shuffle[0])
+        return plain(node, x, data.shift[0], data.matrix_t[0])
