@@ -104,9 +104,9 @@ class SuiteSpec:
     prepare : callable or None
         ``prepare(function_id, dim)`` reads and checks what the problem needs from files
         (CEC: the official data), raising an error that names the file; None: nothing to read.
-    numbering : str
-        How the suite's function ids relate to the official ones, for reports ("" when they
-        are the official ids).
+    checkpoints : callable or None
+        ``checkpoints(dim, max_evals) -> tuple of int``: the evaluations after which the
+        suite's competition records errors (CEC), for its result tables; None: none defined.
     """
 
     name: str
@@ -120,7 +120,7 @@ class SuiteSpec:
     default_instances: tuple[int, ...] = (1,)
     groups: dict[str, tuple[int, ...]] = dataclasses.field(default_factory=dict)
     prepare: Callable[[int, int], None] | None = None
-    numbering: str = ""
+    checkpoints: Callable[[int, int], tuple[int, ...]] | None = None
 
     def require(self) -> None:
         """Import the suite's library now; :class:`MissingExtraError` names the ``pip install``

@@ -18,6 +18,23 @@ from mawdo.suites.cec_data import CECDataError, load
 from mawdo.suites.cec_tables import TABLES, CECFunction
 
 BOUND = 100.0
+CHECKPOINTS_2017 = (0.01, 0.02, 0.03, 0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0)
+"""CEC 2017's checkpoints, as fractions of the budget (its technical report, 2.2)."""
+
+
+def checkpoints(year: int, dim: int, max_evals: int) -> tuple[int, ...]:
+    """Evaluations after which the competition records the error of a run.
+
+    CEC 2017: ``(0.01, 0.02, 0.03, 0.05, 0.1, 0.2, ..., 1.0) * MaxFES`` (14). CEC 2022:
+    ``D^(k/5 - 3) * MaxFES`` for ``k = 0..15`` (16; the report prints the formula as an image:
+    this is CEC 2020's, which the 2022 text's ``k = 0, 1, ..., 15`` and last entry at MaxFES
+    match; docs/deviations.md#d-cec-protocol). Rounded to whole evaluations, at least 1.
+    """
+    if year == 2017:
+        fractions = CHECKPOINTS_2017
+    else:
+        fractions = tuple(float(dim) ** (k / 5 - 3) for k in range(16))
+    return tuple(max(1, round(f * max_evals)) for f in fractions)
 
 
 def cec_function(year: int, fid: int) -> CECFunction:
@@ -107,6 +124,7 @@ def _spec(year: int) -> SuiteSpec:
         label=f"CEC{year}",
         max_instance=1,
         prepare=lambda fid, dim: load(table[fid - 1].data, dim) and None,
+        checkpoints=lambda dim, max_evals: checkpoints(year, dim, max_evals),
     )
 
 

@@ -23,6 +23,7 @@ from pydantic import Field, ValidationInfo, field_validator, model_validator
 from mawdo.experiments.kinds.suite.components import component_presets
 from mawdo.experiments.kinds.suite.holdout import HOLDOUT_HELP, HOLDOUT_PRESETS
 from mawdo.experiments.kinds.suite.keys import parse_key, problem_key
+from mawdo.experiments.kinds.suite.official import OFFICIAL_HELP, OFFICIAL_PRESETS
 from mawdo.experiments.kinds.suite.variants import canonical_name, check_variants, describe_setup
 from mawdo.experiments.plans import PlanError, PositiveInt, StudyPlanBase, reject_duplicates
 from mawdo.experiments.protocol import Task, missing_run_tasks
@@ -415,6 +416,7 @@ PRESETS: dict[str, dict[str, Any]] = {
         "seed": BBOB_SEED,
     },
     **HOLDOUT_PRESETS,
+    **OFFICIAL_PRESETS,
 }
 """Named BBOB plans (``mawdo bench run --preset bbob-quick``)."""
 
@@ -424,6 +426,7 @@ PRESET_HELP = {
     "bbob-full": "issue 13's protocol: BBOB f1-f24, instances 1-5, D 5 and 20, 1e4 x D "
     "evaluations, 5 runs per instance, the paper's six algorithms + CMA-ES + random",
     **HOLDOUT_HELP,
+    **OFFICIAL_HELP,
 }
 _COMPONENTS, _COMPONENT_HELP = component_presets(BBOB_SEED)
 PRESETS.update(_COMPONENTS)
