@@ -1,8 +1,9 @@
 """Standard problem suites as registered sources: the record, the registry and the checks.
 
-A suite (``bbob``, ``cec2017``, ``cec2022``) turns ``(function, instance, dimension)`` into a
-:class:`SuiteFunction`, a :class:`~mawdo.functions.BenchmarkFunction` whose formula calls the
-suite's own library (``ioh``, ``opfunu``) once per batch. It is therefore accepted as is by
+A suite (``bbob``, ``cec2017``, ``cec2022``, ``cec2017-opfunu``, ...) turns ``(function,
+instance, dimension)`` into a :class:`SuiteFunction`, a :class:`~mawdo.functions.BenchmarkFunction`
+whose formula evaluates a whole batch: through the suite's library (``ioh``; ``opfunu`` row by
+row) or mawdo's port of the official CEC code. It is therefore accepted as is by
 :func:`mawdo.minimize` (bounds and ``f_star`` travel with it). The libraries come with the
 optional extra ``bbob``; every entry point says how to install it when it is missing.
 """
@@ -90,8 +91,9 @@ class SuiteSpec:
     build : callable
         ``build(function_id, instance, dim) -> SuiteFunction``; called after validation.
     library : str
-        The module that computes the values (``"ioh"``, ``"opfunu.cec_based.cec2017"``);
-        :meth:`require` imports it. Its top package is the pip package.
+        The module that computes the values (``"ioh"``, ``"opfunu.cec_based.cec2017"``,
+        ``"numpy"`` for the official CEC code's port); :meth:`require` imports it. Its top
+        package is the pip package.
     label : str
         Display name in reports and exported logs (``"BBOB"``, ``"CEC2017"``).
     max_instance : int or None
@@ -223,15 +225,16 @@ def get_problem(suite: str, function, instance: int = 1, dim: int = 10) -> Suite
     Parameters
     ----------
     suite : str
-        ``"bbob"``, ``"cec2017"`` or ``"cec2022"`` (close names are suggested on a miss).
+        ``"bbob"``, ``"cec2017"``, ``"cec2022"``, ``"cec2017-opfunu"`` or ``"cec2022-opfunu"``
+        (close names are suggested on a miss).
     function : int or str
         Function id ``1..n`` (``3``, ``"f3"``) or the library's name (``"rastrigin"``).
     instance : int
         Instance, >= 1 (BBOB instances change the optimum's place and value; CEC has one).
     dim : int
         Dimension D: BBOB 2-40; CEC 2017 {2, 10, 20, 30, 50, 100}, but {10, 30, 50, 100} for
-        its hybrid functions F10-F19 and compositions F28-F29; CEC 2022 {2, 10, 20}, but
-        {10, 20} for its hybrid functions F6-F8.
+        its hybrid functions F11-F19 and compositions F29-F30 and {10, 20, 30, 50, 100} for F20
+        (opfunu: not 20 for F20); CEC 2022 {2, 10, 20}, but {10, 20} for its hybrids F6-F8.
 
     Examples
     --------

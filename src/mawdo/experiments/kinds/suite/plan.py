@@ -59,7 +59,8 @@ class SuitePlan(StudyPlanBase):
     name : str
         A label for reports (does not affect numbers).
     suite : str
-        Registered suite: ``"bbob"`` (ioh), ``"cec2017"`` or ``"cec2022"`` (opfunu).
+        Registered suite: ``"bbob"`` (ioh), ``"cec2017"`` or ``"cec2022"`` (the official
+        code, batched), ``"cec2017-opfunu"`` or ``"cec2022-opfunu"``.
     variants : dict of str to str
         Labels of named variants mapped to registered optimizers (``{"mawdo-r10": "mawdo"}``):
         each label listed in ``algorithms`` runs that optimizer with ``options[label]`` and is
