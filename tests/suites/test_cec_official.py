@@ -90,3 +90,40 @@ def test_unknown_function_and_uncovered_dimension_are_named():
         get_problem("cec2022", 12, dim=30)
     with pytest.raises(ValueError, match=r"takes points of shape \(n, 10\)"):
         get_problem("cec2022", 1, dim=10).func(np.zeros((3, 11)))
+
+
+@pytest.fixture
+def data_copy(tmp_path, monkeypatch):
+    """A copy of the CEC 2022 data named by MAWDO_CEC2022_DATA (reads are cached per folder)."""
+    import shutil
+
+    from mawdo.suites.cec_data import data_folder
+
+    folder = tmp_path / "input_data"
+    shutil.copytree(data_folder(2022), folder)
+    monkeypatch.setenv("MAWDO_CEC2022_DATA", str(folder))
+    return folder
+
+
+def test_a_missing_or_damaged_data_file_is_named_with_its_function(data_copy):
+    from mawdo.suites.cec_data import CECDataError
+
+    assert get_problem("cec2022", 7, dim=10).func.data.shuffle.shape == (1, 10)  # the copy works
+    (data_copy / "shuffle_data_8_D20.txt").unlink()
+    with pytest.raises(CECDataError, match=r"CEC 2022 F8 needs .*shuffle_data_8_D20\.txt, which "
+                       r"does not exist; reinstall opfunu .* MAWDO_CEC2022_DATA"):  # fmt: skip
+        get_problem("cec2022", 8, dim=20)
+    text = (data_copy / "shift_data_3.txt").read_text()
+    (data_copy / "shift_data_3.txt").write_text(text[:-40])  # a truncated file
+    with pytest.raises(CECDataError, match=r"CEC 2022 F3 needs .*shift_data_3\.txt, which is "
+                       r"damaged: it is not the official file"):  # fmt: skip
+        get_problem("cec2022", 3, dim=2)
+
+
+def test_the_check_before_a_study_reads_every_file_it_needs(data_copy):
+    from mawdo.suites.cec_data import CECDataError
+
+    (data_copy / "M_12_D20.txt").write_text("0 " * 2400)  # enough numbers, not the official
+    SUITES["cec2022"].check_problems([1, 12], [10])  # D = 20 is not asked: fine
+    with pytest.raises(CECDataError, match=r"CEC 2022 F12 needs .*M_12_D20\.txt.*damaged"):
+        SUITES["cec2022"].check_problems([1, 12], [10, 20])

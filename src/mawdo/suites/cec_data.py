@@ -127,7 +127,7 @@ def data_folder(year: int) -> Path:
     return folder
 
 
-def read_checked(year: int, fid: int, name: str) -> str:
+def read_checked(year: int, fid: int, name: str, folder: Path | None = None) -> str:
     """The text of the official data file ``name`` of CEC ``year`` F``fid``, checked.
 
     Raises
@@ -135,7 +135,7 @@ def read_checked(year: int, fid: int, name: str) -> str:
     CECDataError
         The file is missing, unreadable, or differs from the official file.
     """
-    path = data_folder(year) / name
+    path = (folder or data_folder(year)) / name
     where = f"CEC {year} F{fid} needs {path}"
     try:
         raw = path.read_bytes()
@@ -186,18 +186,23 @@ class Data:
     shuffle: np.ndarray | None
 
 
-@functools.lru_cache(maxsize=32)
 def load(need: FunctionData, dim: int) -> Data:
-    """The data of ``need`` in dimension ``dim``, read once per process (cached)."""
+    """The data of ``need`` in dimension ``dim`` from :func:`data_folder`, read once per
+    process and folder (cached)."""
+    return _load(need, dim, data_folder(need.year))
+
+
+@functools.lru_cache(maxsize=32)
+def _load(need: FunctionData, dim: int, folder: Path) -> Data:
     if dim not in need.dims():
         raise CECDataError(
             f"CEC {need.year} F{need.fid}: the official data do not cover D={dim} "
             f"(they cover D in {need.dims()})"
         )
     m_name, s_name, *rest = need.files(dim)
-    text = read_checked(need.year, need.fid, m_name)
+    text = read_checked(need.year, need.fid, m_name, folder)
     matrix = _numbers(text, need.n_matrix * dim * dim, m_name)
-    text = read_checked(need.year, need.fid, s_name)
+    text = read_checked(need.year, need.fid, s_name, folder)
     if need.composition:
         lines = [ln for ln in text.splitlines() if ln.strip()]
         if len(lines) < need.n_shift:
@@ -207,7 +212,7 @@ def load(need: FunctionData, dim: int) -> Data:
         shift = _numbers(text, dim, s_name)[None]
     shuffle = None
     if rest:
-        text = read_checked(need.year, need.fid, rest[0])
+        text = read_checked(need.year, need.fid, rest[0], folder)
         shuffle = _numbers(text, need.shuffle * dim, rest[0], dtype=int).reshape(-1, dim) - 1
     matrix = matrix.reshape(need.n_matrix, dim, dim)
     matrix_t = np.ascontiguousarray(matrix.transpose(0, 2, 1))

@@ -51,11 +51,15 @@ class CECFormula:
     def __init__(self, year: int, fid: int, dim: int) -> None:
         self.year, self.fid, self.dim = year, fid, dim
         self.function = cec_function(year, fid)
+        self._data = None
 
     @property
     def data(self):
-        """The function's official data in this dimension (read once per process)."""
-        return load(self.function.data, self.dim)
+        """The function's official data in this dimension (read at first use, once per
+        process and data folder)."""
+        if self._data is None:
+            self._data = load(self.function.data, self.dim)
+        return self._data
 
     def __call__(self, X: np.ndarray) -> np.ndarray:
         X = np.asarray(X, dtype=float)
@@ -109,6 +113,10 @@ def _builder(year: int):
     return build
 
 
+def _prepare(fn: CECFunction, dim: int) -> None:
+    load(fn.data, dim)  # reads and checks every file the function needs (cached)
+
+
 def _spec(year: int) -> SuiteSpec:
     table = TABLES[year]
     n = len(table)
@@ -123,7 +131,7 @@ def _spec(year: int) -> SuiteSpec:
         library="numpy",
         label=f"CEC{year}",
         max_instance=1,
-        prepare=lambda fid, dim: load(table[fid - 1].data, dim) and None,
+        prepare=lambda fid, dim: _prepare(table[fid - 1], dim),
         checkpoints=lambda dim, max_evals: checkpoints(year, dim, max_evals),
     )
 
