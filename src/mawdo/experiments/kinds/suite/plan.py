@@ -23,6 +23,12 @@ from pydantic import Field, ValidationInfo, field_validator, model_validator
 from mawdo.experiments.kinds.suite.components import component_presets
 from mawdo.experiments.kinds.suite.holdout import HOLDOUT_HELP, HOLDOUT_PRESETS
 from mawdo.experiments.kinds.suite.keys import parse_key, problem_key
+from mawdo.experiments.kinds.suite.numbering import (
+    check_numbering,
+    computed_by,
+    default_numbering,
+    numbering_note,
+)
 from mawdo.experiments.kinds.suite.official import OFFICIAL_HELP, OFFICIAL_PRESETS
 from mawdo.experiments.kinds.suite.variants import canonical_name, check_variants, describe_setup
 from mawdo.experiments.plans import PlanError, PositiveInt, StudyPlanBase, reject_duplicates
@@ -31,7 +37,6 @@ from mawdo.optimizers import PAPER_ALGORITHMS, make_optimizer
 from mawdo.streams import name_word
 from mawdo.suites import SUITES, evaluation_budget
 from mawdo.suites.base import format_dims
-from mawdo.suites.cec import OPFUNU_NUMBERING, official_id
 
 PLAN_SCHEMA = 1
 """Bumped when the meaning of a plan field changes; part of the plan hash."""
@@ -41,10 +46,6 @@ BBOB_SEED = 20251125
 
 KIND = "suite"
 """The kind's name (its plans' ``kind``)."""
-
-CEC_SUITES = ("cec2017", "cec2022")
-"""Suites whose name meant opfunu's functions (and, for CEC 2017, opfunu's numbers) in stores
-written before the batched official suites: see :attr:`SuitePlan.numbering`."""
 
 OLD_KIND_NAMES = ("bbob",)
 """Names the kind had before (stores and plan files made then say ``kind = "bbob"``): read as
@@ -93,11 +94,8 @@ class SuitePlan(StudyPlanBase):
     batch_size : int
         Runs per task (one vectorised batch on one worker). Does not affect numbers.
     numbering : {"official", "opfunu"} or None
-        CEC suites only, set by the plan itself: ``"official"`` for every new plan (official
-        function numbers, values of the official code). ``"opfunu"`` marks a plan read back from
-        a store written when ``cec2017`` / ``cec2022`` meant ``opfunu``'s functions under
-        ``opfunu``'s numbers (CEC 2017: F1-F29 = official F1, F3-F30); such a store is
-        reported as it is, with that said, and never computed further.
+        CEC suites only, set by the plan itself: ``"official"``, or ``"opfunu"`` for a plan read
+        back from a store made when cec2017/cec2022 were opfunu's (:mod:`.numbering`).
     """
 
     study_kind: ClassVar[str] = KIND
@@ -125,10 +123,10 @@ class SuitePlan(StudyPlanBase):
             return data
         if data.get("kind") in OLD_KIND_NAMES:
             data = {**data, "kind": KIND}
-        suite = str(data.get("suite", "bbob")).strip().lower()
-        if suite in CEC_SUITES and data.get("numbering") is None:
+        if data.get("numbering") is None:
+            suite = str(data.get("suite", "bbob")).strip().lower()
             stored = bool(info.context and info.context.get("stored"))
-            data = {**data, "numbering": "opfunu" if stored else "official"}
+            data = {**data, "numbering": default_numbering(suite, stored)}
         if data.get("instances") is None:  # the suite's own (CEC: its one; BBOB: COCO's 1-5)
             suite = SUITES.get(str(data.get("suite", "bbob")).strip().lower())
             if suite is not None:  # an unknown suite is named by the suite field's check
@@ -143,15 +141,8 @@ class SuitePlan(StudyPlanBase):
     @field_validator("numbering")
     @classmethod
     def _check_numbering(cls, numbering: str | None, info: ValidationInfo) -> str | None:
-        suite = info.data.get("suite")
-        if numbering is not None and suite is not None and suite not in CEC_SUITES:
-            raise ValueError(f"applies to the suites {', '.join(CEC_SUITES)} only, not {suite}")
-        if numbering == "opfunu" and not (info.context and info.context.get("stored")):
-            raise ValueError(
-                "'opfunu' marks stores written when cec2017/cec2022 meant opfunu's functions; "
-                "a new plan uses the official suites (cec2017, cec2022) or cec2017-opfunu / "
-                "cec2022-opfunu"
-            )
+        stored = bool(info.context and info.context.get("stored"))
+        check_numbering(numbering, info.data.get("suite"), stored)
         return numbering
 
     @field_validator("budget", mode="before")
@@ -301,21 +292,11 @@ class SuitePlan(StudyPlanBase):
     def computed_by(self, fid: int) -> tuple[str, int]:
         """The registered suite and function id that compute the plan's function ``fid``
         (a store of opfunu's numbering: ``cec2017-opfunu`` and the official id)."""
-        if self.numbering == "opfunu":
-            return f"{self.suite}-opfunu", official_id(int(self.suite[3:]), fid)
-        return self.suite, fid
+        return computed_by(self.suite, self.numbering, fid)
 
     def numbering_note(self) -> str:
         """How the plan's function ids relate to the official ones ("" for official ids)."""
-        if self.numbering != "opfunu":
-            return ""
-        how = OPFUNU_NUMBERING + "; " if self.suite == "cec2017" else ""
-        return (
-            f"Functions as opfunu 1.0.4 computes them ({how}its values depart from the official "
-            f"code's, docs/deviations.md#d-cec-opfunu): this store was made when the suite "
-            f"{self.suite} meant opfunu's functions; the suite {self.suite} now is the official "
-            f"code's, and {self.suite}-opfunu is opfunu's under the official numbers."
-        )
+        return numbering_note(self.suite, self.numbering)
 
     def check_libraries(self) -> None:
         """Import the suite's library and read the data of every problem now (before any worker
