@@ -1,11 +1,13 @@
 """CEC 2017 (F1-F30) and CEC 2022 (F1-F12) computed by mawdo on a whole population, in the
 official numbering: the suites ``cec2017`` and ``cec2022``.
 
-One call evaluates a batch ``(n, D)`` with NumPy (:mod:`.cec_compose`), from the official input
-data (:mod:`.cec_data`); values agree with the official C code to about 1e-15 relative
-(tests/suites/test_cec_official.py) at 70-400 times less cost per point than ``opfunu``'s
-one-point calls (benchmarks/bench_cec.py). Bounds are ``[-100, 100]^D``; ``f_star`` is the
-function's bias (``100 * F`` in CEC 2017). The dimensions are those the official data cover.
+One call evaluates a batch ``(n, D)`` (:mod:`.cec_compose` over the Numba loops of
+:mod:`.cec_basic` and :mod:`.cec_kernels`), from the official input data (:mod:`.cec_data`):
+the official C code's values, bit for bit on 6078 of 6080 probe points and within 1.4e-16
+relative on the others (tests/suites/test_cec_official.py), at 100-220 times less cost per
+point than ``opfunu``'s one-point calls at batch 100 (benchmarks/bench_cec.py). Bounds are
+``[-100, 100]^D``; ``f_star`` is the function's bias (``100 * F`` in CEC 2017). The dimensions
+are those the official data cover.
 """
 
 from __future__ import annotations
