@@ -45,7 +45,9 @@ class OfficialCEC:
             f"-I{build / 'inc'}", f"-DYEAR={short}", str(SOURCES / "cec_driver.cpp"),
             str(SOURCES / f"cec{short}_test_func.cpp"), "-o", str(lib),
         ]  # fmt: skip
-        subprocess.run(cmd, check=True, capture_output=True)
+        done = subprocess.run(cmd, capture_output=True, text=True)
+        if done.returncode != 0:
+            raise RuntimeError(f"building the official CEC {year} code failed: {done.stderr}")
         self.lib = ctypes.CDLL(str(lib))
         self.run_dir = build / f"run{short}"
         self.run_dir.mkdir(exist_ok=True)
