@@ -18,6 +18,7 @@ SUITES = [
     "bench_scenes",
     "bench_arena",
     "bench_bbob",
+    "bench_cec",
     "bench_sipp",
     "bench_timed",
     "bench_startup",

@@ -112,19 +112,25 @@ def test_the_stated_numbers_are_recomputed_from_the_raw_rows(stores):
 
 
 def test_the_stores_are_the_registered_reduced_plans(stores):
-    """Each store holds the plan its docs name: the quick CEC presets, and the F1-F16 presets
-    with their runs and iterations cut (the commands in docs/results/holdout/README.md)."""
+    """Each store holds the plan its docs name: the quick CEC presets as they were when the
+    suites cec2017/cec2022 meant opfunu's functions (CEC 2017: opfunu's F1-F29, the official
+    F1 and F3-F30 the presets now name), and the F1-F16 presets with their runs and iterations
+    cut (the commands in docs/results/holdout/README.md)."""
     from mawdo.experiments import Store
     from mawdo.experiments.kinds.benchmark.plan import PRESETS, ExperimentPlan
     from mawdo.experiments.kinds.suite import preset_plan
     from mawdo.experiments.kinds.suite.plan import PRESETS as SUITE_PRESETS
     from mawdo.experiments.kinds.suite.plan import SuitePlan
+    from mawdo.suites.cec import official_id
 
+    old17 = {**SUITE_PRESETS["holdout-quick-cec2017"], "functions": list(range(1, 30))}
+    now = preset_plan("holdout-quick-cec2017").functions  # opfunu's F1-F29, by formula
+    assert tuple(official_id(2017, f) for f in old17["functions"]) == now
     expected = [
-        preset_plan("holdout-quick-cec2017"),
-        SuitePlan.from_dict({**SUITE_PRESETS["holdout-quick-cec2017"], "dims": [30]}),
-        preset_plan("holdout-quick-cec2022"),
-        SuitePlan.from_dict({**SUITE_PRESETS["holdout-quick-cec2022"], "dims": [20]}),
+        SuitePlan.from_dict(old17, stored=True),
+        SuitePlan.from_dict({**old17, "dims": [30]}, stored=True),
+        SuitePlan.from_dict(SUITE_PRESETS["holdout-quick-cec2022"], stored=True),
+        SuitePlan.from_dict({**SUITE_PRESETS["holdout-quick-cec2022"], "dims": [20]}, stored=True),
         ExperimentPlan.from_dict({**PRESETS["holdout-paper"], "runs": 2, "max_iter": 200}),
         ExperimentPlan.from_dict({**PRESETS["holdout-paper-shifted"], "runs": 2, "max_iter": 200}),
     ]

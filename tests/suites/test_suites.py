@@ -11,7 +11,7 @@ from opfunu.cec_based import cec2017, cec2022
 from mawdo import minimize
 from mawdo.registry import UnknownNameError
 from mawdo.suites import SUITES, MissingExtraError, evaluation_budget, get_problem
-from mawdo.suites.cec import cec_dims
+from mawdo.suites.cec import cec_dims, official_id
 
 
 def points(dim, n, lo, hi, seed):
@@ -37,15 +37,15 @@ def test_bbob_values_equal_ioh_point_by_point(fid, iid, dim):
 
 def cec_cases():
     for year, n in ((2017, 29), (2022, 12)):
-        for fid in range(1, n + 1):
-            for dim in cec_dims(year, fid):
+        for fid in range(1, n + 1):  # opfunu's numbers
+            for dim in cec_dims(year, official_id(year, fid)):
                 if dim <= 20:
                     yield year, fid, dim
 
 
 @pytest.mark.parametrize(("year", "fid", "dim"), list(cec_cases()))
-def test_cec_values_equal_opfunu(year, fid, dim):
-    f = get_problem(f"cec{year}", fid, dim=dim)
+def test_cec_opfunu_values_equal_opfunu_under_the_official_number(year, fid, dim):
+    f = get_problem(f"cec{year}-opfunu", official_id(year, fid), dim=dim)
     mod = cec2017 if year == 2017 else cec2022
     ref = getattr(mod, f"F{fid}{year}")(ndim=dim)  # a fresh opfunu object, not our cached one
     assert dim in ref.dim_supported
@@ -62,7 +62,16 @@ def test_cec_dimensions_are_opfunus(year, n):
     mod = cec2017 if year == 2017 else cec2022
     for fid in range(1, n + 1):
         default = getattr(mod, f"F{fid}{year}")()
-        assert tuple(d for d in default.dim_supported if d <= 100) == cec_dims(year, fid)
+        want = cec_dims(year, official_id(year, fid))
+        assert tuple(d for d in default.dim_supported if d <= 100) == want
+
+
+def test_opfunu_suite_numbers_are_official_and_its_missing_f2_is_named():
+    assert [official_id(2017, k) for k in (1, 2, 3, 29)] == [1, 3, 4, 30]
+    assert get_problem("cec2017-opfunu", 3, dim=10).description.endswith("(opfunu F2)")
+    with pytest.raises(ValueError, match="opfunu 1.0.4 does not implement the official CEC 2017"):
+        get_problem("cec2017-opfunu", 2, dim=10)
+    assert get_problem("cec2022-opfunu", 12, dim=10).function_id == 12
 
 
 def test_bbob_dimension_range_and_instances():
@@ -134,7 +143,7 @@ def test_budget_is_evaluations_per_dimension():
     assert evaluation_budget(2.5, 3) == 8  # ceil
 
 
-@pytest.mark.parametrize(("suite", "module"), [("bbob", "ioh"), ("cec2017", "opfunu")])
+@pytest.mark.parametrize(("suite", "module"), [("bbob", "ioh"), ("cec2017-opfunu", "opfunu")])
 def test_missing_extra_says_which_install_fixes_it(monkeypatch, suite, module):
     from mawdo.suites import cec
 

@@ -50,7 +50,9 @@ def run_cmd(
         "--budget",
         help="Override: iterations | evals; with --suite: evaluations per dimension (1e4).",
     ),
-    suite: str = typer.Option(None, "--suite", help="Standard suite: bbob, cec2017, cec2022."),
+    suite: str = typer.Option(
+        None, "--suite", help="Standard suite: bbob, cec2017, cec2022 (or cec2017-opfunu, ...)."
+    ),
     instances: str = typer.Option(None, "--instances", help="With --suite: instances (1-5)."),
     dims: str = typer.Option(None, "--dims", help="With --suite: dimensions (5,20)."),
     variant: list[str] = typer.Option(

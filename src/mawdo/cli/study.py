@@ -91,6 +91,8 @@ def run_study(plan: Any, out: Path, **backend: Any) -> None:
             check()
     except ImportError as exc:
         fail(exc, code=1)
+    except ValueError as exc:  # a data file the plan needs is missing or damaged: input
+        fail(exc, code=2)
     typer.echo(f"{plan.describe()}; plan {plan.plan_hash[:12]} -> {out}", err=True)
     try:
         summary = run_plan(plan, out, **backend)

@@ -1,8 +1,9 @@
 """Standard problem suites as registered sources: the record, the registry and the checks.
 
-A suite (``bbob``, ``cec2017``, ``cec2022``) turns ``(function, instance, dimension)`` into a
-:class:`SuiteFunction`, a :class:`~mawdo.functions.BenchmarkFunction` whose formula calls the
-suite's own library (``ioh``, ``opfunu``) once per batch. It is therefore accepted as is by
+A suite (``bbob``, ``cec2017``, ``cec2022``, ``cec2017-opfunu``, ...) turns ``(function,
+instance, dimension)`` into a :class:`SuiteFunction`, a :class:`~mawdo.functions.BenchmarkFunction`
+whose formula evaluates a whole batch: through the suite's library (``ioh``; ``opfunu`` row by
+row) or mawdo's port of the official CEC code. It is therefore accepted as is by
 :func:`mawdo.minimize` (bounds and ``f_star`` travel with it). The libraries come with the
 optional extra ``bbob``; every entry point says how to install it when it is missing.
 """
@@ -90,8 +91,9 @@ class SuiteSpec:
     build : callable
         ``build(function_id, instance, dim) -> SuiteFunction``; called after validation.
     library : str
-        The module that computes the values (``"ioh"``, ``"opfunu.cec_based.cec2017"``);
-        :meth:`require` imports it. Its top package is the pip package.
+        The module that computes the values (``"ioh"``, ``"opfunu.cec_based.cec2017"``,
+        ``"numpy"`` for the official CEC code's port); :meth:`require` imports it. Its top
+        package is the pip package.
     label : str
         Display name in reports and exported logs (``"BBOB"``, ``"CEC2017"``).
     max_instance : int or None
@@ -101,6 +103,12 @@ class SuiteSpec:
     groups : dict of str to tuple of int
         Named groups of function ids that reports break results down by (BBOB: COCO's five);
         empty when the suite defines none.
+    prepare : callable or None
+        ``prepare(function_id, dim)`` reads and checks what the problem needs from files
+        (CEC: the official data), raising an error that names the file; None: nothing to read.
+    checkpoints : callable or None
+        ``checkpoints(dim, max_evals) -> tuple of int``: the evaluations after which the
+        suite's competition records errors (CEC), for its result tables; None: none defined.
     """
 
     name: str
@@ -113,11 +121,32 @@ class SuiteSpec:
     max_instance: int | None = None
     default_instances: tuple[int, ...] = (1,)
     groups: dict[str, tuple[int, ...]] = dataclasses.field(default_factory=dict)
+    prepare: Callable[[int, int], None] | None = None
+    checkpoints: Callable[[int, int], tuple[int, ...]] | None = None
 
     def require(self) -> None:
         """Import the suite's library now; :class:`MissingExtraError` names the ``pip install``
         that fixes a missing one."""
         require(self.library, self.name)
+
+    def check_problems(self, functions, dims) -> None:
+        """Import the library and read every data file the ``functions x dims`` problems need
+        (those the suite defines), so a missing or damaged file stops a study before it runs.
+
+        Raises
+        ------
+        MissingExtraError
+            The library (or the package holding the data) is not installed.
+        ValueError
+            A data file is missing or damaged (the message names the function and the file).
+        """
+        self.require()
+        if self.prepare is None:
+            return
+        for fid in functions:
+            for dim in dims:
+                if dim in self.dims(fid):
+                    self.prepare(fid, dim)
 
     @property
     def functions(self) -> tuple[int, ...]:
@@ -196,15 +225,16 @@ def get_problem(suite: str, function, instance: int = 1, dim: int = 10) -> Suite
     Parameters
     ----------
     suite : str
-        ``"bbob"``, ``"cec2017"`` or ``"cec2022"`` (close names are suggested on a miss).
+        ``"bbob"``, ``"cec2017"``, ``"cec2022"``, ``"cec2017-opfunu"`` or ``"cec2022-opfunu"``
+        (close names are suggested on a miss).
     function : int or str
         Function id ``1..n`` (``3``, ``"f3"``) or the library's name (``"rastrigin"``).
     instance : int
         Instance, >= 1 (BBOB instances change the optimum's place and value; CEC has one).
     dim : int
         Dimension D: BBOB 2-40; CEC 2017 {2, 10, 20, 30, 50, 100}, but {10, 30, 50, 100} for
-        its hybrid functions F10-F19 and compositions F28-F29; CEC 2022 {2, 10, 20}, but
-        {10, 20} for its hybrid functions F6-F8.
+        its hybrid functions F11-F19 and compositions F29-F30 and {10, 20, 30, 50, 100} for F20
+        (opfunu: not 20 for F20); CEC 2022 {2, 10, 20}, but {10, 20} for its hybrids F6-F8.
 
     Examples
     --------

@@ -5,6 +5,7 @@ before any computing (the budgets below would run for hours)."""
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import sys
 
@@ -53,7 +54,9 @@ def test_bad_suite_input(tmp_path, args, words):
     assert not (tmp_path / "x.db").exists()
 
 
-@pytest.mark.parametrize(("suite", "module"), [("bbob", "ioh"), ("cec2017", "opfunu")])
+@pytest.mark.parametrize(
+    ("suite", "module"), [("bbob", "ioh"), ("cec2017", "opfunu"), ("cec2017-opfunu", "opfunu")]
+)
 def test_missing_extra_names_the_pip_install(tmp_path, suite, module):
     # A package of that name that fails to import: what an environment without the extra sees.
     blocked = tmp_path / "blocked" / module
@@ -106,3 +109,34 @@ def test_report_of_stores_run_per_dimension(tmp_path):
     assert twice.returncode == 1 and "report them separately" in twice.stderr
     missing = mawdo("bench", "report", "d2.db", "nope.db", "--out", "r3", cwd=tmp_path)
     assert missing.returncode == 1 and "no such results store: nope.db" in missing.stderr
+
+
+@pytest.mark.parametrize(
+    ("damage", "words"),
+    [
+        ("missing", ["CEC 2022 F9 needs", "shift_data_9.txt", "does not exist"]),
+        ("damaged", ["CEC 2022 F9 needs", "M_9_D10.txt", "damaged", "not the official file"]),
+        ("no folder", ["MAWDO_CEC2022_DATA=", "is not a folder"]),
+    ],
+)
+def test_bad_cec_data_is_named_and_exits_2(tmp_path, damage, words):
+    from mawdo.suites.cec_data import data_folder
+
+    data = tmp_path / "data"
+    shutil.copytree(data_folder(2022), data)
+    if damage == "missing":
+        (data / "shift_data_9.txt").unlink()
+    elif damage == "damaged":
+        text = (data / "M_9_D10.txt").read_text()
+        i = text.index("1")  # one digit changed: still numbers, no longer the official file
+        (data / "M_9_D10.txt").write_text(text[:i] + "2" + text[i + 1 :])
+    else:
+        data = tmp_path / "nowhere"
+    tiny = ("--runs", "1", "--budget", "2", "--algorithms", "random", "--no-progress")
+    env = {"MAWDO_CEC2022_DATA": str(data)}
+    r = mawdo("bench", "run", *tiny, "--suite", "cec2022", "--functions", "1,9", "--dims", "10",
+              "--out", "x.db", cwd=tmp_path, env_extra=env)  # fmt: skip
+    assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
+    for w in words:
+        assert w in r.stderr, (w, r.stderr)
+    assert not (tmp_path / "x.db").exists()

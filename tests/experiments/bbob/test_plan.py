@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import json
+from pathlib import Path
+
 import pytest
 
 from mawdo.experiments import PlanError
@@ -21,8 +24,8 @@ def test_bad_fields_name_the_problem_and_the_fix():
     assert "Did you mean 'bbob'" in bad(suite="bbbo")
     assert "defines functions 1-24" in bad(functions=[25])
     assert "Did you mean 'rastrigin'" in bad(functions=["rastrgin"])
-    msg = bad(suite="cec2017", functions=[10], dims=[20])
-    assert "f10 is not defined in dimension 20" in msg and "10, 30, 50, 100" in msg
+    msg = bad(suite="cec2017", functions=[11], dims=[20])  # official F11: the first hybrid
+    assert "f11 is not defined in dimension 20" in msg and "10, 30, 50, 100" in msg
     assert "2, 10, 20" in bad(suite="cec2022", dims=[5])
     assert "only instance 1" in bad(suite="cec2022", instances=[1, 2])
     for b in (0, -1.0, float("nan"), float("inf"), "many"):
@@ -83,3 +86,33 @@ def test_presets():
     assert quick.functions == full.functions and quick.dims == full.dims
     with pytest.raises(PlanError, match="Did you mean 'bbob-quick'"):
         preset_plan("bbob-quik")
+
+
+def test_a_store_of_opfunus_cec2017_keeps_its_plan_and_says_how_its_ids_map(tmp_path):
+    import lzma
+
+    from mawdo.experiments import Store
+    from mawdo.experiments.kinds.suite import write_suite_report
+
+    db = tmp_path / "old.db"
+    root = Path(__file__).resolve().parents[3]
+    db.write_bytes(lzma.decompress((root / "docs/results/holdout/cec2017.db.xz").read_bytes()))
+    with Store.read(db) as store:  # its stored plan still hashes to its meta row's hash
+        plan = store.plan
+    assert plan.numbering == "opfunu" and plan.functions == tuple(range(1, 30))
+    assert plan.computed_by(1) == ("cec2017-opfunu", 1)
+    assert plan.computed_by(2) == ("cec2017-opfunu", 3)  # opfunu's F2 is official F3
+    assert "its Fk (k >= 2) is official F(k+1)" in plan.numbering_note()
+    with pytest.raises(ValueError, match="Run the official suite into a new store"):
+        plan.check_libraries()
+    report = write_suite_report(db, tmp_path / "report", plots=False).read_text()
+    assert plan.numbering_note() in report
+    # a new plan with the same fields means the official functions: another hash
+    new = SuitePlan.from_dict(json.loads(plan.to_json()) | {"numbering": None})
+    assert new.numbering == "official" and new.plan_hash != plan.plan_hash
+    assert new.computed_by(2) == ("cec2017", 2) and new.numbering_note() == ""
+    with pytest.raises(PlanError, match="marks stores written when cec2017"):
+        SuitePlan.from_dict({**json.loads(plan.to_json()), "numbering": "opfunu"})
+    with pytest.raises(PlanError, match="applies to the suites cec2017, cec2022 only"):
+        SuitePlan.from_dict({"suite": "bbob", "algorithms": ["random"], "functions": [1],
+                             "numbering": "official"})  # fmt: skip

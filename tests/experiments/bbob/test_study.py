@@ -100,8 +100,8 @@ def test_interrupted_run_resumes_without_recomputing(tiny_store, tmp_path, monke
     assert stored_values(path) == stored_values(tiny_store)
 
 
-def test_cec_study_values_are_opfunus(tmp_path):
-    plan = tiny_plan(suite="cec2022", functions=[1, 6], instances=None, dims=[10], budget=20,
+def test_cec_opfunu_study_values_are_opfunus(tmp_path):
+    plan = tiny_plan(suite="cec2022-opfunu", functions=[1, 6], instances=None, dims=[10], budget=20,
                      algorithms=["random"], runs=2)  # fmt: skip
     assert plan.instances == (1,)
     path = tmp_path / "cec.db"

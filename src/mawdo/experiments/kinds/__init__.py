@@ -1,5 +1,5 @@
 """The study kinds, one package each: ``benchmark`` (Tables 3, 5), ``planning`` (Table 6),
-``suite`` (BBOB via ioh, CEC via opfunu under COCO's protocol) and ``arena`` (generated scene
+``suite`` (BBOB via ioh, CEC 2017/2022 under COCO's protocol) and ``arena`` (generated scene
 families x planners).
 
 A kind imports the harness (:mod:`mawdo.experiments.protocol`, ``plans``, ``rows``, ``store``,

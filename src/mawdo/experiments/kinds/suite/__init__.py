@@ -1,5 +1,6 @@
-"""The standard black-box study (issue 13): BBOB through ``ioh``, CEC 2017/2022 through
-``opfunu``, COCO's protocol and measures, IOHanalyzer export.
+"""The standard black-box study (issue 13): BBOB through ``ioh``, CEC 2017/2022 from the
+official code (or through ``opfunu``), COCO's protocol and measures, the CEC competitions'
+tables and presets (:mod:`.official`, :mod:`.competition`), IOHanalyzer export.
 
 Plan (:class:`SuitePlan`, presets ``bbob-quick`` and ``bbob-full``), one task on a worker
 (:func:`execute_suite_task`, rows :class:`SuiteRow` holding each run's best-so-far against
@@ -35,7 +36,7 @@ register_kind(
         execute=execute_suite_task,
         row=SuiteRow,
         report=write_suite_report,
-        description="standard suites (BBOB via ioh, CEC via opfunu) under COCO's protocol",
+        description="standard suites (BBOB via ioh, CEC 2017/2022) under COCO's protocol",
         aliases=OLD_KIND_NAMES,
         presets=PRESETS,
         preset_help=PRESET_HELP,

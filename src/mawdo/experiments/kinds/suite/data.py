@@ -73,6 +73,7 @@ class StudyRuns:
     failed: int
     setups: dict[str, str] = field(default_factory=dict)
     versions: tuple[str, ...] = ()
+    numbering: str = ""  # how the function ids map to the official ones ("" if they are them)
 
     @functools.cached_property
     def _index(self) -> dict[tuple[str, int, int], list[StoredRun]]:
@@ -163,6 +164,7 @@ def _load_one(store_path) -> StudyRuns:
         failed,
         {a: plan.setup(a) for a in plan.algorithms},
         (str(store.meta.get("library_version", "unknown")),),
+        plan.numbering_note(),
     )
 
 
@@ -177,6 +179,12 @@ def _merge(parts: list[StudyRuns], paths: list) -> StudyRuns:
             raise StoreError(
                 f"{path} holds suite {part.suite} at {part.budget:g} x D evaluations, but "
                 f"{paths[0]} holds {first.suite} at {first.budget:g} x D: report them separately"
+            )
+        if part.numbering != first.numbering:
+            raise StoreError(
+                f"{path} and {paths[0]} hold {first.suite} functions of different sources (one "
+                f"store was made when {first.suite} meant opfunu's functions): report them "
+                "separately"
             )
         for r in part.runs:
             key = (r.algorithm, r.function_id, r.instance, r.dim, r.run)
@@ -209,6 +217,7 @@ def _merge(parts: list[StudyRuns], paths: list) -> StudyRuns:
         sum(p.failed for p in parts),
         {k: v for p in parts for k, v in p.setups.items()},
         union("versions"),
+        first.numbering,
     )
 
 

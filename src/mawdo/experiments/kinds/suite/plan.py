@@ -18,11 +18,18 @@ import difflib
 from collections.abc import Iterable
 from typing import Annotated, Any, ClassVar, Literal
 
-from pydantic import Field, field_validator, model_validator
+from pydantic import Field, ValidationInfo, field_validator, model_validator
 
 from mawdo.experiments.kinds.suite.components import component_presets
 from mawdo.experiments.kinds.suite.holdout import HOLDOUT_HELP, HOLDOUT_PRESETS
 from mawdo.experiments.kinds.suite.keys import parse_key, problem_key
+from mawdo.experiments.kinds.suite.numbering import (
+    check_numbering,
+    computed_by,
+    default_numbering,
+    numbering_note,
+)
+from mawdo.experiments.kinds.suite.official import OFFICIAL_HELP, OFFICIAL_PRESETS
 from mawdo.experiments.kinds.suite.variants import canonical_name, check_variants, describe_setup
 from mawdo.experiments.plans import PlanError, PositiveInt, StudyPlanBase, reject_duplicates
 from mawdo.experiments.protocol import Task, missing_run_tasks
@@ -53,7 +60,8 @@ class SuitePlan(StudyPlanBase):
     name : str
         A label for reports (does not affect numbers).
     suite : str
-        Registered suite: ``"bbob"`` (ioh), ``"cec2017"`` or ``"cec2022"`` (opfunu).
+        Registered suite: ``"bbob"`` (ioh), ``"cec2017"`` or ``"cec2022"`` (the official
+        code, batched), ``"cec2017-opfunu"`` or ``"cec2022-opfunu"``.
     variants : dict of str to str
         Labels of named variants mapped to registered optimizers (``{"mawdo-r10": "mawdo"}``):
         each label listed in ``algorithms`` runs that optimizer with ``options[label]`` and is
@@ -85,6 +93,9 @@ class SuitePlan(StudyPlanBase):
         Per-algorithm (or per-variant) coefficients (``{"mawdo": {"groups": 4}}``).
     batch_size : int
         Runs per task (one vectorised batch on one worker). Does not affect numbers.
+    numbering : {"official", "opfunu"} or None
+        CEC suites only, set by the plan itself: ``"official"``, or ``"opfunu"`` for a plan read
+        back from a store made when cec2017/cec2022 were opfunu's (:mod:`.numbering`).
     """
 
     study_kind: ClassVar[str] = KIND
@@ -103,14 +114,19 @@ class SuitePlan(StudyPlanBase):
     seed: Annotated[int, Field(strict=True, ge=0)] = BBOB_SEED
     options: dict[str, dict[str, Any]] = Field(default_factory=dict)
     batch_size: PositiveInt = 5
+    numbering: Literal["official", "opfunu"] | None = None
 
     @model_validator(mode="before")
     @classmethod
-    def _old_kind_and_default_instances(cls, data: Any) -> Any:
+    def _old_kind_and_default_instances(cls, data: Any, info: ValidationInfo) -> Any:
         if not isinstance(data, dict):
             return data
         if data.get("kind") in OLD_KIND_NAMES:
             data = {**data, "kind": KIND}
+        if data.get("numbering") is None:
+            suite = str(data.get("suite", "bbob")).strip().lower()
+            stored = bool(info.context and info.context.get("stored"))
+            data = {**data, "numbering": default_numbering(suite, stored)}
         if data.get("instances") is None:  # the suite's own (CEC: its one; BBOB: COCO's 1-5)
             suite = SUITES.get(str(data.get("suite", "bbob")).strip().lower())
             if suite is not None:  # an unknown suite is named by the suite field's check
@@ -121,6 +137,13 @@ class SuitePlan(StudyPlanBase):
     @classmethod
     def _check_suite(cls, suite: str) -> str:
         return SUITES[suite.strip().lower()].name
+
+    @field_validator("numbering")
+    @classmethod
+    def _check_numbering(cls, numbering: str | None, info: ValidationInfo) -> str | None:
+        stored = bool(info.context and info.context.get("stored"))
+        check_numbering(numbering, info.data.get("suite"), stored)
+        return numbering
 
     @field_validator("budget", mode="before")
     @classmethod
@@ -174,6 +197,8 @@ class SuitePlan(StudyPlanBase):
     @model_validator(mode="after")
     def _check_grid(self) -> SuitePlan:
         spec = SUITES[self.suite]
+        if self.numbering == "opfunu":
+            return self  # a store's plan: its functions are opfunu's ids, checked when it ran
         for i, iid in enumerate(self.instances):
             if iid < 1 or (spec.max_instance is not None and iid > spec.max_instance):
                 top = {None: "instances >= 1", 1: "only instance 1"}.get(
@@ -259,12 +284,27 @@ class SuitePlan(StudyPlanBase):
             "options": {k: self.options[k] for k in sorted(self.options)},
             # only when used, so the plans (and stores) from before variants keep their hash
             **({"variants": dict(sorted(self.variants.items()))} if self.variants else {}),
+            # new CEC plans only: a store of opfunu's cec2017 keeps its hash, and a new plan
+            # with the same fields gets another (its function ids mean other functions)
+            **({"numbering": "official"} if self.numbering == "official" else {}),
         }
 
+    def computed_by(self, fid: int) -> tuple[str, int]:
+        """The registered suite and function id that compute the plan's function ``fid``
+        (a store of opfunu's numbering: ``cec2017-opfunu`` and the official id)."""
+        return computed_by(self.suite, self.numbering, fid)
+
+    def numbering_note(self) -> str:
+        """How the plan's function ids relate to the official ones ("" for official ids)."""
+        return numbering_note(self.suite, self.numbering)
+
     def check_libraries(self) -> None:
-        """Import the suite's library now; raises :class:`~mawdo.suites.MissingExtraError`
-        naming the ``pip install`` that fixes it (before any worker starts)."""
-        SUITES[self.suite].require()
+        """Import the suite's library and read the data of every problem now (before any worker
+        starts); raises :class:`~mawdo.suites.MissingExtraError` naming the ``pip install``
+        that fixes a missing library, :class:`ValueError` naming a missing or damaged file."""
+        if self.numbering == "opfunu":
+            raise ValueError(self.numbering_note() + " Run the official suite into a new store.")
+        SUITES[self.suite].check_problems(self.functions, self.dims)
 
     # ----------------------------------------------------------------------- work
     @property
@@ -303,6 +343,7 @@ class SuitePlan(StudyPlanBase):
     def task_spec(self, task: Task) -> dict[str, Any]:
         """Everything a worker needs to compute ``task``, as plain picklable data."""
         fid, iid, dim = parse_key(task.problem)
+        suite, fid = self.computed_by(fid)
         opts = dict(self.options.get(task.algorithm, {}))
         if self.pop_size is not None:
             opts["pop_size"] = self.pop_size
@@ -310,7 +351,7 @@ class SuitePlan(StudyPlanBase):
             "kind": self.kind,
             **task.key(),
             "optimizer": self.variants.get(task.algorithm, task.algorithm),
-            "suite": self.suite,
+            "suite": suite,
             "function_id": fid,
             "instance": iid,
             "dim": dim,
@@ -357,6 +398,7 @@ PRESETS: dict[str, dict[str, Any]] = {
         "seed": BBOB_SEED,
     },
     **HOLDOUT_PRESETS,
+    **OFFICIAL_PRESETS,
 }
 """Named BBOB plans (``mawdo bench run --preset bbob-quick``)."""
 
@@ -366,6 +408,7 @@ PRESET_HELP = {
     "bbob-full": "issue 13's protocol: BBOB f1-f24, instances 1-5, D 5 and 20, 1e4 x D "
     "evaluations, 5 runs per instance, the paper's six algorithms + CMA-ES + random",
     **HOLDOUT_HELP,
+    **OFFICIAL_HELP,
 }
 _COMPONENTS, _COMPONENT_HELP = component_presets(BBOB_SEED)
 PRESETS.update(_COMPONENTS)

@@ -7,6 +7,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from mawdo.experiments.kinds.suite.competition import competition_tables
 from mawdo.experiments.kinds.suite.data import StudyRuns, load_runs
 from mawdo.experiments.kinds.suite.effects import effect_tables
 from mawdo.experiments.kinds.suite.measures import (
@@ -146,6 +147,8 @@ def write_suite_report(
         tables += [art_table(study, dim), fixed_budget_table(study, dim)]
     for dim in study.dims:  # component studies (issue 29): each switch against its base
         tables += effect_tables(study, dim)
+    for dim in study.dims:  # the competition's own tables (CEC)
+        tables += competition_tables(study, dim)
     lines = [
         f"# {study.suite} study: {', '.join(study.algorithms)}",
         "",
@@ -155,6 +158,7 @@ def write_suite_report(
         f"made by mawdo {' and '.join(study.versions)}). Precision is the error f - f_opt "
         "(lower is better).",
         "",
+        *([study.numbering, ""] if study.numbering else []),
         *_setup_lines(study),
         *summary,
         "",

@@ -1,0 +1,77 @@
+"""The CEC competitions' protocols as presets, their checkpoints, and their result tables
+recomputed from the raw stored rows."""
+
+from __future__ import annotations
+
+import csv
+
+import numpy as np
+import pytest
+
+from mawdo.experiments import Store, run_plan
+from mawdo.experiments.kinds.suite import preset_plan, write_suite_report
+from mawdo.suites import SUITES, evaluation_budget
+
+from .conftest import tiny_plan
+
+
+@pytest.mark.parametrize(
+    ("name", "suite", "n", "evals", "runs"),
+    [
+        ("cec2017-official", "cec2017", 30, {10: 100_000, 30: 300_000}, 51),
+        ("cec2022-official-d10", "cec2022", 12, {10: 200_000}, 30),
+        ("cec2022-official-d20", "cec2022", 12, {20: 1_000_000}, 30),
+    ],
+)
+def test_presets_are_the_competitions_protocols(name, suite, n, evals, runs):
+    plan = preset_plan(name)
+    assert plan.suite == suite and plan.functions == tuple(range(1, n + 1))
+    assert {d: evaluation_budget(plan.budget, d) for d in plan.dims} == evals
+    assert plan.runs == runs and plan.final_target == 1e-8 and plan.numbering == "official"
+
+
+def test_checkpoints_are_the_reports():
+    c17, c22 = SUITES["cec2017"].checkpoints, SUITES["cec2022"].checkpoints
+    fractions = (0.01, 0.02, 0.03, 0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0)
+    assert c17(10, 100_000) == tuple(int(f * 100_000) for f in fractions)
+    marks = c22(10, 200_000)  # D^(k/5 - 3) MaxFES, k = 0..15
+    assert len(marks) == 16 and marks[0] == 200 and marks[5] == 2000 and marks[-1] == 200_000
+    assert list(marks) == sorted(marks)
+    assert SUITES["bbob"].checkpoints is None
+
+
+def _read_csv(path) -> dict:
+    """``{(function, algorithm): row}`` of a report's table."""
+    with open(path, newline="") as fh:
+        return {(r["function"], r["algorithm"]): r for r in csv.DictReader(fh)}
+
+
+def test_competition_tables_are_the_stored_runs_statistics(tmp_path):
+    plan = tiny_plan(suite="cec2022", functions=[1, 6], instances=None, dims=[10], budget=30,
+                     algorithms=["random", "cmaes"], runs=4)  # fmt: skip
+    db = tmp_path / "cec.db"
+    assert run_plan(plan, db, workers=1, progress=False).complete
+    write_suite_report(db, tmp_path / "report", plots=False)
+    marks = SUITES["cec2022"].checkpoints(10, 300)
+    stats = _read_csv(tmp_path / "report" / "competition_d10.csv")
+    cps = _read_csv(tmp_path / "report" / "checkpoints_d10.csv")
+    with Store.read(db) as store:
+        rows = [(a, r) for a, _, r in store.rows()]
+    for fid in (1, 6):
+        for algo in ("random", "cmaes"):
+            mine = [r for a, r in rows if r.function_id == fid and a == algo]
+            assert len(mine) == 4
+            final = np.array([r.best_so_far[-1] - r.f_star for r in mine])
+            final[final <= 1e-8] = 0.0
+            got = stats[f"F{fid}", algo]
+            want = [final.min(), final.max(), np.median(final), final.mean(), final.std()]
+            have = [float(got[k]) for k in ("best", "worst", "median", "mean", "std")]
+            np.testing.assert_allclose(have, want, rtol=1e-4)  # the csv's 5 significant digits
+            assert float(got["FEs"]) == np.mean([r.nfev for r in mine])
+            # error at a checkpoint: the best value among the evaluations up to it
+            at = [
+                [r.best_so_far[np.searchsorted(r.evals, m, side="right") - 1] - r.f_star
+                 for m in marks] for r in mine
+            ]  # fmt: skip
+            have = [float(cps[f"F{fid}", algo][str(m)]) for m in marks]
+            np.testing.assert_allclose(have, np.mean(at, axis=0), rtol=1e-3)
