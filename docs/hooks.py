@@ -158,7 +158,7 @@ def public_paths(package: str) -> dict[str, str]:
 #: Public names whose numpydoc docstring has prose inside its Parameters section, which the
 #: parser reads as a parameter (a warning, so an error in the strict build): their docstring
 #: warnings are off until the prose moves to a Notes section. Remove a name once it parses.
-PROSE_IN_PARAMETERS = {"CostWeights", "check_trajectory"}
+PROSE_IN_PARAMETERS: set[str] = set()
 
 
 def api_markdown(package: str) -> str:

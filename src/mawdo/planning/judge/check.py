@@ -220,8 +220,6 @@ def check_trajectory(
         Explicit, non-decreasing times of the positions (time steps), e.g. the vertices of a
         path followed at constant speed; overrides ``t0``.
 
-    The map's border counts as a wall (see the module docstring).
-
     Returns
     -------
     CheckReport
@@ -229,6 +227,10 @@ def check_trajectory(
         ``s + 1`` (step 0 for a single position, the robot at rest); ``active`` and ``passive``
         split them by whether the robot moves in that step; ``border`` the steps whose robot
         disc leaves the map (:meth:`CheckReport.describe` says by how much).
+
+    Notes
+    -----
+    The map's border counts as a wall (see the module docstring).
     """
     p = _as_points(positions, "positions")
     if times is None:

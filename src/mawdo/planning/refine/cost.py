@@ -70,6 +70,8 @@ class CostWeights:
     k : float
         Scale of ``C2 = k n^4``, >= 0.
 
+    Notes
+    -----
     ``alpha + beta + lam`` must be 1 (Eq. 25; within 1e-9).
     """
 

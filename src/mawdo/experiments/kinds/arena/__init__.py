@@ -25,7 +25,7 @@ register_kind(
         execute=execute_arena_task,
         row=ArenaRow,
         report=write_arena_report,
-        description="planning arena: generated scene families x planners (issue 14)",
+        description="planning arena: generated scene families x planners",
         presets=ARENA_PRESETS,
     )
 )

@@ -293,7 +293,7 @@ PRESET_HELP = {
     "paper-table3-shifted": "paper-table3 on the shifted suite (optimum moved off the centre)",
     "paper-table3-evals": "paper-table3 with equal evaluation budgets (50 x 500 per run)",
     "paper-ablation": "paper Table 5: MAWDO-1..4 and MAWDO on F1-F16, 30 runs",
-    "holdout-paper": "issue 29 hold-out: F1-F16, equal evaluations (50 x 500), CMA-ES, scipy "
+    "holdout-paper": "WDO+ hold-out: F1-F16, equal evaluations (50 x 500), CMA-ES, scipy "
     "DE, random, the paper's six and WDO+",
     "holdout-paper-shifted": "holdout-paper on the shifted suite (optimum moved off the centre)",
     "smoke": "a few seconds: 4 algorithms, 3 functions, 4 tiny runs",

@@ -154,7 +154,7 @@ def component_presets(seed: int) -> tuple[dict[str, dict[str, Any]], dict[str, s
         "runs": 2,
     }
     helps = {
-        "wdo-components": "issue 29's component study: WDO, AWDO, MAWDO with each component "
+        "wdo-components": "the component study: WDO, AWDO, MAWDO with each component "
         "switch and every pair on MAWDO; BBOB f1-f24, instances 1-5, D 5 and 20, 2e3 x D, 3 runs",
         "wdo-components-quick": "the component study's single switches at D 5, instances 1-3, "
         "1e3 x D, 2 runs",

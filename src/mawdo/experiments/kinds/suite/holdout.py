@@ -61,18 +61,18 @@ HOLDOUT_PRESETS: dict[str, dict[str, Any]] = {
         "holdout-quick-cec2022", "cec2022", [10], 1e3, list(range(1, 13)), runs=2
     ),
 }
-"""Suite presets of the hold-out study (issue 29 item 4)."""
+"""Suite presets of the hold-out study."""
 
 HOLDOUT_HELP = {
-    "holdout-cec2017": "issue 29 hold-out: CEC 2017 F1, F3-F30, D 10 and 30, 1e4 x D evaluations, "
+    "holdout-cec2017": "WDO+ hold-out: CEC 2017 F1, F3-F30, D 10 and 30, 1e4 x D evaluations, "
     "10 runs: CMA-ES, scipy DE, random, GWO, WOA, WDO, AWDO, MAWDO, MEWDO, WDO+",
-    "holdout-cec2022-d10": "issue 29 hold-out: CEC 2022 F1-F12, D 10, 2e4 x D (200 000) "
+    "holdout-cec2022-d10": "WDO+ hold-out: CEC 2022 F1-F12, D 10, 2e4 x D (200 000) "
     "evaluations, 10 runs, the same ten algorithms",
-    "holdout-cec2022-d20": "issue 29 hold-out: CEC 2022 F1-F12, D 20, 5e4 x D (1 000 000) "
+    "holdout-cec2022-d20": "WDO+ hold-out: CEC 2022 F1-F12, D 20, 5e4 x D (1 000 000) "
     "evaluations, 10 runs, the same ten algorithms",
-    "holdout-quick-cec2017": "issue 29 hold-out, reduced (the committed study, made through "
+    "holdout-quick-cec2017": "WDO+ hold-out, reduced (the committed study, made through "
     "opfunu): CEC 2017 F1, F3-F30, D 10, 1e3 x D evaluations, 2 runs, the same ten algorithms",
-    "holdout-quick-cec2022": "issue 29 hold-out, reduced (the committed study, made through "
+    "holdout-quick-cec2022": "WDO+ hold-out, reduced (the committed study, made through "
     "opfunu): CEC 2022 "
     "F1-F12, D 10, 1e3 x D evaluations, 2 runs, the same ten algorithms",
 }

@@ -405,7 +405,7 @@ PRESETS: dict[str, dict[str, Any]] = {
 PRESET_HELP = {
     "bbob-quick": "BBOB f1-f24, instances 1-5, D 5 and 20, 1e3 x D evaluations, 2 runs per "
     "instance: MAWDO, WDO, GWO, WOA, CMA-ES, random",
-    "bbob-full": "issue 13's protocol: BBOB f1-f24, instances 1-5, D 5 and 20, 1e4 x D "
+    "bbob-full": "the full protocol: BBOB f1-f24, instances 1-5, D 5 and 20, 1e4 x D "
     "evaluations, 5 runs per instance, the paper's six algorithms + CMA-ES + random",
     **HOLDOUT_HELP,
     **OFFICIAL_HELP,
