@@ -83,7 +83,7 @@ class RunStreams:
         ``(R, *shape)`` that successive :meth:`random` calls would give, bit for bit.
 
         Each run fills one row with all its numbers (its generator yields them in the order of
-        ``shapes``), saving a Python call per run and extra shape (issue 15: ~1 us each).
+        ``shapes``), saving a Python call per run and extra shape (~1 us each).
         The arrays are views of one buffer, each C-contiguous per run.
         """
         shapes = [(s,) if np.isscalar(s) else tuple(s) for s in shapes]

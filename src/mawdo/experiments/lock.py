@@ -8,7 +8,7 @@ host, command, start time) so a refused writer can say who holds the store.
 
 SQLite's own locks are per transaction; they cannot stop a second sweep from deleting
 (``--force``) or interleaving rows between the first sweep's transactions, which is what
-happened in issue 12 (defect 1).
+happened before this lock existed.
 """
 
 from __future__ import annotations

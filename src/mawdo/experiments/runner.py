@@ -105,7 +105,7 @@ def execute_task(spec: dict[str, Any], execute: Callable | None = None) -> dict[
         execute = STUDY_KINDS[spec["kind"]].execute
     t0 = time.perf_counter()
     # A Ctrl-C is never a result: whatever the kind made of it (an error row, a SystemError
-    # from compiled code), the task's rows are dropped and the sweep stops (issue 28).
+    # from compiled code), the task's rows are dropped and the sweep stops.
     with SigintWatch() as watch:
         try:
             rows = execute(spec)

@@ -25,7 +25,7 @@ def _die_with(parent: int, poll: float = 0.5) -> None:
     """Make this worker exit when ``parent`` (the sweep's process) dies, even by ``kill -9``.
 
     A killed parent cannot stop its pool, and a worker busy in a task would otherwise compute
-    on for minutes (issue 12, defect 7). Two lines of defence: on Linux
+    on for minutes. Two lines of defence: on Linux
     ``prctl(PR_SET_PDEATHSIG, SIGKILL)`` (the worker's parent is the forkserver, which exits
     when the sweep's process dies), and everywhere a daemon thread that polls whether
     ``parent`` is still this worker's ancestor and alive.

@@ -129,7 +129,7 @@ register(
 PAPER_ALGORITHMS = ("gwo", "woa", "wdo", "awdo", "mewdo", "mawdo")
 ABLATION_ALGORITHMS = ("mawdo1", "mawdo2", "mawdo3", "mawdo4", "mawdo")
 
-# Reference algorithms for standard black-box benchmarking (BBOB, CEC; issue 13).
+# Reference algorithms for standard black-box benchmarking (BBOB, CEC).
 from mawdo.optimizers.cmaes_ref import CMAES  # noqa: E402
 from mawdo.optimizers.random_search import RandomSearch  # noqa: E402
 
@@ -181,5 +181,5 @@ register(
     )
 )
 
-# Issue 29's hold-out field: the references, the paper's algorithms and the variant.
+# The hold-out field: the references, the paper's algorithms and the variant.
 HOLDOUT_ALGORITHMS = ("cmaes", "scipy_de", "random", *PAPER_ALGORITHMS, "wdo_plus")

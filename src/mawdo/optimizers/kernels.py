@@ -2,7 +2,7 @@
 
 The equations live as readable NumPy array functions in :mod:`mawdo.optimizers.wind`,
 :mod:`mawdo.optimizers.boundary` and :mod:`mawdo.optimizers.gwo`; these kernels compute the same
-numbers in one sweep with no ``(R, N, D)`` temporaries (issue 15: a third of the NumPy time went
+numbers in one sweep with no ``(R, N, D)`` temporaries (a third of the NumPy time went
 to fresh temporaries and their page faults). ``tests/optimizers/test_kernels.py`` checks each
 kernel against the NumPy functions. Every random number comes from the run's own generator
 (:class:`mawdo.streams.RunStreams`), drawn before the call or through a xoshiro256** state seeded

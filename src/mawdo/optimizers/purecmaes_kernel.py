@@ -1,6 +1,6 @@
 """Compiled generation step of :mod:`mawdo.optimizers.purecmaes`: one loop over runs.
 
-The array form costs ~35 small NumPy calls a generation (issue 15: AWDO-CMA at 0.34 us per
+The array form costs ~35 small NumPy calls a generation (AWDO-CMA at 0.34 us per
 evaluation, the CMA-ES half of it); the same statements over one run's 4-vectors and 4 x 4
 matrices cost next to nothing compiled. The eigen decomposition stays in NumPy (every few
 generations).

@@ -1,4 +1,4 @@
-"""WDO+: a WDO-family variant designed on BBOB (issue 29; docs/algorithms.md#wdo-plus).
+"""WDO+: a WDO-family variant designed on BBOB (docs/algorithms.md#wdo-plus).
 
 WDO's velocity (Bayraktar et al. 2013, Eq. 1) with five changes, each a switch:
 

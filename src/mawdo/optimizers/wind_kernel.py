@@ -3,7 +3,7 @@
 :mod:`mawdo.optimizers.wind` holds the same equations as readable NumPy functions;
 ``tests/optimizers/test_kernels.py`` checks the kernel against them, and
 ``tests/optimizers/test_value_shuffles.py`` checks the in-place shuffle against the permutation
-and gather it replaced (issue 15).
+and gather it replaced.
 """
 
 from __future__ import annotations

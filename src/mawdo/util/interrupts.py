@@ -5,7 +5,7 @@ bytecode it runs. When that bytecode runs inside a C call that does not expect a
 (Numba's dispatcher boxing a result, for one), the call then fails with ``SystemError: ...
 returned a result with an exception set`` whose ``__cause__`` is the ``KeyboardInterrupt``;
 code catching ``Exception`` around it (a study kind turning a failing run into an error row)
-would swallow the interrupt and record a failure that never happened (issue 28). Two checks
+would swallow the interrupt and record a failure that never happened. Two checks
 catch every form: :func:`is_interrupt` looks for a ``KeyboardInterrupt`` in an exception's
 cause/context chain, and :class:`SigintWatch` counts the SIGINTs that arrived while a piece
 of work ran, whatever became of the exception they raised.

@@ -1,4 +1,4 @@
-"""The safe-interval guide inside the run loop (``PlannerConfig.time_guide``, issue 27).
+"""The safe-interval guide inside the run loop (``PlannerConfig.time_guide``).
 
 At every (re)plan the run asks the :class:`~mawdo.planning.guide.sipp.guide.SafeIntervalGuide` for
 the earliest-arrival timed route from the robot's position and time, and up to

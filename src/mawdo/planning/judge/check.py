@@ -19,7 +19,7 @@ than ``tol`` collides with it (``CheckReport.border``). The disc's centre moves 
 and the map is a convex box, so the step stays inside exactly when the discs at both ends do;
 how far it leaves is ``r`` minus the smallest distance of those ends' centres to the border.
 
-Active and passive collisions (issue 27): a collision during a step in which the robot moves
+Active and passive collisions: a collision during a step in which the robot moves
 is *active* (its own motion took part); one during a step in which it stands still (both ends
 within ``REST_TOL`` px) is *passive*: an obstacle ran into a robot at rest (whether some other
 action could have avoided it is not judged here). Both are collisions; a run succeeds only with

@@ -1,4 +1,4 @@
-"""Independent check of kinematic limits (issue 27, item 3): speed, acceleration and turn
+"""Independent check of kinematic limits: speed, acceleration and turn
 rate of an executed trajectory, from its positions alone (NumPy only; shares no code with
 :mod:`mawdo.planning.safety.kinematics`, which makes the motion).
 

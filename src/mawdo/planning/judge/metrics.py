@@ -138,7 +138,7 @@ def run_metrics(
         "steps": result.steps,
         "l_star_px": l_star,
     }
-    # the guard's record (issue 10), and replans kept without a search (hold_straight, hold_gap)
+    # the guard's record, and replans kept without a search (hold_straight, hold_gap)
     counts = {"waits": result.waits, "evasions": result.evasions,
               "elite_fallbacks": result.fallbacks, "near_misses": result.near_misses,
               "holds": result.holds, "inevitable": result.inevitable,
@@ -164,7 +164,7 @@ def time_metrics(result: PlanResult, t_star: float) -> dict:
 def run_metrics_kept(
     result: PlanResult, l_star: float | None = None, snapshots: int = 8
 ) -> tuple[dict | None, str | None]:
-    """:func:`run_metrics` of a computed run that never throws the run away (issue 12).
+    """:func:`run_metrics` of a computed run that never throws the run away.
 
     Returns
     -------

@@ -1,4 +1,4 @@
-"""Gallery of the scene families where time decides (issue 27): one panel per scene.
+"""Gallery of the scene families where time decides: one panel per scene.
 
 Each panel shows the world at ``t = 0`` (:func:`~mawdo.planning.render.world.draw_world`:
 obstacles, their inflation, start, goal, the static optimum), each moving obstacle's future

@@ -3,7 +3,7 @@
 A frame of the GIF at time ``t`` shows the route up to ``t`` and the last plan made at or before
 ``t``; once the planner has passed ``t`` no later step changes either. So the process that sets
 the figures up while the run is planned (:mod:`.early`) can draw each frame as soon as the run
-has passed its time, and after the run only the palette and the file are left (issue 28: the
+has passed its time, and after the run only the palette and the file are left (the
 62 frames of ``plan paper`` were about 0.8 s of CPU after the run).
 
 :class:`RunStream` is the planner's progress callback in the command's process: it hands what

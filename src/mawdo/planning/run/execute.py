@@ -105,7 +105,7 @@ class Run(TimedRun, SafeRun, LimitedRun):
         self.optimizers = self._make_optimizers()
         self.replans: list[Replan] = []
         self.counts = {"waits": 0, "evasions": 0, "fallbacks": 0, "holds": 0, "inevitable": 0}
-        on = dynamic and cfg.ics_horizon > 0  # the rule of issue 27: no inevitable collisions
+        on = dynamic and cfg.ics_horizon > 0  # no inevitable collisions
         self.ics = SafeContinuation(sc, cfg.clearance, cfg.ics_horizon) if on else None
         self.limits = limits = Limits.of(cfg, self.given.robot_speed) if dynamic else None
         if self.ics is not None and limits is not None:  # stops and turns take time

@@ -256,7 +256,7 @@ def result_from_bytes(data: bytes, scenario) -> PlanResult:
     algorithm, seed, reason = (str(x) for x in z["meta"])
     sc = resolve_scenario(scenario)
     extra = {}
-    if "events" in z.files:  # payloads written since the guard (issue 10)
+    if "events" in z.files:  # payloads written since the guard
         # holds: written since 0.3; inevitable steps and kinematic violations since 0.8
         w, e, f, nm, *later = (int(x) for x in z["events"])
         later += [0] * (3 - len(later))

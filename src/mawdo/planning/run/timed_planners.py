@@ -1,4 +1,4 @@
-"""Planners with the safe-interval guide switched on (issue 27): ``mawdo_time`` and
+"""Planners with the safe-interval guide switched on: ``mawdo_time`` and
 ``guide_only``.
 
 ``mawdo_time`` is the receding-horizon run loop driven by MAWDO with

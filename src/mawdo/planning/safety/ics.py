@@ -1,4 +1,4 @@
-"""Never drive into an inevitable collision (issue 27, item 2).
+"""Never drive into an inevitable collision.
 
 A state (position, time) of the robot is an *inevitable collision state* when every motion
 from it meets an obstacle. Before a stretch of a plan is driven, the run asks

@@ -1,4 +1,4 @@
-"""The inevitable-collision rule under kinematic limits (issue 27, item 3).
+"""The inevitable-collision rule under kinematic limits.
 
 Without limits :class:`~mawdo.planning.safety.ics.SafeContinuation` lets the robot stop, start and
 turn at once. With an acceleration or turn-rate limit (:class:`~mawdo.planning.safety.kinematics.

@@ -1,6 +1,6 @@
 """The run loop's use of the inevitable-collision rule (:mod:`mawdo.planning.safety.ics`): which of
 the guard's options keep a safe continuation, the fallback when none does, and where a run that
-gives up stops (issue 27, item 2)."""
+gives up stops."""
 
 from __future__ import annotations
 

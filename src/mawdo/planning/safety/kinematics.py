@@ -1,4 +1,4 @@
-"""Opt-in kinematic limits of the robot (issue 27, item 3): speed, acceleration, turn rate.
+"""Opt-in kinematic limits of the robot: speed, acceleration, turn rate.
 
 The executed motion is the robot's positions at integer time steps, straight and uniform in
 between, so its velocity over step ``s`` is ``u_s = p[s + 1] - p[s]`` (px per step). The

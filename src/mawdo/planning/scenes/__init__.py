@@ -6,7 +6,7 @@
 
 Families (:data:`FAMILIES`): ``open``, ``forest``, ``rooms``, ``maze``, ``u_trap``, ``narrow``
 (static), ``crossing``, ``dense``, ``movingai`` (with moving obstacles), and the families
-where time decides (issue 27; each scene has its earliest arrival ``T*``): ``corridor``,
+where time decides (each scene has its earliest arrival ``T*``): ``corridor``,
 ``doorway``, ``chaser``, ``crowd``, ``parked``, ``slalom``. ``describe_family``
 lists a family's parameters with their ranges. A scene is a pure function of
 ``(family, params, seed, index)`` (see :mod:`mawdo.planning.scenes.base`).
@@ -51,7 +51,7 @@ __all__ = [
 
 #: Registered scene families by name.
 FAMILIES: Registry[Family] = Registry("scene family")
-#: Families where time decides (issue 27): each scene stores its earliest arrival ``T*``.
+#: Families where time decides: each scene stores its earliest arrival ``T*``.
 TIMED_FAMILIES = ("corridor", "doorway", "chaser", "crowd", "parked", "slalom")
 for _f in (
     *(OPEN, FOREST, ROOMS, MAZE, U_TRAP, NARROW, CROSSING, DENSE, MOVINGAI),

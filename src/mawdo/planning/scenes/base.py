@@ -142,7 +142,7 @@ class Family:
         ``check(params)`` raises ``ValueError`` for parameter combinations that can never give
         a solvable scene (e.g. a door narrower than the robot).
     timed : bool
-        Time decides the scene (issue 27): a draw is valid only if the earliest arrival ``T*``
+        Time decides the scene: a draw is valid only if the earliest arrival ``T*``
         exists (:func:`mawdo.planning.guide.sipp.optimum.scenario_time_optimum`, with the draft's
         waiting spots, key ``"_spots"``, and dodge spots along the static optimum), and the
         scene stores it.

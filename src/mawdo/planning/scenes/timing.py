@@ -1,4 +1,4 @@
-"""Helpers of the scene families where time decides (issue 27): orientation and waiting spots.
+"""Helpers of the scene families where time decides: orientation and waiting spots.
 
 Each family draws its layout in one frame (e.g. traffic along x); :func:`orient` then turns the
 whole draft by one of the square map's eight symmetries, drawn from the scene's stream, so the

@@ -1,4 +1,4 @@
-"""The planning arena (issue 14): seeded scene families x planners, as a study kind.
+"""The planning arena: seeded scene families x planners, as a study kind.
 
 Plan (:class:`ArenaPlan`, presets ``arena-default`` and ``arena-quick``), one task on a worker
 (:func:`execute_arena_task`, rows :class:`ArenaRow`: the scene's TOML and hash beside each run's

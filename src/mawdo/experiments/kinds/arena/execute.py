@@ -35,7 +35,7 @@ class ArenaRow(RunRow):
     (None for single-shot planners); ``first_plan_s`` is the first plan's (or the single
     shot's) wall time; ``nfev`` the cost evaluations (OMPL: validity checks).
 
-    Timed scene families (issue 27) also store ``t_star``, the scene's earliest arrival (time
+    Timed scene families also store ``t_star``, the scene's earliest arrival (time
     steps), ``time_gap`` = arrival step / ``t_star`` (NaN unless the run succeeded), and the
     checker's ``active_collisions`` (the robot moving) and ``passive_collisions`` (the robot at
     rest, hit by an obstacle); ``inevitable`` counts the steps at which no option kept a safe

@@ -1,4 +1,4 @@
-"""Plan of the planning arena (issue 14): scene families x planners x scenes.
+"""Plan of the planning arena: scene families x planners x scenes.
 
 An :class:`ArenaPlan` is a :class:`~mawdo.experiments.protocol.Study` of kind ``arena``. Its
 problems are scene families and its run ``k`` of a family is scene ``k`` of that family,
@@ -217,7 +217,7 @@ class ArenaPlan(StudyPlanBase):
 
 
 # six families decided by the static topology: clutter, walls with doors, a long detour, a
-# trap, and two of moving traffic; then six decided by time (issue 27), each scene with an
+# trap, and two of moving traffic; then six decided by time, each scene with an
 # earliest arrival T*: oncoming traffic with bays, a patrolled door, a faster chaser, a crowd,
 # a mover parked in the only corridor, gaps barely wider than the robot
 STATIC_FAMILIES = ("forest", "rooms", "maze", "u_trap", "crossing", "dense")

@@ -73,7 +73,7 @@ def headline(store: Store) -> list[str]:
 
 
 def _timed_families(store: Store) -> list[str]:
-    """Families whose planned scenes carry an earliest arrival ``t_star`` (issue 27)."""
+    """Families whose planned scenes carry an earliest arrival ``t_star``."""
     rows = {f: [r for _, _, r in store.rows(None, f, skip=NO_TRACE)] for f in store.plan.families}
     return [f for f, fam_rows in rows.items() if is_timed(fam_rows)]
 

@@ -258,7 +258,7 @@ def _paper(name: str, algorithms=PAPER_ALGORITHMS, **kw) -> dict[str, Any]:
     }
 
 
-# Issue 29's hold-out on F1-F16: equal evaluations; the references keep their own population
+# The hold-out on F1-F16: equal evaluations; the references keep their own population
 # rule (CMA-ES 4 + 3 ln D, scipy 15 D), the others the paper's 50.
 HOLDOUT = {
     "budget": "evals",

@@ -61,7 +61,7 @@ def first_plan_path(result, scenario) -> np.ndarray | None:
 def execute_planning_task(spec: dict[str, Any]) -> list[PlanningRow]:
     """Plan ``n_runs`` runs of one planner; a run that raises becomes a row with its error.
 
-    A computed run is never thrown away by its metrics (issue 12, defect 4): the route is
+    A computed run is never thrown away by its metrics: the route is
     stored first, and metrics that fail (the oracle on a huge map, say) fall back to those
     that need no oracle, with the failure in ``metrics["metrics_error"]``
     (:func:`~mawdo.planning.judge.metrics.run_metrics_kept`).

@@ -52,7 +52,7 @@ def _resolve_scenario(data: dict[str, Any], stored: bool) -> dict[str, Any]:
 
     A plan keeps the scenario itself, never a name or a path to look up later: an edited copy
     of a built-in map runs as edited whatever its ``name``, and a store can never make a
-    report open a file (issue 12, defects 2 and 10). Plans read from a store (``stored``)
+    report open a file. Plans read from a store (``stored``)
     must carry their contents; nothing outside the plan is consulted.
     """
     from mawdo.planning import ScenarioError, get_scenario, load_scenario, scenario_from_dict

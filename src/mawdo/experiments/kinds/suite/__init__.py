@@ -1,4 +1,4 @@
-"""The standard black-box study (issue 13): BBOB through ``ioh``, CEC 2017/2022 from the
+"""The standard black-box study: BBOB through ``ioh``, CEC 2017/2022 from the
 official code (or through ``opfunu``), COCO's protocol and measures, the CEC competitions'
 tables and presets (:mod:`.official`, :mod:`.competition`), IOHanalyzer export.
 
@@ -7,7 +7,7 @@ Plan (:class:`SuitePlan`, presets ``bbob-quick`` and ``bbob-full``), one task on
 evaluations), reading back (:mod:`.data`), measures (:mod:`.measures`), tables and report
 (:mod:`.report`), figures (:mod:`.plots`), IOHanalyzer export (:mod:`.export`), COCO's measures
 as array functions (:mod:`.metrics`) and ioh's log format (:mod:`.ioh_logs`); the WDO family's
-component study (issue 29: presets ``wdo-components`` and ``wdo-components-quick`` from
+component study (presets ``wdo-components`` and ``wdo-components-quick`` from
 :mod:`.components`, each switch's effect per function group in :mod:`.effects`) and the
 hold-out study that judges WDO+ (presets in :mod:`.holdout`; its paragraph and rank tables from
 the CEC and F1-F16 stores in :mod:`.holdout_summary`, read by :mod:`.holdout_data`). Importing this

@@ -1,4 +1,4 @@
-"""The WDO family's component study (issue 29 item 1): which part of the design costs what on BBOB.
+"""The WDO family's component study: which part of the design costs what on BBOB.
 
 Every suspect of the issue is a switch of :class:`~mawdo.optimizers.wdo.WindParams`, default
 off so ``wdo``, ``awdo`` and ``mawdo`` stay the papers' algorithms. A *component variant* is a

@@ -1,4 +1,4 @@
-"""What the committed component study (issue 29 item 1) shows, in sentences made from its stores.
+"""What the committed component study shows, in sentences made from its stores.
 
 ``findings.md`` (in ``docs/results/wdo-components``) and the component-study section of
 ``docs/algorithms.md`` are this module's output, and tests/test_component_results.py checks

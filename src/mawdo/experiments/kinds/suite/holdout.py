@@ -1,4 +1,4 @@
-"""The hold-out study of issue 29 (item 4) as suite presets: CEC 2017 and CEC 2022.
+"""The hold-out study as suite presets: CEC 2017 and CEC 2022.
 
 WDO+ (``wdo_plus``) was designed on BBOB only; these presets judge it on suites it never saw,
 at each suite's own budget, against the issue's ten algorithms. The paper's F1-F16, unshifted

@@ -1,6 +1,6 @@
 """The hold-out study's stores read as one kind of table: final errors per function and algorithm.
 
-Issue 29's hold-out judges WDO+ on CEC 2017 and CEC 2022 (suite stores, this kind) and on the
+The hold-out judges WDO+ on CEC 2017 and CEC 2022 (suite stores, this kind) and on the
 paper's F1-F16 unshifted and shifted (benchmark stores). To rank them alike, each store becomes a
 :class:`HoldoutSuite`: per function, the final errors ``f - f_opt`` of each algorithm's runs.
 Benchmark stores are read through the harness's :class:`~mawdo.experiments.store.Store` and

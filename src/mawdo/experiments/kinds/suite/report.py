@@ -145,7 +145,7 @@ def write_suite_report(
     tables = [friedman_table(study)]
     for dim in study.dims:
         tables += [art_table(study, dim), fixed_budget_table(study, dim)]
-    for dim in study.dims:  # component studies (issue 29): each switch against its base
+    for dim in study.dims:  # component studies: each switch against its base
         tables += effect_tables(study, dim)
     for dim in study.dims:  # the competition's own tables (CEC)
         tables += competition_tables(study, dim)

@@ -1,4 +1,4 @@
-"""The space-time optimum ``T*`` of a scenario: the earliest arrival at the goal (issue 27).
+"""The space-time optimum ``T*`` of a scenario: the earliest arrival at the goal.
 
 ``T*`` is the safe-interval search (:class:`~mawdo.planning.guide.sipp.guide.SafeIntervalGuide`)
 from the start at ``t = 0``, with no clearance beyond the robot radius (touching allowed, as

@@ -1,4 +1,4 @@
-"""Edge timing of the safe-interval guide under acceleration and turn-rate limits (issue 27).
+"""Edge timing of the safe-interval guide under acceleration and turn-rate limits.
 
 With ``max_accel`` or ``max_turn`` set (:class:`~mawdo.planning.safety.kinematics.Limits`), each
 edge of a timed route is driven from rest to rest in whole time steps, as the run's discrete time

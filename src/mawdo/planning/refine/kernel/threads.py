@@ -10,7 +10,7 @@ with ``threads > 1``; with ``threads = 1`` the kernel is called directly.
 OpenMP's threads, left to themselves, wait spinning after a call (libgomp: 300,000 spins) so
 that the next one starts at once. On a machine whose cores are busy that spinning takes the
 cores from the thread with work and from everyone else: the realtime planner's replans became
-3-8x slower (median) with ``threads=2`` than with one thread (issue 28, ``python -m benchmarks
+3-8x slower (median) with ``threads=2`` than with one thread (``python -m benchmarks
 threads``). So this module asks the OpenMP runtime to sleep at once (``OMP_WAIT_POLICY=passive``)
 unless the user chose a policy (``OMP_WAIT_POLICY``, ``GOMP_SPINCOUNT`` or ``KMP_BLOCKTIME`` set)
 or Numba's threads are already running (the runtime reads the variable when it starts).
