@@ -25,6 +25,7 @@ FLOORS = (
     ("mawdo.result", 0),
     ("mawdo.viz", 0),
     ("mawdo.validate", 0),  # argument checks: used by the core itself
+    ("mawdo.nesting", 0),  # TOML/JSON text refused when nested too deep (plans, scenarios)
     ("mawdo.budget", 0),
     ("mawdo.jit", 0),  # the Numba compile machinery: stale caches, the table's warm-up, inlining
     ("mawdo.stablesort", 0),  # a stable argsort for kernels, cheaper to compile than Numba's

@@ -24,7 +24,7 @@ BASE = {"schema_version": 1, "start": [20.0, 20.0], "goal": [346.0, 346.0]}
 
 
 def mawdo(*args: str, cwd=None, timeout=300) -> subprocess.CompletedProcess:
-    env = {**os.environ, "MPLBACKEND": "Agg", "COLUMNS": "300"}
+    env = {**os.environ, "MPLBACKEND": "Agg"}
     return subprocess.run([sys.executable, "-m", "mawdo.cli", *args], capture_output=True,
                           text=True, timeout=timeout, env=env, cwd=cwd)  # fmt: skip
 

@@ -171,8 +171,9 @@ def run_cmd(
     ),
 ):
     """Plan and execute one run; print and save its metrics."""
-    from mawdo.cli.errors import bad_input, check_output_dir
+    from mawdo.cli.errors import bad_input, check_output_dir, on_ctrl_c
 
+    on_ctrl_c("the run was not finished: no metrics or figures were written")
     # every input is checked before --out is created (exit 2, as for the other commands)
     try:
         sc = _scenario(scenario)
@@ -272,9 +273,10 @@ def study_cmd(
 
 
 def _write_report(store: Path, out: Path, gif: bool) -> None:
-    from mawdo.cli.errors import check_output_dir, writing_into
+    from mawdo.cli.errors import REPORT_CTRL_C, check_output_dir, on_ctrl_c, writing_into
     from mawdo.experiments.kinds.planning import write_study_report
 
+    on_ctrl_c(REPORT_CTRL_C)
     check_output_dir(out, "--out folder")
     with writing_into(out):
         path = write_study_report(store, out, gif=gif)
