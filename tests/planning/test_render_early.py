@@ -284,8 +284,10 @@ def test_ctrl_c_while_planning_stops_the_command_and_its_figures_process(tmp_pat
         time.sleep(0.02)
     assert out.exists(), "the run was never set up"
     assert children(proc.pid), "no figures process was started"
-    ctrl_c(proc)
+    err = ctrl_c(proc)
     assert not (out / "snapshots.png").exists() and not (out / "metrics.json").exists()
+    # what is true of a single run: nothing to resume
+    assert "stopped by Ctrl-C; the run was not finished: no metrics or figures" in err, err
 
 
 def test_bad_input_ends_the_figures_process_and_creates_nothing(tmp_path):
