@@ -90,26 +90,25 @@ def nesting_depth(text: str, toml: bool, limit: int | None = None) -> tuple[int,
 def _too_deep(limit: int, line: int | None, what: str, needs: str) -> str:
     hint = f"; {needs}" if needs else ""
     where = "" if line is None else f" (line {line})"
-    return f"{what}: arrays/tables are nested more than {limit} deep{where}{hint}"
+    head = f"{what}: " if what else ""
+    return f"{head}arrays/tables are nested more than {limit} deep{where}{hint}"
 
 
 def check_nesting(
-    text: str, fmt: str, limit: int = MAX_NESTING, what: str = "the text", needs: str = ""
+    text: str, fmt: str, limit: int = MAX_NESTING, what: str = "", needs: str = ""
 ) -> None:
     """Raise :class:`NestingError` if ``text`` (``fmt`` "toml" or "json") nests arrays and
     tables deeper than ``limit``.
 
-    ``what`` names the text in the message (a file, a flag); ``needs`` says how deep the
-    format really goes (e.g. "a plan needs 3 levels at most").
+    ``what`` names the text at the message's start (a file, a flag; none if empty); ``needs``
+    says how deep the format really goes (e.g. "a plan needs 3 levels at most").
     """
     depth, line = nesting_depth(text, fmt == "toml", limit=limit)
     if depth > limit:
         raise NestingError(_too_deep(limit, line, what, needs))
 
 
-def loads(
-    text: str, fmt: str, limit: int = MAX_NESTING, what: str = "the text", needs: str = ""
-) -> Any:
+def loads(text: str, fmt: str, limit: int = MAX_NESTING, what: str = "", needs: str = "") -> Any:
     """``tomllib.loads`` or ``json.loads`` of ``text`` (``fmt`` "toml" or "json"), refusing
     nesting deeper than ``limit`` before parsing.
 
