@@ -307,6 +307,7 @@ def test_a_plan_file_with_a_byte_order_mark_is_read(tmp_path):
                 timeout=FAST * 2)  # fmt: skip
     assert res.returncode == 0, res.stderr
     assert stored_plan(tmp_path / "x.db")["runs"] == 1
+    assert "; 12 runs in all; plan " in res.stderr  # the size said before any work
 
 
 @pytest.mark.parametrize(

@@ -132,7 +132,10 @@ def run_study(plan: Any, out: Path, **backend: Any) -> None:
             check()
     except ImportError as exc:
         fail(exc, code=1)
-    typer.echo(f"{plan.describe()}; plan {plan.plan_hash[:12]} -> {out}", err=True)
+    # what it will do, before any work: the plan and its size (at most MAX_PLAN_RUNS runs)
+    total = getattr(plan, "total_runs", None)
+    size = f"; {total:,} runs in all" if isinstance(total, int) else ""
+    typer.echo(f"{plan.describe()}{size}; plan {plan.plan_hash[:12]} -> {out}", err=True)
     try:
         summary = run_plan(plan, out, **backend)
     except (StoreError, ValueError, RuntimeError) as exc:
