@@ -6,7 +6,7 @@ import os
 import subprocess
 import sys
 
-ENV = {**os.environ, "MPLBACKEND": "Agg", "COLUMNS": "200"}
+ENV = {**os.environ, "MPLBACKEND": "Agg"}
 
 
 def mawdo(*args: str, cwd=None, env=None, timeout: float = 600) -> subprocess.CompletedProcess:

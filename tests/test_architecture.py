@@ -26,6 +26,7 @@ FLOORS = (
     ("mawdo.viz", 0),
     ("mawdo.util", 0),  # internal helpers' package (each module placed below)
     ("mawdo.util.validate", 0),  # argument checks: used by the core itself
+    ("mawdo.util.nesting", 0),  # TOML/JSON text refused when nested too deep (plans, scenarios)
     ("mawdo.budget", 0),
     ("mawdo.jit", 0),  # the Numba compile machinery: stale caches, the table's warm-up, inlining
     ("mawdo.util.stablesort", 0),  # a stable argsort for kernels, cheap to compile

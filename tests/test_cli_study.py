@@ -154,7 +154,7 @@ def test_run_and_report_a_suite_study_of_two_stores(tmp_path):
                   cwd=tmp_path)  # fmt: skip
     assert mixed.returncode == 0, mixed.stderr
     both = mawdo("study", "report", "d2.db", "b.db", "--out", "r2", cwd=tmp_path)
-    assert both.returncode == 1 and "these hold benchmark, suite" in both.stderr
+    assert both.returncode == 2 and "these hold benchmark, suite" in both.stderr
 
 
 # ---------------------------------------------------------------------- bad input
@@ -165,7 +165,7 @@ def test_run_and_report_a_suite_study_of_two_stores(tmp_path):
         (("run", "smoke", "--set", "runz=2", "--out", "x.db"), ["runz", "Did you mean 'runs'"]),
         (("run", "smoke", "--set", "runs", "--out", "x.db"), ["--set 'runs'", "key=value"]),
         (("run", "smoke", "--set", "runs=0", "--out", "x.db"), ["runs: must be >= 1"]),
-        (("run", "nope.toml", "--out", "x.db"), ["cannot read plan file nope.toml"]),
+        (("run", "nope.toml", "--out", "x.db"), ["plan file nope.toml does not exist"]),
         (("run", "smoke", "--workers", "0", "--out", "x.db"), ["Invalid value for '--workers'"]),
     ],
 )

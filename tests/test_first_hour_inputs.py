@@ -195,7 +195,7 @@ def test_a_full_disk_in_bench_report_names_the_folder(tmp_path):
         app(prog_name="mawdo")
         """
     )
-    env = {**os.environ, "COLUMNS": "300"}
+    env = dict(os.environ)
     res = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
                          timeout=120, env=env)  # fmt: skip
     assert res.returncode == 1, res.stderr

@@ -56,7 +56,7 @@ def test_the_block_is_read_and_every_long_command_has_a_small_form():
 
 @pytest.mark.slow
 def test_every_readme_command_exits_0_in_its_small_form(tmp_path):
-    env = {**os.environ, "MPLBACKEND": "Agg", "COLUMNS": "200"}
+    env = {**os.environ, "MPLBACKEND": "Agg"}
     for command in map(small_form, readme_commands(README.read_text("utf-8"))):
         argv = [sys.executable, "-m", "mawdo.cli", *shlex.split(command)[1:]]
         done = subprocess.run(argv, cwd=tmp_path, env=env, capture_output=True, text=True)

@@ -21,7 +21,7 @@ from mawdo.streams import RunStreams, run_seed_sequences
 from mawdo.util.blocks import block_sizes, join_results
 from mawdo.util.validate import ArgumentTypeError, check_bool, check_int, check_seed
 
-__all__ = ["DEFAULT_MAX_ITER", "make_problem", "minimize"]
+__all__ = ["DEFAULT_MAX_ITER", "NoFiniteValueWarning", "make_problem", "minimize"]
 
 
 def make_problem(
@@ -212,7 +212,39 @@ def minimize(
     finally:
         if bar is not None:
             bar.close()
-    return parts[0] if len(parts) == 1 else join_results(parts, opt.per_run_metadata)
+    res = parts[0] if len(parts) == 1 else join_results(parts, opt.per_run_metadata)
+    warn_no_finite_value(res, problem)
+    return res
+
+
+class NoFiniteValueWarning(RuntimeWarning):
+    """Runs that evaluated points but never saw a finite objective value: their ``x`` is the
+    box centre, which they never evaluated, and their ``fun`` is inf."""
+
+
+def warn_no_finite_value(res: OptimizeResult, problem: Problem) -> None:
+    """Warn (:class:`NoFiniteValueWarning`) when runs evaluated points and found no finite
+    value: ``x`` = the box centre with ``fun`` = inf would else read as a result (the box
+    (-1e308, 1e308) gave ``x = 0``, ``fun = inf`` for sum(x**2), whose value at 0 is 0)."""
+    lost = ~np.isfinite(res.fun) & (np.asarray(res.nfev) > 0)
+    if not lost.any():
+        return
+    import warnings
+
+    reach = float(np.max(np.maximum(np.abs(problem.lb), np.abs(problem.ub))))
+    hint = (
+        f"; the box reaches {reach:.3g}: an objective such as sum(x**2) overflows almost "
+        "everywhere in it, give bounds that fit the problem"
+        if reach > 1e150
+        else "; check the objective (NaN and inf count as the worst value)"
+    )
+    warnings.warn(
+        f"{int(lost.sum())} of {lost.size} runs found no finite objective value in "
+        f"{int(np.max(res.nfev[lost]))} evaluations (every value was inf or NaN): their x is "
+        f"the box centre, never evaluated, and their fun is inf{hint}",
+        NoFiniteValueWarning,
+        stacklevel=3,
+    )
 
 
 class _Batch:

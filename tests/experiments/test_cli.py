@@ -141,7 +141,7 @@ def test_store_of_another_plan_is_refused_then_forced(tmp_path):
     ]
     assert invoke("run", *common, "--runs", "2").exit_code == 0
     res = invoke("run", *common, "--runs", "3")
-    assert res.exit_code == 1 and "another plan" in res.output and "--force" in res.output
+    assert res.exit_code == 2 and "another plan" in res.output and "--force" in res.output
     res = invoke("run", *common, "--runs", "3", "--force")
     assert res.exit_code == 0 and "3 runs computed" in res.stdout
 
@@ -150,7 +150,7 @@ def test_report_of_a_corrupt_store_fails_clearly(tmp_path):
     db = tmp_path / "c.db"
     db.write_bytes(b"\x00not sqlite at all" * 100)
     res = invoke("report", str(db), "--out", str(tmp_path / "r"))
-    assert res.exit_code == 1 and "corrupt" in res.output
+    assert res.exit_code == 2 and "corrupt" in res.output
 
 
 def test_presets_lists_every_preset():

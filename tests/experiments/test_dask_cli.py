@@ -90,14 +90,14 @@ def test_scheduler_file_errors_name_the_fix(tmp_path):
         "reproduce", "--out", str(tmp_path / "r"), "--scheduler-file", missing, "--retry-failed"
     )
     # the default of two local workers gives way to the cluster: the missing file is the error
-    assert r.returncode == 1 and "no Dask scheduler file at" in r.stderr, r.stderr
+    assert r.returncode == 2 and "no Dask scheduler file at" in r.stderr, r.stderr
     assert "dask scheduler --scheduler-file" in r.stderr and "Traceback" not in r.stderr
     r = _cli("reproduce", "--out", str(tmp_path / "r"), "--dask", "tcp://127.0.0.1:1",
              "--workers", "3")  # fmt: skip
-    assert r.returncode == 1 and "not both" in r.stderr, r.stderr
+    assert r.returncode == 2 and "not both" in r.stderr, r.stderr
     r = _cli("plan", "study", "--out", str(tmp_path / "s.db"), "--dask", "tcp://127.0.0.1:1",
              "--scheduler-file", str(tmp_path / "no.json"), "--retry-failed")  # fmt: skip
-    assert r.returncode == 1 and "address or its scheduler file, not both" in r.stderr, r.stderr
+    assert r.returncode == 2 and "address or its scheduler file, not both" in r.stderr, r.stderr
 
 
 @pytest.mark.slow

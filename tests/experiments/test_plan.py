@@ -166,7 +166,7 @@ def test_empty_lists_are_refused(field):
         ({"max_iter": -5}, "max_iter: must be >= 1 (got -5)"),
         ({"seed": -1}, "seed: must be >= 0 (got -1)"),
         ({"runs": 2.5}, "runs: must be an integer (got 2.5)"),
-        ({"runs": True}, "runs: must be an integer (got True)"),
+        ({"runs": True}, "runs: must be an integer, not true/false (got True)"),
         ({"shifted": "yes"}, "shifted: must be true or false (got 'yes')"),
         ({"budget": "time"}, "budget: must be one of 'iterations' or 'evals' (got 'time')"),
         ({"batch_size": 0}, "batch_size: must be >= 1 (got 0)"),

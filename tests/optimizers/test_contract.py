@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from mawdo import OPTIMIZERS, minimize
+from mawdo.minimize import NoFiniteValueWarning
 
 ALGOS = list(OPTIMIZERS)
 LB = np.array([-5.0, -1.0, 0.0, 10.0])
@@ -104,7 +105,9 @@ def test_nan_and_inf_rank_as_worst(algo):
 
 @pytest.mark.parametrize("algo", ALGOS)
 def test_all_nan_objective_does_not_crash(algo):
-    res = run(algo, fun=lambda X: np.full(X.shape[0], np.nan), max_iter=5)
+    # and says that x is the unevaluated box centre, not a result
+    with pytest.warns(NoFiniteValueWarning, match="3 of 3 runs found no finite objective"):
+        res = run(algo, fun=lambda X: np.full(X.shape[0], np.nan), max_iter=5)
     assert np.all(np.isinf(res.fun))
 
 

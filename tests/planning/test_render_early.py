@@ -266,21 +266,28 @@ def test_component_labels_number_components_as_scipy_does():
         np.testing.assert_array_equal(component_labels(n, a, b), want)
 
 
-def _start(out: Path, *extra: str) -> subprocess.Popen:
-    cmd = [sys.executable, "-m", "mawdo.cli", "plan", "paper", "--preset", "quick", *extra]
+def _start(out: Path, *extra: str, preset: str = "quick") -> subprocess.Popen:
+    cmd = [sys.executable, "-m", "mawdo.cli", "plan", "paper", "--preset", preset, *extra]
     return interruptible([*cmd, "--out", str(out)], env=ENV)
 
 
 @pytest.mark.skipif(not render.can_fork(), reason="figures are drawn early only with fork")
 def test_ctrl_c_while_planning_stops_the_command_and_its_figures_process(tmp_path):
-    proc = _start(tmp_path / "out")
-    end = time.monotonic() + 120
-    while not children(proc.pid) and proc.poll() is None and time.monotonic() < end:
-        time.sleep(0.05)  # the figures' process starts once the arguments are read
+    # the default preset's run: planned for seconds even on a fast machine (the quick one could
+    # be planned and its grid saved within a second, before a Ctrl-C sent after a fixed delay)
+    out = tmp_path / "out"
+    proc = _start(out, preset="realtime")
+    end = time.monotonic() + 300
+    # the state waited for: --out exists once the run is set up (and compiled), right before
+    # it is planned; the figures' process was started before that, at the arguments' check
+    while not out.exists() and proc.poll() is None and time.monotonic() < end:
+        time.sleep(0.02)
+    assert out.exists(), "the run was never set up"
     assert children(proc.pid), "no figures process was started"
-    time.sleep(1.0)  # the run is being set up or planned, the figures' process sets up
-    ctrl_c(proc)
-    assert not (tmp_path / "out" / "snapshots.png").exists()
+    err = ctrl_c(proc)
+    assert not (out / "snapshots.png").exists() and not (out / "metrics.json").exists()
+    # what is true of a single run: nothing to resume
+    assert "stopped by Ctrl-C; the run was not finished: no metrics or figures" in err, err
 
 
 def test_bad_input_ends_the_figures_process_and_creates_nothing(tmp_path):

@@ -17,14 +17,14 @@ from mawdo.planning import ScenarioError, load_scenario, scenario_from_dict
 from mawdo.planning.run import config as planner_config
 from mawdo.planning.run.config import PRESETS, with_settings
 from mawdo.planning.run.planner import plan, prepare
-from mawdo.planning.world.scenario_text import MAX_NESTING, nesting_depth
+from mawdo.planning.world.scenario_text import MAX_NESTING
 
 DEEP = 5000
 BASE = {"schema_version": 1, "start": [20.0, 20.0], "goal": [346.0, 346.0]}
 
 
 def mawdo(*args: str, cwd=None, timeout=300) -> subprocess.CompletedProcess:
-    env = {**os.environ, "MPLBACKEND": "Agg", "COLUMNS": "300"}
+    env = {**os.environ, "MPLBACKEND": "Agg"}
     return subprocess.run([sys.executable, "-m", "mawdo.cli", *args], capture_output=True,
                           text=True, timeout=timeout, env=env, cwd=cwd)  # fmt: skip
 
@@ -46,33 +46,6 @@ def test_deep_nesting_is_a_scenario_error_not_a_recursion_error(tmp_path):
         with pytest.raises(ScenarioError, match=f"nested more than {MAX_NESTING} deep") as info:
             load_scenario(path)
         assert str(path) in str(info.value)
-
-
-def _depth(value) -> int:
-    # the reference: nesting of the parsed data (lists and dicts), counted recursively
-    if isinstance(value, list):
-        return 1 + max((_depth(v) for v in value), default=0)
-    if isinstance(value, dict):
-        return 1 + max((_depth(v) for v in value.values()), default=0)
-    return 0
-
-
-@pytest.mark.parametrize("depth", [1, 4, 9, 31])
-def test_nesting_depth_agrees_with_the_parsed_data(depth):
-    doc = {"a": "[[[ {{{ not nesting ]", "b": [1, [2, "]]]"]]}
-    inner: object = 7
-    for _ in range(depth - 1):
-        inner = [inner]
-    doc["c"] = inner
-    text = json.dumps(doc)
-    assert nesting_depth(text, toml=False)[0] == _depth(json.loads(text))
-    # TOML: strings of every kind and comments do not count
-    toml = ('t = "[[[[ \\" [[["\nu = \'[[[[\'\nv = """[[[\n[[["""\n# [[[[[[[\nw = '
-            + json.dumps(inner) + "\n")  # fmt: skip
-    import tomllib
-
-    # (a TOML document's root table has no brackets in the text)
-    assert nesting_depth(toml, toml=True)[0] == _depth(tomllib.loads(toml)) - 1
 
 
 def test_a_description_full_of_brackets_still_loads(tmp_path):

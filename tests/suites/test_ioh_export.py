@@ -1,6 +1,7 @@
 """Exported logs match the files ioh's own Analyzer writes, and read back to the input."""
 
 import json
+import warnings
 from importlib import metadata
 from types import SimpleNamespace
 
@@ -15,6 +16,7 @@ from mawdo.experiments.kinds.suite.ioh_logs import (
     runs_from_result,
     write_analyzer_logs,
 )
+from mawdo.minimize import NoFiniteValueWarning
 from mawdo.suites import get_problem, run_problem
 
 
@@ -120,9 +122,14 @@ def scripted_logs(tmp_path):
     ours = []
     for script in SCRIPTS:
         state["values"] = iter(script)
-        res = minimize(lambda X: np.array([problem(x) for x in X]), [(-5, 5)] * 2,
-                       algorithm="random", pop_size=len(script), max_iter=1, seed=0,
-                       trace_evaluations=True)  # fmt: skip
+        with warnings.catch_warnings(record=True) as seen:
+            warnings.simplefilter("always", NoFiniteValueWarning)
+            res = minimize(lambda X: np.array([problem(x) for x in X]), [(-5, 5)] * 2,
+                           algorithm="random", pop_size=len(script), max_iter=1, seed=0,
+                           trace_evaluations=True)  # fmt: skip
+        # a run without a finite value says so (its x was never evaluated)
+        warned = any(issubclass(w.category, NoFiniteValueWarning) for w in seen)
+        assert warned == (not np.isfinite(script).any())
         problem.reset()
         ours += runs_from_result(meta, res)
     lg.close()

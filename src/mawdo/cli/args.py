@@ -10,6 +10,8 @@ from __future__ import annotations
 import json
 from typing import Any
 
+from mawdo.util.nesting import loads
+
 
 def names(text: str | None) -> list[str] | None:
     """``"a, b,,c"`` -> ``["a", "b", "c"]`` (empty items dropped); None stays None."""
@@ -18,10 +20,12 @@ def names(text: str | None) -> list[str] | None:
     return [t.strip() for t in text.split(",") if t.strip()]
 
 
-def value(text: str) -> Any:
-    """A flag's value: JSON when it parses (numbers, ``true``, lists), else the text itself."""
+def value(text: str, what: str = "the value") -> Any:
+    """A flag's value: JSON when it parses (numbers, ``true``, ``null``, lists), else the text
+    itself; JSON nested deeper than :data:`mawdo.util.nesting.MAX_NESTING` is a ``ValueError``
+    naming ``what`` (never a ``RecursionError``)."""
     try:
-        return json.loads(text)
+        return loads(text, "json", what=what)
     except json.JSONDecodeError:
         return text
 
@@ -48,7 +52,7 @@ def pairs(items: list[str] | None, flag: str, example: str) -> dict[str, Any]:
         key, sep, text = item.partition("=")
         if not sep or not key.strip():
             raise ValueError(f"{flag} {item!r} must look like key=value, e.g. {example}")
-        out[key.strip()] = value(text)
+        out[key.strip()] = value(text, f"{flag} {key.strip()}")
     return out
 
 
@@ -70,5 +74,5 @@ def dotted_pairs(
         first, dot, key = head.partition(".")
         if not sep or not dot or not first.strip() or not key.strip():
             raise ValueError(f"{flag} {item!r} must look like {group}.name=value, e.g. {example}")
-        out.setdefault(first.strip().lower(), {})[key.strip()] = value(text)
+        out.setdefault(first.strip().lower(), {})[key.strip()] = value(text, f"{flag} {head}")
     return out

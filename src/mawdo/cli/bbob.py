@@ -12,7 +12,7 @@ from pathlib import Path
 
 import typer
 
-from mawdo.cli.errors import fail
+from mawdo.cli.errors import exit_code_of, fail
 
 
 def is_suite_preset(name: str | None) -> bool:
@@ -125,7 +125,7 @@ def report_suite(
     try:
         report = write_suite_report(stores, out, plots=plots, svg=svg, reference=reference)
     except (StoreError, ValueError) as exc:
-        fail(exc, code=1)
+        fail(exc, exit_code_of(exc) or 1)
     typer.echo(f"wrote the suite report to {out}/ (start with {report})")
 
 
@@ -135,9 +135,10 @@ def export_cmd(
     fmt: str = typer.Option("ioh", "--format", help="Log format: ioh (IOHanalyzer)."),
 ) -> None:
     """Export a suite study's runs as IOHanalyzer logs (zip a folder and upload it)."""
-    from mawdo.cli.errors import check_output_dir
+    from mawdo.cli.errors import check_output_dir, on_ctrl_c
     from mawdo.experiments.kinds.suite import export_ioh
 
+    on_ctrl_c("the export was not finished (its folder may hold some of the logs)")
     if fmt.lower() != "ioh":
         raise ValueError(f"--format {fmt!r}: the only export format is 'ioh' (IOHanalyzer)")
     check_output_dir(folder, "export folder")

@@ -15,10 +15,11 @@ import typer
 from mawdo.cli import study
 from mawdo.cli.args import names
 from mawdo.cli.bbob import export_cmd
-from mawdo.cli.errors import fail
+from mawdo.cli.errors import GuardedGroup, exit_code_of, fail
 from mawdo.cli.study import moved, run_study
 
 bench_app = typer.Typer(
+    cls=GuardedGroup,  # its errors are plain lines also when it runs on its own (tests)
     name="bench",
     help="Benchmark sweeps (paper Tables 3 and 5): run a plan into a SQLite store, then report.",
     no_args_is_help=True,
@@ -146,9 +147,10 @@ def report_cmd(
     ),
 ) -> None:
     """Write tables (Markdown, LaTeX, CSV) and figures from a store, without recomputing."""
-    from mawdo.cli.errors import check_output_dir, writing_into
+    from mawdo.cli.errors import REPORT_CTRL_C, check_output_dir, on_ctrl_c, writing_into
     from mawdo.experiments import StoreError, write_report
 
+    on_ctrl_c(REPORT_CTRL_C)
     moved("mawdo bench report", "mawdo study report")
     check_output_dir(out, "--out folder")
     from mawdo.cli.bbob import is_suite_store, report_suite
@@ -160,18 +162,17 @@ def report_cmd(
     if len(stores) > 1:
         missing = [str(s) for s in stores if not s.exists()]
         if missing:
-            fail(f"no such results store: {', '.join(missing)}", code=1)
+            fail(f"no such results store: {', '.join(missing)}")
         others = ", ".join(str(s) for s, ok in zip(stores, suite, strict=True) if not ok)
         fail(
             f"several stores are reported together only for suite studies (`run --suite`); "
-            f"{others} is not one: report each store on its own",
-            code=1,
+            f"{others} is not one: report each store on its own"
         )
     try:
         with writing_into(out):
             files = write_report(stores[0], out, plots=plots, svg=svg, reference=reference)
     except (StoreError, ValueError) as exc:
-        fail(str(exc), code=1)
+        fail(exc, exit_code_of(exc) or 1)
     typer.echo(f"wrote {len(files)} files to {out}/ (start with {out / 'report.md'})")
 
 

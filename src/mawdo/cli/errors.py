@@ -1,9 +1,17 @@
 """The command layer's one error edge: expected errors become a message and an exit code.
 
-Errors a user can cause and fix (a bad name or value, a missing or unwritable file, a results
-store that cannot be used) are printed as ``error: ...`` on stderr with exit code 1, never as a
-traceback; anything else is a bug and keeps its traceback. Output paths are checked with
-:func:`check_output_file` / :func:`check_output_dir` before any computing starts.
+Errors a user can cause and fix are printed as one plain ``error: ...`` line (a message of
+several lines for a plan with several bad fields) on stderr, never a traceback or a rich panel,
+whatever the terminal's width; anything else is a bug and keeps its traceback. Exit codes:
+
+* 2: bad input: a flag, name or value, a plan file, a results store that cannot be used as
+  given (missing, damaged, of another plan or kind);
+* 1: a failure during the work: a file that cannot be written, a task lost, a missing
+  optional library, writing into the store failed;
+* 130: Ctrl-C.
+
+Output paths are checked with :func:`check_output_file` / :func:`check_output_dir` before any
+computing starts.
 """
 
 from __future__ import annotations
@@ -50,11 +58,18 @@ def fail(exc_or_msg: BaseException | str, code: int = 2) -> NoReturn:
     raise bad_input(exc_or_msg, code)
 
 
-def _expected() -> tuple[type[BaseException], ...]:
+def exit_code_of(exc: BaseException) -> int | None:
+    """The exit code of an expected error: 2 for bad input (a ``ValueError``, ``KeyError`` or
+    a store that cannot be used as given), 1 for a failure during the work (an ``OSError``,
+    writing into a store failed); None for anything else (a bug: its traceback is kept)."""
     # imported here: `mawdo list` should not pay for the experiments package
-    from mawdo.experiments.sqlitefile import StoreError
+    from mawdo.experiments.sqlitefile import StoreError, StoreWriteError
 
-    return (ValueError, KeyError, OSError, StoreError)
+    if isinstance(exc, OSError | StoreWriteError):
+        return 1
+    if isinstance(exc, ValueError | KeyError | StoreError):
+        return 2
+    return None
 
 
 def message(exc: BaseException) -> str:
@@ -116,16 +131,39 @@ class GuardedGroup(TyperGroup):
         except BaseException as exc:
             # also the SystemError that compiled code (Numba) makes of a Ctrl-C
             if is_interrupt(exc):
-                raise Interrupted(
-                    "stopped by Ctrl-C; a study's finished runs are stored, run the same "
-                    "command again to resume"
-                ) from None
-            if isinstance(exc, Exception) and isinstance(exc, _expected()):
-                raise CommandError(message(exc)) from None
+                raise Interrupted(interrupt_message()) from None
+            code = exit_code_of(exc) if isinstance(exc, Exception) else None
+            if code is not None:
+                raise bad_input(exc, code) from None
             raise
 
 
-class DefaultRunGroup(TyperGroup):
+_CTRL_C = {"note": ""}
+
+
+def on_ctrl_c(note: str) -> None:
+    """Say what a Ctrl-C during the running command leaves behind: the words after
+    ``stopped by Ctrl-C; `` in its message (each command its own, true for it)."""
+    _CTRL_C["note"] = note
+
+
+def interrupt_message() -> str:
+    """The Ctrl-C message of the running command (:func:`on_ctrl_c`)."""
+    note = _CTRL_C["note"]
+    return f"stopped by Ctrl-C; {note}" if note else "stopped by Ctrl-C"
+
+
+STUDY_CTRL_C = "the runs finished before it are stored: run the same command again to resume"
+"""What a Ctrl-C leaves of a study command (the runner stores each finished task)."""
+
+REPORT_CTRL_C = (
+    "the report was not finished (its folder may hold some of its files); the store is "
+    "unchanged: run the same command again to write the report"
+)
+"""What a Ctrl-C leaves of a report command."""
+
+
+class DefaultRunGroup(GuardedGroup):
     """A group whose first argument, when it names no command, is read as ``run``'s:
     ``mawdo plan paper`` means ``mawdo plan run paper``."""
 
@@ -164,23 +202,28 @@ def writing_into(folder: Path, what: str = "report"):
         ) from None
 
 
+class BadOutputPath(ValueError):
+    """An output path given that cannot be written (checked before any work: bad input)."""
+
+
 def check_output_dir(path: Path, what: str = "output folder") -> Path:
-    """Make ``path`` (a directory) now, and make sure files can be written into it."""
+    """Make ``path`` (a directory) now, and make sure files can be written into it; else a
+    :class:`BadOutputPath` (a bad argument: exit 2, as every input error)."""
     path = Path(path)
     if path.exists() and not path.is_dir():
-        raise ValueError(f"{what} {path} is a file; give a folder")
+        raise BadOutputPath(f"{what} {path} is a file; give a folder")
     try:
         path.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
-        raise OSError(f"cannot create {what} ({path}): {exc.strerror or exc}") from None
+        raise BadOutputPath(f"cannot create {what} ({path}): {exc.strerror or exc}") from None
     if not os.access(path, os.W_OK | os.X_OK):
-        raise OSError(f"{what} ({path}) is not writable; choose another one")
+        raise BadOutputPath(f"{what} ({path}) is not writable; choose another one")
     try:
         # os.access says yes to root everywhere, and knows nothing of read-only mounts
         with tempfile.TemporaryFile(dir=path):
             pass
     except OSError as exc:
-        raise OSError(
+        raise BadOutputPath(
             f"{what} ({path}) is not writable ({exc.strerror or exc}); choose another one"
         ) from None
     return path
@@ -197,5 +240,5 @@ def check_output_file(path: Path, suffixes: tuple[str, ...] | None = None, what=
         raise ValueError(f"{what} {path} is a folder; give a file name")
     check_output_dir(path.parent, what=f"the folder of {what} {path}")
     if path.exists() and not os.access(path, os.W_OK):
-        raise OSError(f"{what} {path} is not writable")
+        raise BadOutputPath(f"{what} {path} is not writable")
     return path

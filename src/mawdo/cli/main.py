@@ -22,10 +22,12 @@ from mawdo.cli.errors import (
     IMAGE_SUFFIXES,
     RETRY_HELP,
     SCHEDULER_FILE_HELP,
+    STUDY_CTRL_C,
     GuardedGroup,
     check_output_dir,
     check_output_file,
     fail,
+    on_ctrl_c,
 )
 
 app = typer.Typer(
@@ -153,6 +155,8 @@ def optimize(
     """Run one or more algorithms on a benchmark function and print Best/Ave/Std/nfev/time."""
     from mawdo import minimize
 
+    on_ctrl_c("no result was printed or saved (a rerun computes every run again)")
+
     opts = _parse_options(option)
     algos = _algorithms(algorithm, {"pop_size": pop, **opts})
     # outputs are checked before minutes of computing, not after
@@ -261,6 +265,8 @@ def demo(
     """The main job: MAWDO plans through the moving obstacles of the `paper` scenario."""
     import time
 
+    on_ctrl_c("the run was not finished: no metrics or figures were written")
+
     from mawdo.cli import quick_exit
     from mawdo.cli.plan import begin_figures, draw_figures, early_figures
     from mawdo.cli.progress import notice_compiles
@@ -310,6 +316,7 @@ def reproduce(
     from mawdo.cli.progress import notice_compiles, step
     from mawdo.reproduce import reproduce as run
 
+    on_ctrl_c(STUDY_CTRL_C)
     check_output_dir(out, "--out folder")
     backend = dict(workers=workers, dask=dask, scheduler_file=scheduler_file)
     try:
@@ -319,7 +326,7 @@ def reproduce(
                 say=console.print, step=partial(step, enabled=progress),
             )  # fmt: skip
     except KeyboardInterrupt:
-        console.print("interrupted: run the same command again to resume")
+        typer.echo(f"interrupted: stopped by Ctrl-C; {STUDY_CTRL_C}", err=True)
         raise typer.Exit(130) from None
     console.print(f"report: {path}")
 

@@ -39,6 +39,33 @@ def _scenario(name_or_path: str):
     return get_scenario(name_or_path)  # raises with close-name suggestions
 
 
+THREADS_HELP = "threads for the population cost (same result); at most the CPUs it may use"
+
+
+def usable_cpus() -> int:
+    """The CPUs this process may run on (its affinity mask; all of the machine's elsewhere)."""
+    import os
+
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        return os.cpu_count() or 1
+
+
+def check_threads(threads: int) -> None:
+    """Refuse more ``--threads`` than CPUs: the extra threads would wait for a CPU, the result
+    would be the same, and the run's time estimate (measured with that many threads) would
+    count their waiting (``--threads 64`` on 2 CPUs: "about 2649 min" for a 76 s run)."""
+    from mawdo.cli.errors import fail
+
+    cpus = usable_cpus()
+    if threads > cpus:
+        fail(
+            f"--threads {threads}: this command may use {cpus} CPU(s); give --threads {cpus} "
+            "or fewer (more threads than CPUs only wait for each other; the result is the same)"
+        )
+
+
 def _prepare(sc, algorithm, seed, preset, static, threads, max_steps):
     """The run, set up and checked; a run that may take minutes says so (stderr) first."""
     from mawdo.planning.run.planner import prepare
@@ -161,7 +188,7 @@ def run_cmd(
     out: Path = typer.Option(Path("out/plan"), help="output folder (metrics.json, figures)"),
     figures: bool = typer.Option(True, help="write the snapshot grid and the GIF"),
     progress: bool = typer.Option(True, help="show a progress bar (stderr)"),
-    threads: int = typer.Option(1, min=1, help="threads for the population cost (same result)"),
+    threads: int = typer.Option(1, min=1, help=THREADS_HELP),
     max_steps: int = typer.Option(
         None,
         min=1,
@@ -171,8 +198,10 @@ def run_cmd(
     ),
 ):
     """Plan and execute one run; print and save its metrics."""
-    from mawdo.cli.errors import bad_input, check_output_dir
+    from mawdo.cli.errors import bad_input, check_output_dir, on_ctrl_c
 
+    on_ctrl_c("the run was not finished: no metrics or figures were written")
+    check_threads(threads)
     # every input is checked before --out is created (exit 2, as for the other commands)
     try:
         sc = _scenario(scenario)
@@ -272,9 +301,10 @@ def study_cmd(
 
 
 def _write_report(store: Path, out: Path, gif: bool) -> None:
-    from mawdo.cli.errors import check_output_dir, writing_into
+    from mawdo.cli.errors import REPORT_CTRL_C, check_output_dir, on_ctrl_c, writing_into
     from mawdo.experiments.kinds.planning import write_study_report
 
+    on_ctrl_c(REPORT_CTRL_C)
     check_output_dir(out, "--out folder")
     with writing_into(out):
         path = write_study_report(store, out, gif=gif)

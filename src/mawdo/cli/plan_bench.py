@@ -108,13 +108,14 @@ def report_cmd(
 
 
 def _write_report(store: Path, out: Path, gallery: int, figures: bool) -> None:
-    from mawdo.cli.errors import check_output_dir
+    from mawdo.cli.errors import REPORT_CTRL_C, check_output_dir, exit_code_of, on_ctrl_c
     from mawdo.experiments import StoreError
     from mawdo.experiments.kinds.arena import write_arena_report
 
+    on_ctrl_c(REPORT_CTRL_C)
     check_output_dir(out, "--out folder")
     try:
         path = write_arena_report(store, out, figures=figures, gallery_limit=gallery)
     except (StoreError, ValueError) as exc:
-        fail(exc, code=1)
+        fail(exc, exit_code_of(exc) or 1)
     console.print(f"report: {path}")

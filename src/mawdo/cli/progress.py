@@ -46,7 +46,7 @@ def step(message: str, enabled: bool = True):
     if not enabled:
         yield
         return
-    from mawdo.experiments.progress import listening
+    from mawdo.experiments.progress import Heartbeat, listening
 
     t0 = time.perf_counter()
     if ERR.is_terminal:
@@ -55,23 +55,38 @@ def step(message: str, enabled: bool = True):
                 yield
     else:
         ERR.print(f"{message} ...", highlight=False)
-        with listening(_every(message)):
-            yield
+        log = _Log(message)
+        beat = Heartbeat(log.beat, EVERY / 2)
+        try:
+            with listening(log.listener):
+                yield
+        finally:
+            beat.stop()
     ERR.print(f"{message}: done in {time.perf_counter() - t0:.1f} s", highlight=False)
 
 
-def _every(message: str):
-    """A listener that prints ``"<step>: <what now>"`` at most once per :data:`EVERY` seconds
-    (a log gets a line while a long step works, not one per figure)."""
-    last = [-EVERY]
+class _Log:
+    """A long step's lines in a log: ``"<step>: <what now>"`` at most once per :data:`EVERY`
+    seconds (not one per figure), and ``"<step>: <what last> (<s> s)"`` when nothing was said
+    for :data:`EVERY` seconds (a phase that says nothing is not silent)."""
 
-    def listener(sub: str) -> None:
+    def __init__(self, message: str) -> None:
+        self.message, self.sub = message, ""
+        self.t0 = self.last = time.perf_counter()
+
+    def listener(self, sub: str) -> None:
+        self.sub = sub
         now = time.perf_counter()
-        if now - last[0] >= EVERY:
-            last[0] = now
-            ERR.print(f"{message}: {sub}", highlight=False)
+        if now - self.last >= EVERY:
+            self.last = now
+            ERR.print(f"{self.message}: {sub}", highlight=False)
 
-    return listener
+    def beat(self, _seconds: float) -> None:
+        now = time.perf_counter()
+        if now - self.last >= EVERY:
+            self.last = now
+            what = f"{self.sub}, " if self.sub else ""
+            ERR.print(f"{self.message}: {what}{now - self.t0:.0f} s", highlight=False)
 
 
 def jit_jobs() -> int:

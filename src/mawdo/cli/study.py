@@ -11,15 +11,28 @@ without a change here. The older per-kind commands (``mawdo bench run``, ``mawdo
 from __future__ import annotations
 
 import inspect
+import typing
 from pathlib import Path
 from typing import Any
 
 import typer
 
 from mawdo.cli.args import pairs, value
-from mawdo.cli.errors import RETRY_HELP, SCHEDULER_FILE_HELP, check_output_dir, fail, writing_into
+from mawdo.cli.errors import (
+    REPORT_CTRL_C,
+    RETRY_HELP,
+    SCHEDULER_FILE_HELP,
+    STUDY_CTRL_C,
+    GuardedGroup,
+    check_output_dir,
+    exit_code_of,
+    fail,
+    on_ctrl_c,
+    writing_into,
+)
 
 study_app = typer.Typer(
+    cls=GuardedGroup,  # its errors are plain lines also when it runs on its own (tests)
     name="study",
     help="Studies of every kind: run a preset or a plan file into a resumable store, report it.",
     no_args_is_help=True,
@@ -46,15 +59,18 @@ def moved(old: str, new: str) -> None:
 def set_values(plan: Any, items: list[str] | None) -> dict[str, Any]:
     """``--set key=value`` items as plan overrides.
 
-    A value is read as JSON when it parses (``runs=3``, ``options={"mawdo": {"groups": 4}}``),
-    else as text; for a field that holds a list, ``a,b`` is the list ``["a", "b"]`` (each item
-    read as JSON when it parses: ``dims=5,20`` is ``[5, 20]``).
+    A value is read as JSON when it parses (``runs=3``, ``options={"mawdo": {"groups": 4}}``,
+    ``final_target=null``), else as text; for a field that holds a list, ``a,b`` is the list
+    ``["a", "b"]`` (each item read as JSON when it parses: ``dims=5,20`` is ``[5, 20]``).
+    ``null`` is kept (None where the field allows it, else refused with the field's type), and
+    ``true``/``false`` stay bools (refused for a field of numbers or names).
     """
     out = pairs(items, "--set", "runs=3")
     for key, val in out.items():
-        if isinstance(getattr(plan, key, None), tuple | list) and isinstance(val, str | int):
+        listed = isinstance(getattr(plan, key, None), tuple | list)
+        if listed and isinstance(val, str | int) and not isinstance(val, bool):
             text = str(val)
-            out[key] = [value(t.strip()) for t in text.split(",") if t.strip()]
+            out[key] = [value(t.strip(), f"--set {key}") for t in text.split(",") if t.strip()]
     return out
 
 
@@ -67,13 +83,37 @@ def load_plan(spec: str, sets: list[str] | None = None) -> Any:
 
     path = Path(spec)
     try:
-        if path.suffix.lower() in (".toml", ".json") or path.exists():
-            plan = load_plan_file(path)
+        if path.exists() or _names_a_file(spec):
+            plan = load_plan_file(_plan_file(path))
         else:
             plan = find_preset(spec)
-        return plan.with_overrides(**set_values(plan, sets))
+        return plan.with_fields(**set_values(plan, sets))
     except (PlanError, ValueError) as exc:
         fail(exc)
+
+
+def _names_a_file(spec: str) -> bool:
+    """Whether ``spec`` is written as a file (a suffix or a folder), not a preset name (preset
+    names have neither)."""
+    return bool(Path(spec).suffix) or "/" in spec or "\\" in spec
+
+
+def _plan_file(path: Path) -> Path:
+    """``path`` if it is a plan file that exists, with a ``.toml`` or ``.json`` suffix (the
+    formats read); else a ``ValueError`` saying which of those is wrong."""
+    if not path.exists():
+        raise ValueError(
+            f"plan file {path} does not exist (a plan is a preset name, see `mawdo study "
+            "presets`, or a .toml or .json file)"
+        )
+    if path.is_dir():
+        raise ValueError(f"plan {path} is a folder; give a .toml or .json plan file")
+    if path.suffix.lower() not in (".toml", ".json"):
+        raise ValueError(
+            f"plan file {path}: plan files are TOML (.toml) or JSON (.json), not "
+            f"{path.suffix or 'a file without a suffix'}"
+        )
+    return path
 
 
 def run_study(plan: Any, out: Path, **backend: Any) -> None:
@@ -85,6 +125,7 @@ def run_study(plan: Any, out: Path, **backend: Any) -> None:
     """
     from mawdo.experiments import StoreError, run_plan
 
+    on_ctrl_c(STUDY_CTRL_C)
     check = getattr(plan, "check_libraries", None)  # optional: a kind's missing extra
     try:
         if check is not None:
@@ -93,11 +134,14 @@ def run_study(plan: Any, out: Path, **backend: Any) -> None:
         fail(exc, code=1)
     except ValueError as exc:  # a data file the plan needs is missing or damaged: input
         fail(exc, code=2)
-    typer.echo(f"{plan.describe()}; plan {plan.plan_hash[:12]} -> {out}", err=True)
+    # what it will do, before any work: the plan and its size (at most MAX_PLAN_RUNS runs)
+    total = getattr(plan, "total_runs", None)
+    size = f"; {total:,} runs in all" if isinstance(total, int) else ""
+    typer.echo(f"{plan.describe()}{size}; plan {plan.plan_hash[:12]} -> {out}", err=True)
     try:
         summary = run_plan(plan, out, **backend)
     except (StoreError, ValueError, RuntimeError) as exc:
-        fail(exc, code=1)
+        fail(exc, code=exit_code_of(exc) or 1)  # a store or plan given: 2; the work failed: 1
     typer.echo(str(summary))
     if summary.interrupted:
         raise typer.Exit(130)
@@ -137,15 +181,51 @@ def store_kind(store: Path) -> Any:
 
 
 def report_options(kind: Any, items: list[str] | None) -> dict[str, Any]:
-    """``--option key=value`` items checked against the keyword options of ``kind.report``."""
-    options = pairs(items, "--option", "plots=false")
+    """``--option key=value`` items checked against the keyword options of ``kind.report``:
+    each name, and each value against the option's type (``plots=banana`` is no bool)."""
+    try:
+        options = pairs(items, "--option", "plots=false")
+    except ValueError as exc:
+        fail(exc)
     params = list(inspect.signature(kind.report).parameters.values())[2:]
-    known = [p.name for p in params if p.kind in (p.KEYWORD_ONLY, p.POSITIONAL_OR_KEYWORD)]
-    for key in options:
+    known = {p.name: p for p in params if p.kind in (p.KEYWORD_ONLY, p.POSITIONAL_OR_KEYWORD)}
+    try:
+        hints = typing.get_type_hints(kind.report)
+    except (NameError, TypeError):  # an annotation that cannot be resolved: the defaults say
+        hints = {}
+    for key, val in options.items():
         if key not in known:
             fail(f"--option {key}: the {kind.name} report has no such option; its options: "
                  f"{', '.join(known) or 'none'}")  # fmt: skip
+        problem = option_problem(val, hints.get(key), known[key].default)
+        if problem:
+            fail(f"--option {key}={val!r}: {problem}")
     return options
+
+
+def option_problem(val: Any, hint: Any, default: Any) -> str:
+    """Why ``val`` does not fit a report option of type ``hint`` (its default ``default`` when
+    the type is unknown); "" when it fits."""
+    if hint is None and default is not inspect.Parameter.empty and default is not None:
+        hint = type(default)
+    if hint is None or hint is Any:
+        return ""
+    allowed = set(typing.get_args(hint)) or {hint}
+    if val is None:
+        return "" if type(None) in allowed else "this option cannot be null"
+    if isinstance(val, bool):
+        return "" if bool in allowed else f"must be {_option_type(allowed)}, not true/false"
+    if any(isinstance(val, t) for t in allowed if isinstance(t, type) and t is not bool):
+        return ""
+    if float in allowed and isinstance(val, int):
+        return ""
+    return f"must be {_option_type(allowed)}"
+
+
+def _option_type(allowed: set) -> str:
+    words = {bool: "true or false", int: "an integer", float: "a number", str: "a name"}
+    said = [words.get(t, getattr(t, "__name__", str(t))) for t in allowed if t is not type(None)]
+    return " or ".join(said) + (" or null" if type(None) in allowed else "")
 
 
 def report_path(result: Any, out: Path) -> Path:
@@ -168,22 +248,22 @@ def report_cmd(
     ),
 ) -> None:
     """Write the report of the study in STORE (tables, figures), without recomputing."""
+    on_ctrl_c(REPORT_CTRL_C)
     check_output_dir(out, "--out folder")
     missing = [str(s) for s in stores if not s.exists()]
     if missing:
-        fail(f"no such results store: {', '.join(missing)}", code=1)
+        fail(f"no such results store: {', '.join(missing)}")
     kinds = [store_kind(s) for s in stores]
     kind = kinds[0]
     if kind.report is None:
-        fail(f"the {kind.name} study kind has no report", code=1)
+        fail(f"the {kind.name} study kind has no report")
     if len(stores) > 1 and not (
         kind.report_merges_stores and {k.name for k in kinds} == {kind.name}
     ):
         fail(
             f"several stores are reported together only for one study of a kind that merges "
             f"them; these hold {', '.join(sorted({k.name for k in kinds}))}: report each store "
-            f"on its own",
-            code=1,
+            f"on its own"
         )
     options = report_options(kind, option)
     target = list(stores) if kind.report_merges_stores else stores[0]

@@ -15,9 +15,11 @@ import json
 import tomllib
 from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import Annotated, Any, ClassVar
+from typing import Annotated, Any, ClassVar, Literal, get_args, get_origin
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
+
+from mawdo.util.nesting import NestingError, loads
 
 #: A plan's count field: an int >= 1, strictly (a TOML ``runs = 3.5`` or ``true`` is an error,
 #: not silently 3 or 1). Shared by the kinds' plans.
@@ -53,10 +55,13 @@ class StudyPlanBase(BaseModel):
         """
         if not isinstance(data, Mapping):
             raise PlanError(f"a plan must be a table of fields, got {type(data).__name__}")
+        refuse_bools(cls, data)
         try:
-            return cls.model_validate(dict(data), context={"stored": stored})
+            plan = cls.model_validate(dict(data), context={"stored": stored})
         except ValidationError as exc:
             raise PlanError(format_errors(exc, cls)) from None
+        check_size(plan)
+        return plan
 
     @classmethod
     def from_file(cls, path):
@@ -77,15 +82,25 @@ class StudyPlanBase(BaseModel):
     @classmethod
     def from_json(cls, text: str):
         """The plan written by :meth:`to_json`."""
-        return cls.from_dict(json.loads(text))
+        try:
+            data = loads(text, "json", what="plan JSON", needs=PLAN_NEEDS)
+        except (NestingError, json.JSONDecodeError) as exc:
+            raise PlanError(str(exc)) from None
+        return cls.from_dict(data)
 
     def to_json(self) -> str:
         """The full plan (name and batch size included) as JSON, for the store's meta table."""
         return json.dumps(self.model_dump(mode="json"), sort_keys=True)
 
     def with_overrides(self, **changes: Any):
-        """A new, re-validated plan with some fields replaced (``None`` values are ignored)."""
-        changes = {k: v for k, v in changes.items() if v is not None}
+        """A new, re-validated plan with some fields replaced (``None`` values are ignored:
+        a flag not given); :meth:`with_fields` sets ``None`` too."""
+        return self.with_fields(**{k: v for k, v in changes.items() if v is not None})
+
+    def with_fields(self, **changes: Any):
+        """A new, re-validated plan with the fields ``changes`` replaced, ``None`` included
+        (``final_target=None``: a field whose legal value is None; a field that does not allow
+        None is refused with its type)."""
         if not changes:
             return self
         data = self.model_dump()
@@ -115,6 +130,83 @@ class StudyPlanBase(BaseModel):
         return hashlib.sha256(blob.encode("utf-8")).hexdigest()
 
 
+MAX_PLAN_RUNS = 1_000_000
+"""Most runs one plan may hold. Its task list and the store's keys are built in memory before
+the first run (a plan of 10^10 runs sat silent, 10^6 scenes per family held 765 MB before any
+run); the largest preset holds 64 800."""
+
+
+def check_size(plan: Any) -> None:
+    """Refuse a plan of more than :data:`MAX_PLAN_RUNS` runs, saying how many it has."""
+    total = getattr(plan, "total_runs", None)
+    if isinstance(total, int) and total > MAX_PLAN_RUNS:
+        raise PlanError(
+            f"the plan has {total:,} runs ({plan.describe()}); one plan holds at most "
+            f"{MAX_PLAN_RUNS:,}: lower its counts (runs, n, instances ...) or split the study "
+            "into several plans"
+        )
+
+
+def _admits_bool(annotation: Any) -> bool:
+    """Whether a field's type accepts a bool anywhere in it (``bool``, ``Any``, a literal
+    ``True``, or a container or union with one of those)."""
+    if annotation is bool or annotation is Any:
+        return True
+    args = get_args(annotation)
+    if get_origin(annotation) is Literal:
+        return any(isinstance(a, bool) for a in args)
+    if get_origin(annotation) is Annotated:
+        return _admits_bool(args[0])
+    return any(_admits_bool(a) for a in args if a is not Ellipsis)
+
+
+def _has_bool(value: Any) -> bool:
+    if isinstance(value, bool):
+        return True
+    if isinstance(value, dict):
+        return any(_has_bool(v) for v in value.values())
+    if isinstance(value, list | tuple):
+        return any(_has_bool(v) for v in value)
+    return False
+
+
+def refuse_bools(model: type[BaseModel], data: Mapping[str, Any]) -> None:
+    """Refuse ``true``/``false`` given for a field that holds numbers or names: pydantic's lax
+    mode reads ``true`` as 1 (``n = true`` ran one scene); a bool is no number here."""
+    bad = [
+        f"{key}: must be {_kind_of(field.annotation)}, not true/false (got {value!r})"
+        for key, value in data.items()
+        if (field := model.model_fields.get(key)) is not None
+        and not _admits_bool(field.annotation)
+        and _has_bool(value)
+    ]
+    if bad:
+        raise PlanError("\n".join(bad))
+
+
+def _leaves(annotation: Any) -> set[Any]:
+    if get_origin(annotation) is Annotated:
+        return _leaves(get_args(annotation)[0])
+    args = [a for a in get_args(annotation) if a is not Ellipsis]
+    if not args or get_origin(annotation) is Literal:
+        return {annotation}
+    return set().union(*(_leaves(a) for a in args))
+
+
+def _kind_of(annotation: Any) -> str:
+    """``"an integer"``, ``"a number"`` ... : what a field holds, for a message."""
+    leaves = _leaves(annotation) - {type(None)}
+    many = get_origin(annotation) in (tuple, list) or any(
+        get_origin(a) in (tuple, list) for a in get_args(annotation)
+    )
+    words = {frozenset({int}): "integers", frozenset({float}): "numbers", frozenset({str}): "names"}
+    word = words.get(frozenset(leaves), "names or numbers")
+    if many:
+        return f"a list of {word}"
+    one = {"integers": "an integer", "numbers": "a number", "names": "a name"}
+    return one.get(word, "a name or a number")
+
+
 def reject_duplicates(values: tuple, field: str) -> tuple:
     """``values`` unchanged when no entry repeats; else a ``ValueError`` naming the repeat and
     its first place, e.g. ``functions[1]: 'sphere' is listed twice (also functions[0])``."""
@@ -137,25 +229,32 @@ def plan_from_data(path, data: dict[str, Any], preset: Callable, build: Callable
             return build(data)
         if not isinstance(name, str):
             raise PlanError(f"preset: must be a string, got {name!r}")
-        return preset(name).with_overrides(**data)
+        return preset(name).with_fields(**data)
     except PlanError as exc:
         raise PlanError(f"{path}: {exc}") from None
 
 
+PLAN_NEEDS = "a plan needs 3 levels at most (e.g. options -> algorithm -> option)"
+
+
 def read_plan_file(path) -> dict[str, Any]:
     """The fields of a plan file: TOML (JSON by a ``.json`` suffix), at top level or under a
-    ``[plan]`` table. Raises :class:`PlanError` naming the file."""
+    ``[plan]`` table. A UTF-8 byte order mark (which some editors write) is skipped. Raises
+    :class:`PlanError` naming the file, also for nesting deeper than
+    :data:`mawdo.util.nesting.MAX_NESTING` (checked before parsing)."""
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        text = path.read_text(encoding="utf-8-sig")
     except (OSError, UnicodeDecodeError) as exc:
         why = getattr(exc, "strerror", None) or exc
         raise PlanError(f"cannot read plan file {path}: {why}") from None
+    fmt = "json" if path.suffix.lower() == ".json" else "toml"
     try:
-        data = json.loads(text) if path.suffix.lower() == ".json" else tomllib.loads(text)
+        data = loads(text, fmt, what=str(path), needs=PLAN_NEEDS)
+    except NestingError as exc:
+        raise PlanError(str(exc)) from None
     except (tomllib.TOMLDecodeError, json.JSONDecodeError) as exc:
-        what = "JSON" if path.suffix.lower() == ".json" else "TOML"
-        raise PlanError(f"{path}: not valid {what}: {exc}") from None
+        raise PlanError(f"{path}: not valid {fmt.upper()}: {exc}") from None
     if not isinstance(data, dict):
         raise PlanError(f"{path}: a plan must be a table of fields")
     if "plan" in data and isinstance(data["plan"], dict) and len(data) == 1:

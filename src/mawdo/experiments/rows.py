@@ -28,6 +28,8 @@ from typing import Any
 
 import numpy as np
 
+from mawdo.util.nesting import NestingError, loads
+
 STORAGE_SQL = {
     "real": "REAL",
     "int": "INTEGER",
@@ -43,11 +45,12 @@ class RowError(ValueError):
     """A row does not fit its kind's schema, or a stored value is damaged."""
 
 
-def column(storage: str, default: Any = None) -> Any:
-    """Declare a row field stored as ``storage`` (a key of :data:`STORAGE_SQL`)."""
+def column(storage: str, default: Any = None, *, required: bool = False) -> Any:
+    """Declare a row field stored as ``storage`` (a key of :data:`STORAGE_SQL`); ``required``:
+    every finished run (no ``error_text``) has a value in it, so a NULL there is damage."""
     if storage not in STORAGE_SQL:
         raise ValueError(f"storage {storage!r} is not one of {', '.join(STORAGE_SQL)}")
-    return dataclasses.field(default=default, metadata={"storage": storage})
+    return dataclasses.field(default=default, metadata={"storage": storage, "required": required})
 
 
 @dataclass(frozen=True)
@@ -82,6 +85,33 @@ def schema(row_type: type[RunRow]) -> tuple[tuple[str, str], ...]:
             raise RowError(f"{row_type.__name__}.{f.name} is not declared with column(storage)")
         out.append((f.name, storage))
     return tuple(out)
+
+
+def required_fields(row_type: type[RunRow]) -> frozenset[str]:
+    """The fields of ``row_type`` that every finished run has (declared ``required``)."""
+    return frozenset(f.name for f in dataclasses.fields(row_type) if f.metadata.get("required"))
+
+
+#: Python types SQLite gives back for each storage (None aside).
+_STORED_TYPES = {
+    "real": (float, int),
+    "int": (int,),
+    "text": (str,),
+    "json": (str,),
+    "blob": (bytes,),
+    "f64": (bytes,),
+    "i64": (bytes,),
+}
+
+
+def stored_value_problem(value: Any, storage: str) -> str:
+    """What is wrong with a value SQLite gave back for a column of ``storage`` ("" if nothing):
+    SQLite keeps any value in any column, so a hand-edited store may hold text in a number's
+    column."""
+    if value is None or isinstance(value, _STORED_TYPES[storage]):
+        return ""
+    shown = repr(value) if len(repr(value)) <= 40 else repr(value)[:37] + "..."
+    return f"holds {shown} ({type(value).__name__}), not a value of a {storage} column"
 
 
 def encode_f64(a) -> bytes:
@@ -139,7 +169,10 @@ def from_sql(value: Any, storage: str) -> Any:
     if value is None:
         return None
     if storage == "json":
-        return json.loads(value)
+        try:
+            return loads(value, "json", what="stored JSON")
+        except (json.JSONDecodeError, NestingError) as exc:
+            raise RowError(f"stored JSON cannot be read: {exc}") from None
     return value
 
 

@@ -34,6 +34,11 @@ class StoreError(RuntimeError):
     """The results store cannot be used as asked (wrong plan, corrupt, read-only ...)."""
 
 
+class StoreWriteError(StoreError):
+    """Writing a computed task into the store failed (a full disk, a lost file, a store changed
+    under the sweep): a failure during the work, not a bad store given."""
+
+
 def library_version() -> str:
     from mawdo import __version__
 
@@ -279,13 +284,14 @@ class translate:
         if exc is None or not isinstance(exc, sqlite3.Error):
             return False
         msg = str(exc)
+        error = StoreWriteError if self.action.startswith("write") else StoreError
         if "readonly" in msg or "read-only" in msg:
-            raise StoreError(
+            raise error(
                 f"cannot {self.action} results store {self.path}: it is read-only ({msg})"
             ) from None
         if isinstance(exc, sqlite3.IntegrityError):
-            raise StoreError(
+            raise error(
                 f"cannot {self.action} results store {self.path}: {msg} (a run "
                 f"was computed twice; is another sweep writing to this file?)"
             ) from None
-        raise StoreError(f"cannot {self.action} results store {self.path}: {msg}") from None
+        raise error(f"cannot {self.action} results store {self.path}: {msg}") from None

@@ -18,12 +18,22 @@ from typing import Any
 from mawdo.experiments.lock import StoreLockedError, WriterLock
 from mawdo.experiments.plans import PlanError
 from mawdo.experiments.protocol import StudyKind, kind_of, plan_from_json
-from mawdo.experiments.rows import RowError, RunRow, check_row, from_sql, schema, to_sql
+from mawdo.experiments.rows import (
+    RowError,
+    RunRow,
+    check_row,
+    from_sql,
+    required_fields,
+    schema,
+    stored_value_problem,
+    to_sql,
+)
 from mawdo.experiments.sqlitefile import (
     CORRUPT_ADVICE,
     SCHEMA_VERSION,
     TASK_COLUMNS,
     StoreError,
+    StoreWriteError,
     check_foreign,
     connect,
     leave_clean,
@@ -188,16 +198,16 @@ class Store:
             The task's id in the ``tasks`` table.
         """
         if not self.writable:
-            raise StoreError(f"results store {self.path} was opened read-only")
+            raise StoreWriteError(f"results store {self.path} was opened read-only")
         t = outcome["task"]
         for r in outcome["rows"]:
             try:
                 check_row(r, self.row_type)
             except RowError as exc:
-                raise StoreError(f"cannot write to results store {self.path}: {exc}") from None
+                raise StoreWriteError(f"cannot write to results store {self.path}: {exc}") from None
         computed_for = outcome.get("plan_hash", self.plan.plan_hash)
         if computed_for != self.plan.plan_hash:
-            raise StoreError(
+            raise StoreWriteError(
                 f"cannot write to results store {self.path}: task {t['algorithm']} on "
                 f"{t['problem']} was computed for plan {str(computed_for)[:12]}, the store "
                 f"holds plan {self.plan.plan_hash[:12]}"
@@ -208,7 +218,7 @@ class Store:
             if stored is None or stored[0] != self.plan.plan_hash:
                 # Only reachable if something bypassed the writer lock (another library, a
                 # hand edit): never add rows to a store that now belongs to another plan.
-                raise StoreError(
+                raise StoreWriteError(
                     f"results store {self.path} was reset to another plan while this sweep "
                     f"was writing to it; nothing more is written. Re-run the sweep."
                 )
@@ -307,12 +317,42 @@ class Store:
             fetched = self.conn.execute(
                 f"SELECT {cols} FROM runs{where} ORDER BY algorithm, problem, run", args
             ).fetchall()
+        damaged = self._damaged(fetched, read)
+        if damaged:
+            more = f" and {len(damaged) - 5} more" if len(damaged) > 5 else ""
+            raise StoreError(
+                f"results store {self.path} is damaged: {len(damaged)} stored runs hold values "
+                f"no run writes: {'; '.join(damaged[:5])}{more}. The store was changed outside "
+                "mawdo: run the study again into a new store (or delete these rows from its "
+                "runs table and run the same command again to recompute them)"
+            )
         for a, p, *vals in fetched:
             try:
                 fields = {n: from_sql(v, s) for (n, s), v in zip(read, vals, strict=True)}
             except RowError as exc:
-                raise StoreError(f"results store {self.path} is damaged: {exc}") from None
+                raise StoreError(
+                    f"results store {self.path} is damaged: {a} on {p}: {exc}"
+                ) from None
             out.append((a, p, self.row_type(**fields)))
+        return out
+
+    def _damaged(self, fetched: list[tuple], read: list[tuple[str, str]]) -> list[str]:
+        """One line per stored run whose values no run writes: a value of the wrong type
+        (text in a number's column), or NULL in a column every finished run fills."""
+        required = required_fields(self.row_type)
+        names = [n for n, _ in read]
+        out = []
+        for a, p, *vals in fetched:
+            row = dict(zip(names, vals, strict=True))
+            problems = [
+                f"{n} {why}"
+                for (n, s), v in zip(read, vals, strict=True)
+                if (why := stored_value_problem(v, s))
+            ]
+            if row.get("error_text") is None:
+                problems += [f"{n} is NULL" for n in names if n in required and row[n] is None]
+            if problems:
+                out.append(f"{a} on {p} run {row.get('run')}: {', '.join(problems)}")
         return out
 
     def task_log(self) -> list[dict[str, Any]]:

@@ -19,7 +19,7 @@ HOURS = ("--runs", "1000", "--budget", "1e7", "--algorithms", "mawdo", "--no-pro
 
 
 def mawdo(*args: str, cwd, env_extra=None) -> subprocess.CompletedProcess:
-    env = {**os.environ, "MPLBACKEND": "Agg", "COLUMNS": "200", **(env_extra or {})}
+    env = {**os.environ, "MPLBACKEND": "Agg", **(env_extra or {})}
     return subprocess.run(
         [sys.executable, "-m", "mawdo.cli", *args],
         capture_output=True, text=True, timeout=120, env=env, cwd=cwd,
@@ -93,7 +93,7 @@ def test_run_resume_export_report_through_the_command(tmp_path):
     assert rep.returncode == 0, rep.stderr
     assert (tmp_path / "rep" / "art_d3.csv").is_file()
     bad = mawdo("bench", "export", "--format", "coco", "s.db", "logs", cwd=tmp_path)
-    assert bad.returncode == 1 and "only export format is 'ioh'" in bad.stderr
+    assert bad.returncode == 2 and "only export format is 'ioh'" in bad.stderr
 
 
 def test_report_of_stores_run_per_dimension(tmp_path):
@@ -106,9 +106,9 @@ def test_report_of_stores_run_per_dimension(tmp_path):
     assert rep.returncode == 0, rep.stderr
     assert {p.name for p in (tmp_path / "rep").glob("art_d*.csv")} == {"art_d2.csv", "art_d3.csv"}
     twice = mawdo("bench", "report", "d2.db", "d2.db", "--out", "r2", cwd=tmp_path)
-    assert twice.returncode == 1 and "report them separately" in twice.stderr
+    assert twice.returncode == 2 and "report them separately" in twice.stderr
     missing = mawdo("bench", "report", "d2.db", "nope.db", "--out", "r3", cwd=tmp_path)
-    assert missing.returncode == 1 and "no such results store: nope.db" in missing.stderr
+    assert missing.returncode == 2 and "no such results store: nope.db" in missing.stderr
 
 
 @pytest.mark.parametrize(

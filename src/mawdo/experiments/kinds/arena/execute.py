@@ -42,7 +42,7 @@ class ArenaRow(RunRow):
     continuation. Stores made before these columns existed read them as None.
     """
 
-    status: str | None = column("text")
+    status: str | None = column("text", required=True)
     reason: str | None = column("text")
     scene_name: str | None = column("text")
     scene_toml: str | None = column("text")

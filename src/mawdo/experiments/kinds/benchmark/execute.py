@@ -42,14 +42,14 @@ class BenchmarkRow(RunRow):
     seed_entropy: list | None = column("json")
     shift_seed: int | None = column("int")
     params: dict | None = column("json")
-    fun: float | None = column("real")
+    fun: float | None = column("real", required=True)
     error: float | None = column("real")
     f_star: float | None = column("real")
-    nfev: int | None = column("int")
-    nit: int | None = column("int")
-    status: int | None = column("int")
-    curve: np.ndarray | None = column("f64")
-    curve_nfev: np.ndarray | None = column("i64")
+    nfev: int | None = column("int", required=True)
+    nit: int | None = column("int", required=True)
+    status: int | None = column("int", required=True)
+    curve: np.ndarray | None = column("f64", required=True)
+    curve_nfev: np.ndarray | None = column("i64", required=True)
 
 
 def _budget(spec: dict[str, Any]) -> dict[str, int]:

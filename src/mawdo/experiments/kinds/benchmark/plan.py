@@ -162,9 +162,9 @@ class ExperimentPlan(StudyPlanBase):
         return preset_plan(name)
 
     def _adjust_overrides(self, data: dict[str, Any], changes: dict[str, Any]) -> dict[str, Any]:
-        if "algorithms" in changes and "options" not in changes:
+        names = changes.get("algorithms")
+        if isinstance(names, str | list | tuple) and "options" not in changes:
             # Options of algorithms no longer in the plan would be an error; drop them.
-            names = changes["algorithms"]
             keep = {str(a).lower() for a in ([names] if isinstance(names, str) else names)}
             data["options"] = {k: v for k, v in data["options"].items() if k in keep}
         return data

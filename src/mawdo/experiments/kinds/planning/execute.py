@@ -42,8 +42,8 @@ class PlanningRow(RunRow):
 
     seed: int | None = column("int")
     settings: dict | None = column("json")
-    metrics: dict | None = column("json")
-    route: bytes | None = column("blob")
+    metrics: dict | None = column("json", required=True)
+    route: bytes | None = column("blob", required=True)
     first_plan_curve: np.ndarray | None = column("f64")
     first_plan_smoothness_rad: float | None = column("real")
     plan_dim: int | None = column("int")

@@ -250,7 +250,7 @@ class SuitePlan(StudyPlanBase):
         return out
 
     def _adjust_overrides(self, data: dict[str, Any], changes: dict[str, Any]) -> dict[str, Any]:
-        if "algorithms" in changes:
+        if isinstance(changes.get("algorithms"), list | tuple):
             keep = {str(a).lower() for a in changes["algorithms"]}
             for field in ("options", "variants"):
                 if field not in changes:
