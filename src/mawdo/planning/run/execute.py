@@ -308,15 +308,19 @@ class Run(TimedRun, SafeRun, LimitedRun):
 
     def estimate_seconds(self, steps: int) -> float:
         """An upper estimate of the run's wall time (s) if it uses ``steps`` steps: the time of
-        one population's cost (measured now, after a warm-up call) times the iterations of the
-        first plan and of a replan at every ``replan_every`` steps (held replans cost less)."""
+        one population's cost (measured now: the median of 3 calls after a warm-up call of the
+        same size) times the iterations of the first plan and of a replan at every
+        ``replan_every`` steps (held replans cost less)."""
         cfg = self.cfg
         if self._per_pop is None:  # measured once: estimates of one run stay comparable
             X = np.random.default_rng(0).uniform(*self.cost.bounds, (cfg.pop_size, self.cost.dim))
-            self.cost(X[:2], start=self.sc.start)  # compiles once per process
-            t0 = time.perf_counter()
-            self.cost(X, start=self.sc.start)
-            self._per_pop = time.perf_counter() - t0
+            self.cost(X, start=self.sc.start)  # compiles; with threads, starts the pool (100x)
+            times = []
+            for _ in range(3):
+                t0 = time.perf_counter()
+                self.cost(X, start=self.sc.start)
+                times.append(time.perf_counter() - t0)
+            self._per_pop = float(np.median(times))
         per_pop = self._per_pop
         first = cfg.first_iters * (cfg.first_pop_size or cfg.pop_size) / cfg.pop_size
         return per_pop * (first + cfg.replan_iters * steps / cfg.replan_every)
