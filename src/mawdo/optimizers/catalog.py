@@ -174,7 +174,7 @@ register(
         "wdo_plus",
         WDOPlus,
         {},
-        "this library (issue 29), after Bayraktar et al. 2013's WDO; docs/algorithms.md#wdo-plus",
+        "this library, after Bayraktar et al. 2013's WDO; docs/algorithms.md#wdo-plus",
         "WDO+: gravity toward the personal bests' mean, success-adapted noise, restarts, "
         "midpoint bounds",
         label="WDO+",

@@ -79,7 +79,7 @@ def test_the_sentence_names_who_is_ahead_and_the_goal(suite):
     line = suite_sentence(suite)
     assert line.startswith(
         "CEC 2017 F1-F3, D = 10, 10000 evaluations per run (1000 x D), 2 runs, 2 functions: "
-        "WDO+ 2.25, place 3 of 3, behind CMA-ES 1.75, GWO 2.00 (the issue's goal, second only "
+        "WDO+ 2.25, place 3 of 3, behind CMA-ES 1.75, GWO 2.00 (WDO+'s design goal, second only "
         "to CMA-ES, is not met)"
     )
     assert line.endswith(

@@ -93,7 +93,7 @@ def protocol_line(plans: Sequence[tuple[str, Any, str]]) -> str:
     budgets = sorted({p.budget for _, p, _ in plans})
     versions = sorted({v for _, _, v in plans})
     return (
-        f"Component study of WDO, AWDO and MAWDO on BBOB f1-f24 (issue 29 item 1), a reduced "
+        f"Component study of WDO, AWDO and MAWDO on BBOB f1-f24, a reduced "
         f"protocol: {dims}; {' or '.join(map(str, runs))} runs, "
         f"{' or '.join(f'{b:g}' for b in budgets)} x D evaluations (the preset "
         f"`wdo-components` asks D = {' and '.join(map(str, full.dims))}, instances "

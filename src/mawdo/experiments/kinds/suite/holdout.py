@@ -1,7 +1,7 @@
 """The hold-out study as suite presets: CEC 2017 and CEC 2022.
 
 WDO+ (``wdo_plus``) was designed on BBOB only; these presets judge it on suites it never saw,
-at each suite's own budget, against the issue's ten algorithms. The paper's F1-F16, unshifted
+at each suite's own budget, against the hold-out's ten algorithms. The paper's F1-F16, unshifted
 and shifted, are the benchmark kind's presets ``holdout-paper`` and ``holdout-paper-shifted``.
 
 Budgets (evaluations per dimension, COCO's convention): CEC 2017 gives ``10000 D`` per run;

@@ -31,7 +31,7 @@ from mawdo.suites import evaluation_budget
 
 VARIANT = "wdo_plus"
 RIVALS = ("cmaes", "scipy_de", "gwo", "mawdo")
-"""The algorithms the issue names for WDO+'s wins and losses (item 5)."""
+"""The algorithms named for WDO+'s wins and losses (item 5)."""
 
 
 def name(algorithm: str) -> str:
@@ -66,12 +66,12 @@ def versus(suite: HoldoutSuite, ref: str, other: str) -> tuple[list[str], list[s
 
 
 def _goal(suite: HoldoutSuite, ranks: dict[str, float]) -> str:
-    """The issue's must-show for this suite, and whether the stored runs meet it."""
+    """WDO+'s design goal for this suite, and whether the stored runs meet it."""
     if suite.key.startswith("cec"):
         met = place(ranks, VARIANT) == 2 and place(ranks, "cmaes") == 1
-        return f"the issue's goal, second only to CMA-ES, is {'met' if met else 'not met'}"
+        return f"WDO+'s design goal, second only to CMA-ES, is {'met' if met else 'not met'}"
     met = place(ranks, VARIANT) <= 2
-    return f"the issue's goal, top two, is {'met' if met else 'not met'}"
+    return f"WDO+'s design goal, top two, is {'met' if met else 'not met'}"
 
 
 def suite_sentence(suite: HoldoutSuite) -> str:
@@ -110,7 +110,7 @@ def headline(suites: Sequence[HoldoutSuite]) -> list[str]:
     """
     lines = [
         f"{name(VARIANT)} (`{VARIANT}`) was designed on BBOB alone and is judged here on suites "
-        "it never saw, against the issue's ten algorithms: the mean Friedman rank of the median "
+        "it never saw, against the hold-out's ten algorithms: the mean Friedman rank of the median "
         "final error f - f_opt per function (1 = best; errors floored at 1e-8, so solved "
         f"functions tie), {name(VARIANT)}'s place, and on how many functions its median final "
         "error is better / worse / tied against each rival."
