@@ -278,7 +278,7 @@ class NLShadeRSP(Optimizer):
         if idx.size:
             w = ops.lehmer_weights(delta[rows], success[rows])
             for M, values in ((state.MCR, CR), (state.MF, F)):
-                v2, v1 = ops.lehmer_terms(np.asarray(values)[rows], w)
+                v2, v1 = ops.lehmer_terms(np.asarray(values)[rows], w, square_first=True)
                 with np.errstate(invalid="ignore", divide="ignore"):
                     M[idx, k] = np.where(np.abs(v1) > 0.000001, v2 / v1, 0.5)
             state.k[idx] = (k + 1) % state.MF.shape[1]
@@ -298,8 +298,8 @@ def archive_probability(gain, accepted, used) -> np.ndarray:
     arc, rest = accepted & used, accepted & ~used
     n_arc = arc.sum(axis=1)
     with np.errstate(invalid="ignore", divide="ignore"):
-        a = np.where(arc, gain, 0.0).sum(axis=1) / np.where(n_arc > 0, n_arc, 1)
-        b = np.where(rest, gain, 0.0).sum(axis=1) / (N - n_arc)
+        a = ops.seqsum(np.where(arc, gain, 0.0)) / np.where(n_arc > 0, n_arc, 1)
+        b = ops.seqsum(np.where(rest, gain, 0.0)) / (N - n_arc)
         p = a / (a + b)
     p = np.where(p < 0.9, p, 0.9)  # std::min(0.9, p)
     p = np.where(0.1 < p, p, 0.1)  # std::max(0.1, p)
@@ -335,8 +335,7 @@ def rank_capped(u, N: int, excluded: list, draws: int) -> np.ndarray:
     c = (wE / cum[-1]) ** draws
     inside = u < c
     # inside: one of the excluded ranks, by their weights
-    pick = ops.inverse_cdf(np.minimum(u / np.where(c > 0, c, 1.0), 0.5), we)
-    pick = np.where(inside, ops.inverse_cdf(u / np.where(c > 0, c, 1.0), we), pick)
+    pick = ops.inverse_cdf(np.where(inside, u / np.where(c > 0, c, 1.0), 0.0), we)
     e_in = np.take_along_axis(e, pick[..., None], -1)[..., 0]
     # outside: invert the distribution function with the excluded weights skipped
     x = (u - c) / np.where(c < 1, 1.0 - c, 1.0) * (cum[-1] - wE)

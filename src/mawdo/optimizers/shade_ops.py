@@ -49,23 +49,32 @@ def lehmer_weights(delta: np.ndarray, success: np.ndarray) -> np.ndarray:
     """
     d = np.where(success, delta, 0.0)
     with np.errstate(over="ignore", invalid="ignore"):
-        tot = d.sum(axis=1, keepdims=True)
+        tot = seqsum(d)[:, None]
         w = d / np.where(tot > 0, tot, 1.0)
     bad = ~np.isfinite(tot[:, 0])
     if bad.any():
         db = d[bad]
         inf = np.isinf(db)
         some_inf = inf.any(axis=1, keepdims=True)
-        scaled = db / np.maximum(db.max(axis=1, keepdims=True), np.finfo(float).tiny)
-        scaled = np.where(some_inf, inf.astype(float), np.where(inf, 0.0, scaled))
+        with np.errstate(invalid="ignore"):
+            scaled = db / np.maximum(db.max(axis=1, keepdims=True), np.finfo(float).tiny)
+        scaled = np.where(some_inf, inf.astype(float), scaled)
         w[bad] = scaled / scaled.sum(axis=1, keepdims=True)
     return w
 
 
-def lehmer_terms(values: np.ndarray, w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``(sum w v^2, sum w v)`` per run (each ``(R,)``), as the codes accumulate them
-    (``weight * v * v``); the weighted Lehmer mean is their ratio (L-SHADE Eqs. 7-9)."""
-    return ((w * values) * values).sum(axis=1), (w * values).sum(axis=1)
+def lehmer_terms(values: np.ndarray, w: np.ndarray, square_first: bool = False):
+    """``(sum w v^2, sum w v)`` per run (each ``(R,)``), as the codes accumulate them: L-SHADE
+    ``weight * v * v``, NL-SHADE-RSP (``square_first``) ``weight * pow(v, 2)``. The weighted
+    Lehmer mean is their ratio (L-SHADE Eqs. 7-9)."""
+    sq = w * (values * values) if square_first else (w * values) * values
+    return seqsum(sq), seqsum(w * values)
+
+
+def seqsum(a: np.ndarray) -> np.ndarray:
+    """Sums along the last axis added one by one, in order, as the codes' loops add (NumPy's
+    ``sum`` adds pairwise: the last bits could differ from the authors')."""
+    return np.cumsum(a, axis=-1)[..., -1]
 
 
 def truncated_cauchy(mu: np.ndarray, u: np.ndarray, scale: float = 0.1) -> np.ndarray:
