@@ -78,7 +78,7 @@ def lshade_cc(pop, f, lo, hi, max_num_evaluations, draws, *, p_best_rate, arc_ra
     """``LSHADE::run()`` for one run from the initial population ``pop``; ``draws`` holds one
     dict per generation. Returns the population and values after each generation."""
     pop = [list(x) for x in pop]
-    pop_size, problem_size = len(pop), len(pop[0])
+    pop_size = len(pop)
     fitness = [f(x) for x in pop]
     nfes = pop_size
     arc_size = c_round(pop_size * arc_rate)
@@ -121,8 +121,20 @@ def lshade_cc(pop, f, lo, hi, max_num_evaluations, draws, *, p_best_rate, arc_ra
             pop_sf.append(sf)
             pop_cr.append(cr)
             children.append(
-                current_to_pbest(pop, archive, target, p_best_ind, sf, cr, g, nfes,
-                                 max_num_evaluations, jso, lo, hi)  # fmt: skip
+                current_to_pbest(
+                    pop,
+                    archive,
+                    target,
+                    p_best_ind,
+                    sf,
+                    cr,
+                    g,
+                    nfes,
+                    max_num_evaluations,
+                    jso,
+                    lo,
+                    hi,
+                )  # fmt: skip
             )
         children_fitness = [f(x) for x in children]
         nfes += pop_size
@@ -183,7 +195,8 @@ def current_to_pbest(pop, archive, target, p_best, sf, cr, g, nfes, max_nfes, js
         else:
             jF = jF * 1.2
     r1 = pick(g["u_r1"][target], [k for k in range(pop_size) if k != target])
-    r2 = pick(g["u_r2"][target], [k for k in range(pop_size + len(archive)) if k not in (target, r1)])
+    allowed = [k for k in range(pop_size + len(archive)) if k not in (target, r1)]
+    r2 = pick(g["u_r2"][target], allowed)
     random_variable = int(g["u_j"][target] * problem_size)
     x2 = archive[r2 - pop_size] if r2 >= pop_size else pop[r2]
     child = []

@@ -25,7 +25,9 @@ class RecordingStreams(RunStreams):
     """Real per-run streams that keep every draw they hand out, in order."""
 
     def __init__(self, seed, runs):
-        super().__init__([np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(runs)])
+        super().__init__(
+            [np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(runs)]
+        )
         self.calls = []
 
     def random_parts(self, *shapes):

@@ -145,35 +145,62 @@ class LShadeState:
     u_slot: np.ndarray | None = None
 
 
-class LShade(Optimizer):
-    """L-SHADE and jSO (``rules``), vectorised over runs and individuals; see the module."""
+class ShrinkingDE(Optimizer):
+    """What the success-history DE family shares around its generations: the initial size from
+    ``D`` (or an explicit ``pop_size``), the evaluation budget its schedules plan over
+    (:meth:`horizon`), the size schedule ``next_size`` and the initial population's ``tell``."""
 
-    name = "lshade"
-    params_class = LShadeParams
     shrinking = True
+    next_size = staticmethod(next_size)
 
     def __init__(self, params: Params | None = None, name: str | None = None, **options) -> None:
         if params is None and "pop_size" in options and "auto_pop_size" not in options:
             options["auto_pop_size"] = False  # an explicit population size means that size
         super().__init__(params, name, **options)
 
-    def _n_init(self, dim: int) -> int:
-        p = self.params
-        return initial_size(p.size_rule, dim) if p.auto_pop_size else p.pop_size
+    def auto_size(self, dim: int) -> int:  # pragma: no cover - every subclass defines it
+        raise NotImplementedError
+
+    def initial_size(self, dim: int) -> int:
+        """``N_0`` in dimension ``dim``: the authors' rule, or ``pop_size`` when it was given."""
+        return self.auto_size(dim) if self.params.auto_pop_size else self.params.pop_size
 
     def horizon(self, budget, dim: int) -> int:
         """The evaluation budget ``M`` the schedules run over (see :func:`plan_evaluations`)."""
-        n0 = self._n_init(dim)
-        return plan_evaluations(budget, n0, lambda nfes, m, n: next_size(nfes, m, n, n0))
+        n0 = self.initial_size(dim)
+        return plan_evaluations(budget, n0, lambda nfes, m, n: self.next_size(nfes, m, n, n0))
+
+    def start(self, space: Space, streams: RunStreams, x0) -> np.ndarray:
+        """The initial population ``(R, N_0, D)``; ``params.pop_size`` becomes ``N_0``."""
+        n0 = self.initial_size(space.dim)
+        if self.params.auto_pop_size:  # reported in the result's params
+            self.params = dataclasses.replace(self.params, pop_size=n0)
+        return initial_population(streams, n0, space.lb, space.ub, x0)
+
+    @staticmethod
+    def told_initial(state, F: np.ndarray) -> bool:
+        """Take the initial population's values (True) unless a generation was told."""
+        if state.nfes:
+            return False
+        state.F = F.copy()
+        state.nfes = F.shape[1]
+        return True
+
+
+class LShade(ShrinkingDE):
+    """L-SHADE and jSO (``rules``), vectorised over runs and individuals; see the module."""
+
+    name = "lshade"
+    params_class = LShadeParams
+
+    def auto_size(self, dim: int) -> int:
+        return initial_size(self.params.size_rule, dim)
 
     def init(self, space: Space, streams: RunStreams, max_iter: int, x0=None) -> LShadeState:
         """``max_iter`` is the evaluation budget ``M`` from :meth:`horizon`."""
-        p = self.params
-        n0 = self._n_init(space.dim)
-        if p.auto_pop_size:
-            self.params = dataclasses.replace(p, pop_size=n0)
-        R, D = streams.runs, space.dim
-        X = initial_population(streams, n0, space.lb, space.ub, x0)
+        p, R, D = self.params, streams.runs, space.dim
+        X = self.start(space, streams, x0)
+        n0 = X.shape[1]
         arc = ops.c_round(n0 * p.arc_rate)
         H = p.memory_size
         return LShadeState(
@@ -264,11 +291,9 @@ class LShade(Optimizer):
         return ops.gather(X, pbest), ops.gather(X, r1), x_r2
 
     def tell(self, state: LShadeState, X: np.ndarray, F: np.ndarray) -> LShadeState:
-        N = state.X.shape[1]
-        if state.nfes == 0:
-            state.F = F.copy()
-            state.nfes = N
+        if self.told_initial(state, F):
             return state
+        N = state.X.shape[1]
         better, delta = self._select(state, F)
         state.nfes += N
         self._update_memory(state, better, delta)

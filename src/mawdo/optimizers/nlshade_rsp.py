@@ -36,8 +36,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from mawdo.optimizers import shade_ops as ops
-from mawdo.optimizers.base import Optimizer, Params, Space, initial_population, option
-from mawdo.optimizers.lshade import plan_evaluations
+from mawdo.optimizers.base import Params, Space, option
+from mawdo.optimizers.lshade import ShrinkingDE
 from mawdo.streams import RunStreams
 
 N_MIN = 4  # NIndsMin
@@ -116,36 +116,25 @@ class NLShadeRSPState:
     gen: dict = dataclasses.field(default_factory=dict)  # this generation's trial and draws
 
 
-class NLShadeRSP(Optimizer):
+class NLShadeRSP(ShrinkingDE):
     """NL-SHADE-RSP, vectorised over runs and individuals; see the module docstring."""
 
     name = "nlshade_rsp"
     params_class = NLShadeRSPParams
-    shrinking = True
+    next_size = staticmethod(next_size)
 
-    def __init__(self, params: Params | None = None, name: str | None = None, **options) -> None:
-        if params is None and "pop_size" in options and "auto_pop_size" not in options:
-            options["auto_pop_size"] = False
-        super().__init__(params, name, **options)
-
-    def _n_init(self, dim: int) -> int:
-        return max(N_MIN, 30 * dim) if self.params.auto_pop_size else self.params.pop_size
-
-    def horizon(self, budget, dim: int) -> int:
-        """The evaluation budget ``M`` the schedules run over."""
-        n0 = self._n_init(dim)
-        return plan_evaluations(budget, n0, lambda nfes, m, n: next_size(nfes, m, n, n0))
+    def auto_size(self, dim: int) -> int:
+        return max(N_MIN, 30 * dim)
 
     def init(self, space: Space, streams: RunStreams, max_iter: int, x0=None) -> NLShadeRSPState:
         """``max_iter`` is the evaluation budget ``M`` from :meth:`horizon`."""
         p, R, D = self.params, streams.runs, space.dim
-        n0 = self._n_init(D)
-        if p.auto_pop_size:
-            self.params = dataclasses.replace(p, pop_size=n0)
+        X = self.start(space, streams, x0)
+        n0 = X.shape[1]
         H = p.memory_size or 20 * D
         arc = int(n0 * p.arc_rate)
         return NLShadeRSPState(
-            X=initial_population(streams, n0, space.lb, space.ub, x0),
+            X=X,
             F=np.full((R, n0), np.inf),
             archive=np.zeros((R, max(arc, N_MIN), D)),
             n_arc=np.zeros(R, np.int64),
@@ -199,8 +188,7 @@ class NLShadeRSP(Optimizer):
     def _donors(self, state, order, rank, u_pb, u_r1, u_arc, u_r2):
         """``x_pbest, x_r1, x_r2`` and whether ``r2`` came from the archive, with the code's
         capped retries (:func:`~mawdo.optimizers.shade_ops.weighted_capped`'s law)."""
-        R, N = state.F.shape
-        me = np.broadcast_to(np.arange(N), (R, N))
+        N = state.F.shape[1]
         ps = int(max(2.0, N * (0.2 / float(state.max_nfes) * float(state.nfes) + 0.2)))
         pb_rank = uniform_capped(u_pb, ps, np.where(rank < ps, rank, -1), TRIES + 1)
         pbest = np.take_along_axis(order, pb_rank, 1)
@@ -231,11 +219,9 @@ class NLShadeRSP(Optimizer):
         return np.where(exponential[:, None, None], expo, binomial)
 
     def tell(self, state: NLShadeRSPState, X: np.ndarray, F: np.ndarray) -> NLShadeRSPState:
-        N = state.X.shape[1]
-        if state.nfes == 0:
-            state.F = F.copy()
-            state.nfes = N
+        if self.told_initial(state, F):
             return state
+        N = state.X.shape[1]
         g, Fp = state.gen, state.F
         success = F < Fp  # SaveSuccessCrF: strict
         accepted = F <= Fp  # replacement and archive: not worse

@@ -156,7 +156,8 @@ def archive_insert(archive, count, size: int, parents, inserted, u) -> np.ndarra
     slot = np.where(pos < size, pos, np.minimum((u * size).astype(np.int64), size - 1))
     writer = np.full((R, archive.shape[1]), -1, np.int64)
     rows = np.broadcast_to(np.arange(R)[:, None], (R, N))
-    np.maximum.at(writer, (rows[inserted], slot[inserted]), np.broadcast_to(np.arange(N), (R, N))[inserted])
+    who = np.broadcast_to(np.arange(N), (R, N))
+    np.maximum.at(writer, (rows[inserted], slot[inserted]), who[inserted])
     r, s = np.nonzero(writer >= 0)
     archive[r, s] = parents[r, writer[r, s]]
     return np.minimum(count + inserted.sum(axis=1), size)
@@ -176,7 +177,8 @@ def gather(X: np.ndarray, idx: np.ndarray) -> np.ndarray:
 
 def midpoint_bounds(trial: np.ndarray, parent: np.ndarray, lb, ub) -> np.ndarray:
     """JADE's repair used by L-SHADE and jSO: a coordinate below ``lb`` becomes ``(lb +
-    parent)/2``, one above ``ub`` becomes ``(ub + parent)/2`` (``modifySolutionWithParentMedium``)."""
+    parent)/2``, one above ``ub`` becomes ``(ub + parent)/2``
+    (``modifySolutionWithParentMedium``)."""
     low = trial < lb
     high = trial > ub
     out = np.where(low, (lb + parent) / 2.0, trial)
