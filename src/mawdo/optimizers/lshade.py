@@ -44,16 +44,29 @@ N_MIN = 4  # the codes' min_pop_size
 
 
 @dataclass(frozen=True)
-class LShadeParams(Params):
-    """L-SHADE / jSO coefficients (defaults: Tanabe's L-SHADE; the ``jso`` entry presets jSO's).
+class ShrinkingParams(Params):
+    """The initial population size of a shrinking DE.
 
     Parameters
     ----------
     pop_size : int
-        Initial population size, >= 4, used when ``auto_pop_size`` is false (passing
+        Initial population size ``N_0``, >= 4, used when ``auto_pop_size`` is false (passing
         ``pop_size`` alone turns it off).
     auto_pop_size : bool
-        Size the initial population from the dimension ``D`` by ``size_rule``.
+        Size the initial population from the dimension ``D`` by the authors' rule.
+    """
+
+    pop_size: int = option(50, lo=4)
+    auto_pop_size: bool = True
+
+
+@dataclass(frozen=True)
+class LShadeParams(ShrinkingParams):
+    """L-SHADE / jSO coefficients (defaults: Tanabe's L-SHADE; the ``jso`` entry presets jSO's);
+    ``pop_size`` and ``auto_pop_size``: :class:`ShrinkingParams`.
+
+    Parameters
+    ----------
     size_rule : {"18D", "25sqrtDlnD"}
         L-SHADE's ``round(18 D)`` or jSO's ``round(25 sqrt(D) ln(D))`` (at least 4).
     memory_size : int
@@ -71,8 +84,6 @@ class LShadeParams(Params):
         averaged with its old value.
     """
 
-    pop_size: int = option(50, lo=4)
-    auto_pop_size: bool = True
     size_rule: str = option("18D", choices=("18D", "25sqrtDlnD"))
     memory_size: int = option(6, lo=1)
     arc_rate: float = option(2.6, lo=0)
@@ -124,21 +135,27 @@ def next_size(nfes: int, max_nfes: int, n: int, n_init: int) -> int:
 
 
 @dataclass
-class LShadeState:
+class ShadeState:
+    """The arrays every member of the family keeps (``R`` runs, ``N`` members, ``D``)."""
+
     X: np.ndarray  # (R, N, D) population
     F: np.ndarray  # (R, N) its values
     archive: np.ndarray  # (R, cap, D)
     n_arc: np.ndarray  # (R,) members in each run's archive
-    arc_size: int
+    arc_size: int  # the archive's size limit, the same for every run
     MF: np.ndarray  # (R, H) success-history memories
     MCR: np.ndarray
     k: np.ndarray  # (R,) memory position
-    nfes: int
+    nfes: int  # evaluations so far, the same for every run
     max_nfes: int
     n_init: int
-    p_num: int
     space: Space
     streams: RunStreams
+
+
+@dataclass
+class LShadeState(ShadeState):
+    p_num: int = 2
     trial: np.ndarray | None = None  # the generation's trial vectors, F_i, CR_i, slot draws
     Fi: np.ndarray | None = None
     CRi: np.ndarray | None = None

@@ -36,8 +36,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from mawdo.optimizers import shade_ops as ops
-from mawdo.optimizers.base import Params, Space, option
-from mawdo.optimizers.lshade import ShrinkingDE
+from mawdo.optimizers.base import Space, option
+from mawdo.optimizers.lshade import ShadeState, ShrinkingDE, ShrinkingParams
 from mawdo.streams import RunStreams
 
 N_MIN = 4  # NIndsMin
@@ -45,16 +45,12 @@ TRIES = 25  # the code's retry limit
 
 
 @dataclass(frozen=True)
-class NLShadeRSPParams(Params):
-    """NL-SHADE-RSP coefficients (the authors' CEC 2021 settings).
+class NLShadeRSPParams(ShrinkingParams):
+    """NL-SHADE-RSP coefficients (the authors' CEC 2021 settings); ``pop_size`` and
+    ``auto_pop_size`` (the authors' ``30 D``): :class:`~mawdo.optimizers.lshade.ShrinkingParams`.
 
     Parameters
     ----------
-    pop_size : int
-        Initial population size, >= 4, used when ``auto_pop_size`` is false (passing
-        ``pop_size`` alone turns it off).
-    auto_pop_size : bool
-        Initial size ``30 D``.
     memory_size : int
         Memory entries H, >= 0; 0 (default) means the authors' ``20 D``.
     arc_rate : float
@@ -69,8 +65,6 @@ class NLShadeRSPParams(Params):
         last member); ``"worst"``: the worst members are removed.
     """
 
-    pop_size: int = option(50, lo=4)
-    auto_pop_size: bool = True
     memory_size: int = option(0, lo=0)
     arc_rate: float = option(2.1, lo=0)
     memory_init: float = option(0.2, lo=0, hi=1, lo_open=True)
@@ -98,21 +92,8 @@ def remove_worst_as_coded(X: np.ndarray, F: np.ndarray, n_new: int):
 
 
 @dataclass
-class NLShadeRSPState:
-    X: np.ndarray  # (R, N, D)
-    F: np.ndarray  # (R, N)
-    archive: np.ndarray  # (R, cap, D)
-    n_arc: np.ndarray  # (R,)
-    arc_size: int
-    MF: np.ndarray  # (R, H)
-    MCR: np.ndarray
-    k: np.ndarray  # (R,) memory position
-    p_arc: np.ndarray  # (R,) probability of taking r2 from the archive
-    nfes: int
-    max_nfes: int
-    n_init: int
-    space: Space
-    streams: RunStreams
+class NLShadeRSPState(ShadeState):
+    p_arc: np.ndarray | None = None  # (R,) probability of taking r2 from the archive
     gen: dict = dataclasses.field(default_factory=dict)  # this generation's trial and draws
 
 
