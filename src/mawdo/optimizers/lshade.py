@@ -9,7 +9,7 @@ generation, per individual ``i`` of ``N`` (0-based, ``nfes`` counted at the gene
     CR_i = 0 if mu_CR is terminal (L-SHADE: -1; jSO: < 0) else clip(N(mu_CR, 0.1), 0, 1)
     F_i ~ Cauchy(mu_F, 0.1) redrawn until > 0, capped at 1
     jSO: CR_i >= 0.7 while nfes < M/4, >= 0.6 while nfes < M/2; F_i <= 0.7 while nfes < 0.6 M
-    v_i = x_i + Fw_i (x_pbest - x_i) + F_i (x_r1 - x~_r2)     (current-to-pbest/1, Eq. 2)
+    v_i = x_i + Fw_i (x_pbest - x_i) + F_i (x_r1 - x~_r2)     (current-to-pbest/1)
       Fw_i = F_i (L-SHADE); jSO: 0.7 F_i, 0.8 F_i, 1.2 F_i for nfes < 0.2 M, < 0.4 M, after
       pbest uniform among the p_num best (jSO: not i while nfes < M/2); r1 != i in the
       population; r2 != i, r1 in the population and archive together
@@ -17,9 +17,9 @@ generation, per individual ``i`` of ``N`` (0-based, ``nfes`` counted at the gene
 
 then selection (``u_i`` replaces ``x_i`` when not worse; a strictly better ``u_i`` sends ``x_i``
 to the archive and ``(F_i, CR_i, |f(x_i) - f(u_i)|)`` to the success lists), the memory update
-at position ``k`` (weighted Lehmer means, Eqs. 7-9; L-SHADE's ``M_CR = -1`` when every
+at position ``k`` (weighted Lehmer means; L-SHADE's ``M_CR = -1`` when every
 successful ``CR`` is 0; jSO averages the new and the old value), ``k = (k + 1) mod H`` after a
-generation with successes, and the linear population size reduction (Eq. 10) with the archive
+generation with successes, and the linear population size reduction with the archive
 cut to ``int(N * arc_rate)`` members (the first ones) and ``p_num = max(2, round(N p))`` (jSO:
 ``p = p_max (1 - nfes / 2M)``).
 
@@ -250,7 +250,7 @@ class LShade(ShrinkingDE):
         state.Fi, state.CRi = self._parameters(state, u_mem, u_f, z)
         x_pb, x_r1, x_r2 = self._donors(state, u_pb, u_r1, u_r2)
         X = state.X
-        v = X + self._pbest_weight(state)[..., None] * (x_pb - X)  # Eq. 2, the codes' order
+        v = X + self._pbest_weight(state)[..., None] * (x_pb - X)  # the codes' order of operations
         v += state.Fi[..., None] * (x_r1 - x_r2)
         j_rand = np.minimum((u_j * D).astype(np.int64), D - 1)
         cross = (u_cr < state.CRi[..., None]) | (np.arange(D) == j_rand[..., None])
@@ -259,8 +259,7 @@ class LShade(ShrinkingDE):
         return state.trial
 
     def _parameters(self, state: LShadeState, u_mem, u_f, z) -> tuple[np.ndarray, np.ndarray]:
-        """Each individual's ``(F_i, CR_i)`` from a random memory entry (Eqs. 4-5 and jSO's
-        rules)."""
+        """Each individual's ``(F_i, CR_i)`` from a random memory entry (and jSO's rules)."""
         H, jso = self.params.memory_size, self.params.rules == "jso"
         r = np.minimum((u_mem * H).astype(np.int64), H - 1)
         mu_f = np.take_along_axis(state.MF, r, 1)
@@ -335,7 +334,7 @@ class LShade(ShrinkingDE):
 
     def _update_memory(self, state: LShadeState, better, delta) -> None:
         """Weighted Lehmer means of the successful ``F_i`` and ``CR_i`` into entry ``k`` of
-        each run with a success (Eqs. 7-9; jSO: averaged with the old entry)."""
+        each run with a success (jSO: averaged with the old entry)."""
         rows = better.any(axis=1)
         if not rows.any():
             return

@@ -22,7 +22,7 @@ def c_round(x: float) -> int:
 
 
 def lpsr_size(nfes: int, max_nfes: int, n_init: int, n_min: int) -> int:
-    """Linear population size reduction (Tanabe & Fukunaga 2014, Eq. 10): the size planned
+    """Linear population size reduction (Tanabe & Fukunaga 2014): the size planned
     after ``nfes`` of ``max_nfes`` evaluations, ``round((n_min - n_init)/max_nfes * nfes +
     n_init)`` in the code's operation order, never below ``n_min``."""
     plan = c_round(((n_min - n_init) / float(max_nfes)) * nfes + n_init)
@@ -66,7 +66,7 @@ def lehmer_weights(delta: np.ndarray, success: np.ndarray) -> np.ndarray:
 def lehmer_terms(values: np.ndarray, w: np.ndarray, square_first: bool = False):
     """``(sum w v^2, sum w v)`` per run (each ``(R,)``), as the codes accumulate them: L-SHADE
     ``weight * v * v``, NL-SHADE-RSP (``square_first``) ``weight * pow(v, 2)``. The weighted
-    Lehmer mean is their ratio (L-SHADE Eqs. 7-9)."""
+    Lehmer mean is their ratio."""
     sq = w * (values * values) if square_first else (w * values) * values
     return seqsum(sq), seqsum(w * values)
 
