@@ -261,7 +261,7 @@ class _Batch:
         s = self.scale
         space = Space(problem.lb / s, problem.ub / s)
         x0 = None if x0 is None else x0 / s
-        self.state = opt.init(space, algo_streams, budget.horizon(opt.params.pop_size), x0)
+        self.state = opt.init(space, algo_streams, opt.horizon(budget, problem.dim), x0)
         x_start = self._to_box(space.from_unit(np.zeros(problem.dim)))
         self.log = RunLog(budget, runs, x_start, trace)
 

@@ -204,6 +204,9 @@ class Optimizer(ABC):
     """True when ``ask`` gives one candidate per run, each depending on the value of the last
     (an iteration is then one evaluation, not ``pop_size``): budgets set in iterations mean
     ``pop_size`` times fewer evaluations for such an algorithm."""
+    shrinking: ClassVar[bool] = False
+    """True when the population shrinks during a run (L-SHADE's population size reduction): an
+    iteration then evaluates between ``pop_size`` and 4 candidates per run."""
 
     def __init__(self, params: Params | None = None, name: str | None = None, **options) -> None:
         if name is not None:
@@ -222,6 +225,13 @@ class Optimizer(ABC):
         ``max_iter`` feeds iteration schedules; ``x0`` (problem coordinates, ``(k, D)`` or
         ``(R, k, D)``) seeds the first ``k`` members of the initial population (warm start).
         """
+
+    def horizon(self, budget, dim: int) -> int:
+        """What :meth:`init` gets as ``max_iter`` from the driver for ``budget`` (a
+        :class:`mawdo.budget.Budget`) in dimension ``dim``: the iterations its schedules run
+        over, :meth:`~mawdo.budget.Budget.horizon`. An optimizer whose schedules run on
+        evaluations (L-SHADE) returns the evaluation budget it plans instead."""
+        return budget.horizon(self.params.pop_size)
 
     @abstractmethod
     def ask(self, state) -> np.ndarray:

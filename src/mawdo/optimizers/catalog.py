@@ -183,3 +183,50 @@ register(
 
 # The hold-out field: the references, the paper's algorithms and the variant.
 HOLDOUT_ALGORITHMS = ("cmaes", "scipy_de", "random", *PAPER_ALGORITHMS, "wdo_plus")
+
+# The success-history DE family that wins the CEC competitions (docs/algorithms.md#lshade).
+from mawdo.optimizers.lshade import LShade  # noqa: E402
+
+JSO = {
+    "size_rule": "25sqrtDlnD",
+    "memory_size": 5,
+    "arc_rate": 1.0,
+    "p_best": 0.25,
+    "memory_f": 0.3,
+    "memory_cr": 0.8,
+    "rules": "jso",
+}
+
+register(
+    AlgorithmSpec(
+        "lshade",
+        LShade,
+        {},
+        "Tanabe & Fukunaga, IEEE CEC 2014, pp. 1658-1665; Tanabe's lshade.cc 1.1",
+        "L-SHADE: success-history DE, current-to-pbest/1 with archive, linear size reduction",
+        label="L-SHADE",
+    )
+)
+register(
+    AlgorithmSpec(
+        "jso",
+        LShade,
+        JSO,
+        "Brest, Maucec & Boskovic, IEEE CEC 2017, pp. 1311-1318; the authors' jSO C++ code",
+        "jSO: L-SHADE with current-to-pBest-w/1, phase limits on F and CR, falling p",
+        label="jSO",
+    )
+)
+
+from mawdo.optimizers.nlshade_rsp import NLShadeRSP  # noqa: E402
+
+register(
+    AlgorithmSpec(
+        "nlshade_rsp",
+        NLShadeRSP,
+        {},
+        "Stanovov, Akhmedova & Semenkin, IEEE CEC 2021, pp. 809-816; the authors' C++ code",
+        "NL-SHADE-RSP: non-linear size reduction, rank-based r2, adaptive archive use",
+        label="NL-SHADE-RSP",
+    )
+)
