@@ -2,9 +2,8 @@
 
 Not a speed benchmark (``make bench`` does not run it): a spread check of ``lshade``, ``jso``
 and ``nlshade_rsp`` under the CEC 2017 protocol (10 000 D evaluations, errors below 1e-8 count
-as 0, 51 runs) on the opfunu-backed suite (``mawdo.suites``, ``cec2017``). opfunu numbers the
-functions without the official F2 (removed from the competition): its F1 is the official F1,
-its F``k`` the official F``k+1`` (k = 2..29). Tables below use the official numbers.
+as 0, 51 runs) on the official functions (the ``cec2017`` suite, a port of the official C code
+in the official numbering, F1-F30).
 
 The full protocol::
 
@@ -45,14 +44,14 @@ JSO_PUBLISHED = {
     30: 394.519,
 }  # fmt: skip
 PUBLISHED = {"jso": JSO_PUBLISHED}
-OFFICIAL = (1, *range(3, 31))  # the official functions opfunu has
+OFFICIAL = tuple(range(1, 31))  # CEC 2017's official functions
 
 
-def opfunu_id(official: int) -> int:
-    """opfunu's number of an official CEC 2017 function (no official F2)."""
-    if official == 2 or not 1 <= official <= 30:
-        raise ValueError(f"official F{official}: opfunu has F1 and F3..F30")
-    return 1 if official == 1 else official - 1
+def check_function(official: int) -> int:
+    """``official`` if it is a CEC 2017 function number (1..30), else a ValueError."""
+    if not 1 <= official <= 30:
+        raise ValueError(f"official F{official}: CEC 2017 has F1..F30")
+    return official
 
 
 def run_function(algorithm: str, official: int, runs: int, seed: int) -> dict:
@@ -60,7 +59,7 @@ def run_function(algorithm: str, official: int, runs: int, seed: int) -> dict:
     from mawdo import minimize
     from mawdo.suites import get_problem
 
-    problem = get_problem("cec2017", opfunu_id(official), dim=DIM)
+    problem = get_problem("cec2017", check_function(official), dim=DIM)
     t0 = time.perf_counter()
     res = minimize(
         problem,
@@ -108,7 +107,7 @@ def main(argv: list[str]) -> int:
                                  formatter_class=argparse.RawDescriptionHelpFormatter)  # fmt: skip
     ap.add_argument("--algorithms", default="jso,lshade,nlshade_rsp")
     ap.add_argument("--functions", default=",".join(map(str, OFFICIAL)),
-                    help="official CEC 2017 numbers (1, 3..30)")  # fmt: skip
+                    help="official CEC 2017 numbers (1..30)")  # fmt: skip
     ap.add_argument("--runs", type=int, default=51)
     ap.add_argument("--seed", type=int, default=2017)
     ap.add_argument("--out", default="shade_cec2017_d10.jsonl")
@@ -120,7 +119,7 @@ def main(argv: list[str]) -> int:
         return 0
     functions = [int(f) for f in args.functions.split(",")]
     for f in functions:
-        opfunu_id(f)  # refuse F2 and unknown numbers before anything runs
+        check_function(f)  # refuse unknown numbers before anything runs
     rows = []
     for algorithm in args.algorithms.split(","):
         for f in functions:

@@ -1,25 +1,25 @@
-"""``benchmarks/shade_cec2017.py``: the official-to-opfunu numbering, its refusals and its table
-(no optimisation runs here; the script itself is the lead's long check)."""
+"""``benchmarks/shade_cec2017.py``: its function numbers, refusals and table (no optimisation
+runs here; the script itself is the long check)."""
 
 from __future__ import annotations
 
 import pytest
-from benchmarks.shade_cec2017 import JSO_PUBLISHED, OFFICIAL, main, opfunu_id, table
+from benchmarks.shade_cec2017 import JSO_PUBLISHED, OFFICIAL, check_function, main, table
 
 
-def test_official_numbers_map_to_opfunu_without_f2():
-    assert [opfunu_id(f) for f in (1, 3, 4, 30)] == [1, 2, 3, 29]
-    assert len(OFFICIAL) == 29 and 2 not in OFFICIAL
-    for bad in (2, 0, 31):
-        with pytest.raises(ValueError, match="opfunu has F1 and F3..F30"):
-            opfunu_id(bad)
+def test_the_official_numbers_are_checked():
+    assert [check_function(f) for f in (1, 2, 30)] == [1, 2, 30]
+    assert OFFICIAL == tuple(range(1, 31))
+    for bad in (0, 31):
+        with pytest.raises(ValueError, match="CEC 2017 has F1..F30"):
+            check_function(bad)
     assert sorted(JSO_PUBLISHED) == list(range(1, 31))
 
 
-def test_refuses_f2_before_running_anything(tmp_path):
+def test_refuses_an_unknown_function_before_running_anything(tmp_path):
     out = tmp_path / "rows.jsonl"
-    with pytest.raises(ValueError, match="official F2"):
-        main(["--functions", "1,2", "--out", str(out)])
+    with pytest.raises(ValueError, match="official F31"):
+        main(["--functions", "1,31", "--out", str(out)])
     assert not out.exists()
 
 
