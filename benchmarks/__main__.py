@@ -22,6 +22,7 @@ SUITES = [
     "bench_timed",
     "bench_startup",
     "bench_threads",
+    "bench_scaling",
 ]
 
 

@@ -11,12 +11,13 @@ guides, first optimisation) and the replans after it (p50, p95), CPU seconds
 (:class:`StageClock`: each stage's own time, the stages it calls taken out).
 
 Three sweeps, each from the reference world (1000 x 1000 px, 200 movers, 40 polygons): movers
-10 -> 100 -> 1000, static polygons 10 -> 100 -> 1000, map 366 -> 1000 -> 4000 px (movers and
+10 -> 100 -> 1000, static polygons 10 -> 100 -> 1000, map 366 -> 1000 -> 2000 px (movers and
 polygons scaled with the area), each with its log-log slope (the fitted exponent). Targets
 (reference world, one core, quiet machine): first plan <= 1 s, replan p95 <= 50 ms.
-``MAWDO_BENCH_BIG=1`` (or ``--big``) adds the largest sizes (10 000 movers, 4000 px map);
+By default two sizes per sweep (``make bench``); ``--size full`` (or
+``MAWDO_BENCH_SCALE=full``) all three, ``--size big`` also 10 000 movers and a 4000 px map;
 ``--figure PATH`` (default ``docs/img/scaling.png``) draws the curves.
-``python -m benchmarks scaling`` or ``python benchmarks/bench_scaling.py [--quick|--big]``.
+``python -m benchmarks scaling`` or ``python benchmarks/bench_scaling.py [--size S] [--steps N]``.
 """
 
 from __future__ import annotations
@@ -187,14 +188,16 @@ def slope(x, y) -> float:
     return float(np.polyfit(x, y, 1)[0])
 
 
-def sweeps(big: bool, quick: bool) -> dict:
-    """Per sweep (movers, polygons, map): its sizes and the worlds' parameters."""
+def sweeps(size: str) -> dict:
+    """Per sweep (movers, polygons, map): its sizes and the worlds' parameters. ``size``:
+    ``"quick"`` (two sizes each, what ``make bench`` runs), ``"full"`` (three) or ``"big"``
+    (also 10 000 movers and a 4000 px map)."""
     s, m, p = REF["size"], REF["movers"], REF["polygons"]
-    movers = [10, 100, 1000] + ([10_000] if big else [])
-    polygons = [10, 100, 1000]
-    maps = [366.0, 1000.0] + ([4000.0] if big else [2000.0])
-    if quick:
-        movers, polygons, maps = [10, 100], [10, 100], [366.0, 1000.0]
+    movers, polygons, maps = [10, 100], [10, 100], [366.0, 1000.0]
+    if size in ("full", "big"):
+        movers, polygons, maps = movers + [1000], polygons + [1000], maps + [2000.0]
+    if size == "big":
+        movers, maps = movers + [10_000], maps + [4000.0]
     area = lambda L: (L / s) ** 2  # noqa: E731
     return {
         "movers": [(k, (s, k, p)) for k in movers],
@@ -233,9 +236,11 @@ def figure(results: dict, path: str) -> None:
 
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--big", action="store_true", default=bool(os.environ.get("MAWDO_BENCH_BIG")))
-    ap.add_argument("--quick", action="store_true", help="two sizes per sweep")
-    ap.add_argument("--steps", type=int, default=12, help="steps driven per run")
+    env = os.environ.get("MAWDO_BENCH_SCALE", "quick")
+    ap.add_argument("--size", choices=("quick", "full", "big"), default=env,
+                    help="sizes per sweep (default $MAWDO_BENCH_SCALE or quick: two each; "
+                         "full: three; big: also 10 000 movers and a 4000 px map)")  # fmt: skip
+    ap.add_argument("--steps", type=int, default=4, help="steps driven per run")
     ap.add_argument("--figure", default="docs/img/scaling.png")
     ap.add_argument("--only", default="", help="reference world only ('ref')")
     a = ap.parse_args([] if argv is None else argv)
@@ -251,7 +256,7 @@ def main(argv=None) -> None:
     if a.only == "ref":
         return
     results = {}
-    for name, sizes in sweeps(a.big, a.quick).items():
+    for name, sizes in sweeps(a.size).items():
         rows = []
         for k, (L, m, p) in sizes:
             rr = run_world(world(L, m, p), a.steps)

@@ -173,6 +173,14 @@ def candidates(ux, uy, ex, ey, T, lo, hi, ix):
                 out[k] = m
                 k += 1
         return out[:k]
+    if k <= 32:  # few: insertion sort, no allocation
+        for i in range(1, k):
+            m, j = out[i], i
+            while j > 0 and out[j - 1] > m:
+                out[j] = out[j - 1]
+                j -= 1
+            out[j] = m
+        return out[:k]
     keys = np.empty(k)
     for j in range(k):
         keys[j] = out[j]

@@ -36,7 +36,10 @@ from mawdo.planning.world.motion import BoundedRandomWalk
 from mawdo.planning.world.scenario import Scenario
 from mawdo.stablesort import stable_argsort
 
-__all__ = ["EPS", "Movers", "earliest_free", "forbidden", "safe_intervals", "segment_free"]
+__all__ = [
+    "EPS", "Movers", "earliest_free", "forbidden", "forbidden_among", "safe_intervals",
+    "segment_free", "segment_free_among",
+]  # fmt: skip
 
 #: A departure just after a closed forbidden interval (time steps): the forbidden sets are
 #: closed (touching counts as a hit, as in the cost kernel), the free ones open.
@@ -298,12 +301,22 @@ def _mover_forbidden(ux, uy, ex, ey, T, lo, hi, m, mv, buf, n):
 def forbidden(ux, uy, ex, ey, T, lo, hi, mv):
     """Departures in ``[lo, hi]`` (time steps) at which the move ``u + s e``, ``0 <= s <= T``,
     meets a mover: sorted, disjoint closed intervals, shape ``(k, 2)``."""
+    # only the movers the move can meet (a superset: the same intervals, in the same order)
+    return forbidden_among(
+        ux, uy, ex, ey, T, lo, hi, mv, candidates(ux, uy, ex, ey, T, lo, hi, mv[15])
+    )
+
+
+@njit(cache=True)
+def forbidden_among(ux, uy, ex, ey, T, lo, hi, mv, cands):
+    """:func:`forbidden` with the movers to test given (ascending indices): those of
+    :func:`~mawdo.planning.guide.sipp.index.candidates` for this move, or for one whose
+    departures include these."""
     buf = np.empty((16, 2))
     # (an int64 from the start: a literal 0 made Numba compile _mover_forbidden, _polygon_piece
     # and _push a second time each, for the type Literal[int](0))
     n = np.int64(0)
-    # only the movers the move can meet (a superset: the same intervals, in the same order)
-    for m in candidates(ux, uy, ex, ey, T, lo, hi, mv[15]):
+    for m in cands:
         buf, n = _mover_forbidden(ux, uy, ex, ey, T, lo, hi, m, mv, buf, n)
     order = _sweep_order(buf, np.int64(0), n)  # (an int64: a literal 0 compiles it twice)
     out = np.empty((n, 2))
@@ -339,12 +352,25 @@ def earliest_free(F, x):
 def segment_free(ux, uy, vx, vy, ta, tb, mv):
     """True iff the robot moving from ``u`` at ``ta`` to ``v`` at ``tb`` (straight, uniform;
     ``u == v`` is a wait) keeps clear of every mover (touching is a hit)."""
+    dur = tb - ta
+    ex = (vx - ux) / dur if dur > 0.0 else 0.0
+    ey = (vy - uy) / dur if dur > 0.0 else 0.0
+    return segment_free_among(
+        ux, uy, vx, vy, ta, tb, mv, candidates(ux, uy, ex, ey, dur, ta, ta, mv[15])
+    )
+
+
+@njit(cache=True)
+def segment_free_among(ux, uy, vx, vy, ta, tb, mv, cands):
+    """:func:`segment_free` with the movers to test given (ascending indices): those of
+    :func:`~mawdo.planning.guide.sipp.index.candidates` for this move, or for one whose
+    departures include ``ta`` (the index's padding absorbs the rounding of ``tb - ta``)."""
     kind, _, circle, center, thr, verts, nverts = mv[:7]
     vmax, base, t_base, pptr, pt0, pt1, po, pv = mv[7:15]
     dur = tb - ta
     ex = (vx - ux) / dur if dur > 0.0 else 0.0
     ey = (vy - uy) / dur if dur > 0.0 else 0.0
-    for m in candidates(ux, uy, ex, ey, dur, ta, ta, mv[15]):
+    for m in cands:
         if kind[m] == 1:
             tc = cone_start(
                 ux, uy, ex, ey, dur, circle[m], center[m, 0], center[m, 1], thr[m], verts, m,

@@ -23,7 +23,14 @@ import numpy as np
 from numba import njit
 
 from mawdo.planning.guide.heap import heap_new, heap_pop, heap_push
-from mawdo.planning.guide.sipp.intervals import EPS, earliest_free, forbidden, segment_free
+from mawdo.planning.guide.sipp.index import candidates
+from mawdo.planning.guide.sipp.intervals import (
+    EPS,
+    earliest_free,
+    forbidden_among,
+    segment_free,
+    segment_free_among,
+)
 
 __all__ = ["search", "start_state"]
 
@@ -42,7 +49,9 @@ def _depart(ux, uy, vx, vy, a, T, x, top, J_hi, mv):
     lo, span, tries = x, _WINDOW, 0
     while lo <= top and lo + T < J_hi:
         hi = min(top, lo + span)
-        tau = earliest_free(forbidden(ux, uy, ex, ey, T, lo, hi, mv), lo)
+        # the movers near the move, for the departure sets and the re-check of the move alike
+        near = candidates(ux, uy, ex, ey, T, lo, hi, mv[15])
+        tau = earliest_free(forbidden_among(ux, uy, ex, ey, T, lo, hi, mv, near), lo)
         if tau > hi:  # forbidden up to the window's end: look further
             lo, span = hi, 2.0 * span
             if hi == top:
@@ -50,8 +59,8 @@ def _depart(ux, uy, vx, vy, a, T, x, top, J_hi, mv):
             continue
         if tau + T >= J_hi:
             return math.inf
-        if segment_free(ux, uy, ux, uy, a, tau, mv) and segment_free(
-            ux, uy, vx, vy, tau, tau + T, mv
+        if segment_free(ux, uy, ux, uy, a, tau, mv) and segment_free_among(
+            ux, uy, vx, vy, tau, tau + T, mv, near
         ):
             return tau
         tries += 1  # refused at a touching contact (rounding): push on a little
