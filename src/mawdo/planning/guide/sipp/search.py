@@ -127,7 +127,10 @@ def search(
     arrival[s0] = t0
     keys, ids, nh = heap_new()
     keys, ids, nh = heap_push(keys, ids, nh, t0 + to_goal[start] / speed, t0, s0)
-    state = (arrival, parent, depart, closed, banned)
+    # the earliest goal arrival found so far: no state whose arrival plus heuristic exceeds it
+    # can precede the goal off the heap, so its exact departure is never needed
+    bound = np.full(1, np.inf)
+    state = (arrival, parent, depart, closed, banned, bound)
     while nh > 0:
         _, a, sid, nh = heap_pop(keys, ids, nh)
         if closed[sid]:
@@ -145,17 +148,18 @@ def search(
                 continue
             hv = to_goal[v] / speed
             keys, ids, nh = _relax(
-                ux, uy, nodes[v], ptr[v], ptr[v + 1], sid, a, T, top, hv, lo, hi, state,
-                keys, ids, nh, mv,
+                ux, uy, nodes[v], ptr[v], ptr[v + 1], sid, a, T, top, hv, v == goal, lo, hi,
+                state, keys, ids, nh, mv,
             )  # fmt: skip
     return -1, arrival, parent, depart
 
 
 @njit(cache=True, inline="always")
-def _relax(ux, uy, pv, j0, j1, sid, a, T, top, hv, lo, hi, state, keys, ids, nh, mv):
-    """Arrivals in the safe intervals ``j0:j1`` of vertex ``pv`` by the move from ``u``,
-    pushed on the heap ``(keys, ids, nh)`` (:mod:`mawdo.planning.guide.heap`), which it returns."""
-    arrival, parent, depart, closed, banned = state
+def _relax(ux, uy, pv, j0, j1, sid, a, T, top, hv, is_goal, lo, hi, state, keys, ids, nh, mv):
+    """Arrivals in the safe intervals ``j0:j1`` of vertex ``pv`` (the goal if ``is_goal``) by
+    the move from ``u``, pushed on the heap ``(keys, ids, nh)``
+    (:mod:`mawdo.planning.guide.heap`), which it returns."""
+    arrival, parent, depart, closed, banned, bound = state
     for J in range(j0, j1):
         if hi[J] <= a + T or closed[J] or banned[J]:
             continue
@@ -164,7 +168,7 @@ def _relax(ux, uy, pv, j0, j1, sid, a, T, top, hv, lo, hi, state, keys, ids, nh,
         x = max(a, lo[J] - T)
         # the departure is >= x, so an arrival no earlier than the best known one is certain:
         # skip the exact (and costly) departure search, which could not change anything
-        if x + T >= arrival[J]:
+        if x + T >= arrival[J] or x + T + hv > bound[0]:
             continue
         tau = _depart(ux, uy, pv[0], pv[1], a, T, x, top, hi[J], mv)
         if tau + T < arrival[J]:
@@ -172,4 +176,6 @@ def _relax(ux, uy, pv, j0, j1, sid, a, T, top, hv, lo, hi, state, keys, ids, nh,
             parent[J] = sid
             depart[J] = tau
             keys, ids, nh = heap_push(keys, ids, nh, tau + T + hv, tau + T, J)
+            if is_goal:
+                bound[0] = min(bound[0], tau + T)
     return keys, ids, nh
