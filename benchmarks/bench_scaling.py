@@ -185,9 +185,10 @@ def _fmt(r: dict) -> str:
 
 
 def slope(x, y) -> float:
-    """Least-squares slope of ``log y`` on ``log x`` (the fitted exponent)."""
+    """Least-squares slope of ``log y`` on ``log x`` (the fitted exponent; NaN below two
+    points)."""
     x, y = np.log(np.asarray(x, float)), np.log(np.asarray(y, float))
-    return float(np.polyfit(x, y, 1)[0])
+    return float(np.polyfit(x, y, 1)[0]) if len(x) >= 2 else math.nan
 
 
 def sweeps(size: str) -> dict:
@@ -277,8 +278,9 @@ def main(argv=None) -> None:
         print(f"  {name}: exponent first plan {slope(x, [rr['first'] for _, rr in rows]):.2f}, "
               + ", ".join(f"{st} {v:.2f}" for st, v in fits.items()), flush=True)  # fmt: skip
         results[name] = rows
+        if a.figure:  # after each sweep: a long run leaves its curves so far
+            figure(results, a.figure)
     if a.figure:
-        figure(results, a.figure)
         print(f"figure: {a.figure}")
 
 
