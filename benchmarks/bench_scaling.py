@@ -230,9 +230,11 @@ def figure(results: dict, path: str) -> None:
         ax.set_xlabel(name)
         ax.set_ylabel("CPU seconds")
         ax.set_title(f"{name}: first plan ~ n^{slope(x, [r['first'] for _, r in rows]):.2f}")
-    np.atleast_1d(axes)[0].legend(fontsize=6, loc="upper left")
-    fig.suptitle("mawdo at scale (targets dashed: first plan 1 s, replan p95 50 ms)", fontsize=9)
-    fig.tight_layout()
+    handles, labels = np.atleast_1d(axes)[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=len(labels), fontsize=7, frameon=False)
+    fig.suptitle("mawdo at scale, CPU seconds (stages: over the whole run; targets dashed: "
+                 "first plan 1 s, replan p95 50 ms)", fontsize=9)  # fmt: skip
+    fig.tight_layout(rect=(0, 0.07, 1, 1))
     os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
     fig.savefig(path, dpi=110)
     plt.close(fig)
