@@ -118,3 +118,16 @@ def test_the_index_prunes_and_keeps_every_mover_met():
                     if shape.distance(p) <= reach:
                         assert m in cand, (m, tau, s)
     assert np.median(sizes) < 0.5 * len(moving)
+
+
+def test_an_open_ended_or_undefined_window_keeps_every_mover_a_finite_one_finds():
+    sc = _world(2)
+    A, _ = _tables(sc, "known")
+    rng = np.random.default_rng(9)
+    for u, _, e, T, lo, hi in _moves(rng, 50):
+        finite = set(candidates(u[0], u[1], e[0], e[1], T, lo, hi, A[15]).tolist())
+        for top in (np.inf, np.nan):
+            wide = set(candidates(u[0], u[1], e[0], e[1], T, lo, top, A[15]).tolist())
+            assert finite <= wide
+        early = set(candidates(u[0], u[1], e[0], e[1], T, -np.inf, hi, A[15]).tolist())
+        assert finite <= early

@@ -57,20 +57,32 @@ def _layout(kind, box, pptr, pt0, pt1, po, pv, cell: float, bucket: float):
 
 
 @njit(cache=True)
-def _cells(x0, y0, x1, y1, par, dim):
-    """Clamped cell ranges ``cx0, cx1, cy0, cy1`` (inclusive) of a box (pixels)."""
-    c, nx, ny = par[4], dim[1], dim[2]
-    cx0 = min(max(int(math.floor((x0 - par[2]) / c)), 0), nx - 1)
-    cx1 = min(max(int(math.floor((x1 - par[2]) / c)), 0), nx - 1)
-    cy0 = min(max(int(math.floor((y0 - par[3]) / c)), 0), ny - 1)
-    cy1 = min(max(int(math.floor((y1 - par[3]) / c)), 0), ny - 1)
-    return cx0, cx1, cy0, cy1
+def _slot(x, n):
+    """``floor(x)`` clamped to ``0 .. n - 1``; -1 for NaN (a lower end then takes 0, an upper
+    one ``n - 1``: the whole range, never too few)."""
+    if x != x:
+        return -1
+    if x <= 0.0:
+        return 0
+    if x >= n - 1:
+        return n - 1
+    return int(x)
 
 
 @njit(cache=True)
-def _bucket(t, par, dim):
-    """The bucket of time ``t`` (clamped)."""
-    return min(max(int(math.floor((t - par[0]) / par[1])), 0), dim[0] - 1)
+def _cells(x0, y0, x1, y1, par, dim):
+    """Clamped cell ranges ``cx0, cx1, cy0, cy1`` (inclusive) of a box (pixels)."""
+    c, nx, ny = par[4], dim[1], dim[2]
+    cx0, cx1 = _slot((x0 - par[2]) / c, nx), _slot((x1 - par[2]) / c, nx)
+    cy0, cy1 = _slot((y0 - par[3]) / c, ny), _slot((y1 - par[3]) / c, ny)
+    return max(cx0, 0), cx1 if cx1 >= 0 else nx - 1, max(cy0, 0), cy1 if cy1 >= 0 else ny - 1
+
+
+@njit(cache=True)
+def _buckets(t0, t1, par, dim):
+    """The buckets ``b0, b1`` (inclusive, clamped; see :func:`_slot`) of times ``t0 .. t1``."""
+    b0, b1 = _slot((t0 - par[0]) / par[1], dim[0]), _slot((t1 - par[0]) / par[1], dim[0])
+    return max(b0, 0), b1 if b1 >= 0 else dim[0] - 1
 
 
 @njit(cache=True)
@@ -82,7 +94,8 @@ def _fill(kind, box, pptr, pt0, pt1, po, pv, par, dim, counts, cidx, pad):
             continue
         for k in range(pptr[m], pptr[m + 1]):
             ta, tb = pt0[k], pt1[k]
-            for b in range(_bucket(ta, par, dim), _bucket(tb, par, dim) + 1):
+            b0, b1 = _buckets(ta, tb, par, dim)
+            for b in range(b0, b1 + 1):
                 s0 = max(ta, par[0] + b * par[1]) - ta
                 s1 = min(tb, par[0] + (b + 1) * par[1]) - ta
                 if s1 < s0:  # (the last bucket of a piece ending on its border)
@@ -143,7 +156,7 @@ def candidates(ux, uy, ex, ey, T, lo, hi, ix):
         mark[m] = True
         out[k] = m
         k += 1
-    b0, b1 = _bucket(lo - PAD, par, dim), _bucket(hi + T + PAD, par, dim)
+    b0, b1 = _buckets(lo - PAD, hi + T + PAD, par, dim)
     for b in range(b0, b1 + 1):
         # the part of the move driven inside the bucket (the end buckets reach to infinity)
         s0, s1 = 0.0, T
