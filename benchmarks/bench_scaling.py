@@ -16,7 +16,8 @@ polygons scaled with the area), each with its log-log slope (the fitted exponent
 (reference world, one core, quiet machine): first plan <= 1 s, replan p95 <= 50 ms.
 By default two sizes per sweep (``make bench``); ``--size full`` (or
 ``MAWDO_BENCH_SCALE=full``) all three, ``--size big`` also 10 000 movers and a 4000 px map;
-``--figure PATH`` (default ``docs/img/scaling.png``) draws the curves.
+``--figure PATH`` (default ``out/bench/scaling.png``) draws the curves (the docs' figure:
+``--size full --steps 3 --figure docs/img/scaling.png``).
 ``python -m benchmarks scaling`` or ``python benchmarks/bench_scaling.py [--size S] [--steps N]``.
 """
 
@@ -247,7 +248,7 @@ def main(argv=None) -> None:
                     help="sizes per sweep (default $MAWDO_BENCH_SCALE or quick: two each; "
                          "full: three; big: also 10 000 movers and a 4000 px map)")  # fmt: skip
     ap.add_argument("--steps", type=int, default=4, help="steps driven per run")
-    ap.add_argument("--figure", default="docs/img/scaling.png")
+    ap.add_argument("--figure", default="out/bench/scaling.png")
     ap.add_argument("--only", default="", help="reference world only ('ref')")
     a = ap.parse_args([] if argv is None else argv)
     run_world(world(366.0, 5, 5, seed=99), steps=2)  # compile / load the kernels
