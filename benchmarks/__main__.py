@@ -23,6 +23,7 @@ SUITES = [
     "bench_timed",
     "bench_startup",
     "bench_threads",
+    "bench_scaling",
 ]
 
 

@@ -23,7 +23,9 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from mawdo.planning.guide.sipp import index as _index
 from mawdo.planning.guide.sipp.geometry import clip_range, cone_start, disc_range
+from mawdo.planning.guide.sipp.index import candidates
 from mawdo.planning.refine.kernel.primitives import (
     point_in_polygon,
     point_segment_d2,
@@ -34,7 +36,10 @@ from mawdo.planning.world.motion import BoundedRandomWalk
 from mawdo.planning.world.scenario import Scenario
 from mawdo.util.stablesort import stable_argsort
 
-__all__ = ["EPS", "Movers", "earliest_free", "forbidden", "safe_intervals", "segment_free"]
+__all__ = [
+    "EPS", "Movers", "earliest_free", "forbidden", "forbidden_among", "safe_intervals",
+    "segment_free", "segment_free_among",
+]  # fmt: skip
 
 #: A departure just after a closed forbidden interval (time steps): the forbidden sets are
 #: closed (touching counts as a hit, as in the cost kernel), the free ones open.
@@ -50,6 +55,8 @@ class Movers:
     for pieces (rows ``pptr[m]:pptr[m + 1]`` of ``pt0, pt1`` (times), ``po``
     (offset at ``pt0``, pixels) and ``pv`` (velocity, px per step)), 1 for a reachable set
     (shape at offset ``base[m]`` growing at ``vmax[m]`` px per step from ``t_base``).
+    ``index``: which movers a move can meet (:mod:`mawdo.planning.guide.sipp.index`), or one
+    slot holding all of them.
     """
 
     kind: np.ndarray
@@ -67,6 +74,7 @@ class Movers:
     pt1: np.ndarray
     po: np.ndarray
     pv: np.ndarray
+    index: tuple
 
     @classmethod
     def from_scenario(
@@ -79,6 +87,7 @@ class Movers:
         knots=None,
         flat: FlatObstacles | None = None,
         only=None,
+        indexed: bool = True,
     ) -> Movers:
         """Tables of the scenario's moving obstacles, hit distance grown by ``margin`` px.
 
@@ -89,7 +98,8 @@ class Movers:
         ``flat`` for their :class:`FlatObstacles` (all of them). ``only``: the indices
         (ascending, into the moving obstacles) of those to tabulate, default all; each
         mover's rows are what the full table holds for it, and every test of one mover reads
-        only its own rows.
+        only its own rows. ``indexed``: the tests look up the movers near a move in a grid
+        over space and time (default; the same answers), or test every mover.
         """
         if walkers not in _WALKER_MODES:
             raise ValueError(f"walkers must be one of {_WALKER_MODES}, got {walkers!r}")
@@ -112,10 +122,10 @@ class Movers:
                 pieces.append((np.zeros(0), np.zeros((0, 2))))
             else:
                 pieces.append(o.knots(t0, t_end) if knots is None else knots(j, t0, t_end))
-        return cls._from_pieces(kind, flat, vmax, base, float(t0), pieces)
+        return cls._from_pieces(kind, flat, vmax, base, float(t0), pieces, indexed)
 
     @classmethod
-    def _from_pieces(cls, kind, flat, vmax, base, t_base, pieces) -> Movers:
+    def _from_pieces(cls, kind, flat, vmax, base, t_base, pieces, indexed=True) -> Movers:
         n = len(kind)
         pptr = np.zeros(n + 1, np.int64)
         pptr[1:] = np.cumsum([max(len(t) - 1, 0) for t, _ in pieces])
@@ -128,9 +138,13 @@ class Movers:
                 pv[a:b] = np.diff(off, axis=0) / np.diff(t)[:, None]
         box = np.ascontiguousarray(flat.bound[:, :4])
         center = np.ascontiguousarray(flat.bound[:, 4:6])
+        if indexed:
+            index = _index.build(kind, box, pptr, pt0, pt1, po, pv)
+        else:
+            index = _index.everything(kind)
         return cls(
             kind, box, flat.is_circle, center, flat.thresh, flat.verts, flat.nverts, vmax, base,
-            t_base, pptr, pt0, pt1, po, pv,
+            t_base, pptr, pt0, pt1, po, pv, index,
         )  # fmt: skip
 
     def arrays(self) -> tuple:
@@ -138,6 +152,7 @@ class Movers:
         return (
             self.kind, self.box, self.circle, self.center, self.thr, self.verts, self.nverts,
             self.vmax, self.base, self.t_base, self.pptr, self.pt0, self.pt1, self.po, self.pv,
+            self.index,
         )  # fmt: skip
 
 
@@ -240,7 +255,8 @@ def _polygon_piece(d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, i, nv, thr, buf, 
 @njit(cache=True, inline="always")
 def _mover_forbidden(ux, uy, ex, ey, T, lo, hi, m, mv, buf, n):
     """Append mover ``m``'s forbidden departures within ``[lo, hi]`` to ``buf``."""
-    kind, box, circle, center, thr, verts, nverts, vmax, base, t_base, pptr, pt0, pt1, po, pv = mv
+    kind, box, circle, center, thr, verts, nverts = mv[:7]
+    vmax, base, t_base, pptr, pt0, pt1, po, pv = mv[7:15]
     if kind[m] == 1:
         tc = cone_start(
             ux, uy, ex, ey, T, circle[m], center[m, 0], center[m, 1], thr[m], verts, m,
@@ -285,11 +301,22 @@ def _mover_forbidden(ux, uy, ex, ey, T, lo, hi, m, mv, buf, n):
 def forbidden(ux, uy, ex, ey, T, lo, hi, mv):
     """Departures in ``[lo, hi]`` (time steps) at which the move ``u + s e``, ``0 <= s <= T``,
     meets a mover: sorted, disjoint closed intervals, shape ``(k, 2)``."""
+    # only the movers the move can meet (a superset: the same intervals, in the same order)
+    return forbidden_among(
+        ux, uy, ex, ey, T, lo, hi, mv, candidates(ux, uy, ex, ey, T, lo, hi, mv[15])
+    )
+
+
+@njit(cache=True)
+def forbidden_among(ux, uy, ex, ey, T, lo, hi, mv, cands):
+    """:func:`forbidden` with the movers to test given (ascending indices): those of
+    :func:`~mawdo.planning.guide.sipp.index.candidates` for this move, or for one whose
+    departures include these."""
     buf = np.empty((16, 2))
     # (an int64 from the start: a literal 0 made Numba compile _mover_forbidden, _polygon_piece
     # and _push a second time each, for the type Literal[int](0))
     n = np.int64(0)
-    for m in range(len(mv[0])):
+    for m in cands:
         buf, n = _mover_forbidden(ux, uy, ex, ey, T, lo, hi, m, mv, buf, n)
     order = _sweep_order(buf, np.int64(0), n)  # (an int64: a literal 0 compiles it twice)
     out = np.empty((n, 2))
@@ -325,11 +352,25 @@ def earliest_free(F, x):
 def segment_free(ux, uy, vx, vy, ta, tb, mv):
     """True iff the robot moving from ``u`` at ``ta`` to ``v`` at ``tb`` (straight, uniform;
     ``u == v`` is a wait) keeps clear of every mover (touching is a hit)."""
-    kind, _, circle, center, thr, verts, nverts, vmax, base, t_base, pptr, pt0, pt1, po, pv = mv
     dur = tb - ta
     ex = (vx - ux) / dur if dur > 0.0 else 0.0
     ey = (vy - uy) / dur if dur > 0.0 else 0.0
-    for m in range(len(kind)):
+    return segment_free_among(
+        ux, uy, vx, vy, ta, tb, mv, candidates(ux, uy, ex, ey, dur, ta, ta, mv[15])
+    )
+
+
+@njit(cache=True)
+def segment_free_among(ux, uy, vx, vy, ta, tb, mv, cands):
+    """:func:`segment_free` with the movers to test given (ascending indices): those of
+    :func:`~mawdo.planning.guide.sipp.index.candidates` for this move, or for one whose
+    departures include ``ta`` (the index's padding absorbs the rounding of ``tb - ta``)."""
+    kind, _, circle, center, thr, verts, nverts = mv[:7]
+    vmax, base, t_base, pptr, pt0, pt1, po, pv = mv[7:15]
+    dur = tb - ta
+    ex = (vx - ux) / dur if dur > 0.0 else 0.0
+    ey = (vy - uy) / dur if dur > 0.0 else 0.0
+    for m in cands:
         if kind[m] == 1:
             tc = cone_start(
                 ux, uy, ex, ey, dur, circle[m], center[m, 0], center[m, 1], thr[m], verts, m,

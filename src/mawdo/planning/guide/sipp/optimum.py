@@ -50,9 +50,11 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import shapely
 
 from mawdo.planning.guide.sipp.guide import SafeIntervalGuide, TimedRoute
 from mawdo.planning.world.scenario import Scenario
+from mawdo.planning.world.scenario_schema import CircleObstacle
 
 __all__ = ["TIME_SEGMENTS", "TimeOptimum", "dodge_spots", "scenario_time_optimum"]
 
@@ -142,9 +144,23 @@ def dodge_spots(
     pts = pts[np.all(inside, axis=1)]
     statics = [scenario.obstacles[i].shape for i in scenario.static_indices]
     if statics and len(pts):
-        far = np.array([min(ob.distance(q) for ob in statics) for q in pts]) > need
-        pts = pts[far]
+        pts = pts[_static_distance(statics, pts) > need]
     return pts
+
+
+def _static_distance(statics, pts: np.ndarray) -> np.ndarray:
+    """Per point, the smallest ``shape.distance(point)`` over ``statics`` (pixels): the same
+    numbers, a polygon's to all points in one GEOS call (one Python call per point and shape
+    took 11 s for the ~1200 spots of a 1000 x 1000 px map)."""
+    points = shapely.points(pts)
+    out = np.full(len(pts), np.inf)
+    for ob in statics:
+        if isinstance(ob, CircleObstacle):  # (math.dist, as CircleObstacle.distance)
+            d = np.array([max(math.dist(q, ob.center) - ob.radius, 0.0) for q in pts.tolist()])
+        else:
+            d = shapely.distance(shapely.Polygon(ob.vertices), points)
+        out = np.minimum(out, d)
+    return out
 
 
 def scenario_time_optimum(

@@ -63,6 +63,17 @@ def usable_spots(
     return pts[keep]
 
 
+def _unique_pairs(src: np.ndarray, dst: np.ndarray, n: int) -> np.ndarray:
+    """The distinct pairs ``(src, dst)`` (indices below ``n``), sorted by ``src``, then ``dst``:
+    ``np.unique(np.column_stack([src, dst]), axis=0)``, as one int64 key per pair, sorted and
+    its repeats dropped (the rows' sort of ``axis=0`` took 4.5 s of a 6.4 s roadmap at
+    1000 x 1000 px, and NumPy's hashing ``np.unique`` of the keys 6 s of the 2.5 million pairs
+    a map with 1200 spots has; a sort takes 0.2 s)."""
+    key = np.sort(src.astype(np.int64) * n + dst.astype(np.int64))
+    key = key[np.concatenate(([True], key[1:] != key[:-1]))] if len(key) else key
+    return np.column_stack([key // n, key % n])
+
+
 def _csr(pairs: np.ndarray, nodes: np.ndarray):
     """Directed pairs (sorted, unique) as CSR ``(indptr, indices, weights)``."""
     indptr = np.zeros(len(nodes) + 1, np.int64)
@@ -122,7 +133,7 @@ class Roadmap:
             seen = seen[seen != i]
             src += [np.full(len(seen), i), seen]
             dst += [seen, np.full(len(seen), i)]
-        pairs = np.unique(np.column_stack([np.concatenate(src), np.concatenate(dst)]), axis=0)
+        pairs = _unique_pairs(np.concatenate(src), np.concatenate(dst), len(g.nodes))
         self.indptr, self.indices, self.weights = _csr(pairs, self.nodes)
         self.to_goal = csr_dijkstra(
             self.indptr, self.indices, self.weights, np.zeros(1, np.int64), np.zeros(1)

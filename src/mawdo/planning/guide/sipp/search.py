@@ -23,7 +23,14 @@ import numpy as np
 from numba import njit
 
 from mawdo.planning.guide.heap import heap_new, heap_pop, heap_push
-from mawdo.planning.guide.sipp.intervals import EPS, earliest_free, forbidden, segment_free
+from mawdo.planning.guide.sipp.index import candidates
+from mawdo.planning.guide.sipp.intervals import (
+    EPS,
+    earliest_free,
+    forbidden_among,
+    segment_free,
+    segment_free_among,
+)
 
 __all__ = ["search", "start_state"]
 
@@ -42,7 +49,9 @@ def _depart(ux, uy, vx, vy, a, T, x, top, J_hi, mv):
     lo, span, tries = x, _WINDOW, 0
     while lo <= top and lo + T < J_hi:
         hi = min(top, lo + span)
-        tau = earliest_free(forbidden(ux, uy, ex, ey, T, lo, hi, mv), lo)
+        # the movers near the move, for the departure sets and the re-check of the move alike
+        near = candidates(ux, uy, ex, ey, T, lo, hi, mv[15])
+        tau = earliest_free(forbidden_among(ux, uy, ex, ey, T, lo, hi, mv, near), lo)
         if tau > hi:  # forbidden up to the window's end: look further
             lo, span = hi, 2.0 * span
             if hi == top:
@@ -50,8 +59,8 @@ def _depart(ux, uy, vx, vy, a, T, x, top, J_hi, mv):
             continue
         if tau + T >= J_hi:
             return math.inf
-        if segment_free(ux, uy, ux, uy, a, tau, mv) and segment_free(
-            ux, uy, vx, vy, tau, tau + T, mv
+        if segment_free(ux, uy, ux, uy, a, tau, mv) and segment_free_among(
+            ux, uy, vx, vy, tau, tau + T, mv, near
         ):
             return tau
         tries += 1  # refused at a touching contact (rounding): push on a little
@@ -118,7 +127,10 @@ def search(
     arrival[s0] = t0
     keys, ids, nh = heap_new()
     keys, ids, nh = heap_push(keys, ids, nh, t0 + to_goal[start] / speed, t0, s0)
-    state = (arrival, parent, depart, closed, banned)
+    # the earliest goal arrival found so far: no state whose arrival plus heuristic exceeds it
+    # can precede the goal off the heap, so its exact departure is never needed
+    bound = np.full(1, np.inf)
+    state = (arrival, parent, depart, closed, banned, bound)
     while nh > 0:
         _, a, sid, nh = heap_pop(keys, ids, nh)
         if closed[sid]:
@@ -136,17 +148,18 @@ def search(
                 continue
             hv = to_goal[v] / speed
             keys, ids, nh = _relax(
-                ux, uy, nodes[v], ptr[v], ptr[v + 1], sid, a, T, top, hv, lo, hi, state,
-                keys, ids, nh, mv,
+                ux, uy, nodes[v], ptr[v], ptr[v + 1], sid, a, T, top, hv, v == goal, lo, hi,
+                state, keys, ids, nh, mv,
             )  # fmt: skip
     return -1, arrival, parent, depart
 
 
 @njit(cache=True, inline="always")
-def _relax(ux, uy, pv, j0, j1, sid, a, T, top, hv, lo, hi, state, keys, ids, nh, mv):
-    """Arrivals in the safe intervals ``j0:j1`` of vertex ``pv`` by the move from ``u``,
-    pushed on the heap ``(keys, ids, nh)`` (:mod:`mawdo.planning.guide.heap`), which it returns."""
-    arrival, parent, depart, closed, banned = state
+def _relax(ux, uy, pv, j0, j1, sid, a, T, top, hv, is_goal, lo, hi, state, keys, ids, nh, mv):
+    """Arrivals in the safe intervals ``j0:j1`` of vertex ``pv`` (the goal if ``is_goal``) by
+    the move from ``u``, pushed on the heap ``(keys, ids, nh)``
+    (:mod:`mawdo.planning.guide.heap`), which it returns."""
+    arrival, parent, depart, closed, banned, bound = state
     for J in range(j0, j1):
         if hi[J] <= a + T or closed[J] or banned[J]:
             continue
@@ -155,7 +168,7 @@ def _relax(ux, uy, pv, j0, j1, sid, a, T, top, hv, lo, hi, state, keys, ids, nh,
         x = max(a, lo[J] - T)
         # the departure is >= x, so an arrival no earlier than the best known one is certain:
         # skip the exact (and costly) departure search, which could not change anything
-        if x + T >= arrival[J]:
+        if x + T >= arrival[J] or x + T + hv > bound[0]:
             continue
         tau = _depart(ux, uy, pv[0], pv[1], a, T, x, top, hi[J], mv)
         if tau + T < arrival[J]:
@@ -163,4 +176,6 @@ def _relax(ux, uy, pv, j0, j1, sid, a, T, top, hv, lo, hi, state, keys, ids, nh,
             parent[J] = sid
             depart[J] = tau
             keys, ids, nh = heap_push(keys, ids, nh, tau + T + hv, tau + T, J)
+            if is_goal:
+                bound[0] = min(bound[0], tau + T)
     return keys, ids, nh
