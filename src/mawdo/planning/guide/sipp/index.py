@@ -24,7 +24,7 @@ import math
 import numpy as np
 from numba import njit
 
-from mawdo.stablesort import stable_argsort
+from mawdo.util.stablesort import stable_argsort
 
 __all__ = ["PAD", "build", "candidates", "everything"]
 
