@@ -102,6 +102,26 @@ def table(rows: list[dict]) -> str:
     return "\n".join(lines)
 
 
+def friedman_ranks(rows: list[dict]) -> dict[str, float]:
+    """Each algorithm's mean rank over the functions all of them ran (rank 1: the least mean
+    error on a function; ties share the mean of their ranks), best first."""
+    from scipy.stats import rankdata
+
+    algos = list(dict.fromkeys(r["algorithm"] for r in rows))
+    by = {(r["algorithm"], r["official"]): r["mean"] for r in rows}
+    common = sorted({r["official"] for r in rows if all((a, r["official"]) in by for a in algos)})
+    ranks = np.array([rankdata([by[(a, f)] for a in algos]) for f in common])
+    mean = dict(zip(algos, ranks.mean(axis=0).tolist(), strict=True))
+    return dict(sorted(mean.items(), key=lambda kv: kv[1]))
+
+
+def rank_table(rows: list[dict]) -> str:
+    """Markdown: the Friedman mean ranks (:func:`friedman_ranks`), best first."""
+    lines = ["| algorithm | Friedman mean rank |", "|---|---|"]
+    lines += [f"| {a} | {r:.2f} |" for a, r in friedman_ranks(rows).items()]
+    return "\n".join(lines)
+
+
 def main(argv: list[str]) -> int:
     ap = argparse.ArgumentParser(prog="python -m benchmarks.shade_cec2017", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)  # fmt: skip
@@ -111,11 +131,18 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--runs", type=int, default=51)
     ap.add_argument("--seed", type=int, default=2017)
     ap.add_argument("--out", default="shade_cec2017_d10.jsonl")
-    ap.add_argument("--report", help="print the table of a finished --out file and stop")
+    ap.add_argument(
+        "--report", help="print the tables of finished --out files (comma list) and stop"
+    )
     args = ap.parse_args(argv)
     if args.report:
-        with open(args.report, encoding="utf-8") as fh:
-            print(table([json.loads(line) for line in fh if line.strip()]))
+        rows = []
+        for path in args.report.split(","):
+            with open(path, encoding="utf-8") as fh:
+                rows += [json.loads(line) for line in fh if line.strip()]
+        print(table(rows))
+        print()
+        print(rank_table(rows))
         return 0
     functions = [int(f) for f in args.functions.split(",")]
     for f in functions:

@@ -4,7 +4,14 @@ runs here; the script itself is the long check)."""
 from __future__ import annotations
 
 import pytest
-from benchmarks.shade_cec2017 import JSO_PUBLISHED, OFFICIAL, check_function, main, table
+from benchmarks.shade_cec2017 import (
+    JSO_PUBLISHED,
+    OFFICIAL,
+    check_function,
+    friedman_ranks,
+    main,
+    table,
+)
 
 
 def test_the_official_numbers_are_checked():
@@ -62,3 +69,14 @@ def test_jso_agrees_with_its_published_means_as_the_docs_say():
         assert abs(e.mean() - JSO_PUBLISHED[f]) <= max(2 * se, 1e-6 * max(1.0, JSO_PUBLISHED[f]))
     f30 = np.sort(rows[30]["errors"])
     assert np.median(f30) == pytest.approx(394.5, abs=0.05) and f30[-1] > 8e5
+
+
+def test_friedman_ranks_by_hand():
+    # F1: a 0, b 1, c 1 -> ranks 1, 2.5, 2.5; F2: a 3, b 2, c 1 -> 3, 2, 1; c alone on F3
+    # is left out: means a 2.0, b 2.25, c 1.75
+    rows = [
+        {"algorithm": a, "official": f, "mean": m}
+        for a, f, m in [("a", 1, 0.0), ("b", 1, 1.0), ("c", 1, 1.0), ("a", 2, 3.0),
+                        ("b", 2, 2.0), ("c", 2, 1.0), ("c", 3, 9.0)]
+    ]  # fmt: skip
+    assert friedman_ranks(rows) == {"c": 1.75, "a": 2.0, "b": 2.25}
