@@ -40,12 +40,18 @@ def test_table_puts_the_published_mean_beside_the_measured_one():
     assert "| F5 | 1.99 (0.63), 5 | 1.76 | 2.5 (0.7), 5 |" in text
 
 
-def _stored_rows():
+def _stored_rows(others: bool = False):
     import json
     from pathlib import Path
 
-    path = Path(__file__).parents[1] / "docs/results/shade-cec2017/d10-runs51-seed2017.jsonl"
-    return [json.loads(line) for line in path.read_text().splitlines() if line.strip()]
+    folder = Path(__file__).parents[1] / "docs/results/shade-cec2017"
+    names = ["d10-runs51-seed2017.jsonl"] + (["d10-runs51-seed2017-others.jsonl"] if others else [])
+    return [
+        json.loads(line)
+        for name in names
+        for line in (folder / name).read_text().splitlines()
+        if line.strip()
+    ]
 
 
 def test_the_docs_table_is_the_stored_runs_table():
@@ -80,3 +86,29 @@ def test_friedman_ranks_by_hand():
                         ("b", 2, 2.0), ("c", 2, 1.0), ("c", 3, 9.0)]
     ]  # fmt: skip
     assert friedman_ranks(rows) == {"c": 1.75, "a": 2.0, "b": 2.25}
+
+
+def test_wdo_plus_among_the_winners_as_the_docs_and_readme_say():
+    from pathlib import Path
+
+    from benchmarks.shade_cec2017 import rank_table
+
+    rows = _stored_rows(others=True)
+    root = Path(__file__).parents[1]
+    doc = (root / "docs/algorithms.md").read_text(encoding="utf-8")
+    assert rank_table(rows) in doc and table(rows) in doc
+    order = list(friedman_ranks(rows))
+    assert order.index("wdo_plus") == 3 and len(order) == 7
+    assert set(order[:3]) == {"jso", "nlshade_rsp", "lshade"}
+    readme = " ".join((root / "README.md").read_text(encoding="utf-8").split())
+    assert "WDO+ ranks 4th of 7, behind jSO, NL-SHADE-RSP and L-SHADE" in readme
+    by = {(r["algorithm"], r["official"]): r["mean"] for r in rows}
+    better = sum(by["wdo_plus", f] < by["jso", f] for f in range(1, 31))
+    worse = sum(by["wdo_plus", f] > by["jso", f] for f in range(1, 31))
+    assert (better, worse) == (7, 22)
+    assert "better than jSO on 7 of\nthe 30 functions and worse on 22" in doc
+    groups = {"compositions": range(21, 31), "rest": range(1, 21)}
+    comp = list(friedman_ranks([r for r in rows if r["official"] in groups["compositions"]]))
+    assert comp[:2] == ["nlshade_rsp", "wdo_plus"]
+    for fs in (range(1, 4), range(4, 11), range(11, 21)):
+        assert list(friedman_ranks([r for r in rows if r["official"] in fs])).index("wdo_plus") == 3
