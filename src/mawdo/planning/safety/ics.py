@@ -63,7 +63,7 @@ import shapely
 
 from mawdo.planning.guide.sipp.intervals import Movers, forbidden, segment_free
 from mawdo.planning.world.geometry import FlatObstacles
-from mawdo.planning.world.motion import BoundedRandomWalk, ConstantVelocity, Patrol
+from mawdo.planning.world.motion import BoundedRandomWalk, ConstantVelocity, Patrol, Track
 from mawdo.planning.world.path import advance, segment_lengths, unit_headings
 from mawdo.planning.world.scenario import CircleObstacle, Scenario
 
@@ -317,6 +317,8 @@ def _top_speed(motion) -> float:
         return float(motion.speed)
     if isinstance(motion, BoundedRandomWalk):
         return float(motion.step)
+    if isinstance(motion, Track):
+        return motion.top_speed
     return float("inf")
 
 

@@ -20,6 +20,10 @@ Models
 ``Patrol``
     Moves at a fixed speed along a closed route of offsets ``(0, 0) -> w1 -> ... -> wm -> (0, 0)``
     and repeats, optionally standing still at each point for a given time (a mover that parks).
+``Track``
+    Moves through given offsets at given times, linearly in between, and stands at the first
+    (last) offset before (after) them: a realised trajectory recorded by the stepped world, or a
+    predictor's forecast.
 ``BoundedRandomWalk``
     Every ``hold`` steps a new velocity is drawn uniformly from the disc of radius ``step``; the
     unfolded walk is folded into the map (:func:`fold`) at those times and the obstacle moves
@@ -40,6 +44,7 @@ __all__ = [
     "Motion",
     "Patrol",
     "Static",
+    "Track",
     "fold",
     "fold_turn_times",
 ]
@@ -374,3 +379,55 @@ class BoundedRandomWalk(Motion):
         k = np.arange(np.floor(t0 / self.hold) + 1.0, np.ceil(t1 / self.hold))
         times = k * self.hold
         return times[(times > t0) & (times < t1)]
+
+
+@dataclass(frozen=True, eq=False)
+class Track(Motion):
+    """Piecewise-linear motion through offsets at given times, at rest outside them.
+
+    Parameters
+    ----------
+    times : array_like, shape (k,)
+        Strictly increasing knot times (time steps), ``k >= 1``.
+    offsets : array_like, shape (k, 2)
+        Offsets at those times (pixels). Before ``times[0]`` the offset is ``offsets[0]``, after
+        ``times[-1]`` it is ``offsets[-1]``.
+    """
+
+    times: np.ndarray
+    offsets: np.ndarray
+
+    def __post_init__(self) -> None:
+        t = np.asarray(self.times, dtype=float).reshape(-1)
+        o = np.asarray(self.offsets, dtype=float).reshape(-1, 2)
+        if len(t) == 0 or len(o) != len(t):
+            raise ValueError(f"a track needs k >= 1 times and k offsets, got {len(t)}, {len(o)}")
+        if not (np.all(np.isfinite(t)) and np.all(np.isfinite(o))):
+            raise ValueError("track times and offsets must be finite")
+        if np.any(np.diff(t) <= 0):
+            raise ValueError("track times must be strictly increasing")
+        object.__setattr__(self, "times", t)
+        object.__setattr__(self, "offsets", o)
+
+    @property
+    def is_static(self) -> bool:  # type: ignore[override]
+        return bool(np.all(self.offsets == self.offsets[0]))
+
+    @property
+    def top_speed(self) -> float:
+        """Largest speed between knots (pixels per time step)."""
+        if len(self.times) < 2:
+            return 0.0
+        v = np.hypot(*np.diff(self.offsets, axis=0).T) / np.diff(self.times)
+        return float(v.max())
+
+    def offset(self, t) -> np.ndarray:
+        t = np.asarray(t, dtype=float)
+        x = np.interp(t, self.times, self.offsets[:, 0])
+        y = np.interp(t, self.times, self.offsets[:, 1])
+        return np.stack([x, y], axis=-1)
+
+    def _inner_knots(self, t0: float, t1: float) -> np.ndarray:
+        lo, hi = np.searchsorted(self.times, [t0, t1], side="right")
+        inner = self.times[lo:hi]
+        return inner[(inner > t0) & (inner < t1)]
