@@ -221,3 +221,27 @@ def replan_seed_sequences(seed, k: int) -> tuple[np.random.SeedSequence, np.rand
     (seed paths, perturbed copies), so replan ``k`` is the same whatever happened before it.
     """
     return keyed_seed_sequence(seed, k), keyed_seed_sequence(seed, k, 1)
+
+
+#: The streams of a stepped episode, by name (spawn keys below the episode seed; the planner's
+#: replans keep their own children ``(k,)``, ``(k, 1)`` of the per-step seed).
+EPISODE_STREAMS = {"world": 1 << 20, "sensor": (1 << 20) + 1, "policy": (1 << 20) + 2}
+
+
+def episode_seed_sequences(seed) -> dict[str, np.random.SeedSequence]:
+    """Seed sequences of one stepped episode: ``world`` (the people's draws: new goals),
+    ``sensor`` (noise and missed detections) and ``policy`` (the policy's own seed), so that a
+    noisier sensor never changes where the people walk.
+
+    Parameters
+    ----------
+    seed : int or numpy.random.SeedSequence
+        The episode's seed (an int >= 0).
+    """
+    return {name: keyed_seed_sequence(seed, key) for name, key in EPISODE_STREAMS.items()}
+
+
+def step_seed_sequence(seed, step: int) -> np.random.SeedSequence:
+    """The seed of a policy's decision at ``step`` (>= 0) of an episode whose policy seed is
+    ``seed``: each step's search is then the same whatever happened before it."""
+    return keyed_seed_sequence(seed, int(step))

@@ -49,6 +49,13 @@ def guide_for(scenario: Scenario, clearance: float, k: int) -> Guide:
     return per[key]
 
 
+def share_guide(source: Scenario, target: Scenario) -> None:
+    """Let ``target`` use the guides built for ``source``: for scenarios with the same static
+    obstacles and goal (a prediction of the same map), whose visibility graph is the same."""
+    if source in _GUIDES:
+        _GUIDES[target] = _GUIDES[source]
+
+
 def _waypoints_needed(routes, cfg: PlannerConfig) -> int:
     if not (cfg.auto_waypoints and routes):
         return cfg.n_waypoints

@@ -86,6 +86,11 @@ class PlanResult:
         True for runs driven step by step (the guard's counts mean something); False for
         single-shot planners, whose route is followed blind (their counts are None in the
         metrics).
+    robot_caused, other_collisions : int or None
+        The checker's collisions split by fault (:func:`~mawdo.planning.judge.fault.blame`):
+        those the robot's own motion produced and the rest; ``None`` for runs that were not
+        stepped in a world with reactive agents (their collisions split into active and
+        passive instead).
     """
 
     scenario: Scenario
@@ -110,6 +115,8 @@ class PlanResult:
     hits: int = 0
     solved: bool = True
     guarded: bool = True
+    robot_caused: int | None = None
+    other_collisions: int | None = None
 
     @property
     def steps(self) -> int:

@@ -1,0 +1,123 @@
+"""The world runner: one loop for every policy (our planner, every baseline).
+
+Each step the sensor reads the world, the policy decides, the world steps; at the end the
+independent checker judges the robot's realised route against the realised trajectories of every
+agent (:meth:`~mawdo.planning.world.stepped.SteppedWorld.realised`) and
+:func:`~mawdo.planning.judge.fault.blame` splits its collisions into robot-caused and other ones.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from mawdo.planning.run.result import PlanResult, Replan
+from mawdo.planning.sense.reading import Reading
+from mawdo.streams import episode_seed_sequences
+
+__all__ = ["perfect_reading", "run_episode"]
+
+
+def perfect_reading(world) -> Reading:
+    """What an ideal sensor reports: every moving agent, exactly (pixels)."""
+    centres, radii = world.agents()
+    return Reading(
+        world.step_index, world.position, world.velocity, world.scenario.goal, centres, radii
+    )
+
+
+def _read(world, sensor, rng) -> Reading:
+    if sensor is None:
+        return perfect_reading(world)
+    centres, radii = world.agents()
+    sc = world.scenario
+    return sensor.read(
+        world.step_index, world.position, world.velocity, sc.goal, centres, radii,
+        world.walls(), rng,
+    )  # fmt: skip
+
+
+def _record(step: int, position, latency: float) -> Replan:
+    """A decision's record: the policy's wall time (its plan is its own business)."""
+    empty = np.zeros((0, 2))
+    return Replan(step, np.array(position), empty, np.nan, np.nan, 0, latency, 0, np.zeros(0))
+
+
+def run_episode(
+    world, policy, max_steps: int, seed=0, sensor=None, name: str = "policy", config=None,
+    progress=None, known=None,
+) -> PlanResult:  # fmt: skip
+    """Drive ``policy`` in ``world`` until the goal, the step limit, or a policy's stop.
+
+    Parameters
+    ----------
+    world : SteppedWorld
+        A fresh world (step 0).
+    policy : Policy
+        ``reset(scenario, seed)`` then ``act(reading)`` each step
+        (:class:`~mawdo.planning.sense.reading.Policy`).
+    max_steps : int
+        Step limit (time steps), >= 1; reaching it is a timeout.
+    seed : int
+        The episode's seed (the sensor's and the policy's streams derive from it:
+        :func:`~mawdo.streams.episode_seed_sequences`).
+    sensor : Sensor, optional
+        ``None``: a perfect sensor (every agent, exact positions).
+    name : str
+        What the result's ``algorithm`` field calls the policy.
+    config : PlannerConfig, optional
+        Stored in the result (the policy's settings, when it has them).
+    progress : callable, optional
+        ``progress(step, max_steps, decisions)`` before each step.
+    known : Scenario, optional
+        What the policy is told at reset (default: the world's scenario, whose moving
+        obstacles an ``observed`` policy ignores).
+
+    Returns
+    -------
+    PlanResult
+        ``scenario`` is the realised one; ``robot_caused`` and ``other_collisions`` are set.
+
+    Notes
+    -----
+    Leaving the map counts as robot-caused: only the robot's motion can do it.
+    """
+    from mawdo.planning.judge.check import check_trajectory
+    from mawdo.planning.judge.fault import blame
+
+    if int(max_steps) < 1:
+        raise ValueError(f"max_steps must be >= 1, got {max_steps!r}")
+    streams = episode_seed_sequences(seed)
+    rng = np.random.default_rng(streams["sensor"])
+    policy.reset(world.scenario if known is None else known, streams["policy"])
+    decisions, reason = [], "step limit reached before the goal"
+    for step in range(int(max_steps)):
+        if progress is not None:
+            progress(step, max_steps, len(decisions))
+        if world.at_goal():
+            reason = "goal reached"
+            break
+        reading = _read(world, sensor, rng)
+        t0 = time.perf_counter()
+        action = policy.act(reading)
+        decisions.append(_record(step, world.position, time.perf_counter() - t0))
+        world.step(action)
+    else:
+        if world.at_goal():
+            reason = "goal reached"
+    realised = world.realised()
+    route, stamps = np.array(world.route), np.array(world.stamps)
+    rep = check_trajectory(route, realised, times=stamps)
+    mine, theirs = blame(route, stamps, realised, rep.collisions)
+    reached = reason == "goal reached"
+    if reached and not rep.ok:
+        reason = f"goal reached but the route collides ({rep.hits} checker hits: {rep.describe()})"
+    # the first decision is the plan, the rest replans (PlanResult.latencies skips the first)
+    return PlanResult(
+        scenario=realised, algorithm=name, seed=seed, config=config,
+        trajectory=np.array(world.trajectory), success=reached and rep.ok, reason=reason,
+        replans=decisions, route=route, route_times=stamps, collision_free=bool(rep.ok),
+        min_clearance=float(rep.min_clearance), hits=int(rep.hits),
+        robot_caused=len(mine) + len(rep.border), other_collisions=len(theirs),
+    )  # fmt: skip

@@ -1,0 +1,170 @@
+"""Planners as policies: what the stepped world drives one step at a time.
+
+:class:`PlannerPolicy` is our planner with a ``knowledge`` setting:
+
+``oracle``
+    Told every obstacle's future at reset (the scenario's closed-form motions, or the recorded
+    futures of people who do not see the robot), it plans the whole run once with
+    :func:`~mawdo.planning.run.planner.plan`, exactly as without a world, and replays it step by
+    step. The upper bound, and today's behaviour.
+``observed``
+    Told only the static map. Each step the reading goes through a tracker
+    (:mod:`mawdo.planning.sense.tracker`) and a predictor (:mod:`mawdo.planning.sense.predict`);
+    the predicted motions become circle obstacles of a prediction scenario, and one step of the
+    planner's own loop (guide, refinement, guard, inevitable-collision rule) runs on it from the
+    robot's position. Every stage consumes predictions through the interface it uses for
+    scripted motions; nothing has a second code path.
+
+:class:`StraightLine` drives straight to the goal at full speed, blind: the floor of any table.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from mawdo.planning.sense.reading import Reading
+from mawdo.planning.world.stepped import Move, static_part, with_movers
+from mawdo.streams import step_seed_sequence
+
+__all__ = ["KNOWLEDGE", "PlannerPolicy", "StraightLine", "step_move"]
+
+#: The planner without an optimizer (the guides' best seed), a choice beside the optimizers.
+GUIDE_ONLY = "guide_only"
+
+#: What a planner may know about the moving agents.
+KNOWLEDGE = ("oracle", "observed")
+
+
+def step_move(route, stamps, step: int) -> Move:
+    """The part of a time-stamped route driven during ``step`` (``stamps`` in time steps,
+    non-decreasing): every corner with ``step < stamp < step + 1``, then where the route is at
+    ``step + 1`` (linear between points; at its end once it is over)."""
+    route, stamps = np.asarray(route, float), np.asarray(stamps, float)
+    inside = (stamps > step) & (stamps < step + 1)
+    end = np.array([np.interp(step + 1.0, stamps, route[:, k]) for k in (0, 1)])
+    pts = np.vstack([route[inside], end[None, :]])
+    return Move(pts, np.append(stamps[inside] - step, 1.0))
+
+
+class StraightLine:
+    """Straight to the goal at full speed, seeing nothing."""
+
+    name = "straight"
+
+    def reset(self, scenario, seed) -> None:
+        self.speed = scenario.robot_speed
+
+    def act(self, reading: Reading) -> np.ndarray:
+        d = reading.goal - reading.position
+        n = float(np.hypot(*d))
+        return d if n <= self.speed else d * (self.speed / n)
+
+
+class PlannerPolicy:
+    """Our planner as a policy (see the module docstring).
+
+    Parameters
+    ----------
+    algorithm : str
+        Any registered optimizer, or ``"guide_only"`` (the guides' best seed, no optimizer).
+    config : PlannerConfig or str, optional
+        Settings or a preset name (``"realtime"`` by default).
+    knowledge : {"observed", "oracle"}
+        What the planner is told (module docstring).
+    predictor : str
+        A registered predictor (``constant_velocity``, ``stop``; ``observed`` only).
+    tracker : object, optional
+        ``reset()`` and ``update(reading) -> Tracks``; default a constant-velocity Kalman tracker
+        (:class:`mawdo.planning.sense.tracker.Tracker`) for an exact sensor.
+    horizon : int
+        How far ahead (time steps, >= 1) predictions reach; beyond it a prediction stands still.
+    **overrides
+        Fields of :class:`~mawdo.planning.run.config.PlannerConfig`.
+    """
+
+    def __init__(
+        self, algorithm: str = "mawdo", config=None, knowledge: str = "observed",
+        predictor: str = "constant_velocity", tracker=None, horizon: int = 200, **overrides,
+    ):  # fmt: skip
+        from mawdo.planning.run.config import resolve_config
+
+        if knowledge not in KNOWLEDGE:
+            raise ValueError(f"knowledge must be one of {KNOWLEDGE}, got {knowledge!r}")
+        if int(horizon) < 1:
+            raise ValueError(f"horizon must be >= 1 time step, got {horizon!r}")
+        self.algorithm, self.knowledge, self.horizon = algorithm, knowledge, int(horizon)
+        self.config = resolve_config(config, overrides)
+        if knowledge == "observed":
+            if self.config.max_accel is not None or self.config.max_turn is not None:
+                raise ValueError(
+                    "max_accel/max_turn are not supported with knowledge='observed' yet: each "
+                    "step plans afresh and does not carry the robot's heading; drop the limits "
+                    "or use knowledge='oracle'"
+                )
+            from mawdo.planning.sense.predict import get_predictor
+
+            self.predict = get_predictor(predictor)
+        self.predictor, self.tracker = predictor, tracker
+        self.name = f"{algorithm}-{knowledge}"
+
+    def reset(self, scenario, seed) -> None:
+        self.seed = seed
+        if self.knowledge == "oracle":
+            from mawdo.planning.run.planner import plan
+
+            self.result = plan(scenario, self.algorithm, seed, self.config)
+            return
+        self.known = static_part(scenario)
+        if self.tracker is None:
+            from mawdo.planning.sense.tracker import Tracker
+
+            self.tracker = Tracker(noise=0.0)
+        self.tracker.reset()
+        self._guided = None  # the run whose guide the next predictions share
+
+    def act(self, reading: Reading):
+        if self.knowledge == "oracle":
+            return step_move(self.result.route, self.result.route_times, reading.step)
+        return self._decide(reading)
+
+    def prediction(self, reading: Reading):
+        """The prediction scenario of a reading: the known map plus one circle per track,
+        moving as the predictor says (times from 0 = now), the robot starting where it is."""
+        tracks = self.tracker.update(reading)
+        sc = self.known
+        preds = self.predict(tracks, 0.0, float(self.horizon), sc.bounds)
+        centre = {int(i): c for i, c in zip(tracks.ids, tracks.centers, strict=True)}
+        movers = [(p.motion.times, centre[int(p.id)] + p.motion.offsets) for p in preds]
+        radii = [p.radius for p in preds]
+        ids = [f"track-{int(p.id)}" for p in preds]
+        return with_movers(sc, radii, movers, ids, start=reading.position)
+
+    def _step_config(self, step: int):
+        """The settings of one step's run: one step long; after the first, the budget of a
+        replan (each step's run starts afresh, so it would otherwise spend a first plan's)."""
+        cfg = replace(self.config, max_steps=1)
+        if self.algorithm == GUIDE_ONLY:
+            cfg = replace(cfg, time_guide=True)
+        if step > 0:
+            cfg = replace(cfg, first_iters=cfg.replan_iters, first_pop_size=None)
+        return cfg
+
+    def _decide(self, reading: Reading) -> Move:
+        from mawdo.planning.guide.passage import fit_config
+        from mawdo.planning.run.execute import share_guide
+        from mawdo.planning.run.planner import prepare
+        from mawdo.planning.run.timed_planners import GuideOnlyRun
+
+        sc = self.prediction(reading)
+        share_guide(self.known, sc)
+        seed = step_seed_sequence(self.seed, reading.step)
+        cfg = self._step_config(reading.step)
+        if self.algorithm == GUIDE_ONLY:
+            run = GuideOnlyRun(sc, GUIDE_ONLY, seed, fit_config(sc, cfg), True)
+        else:
+            run = prepare(sc, self.algorithm, seed, cfg)
+        share_guide(sc, self.known)  # built on the first step, kept for the episode
+        self.last = res = run.execute()
+        return step_move(res.route, res.route_times, 0)
