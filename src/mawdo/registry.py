@@ -88,7 +88,8 @@ def unknown_name_message(kind: str, name: str, known) -> str:
     known = list(known)
     close = difflib.get_close_matches(name.lower(), known, n=3, cutoff=0.5)
     hint = f" Did you mean {', '.join(repr(c) for c in close)}?" if close else ""
-    return f"unknown {kind} {name!r}.{hint} Known {kind}s: {', '.join(known)}."
+    plural = kind[:-1] + "ies" if kind.endswith("y") else kind + "s"
+    return f"unknown {kind} {name!r}.{hint} Known {plural}: {', '.join(known)}."
 
 
 class UnknownNameError(KeyError, ValueError):

@@ -18,7 +18,7 @@ Importing this package registers the built-in kinds.
 """
 
 # one line per study kind: importing its package registers it
-from mawdo.experiments.kinds import arena, benchmark, planning, suite  # noqa: F401
+from mawdo.experiments.kinds import arena, benchmark, crowd, planning, suite  # noqa: F401
 from mawdo.experiments.kinds.benchmark import ExperimentPlan, preset_plan, write_report
 from mawdo.experiments.kinds.benchmark.plan import PRESETS
 from mawdo.experiments.plans import PlanError, StudyPlanBase

@@ -8,6 +8,9 @@ any optimizer      yes (predicted motion)  the receding-horizon planner driven b
 mawdo_literal      yes (predicted motion)  MAWDO with the paper's D <= 3 threshold
 mawdo_time         yes (+ safe intervals)  MAWDO with the safe-interval guide on
 guide_only         yes (+ safe intervals)  the guides' best seed, no optimizer
+mawdo_observed,    tracked positions each  the same two told nothing of the future: a
+guide_only_        step                    tracker and a constant-velocity predictor
+observed                                   each step (:mod:`~mawdo.planning.run.policy`)
 oracle_follower    positions each step     exact shortest path on the frozen map
 straight           no                      the segment start -> goal
 rrtstar, bitstar,  no                      OMPL, single shot on the static obstacles
@@ -44,6 +47,8 @@ __all__ = ["PLANNERS", "PlannerSpec", "run_planner"]
 
 #: How a planner driven by an optimizer sees the moving obstacles.
 PREDICTED = "yes (predicted motion)"
+#: How a planner with observed knowledge sees them.
+OBSERVED = "tracked positions each step"
 
 
 @dataclass(frozen=True)
@@ -156,6 +161,12 @@ def baseline_planner(base: BaselineSpec) -> PlannerSpec:
     )  # fmt: skip
 
 
+def _observed(scenario, seed, config: PlannerConfig, algorithm: str) -> PlanResult:
+    from mawdo.planning.run.policy import observed_run
+
+    return observed_run(scenario, seed, replace(config, time_guide=True), algorithm)
+
+
 def _follow(scenario, seed, config: PlannerConfig) -> PlanResult:
     return follow_oracle(scenario, max_steps=config.max_steps)
 
@@ -171,6 +182,13 @@ PLANNERS.register("mawdo_time", PlannerSpec("mawdo_time", mawdo_time_run, PREDIC
                   "MAWDO, safe-interval guide on (time_guide)", optimizer="mawdo"))  # fmt: skip
 PLANNERS.register("guide_only", PlannerSpec("guide_only", guide_only_run, PREDICTED,
                   "the guides' best seed, no optimizer (time_guide on)", seeded=False))  # fmt: skip
+PLANNERS.register("mawdo_observed", PlannerSpec(
+    "mawdo_observed", partial(_observed, algorithm="mawdo"), OBSERVED,
+    "MAWDO (time guide on) on tracked, constant-velocity predictions",
+    optimizer="mawdo"))  # fmt: skip
+PLANNERS.register("guide_only_observed", PlannerSpec(
+    "guide_only_observed", partial(_observed, algorithm="guide_only"), OBSERVED,
+    "guide_only on tracked, constant-velocity predictions", seeded=False))  # fmt: skip
 PLANNERS.register(
     ORACLE_FOLLOWER,
     PlannerSpec(ORACLE_FOLLOWER, _follow, "positions each step",

@@ -103,9 +103,18 @@ class PlannerPolicy:
                     "step plans afresh and does not carry the robot's heading; drop the limits "
                     "or use knowledge='oracle'"
                 )
-            from mawdo.planning.sense.predict import get_predictor
+            from mawdo.optimizers import OPTIMIZERS
+            from mawdo.planning.sense.predict import PREDICTORS
 
-            self.predict = get_predictor(predictor)
+            if algorithm != GUIDE_ONLY:
+                OPTIMIZERS[algorithm]  # an unknown name fails here, listing the known ones
+            spec = PREDICTORS[predictor]  # likewise
+            if spec.needs_truth:
+                raise ValueError(
+                    f"predictor {predictor!r} needs the world's true future, which an observing "
+                    "planner does not have; use knowledge='oracle' for the upper bound"
+                )
+            self.predict = spec.predict
         self.predictor, self.tracker = predictor, tracker
         self.name = f"{algorithm}-{knowledge}"
 
@@ -116,7 +125,12 @@ class PlannerPolicy:
 
             self.result = plan(scenario, self.algorithm, seed, self.config)
             return
+        from mawdo.planning.guide.passage import fit_config
+
         self.known = static_part(scenario)
+        # the margin fitted once, to the passages between start and goal: a step's run starts
+        # where the robot is, but fitting it again each step would cost more than the step
+        self.fitted = fit_config(self.known, self.config)
         if self.tracker is None:
             from mawdo.planning.sense.tracker import Tracker
 
@@ -144,7 +158,7 @@ class PlannerPolicy:
     def _step_config(self, step: int):
         """The settings of one step's run: one step long; after the first, the budget of a
         replan (each step's run starts afresh, so it would otherwise spend a first plan's)."""
-        cfg = replace(self.config, max_steps=1)
+        cfg = replace(self.fitted, max_steps=1)
         if self.algorithm == GUIDE_ONLY:
             cfg = replace(cfg, time_guide=True)
         if step > 0:
@@ -152,19 +166,28 @@ class PlannerPolicy:
         return cfg
 
     def _decide(self, reading: Reading) -> Move:
-        from mawdo.planning.guide.passage import fit_config
-        from mawdo.planning.run.execute import share_guide
-        from mawdo.planning.run.planner import prepare
+        from mawdo.planning.run.execute import Run, share_guide
         from mawdo.planning.run.timed_planners import GuideOnlyRun
 
         sc = self.prediction(reading)
         share_guide(self.known, sc)
         seed = step_seed_sequence(self.seed, reading.step)
-        cfg = self._step_config(reading.step)
-        if self.algorithm == GUIDE_ONLY:
-            run = GuideOnlyRun(sc, GUIDE_ONLY, seed, fit_config(sc, cfg), True)
-        else:
-            run = prepare(sc, self.algorithm, seed, cfg)
+        kind = GuideOnlyRun if self.algorithm == GUIDE_ONLY else Run
+        run = kind(sc, self.algorithm, seed, self._step_config(reading.step), True)
         share_guide(sc, self.known)  # built on the first step, kept for the episode
         self.last = res = run.execute()
         return step_move(res.route, res.route_times, 0)
+
+
+def observed_run(scenario, seed, config, algorithm: str = "mawdo"):
+    """A scripted scenario run with ``observed`` knowledge: the planner policy in a stepped
+    world, under the planners' one step limit (:func:`~mawdo.planning.run.config.step_limit`);
+    a :class:`~mawdo.planning.run.result.PlanResult` like every planner's."""
+    from mawdo.planning.run.episode import run_episode
+    from mawdo.planning.run.planner import prepare
+    from mawdo.planning.world.stepped import SteppedWorld
+
+    steps = prepare(scenario, "mawdo", 0, replace(config, time_guide=False)).step_limit()[0]
+    policy = PlannerPolicy(algorithm, config, "observed")
+    name = f"{algorithm}_observed"
+    return run_episode(SteppedWorld(scenario), policy, steps, seed, name=name, config=config)

@@ -1,0 +1,198 @@
+"""Plan of the crowd-navigation study: settings x policies x seeded episodes.
+
+A *setting* names a CrowdNav scene: ``<scene>-<people>-<visibility>``, e.g.
+``circle-5-invisible`` (circle crossing, 5 people who do not see the robot) or
+``square-10-visible``. The harness's ``(algorithm, problem, run)`` key is
+``(policy, setting, episode)``; episode ``k`` of a setting is a pure function of
+``(setting, seed, k)``, the same for every policy (common random numbers), so policies are
+compared on the same people.
+"""
+
+from __future__ import annotations
+
+import difflib
+import re
+from typing import Annotated, Any, ClassVar, Literal
+
+from pydantic import Field, field_validator
+
+from mawdo.experiments.plans import PlanError, StudyPlanBase
+from mawdo.experiments.protocol import Task, missing_run_tasks
+from mawdo.streams import name_word, seed_word
+
+CROWD_SCHEMA = 1
+SCENES = ("circle", "square")
+_SETTING = re.compile(r"^(circle|square)-(\d+)-(visible|invisible)$")
+
+
+def parse_setting(name: str) -> tuple[str, int, bool]:
+    """``(scene, people, visible)`` of a setting name; ``ValueError`` naming the form."""
+    m = _SETTING.match(str(name).strip().lower())
+    if m is None or not 1 <= int(m.group(2)) <= 50:
+        raise ValueError(
+            f"unknown crowd setting {name!r}: write <scene>-<people>-<visibility> with scene "
+            f"circle or square, 1-50 people, visible or invisible (e.g. circle-5-invisible)"
+        )
+    return m.group(1), int(m.group(2)), m.group(3) == "visible"
+
+
+def _check_policy(name: str) -> str:
+    from mawdo.planning.run.policies import POLICIES
+
+    return POLICIES[str(name).strip()].name
+
+
+class CrowdPlan(StudyPlanBase):
+    """Crowd navigation: ``n`` episodes per setting, each run by every policy.
+
+    Parameters
+    ----------
+    name : str
+        Label for reports.
+    settings : sequence of str
+        Scene settings (:func:`parse_setting`).
+    n : int
+        Episodes per setting, >= 1.
+    policies : sequence of str
+        Registered policies (:data:`~mawdo.planning.run.policies.POLICIES`).
+    seed : int
+        Master seed (people and policy seeds), >= 0.
+    planner : {"realtime", "quick", "fast"}
+        Preset of our planner's policies.
+    overrides : dict
+        Fields of :class:`~mawdo.planning.run.config.PlannerConfig` to change.
+    sensor_noise : float
+        Gaussian s.d. of the sensed positions (metres, >= 0).
+    sensor_range : float or None
+        How far the sensor sees (metres, > 0); None: unlimited.
+    miss_rate : float
+        Probability that a person in view is not detected, in [0, 1).
+    predictor : str
+        Predictor of the observed planners (``constant_velocity``, ``stop``).
+    batch_size : int
+        Episodes per task.
+    """
+
+    study_kind: ClassVar[str] = "crowd"
+    kind: Literal["crowd"] = "crowd"
+    name: str = "crowd"
+    settings: Annotated[tuple[str, ...], Field(min_length=1)]
+    n: Annotated[int, Field(ge=1)] = 100
+    policies: Annotated[tuple[str, ...], Field(min_length=1)] = ("mawdo", "orca_robot")
+    seed: Annotated[int, Field(strict=True, ge=0)] = 0
+    planner: Literal["realtime", "quick", "fast"] = "realtime"
+    overrides: dict[str, Any] = Field(default_factory=dict)
+    sensor_noise: Annotated[float, Field(ge=0, le=10)] = 0.0
+    sensor_range: Annotated[float, Field(gt=0)] | None = None
+    miss_rate: Annotated[float, Field(ge=0, lt=1)] = 0.0
+    predictor: str = "constant_velocity"
+    batch_size: Annotated[int, Field(ge=1)] = 10
+
+    @field_validator("settings")
+    @classmethod
+    def _settings(cls, names):
+        out = []
+        for i, n in enumerate(names):
+            try:
+                scene, people, visible = parse_setting(n)
+            except ValueError as exc:
+                raise ValueError(f"settings[{i}]: {exc}") from None
+            key = f"{scene}-{people}-{'visible' if visible else 'invisible'}"
+            if key in out:
+                raise ValueError(f"settings[{i}]: {key!r} is listed twice")
+            out.append(key)
+        return tuple(out)
+
+    @field_validator("policies")
+    @classmethod
+    def _policies(cls, names):
+        out = []
+        for i, n in enumerate(names):
+            try:
+                c = _check_policy(n)
+            except KeyError as exc:
+                raise ValueError(f"policies[{i}]: {exc}") from None
+            if c in out:
+                raise ValueError(f"policies[{i}]: {c!r} is listed twice")
+            out.append(c)
+        return tuple(out)
+
+    def numbers_spec(self) -> dict[str, Any]:
+        return {**super().numbers_spec(), "schema": CROWD_SCHEMA}
+
+    def episode_seed(self, setting: str, k: int) -> int:
+        """Seed of episode ``k`` of ``setting``: the people and every policy's draws."""
+        return seed_word([self.seed, name_word(setting), k])
+
+    @property
+    def total_runs(self) -> int:
+        return len(self.policies) * len(self.settings) * self.n
+
+    def tasks(self, done=()) -> list[Task]:
+        done = set(done)
+        out = []
+        for s in self.settings:
+            for p in self.policies:
+                out += missing_run_tasks(p, s, self.n, done, self.batch_size)
+        return out
+
+    def task_spec(self, task: Task) -> dict[str, Any]:
+        return {
+            "kind": self.kind,
+            **task.key(),
+            "seeds": [self.episode_seed(task.problem, k) for k in task.runs],
+            "preset": self.planner,
+            "overrides": dict(self.overrides),
+            "sensor": {
+                "noise": self.sensor_noise,
+                "range": self.sensor_range,
+                "miss_rate": self.miss_rate,
+            },  # fmt: skip
+            "predictor": self.predictor,
+        }
+
+    def describe(self) -> str:
+        return (
+            f"{self.name}: {len(self.settings)} settings ({', '.join(self.settings)}) x "
+            f"{self.n} episodes x {len(self.policies)} policies ({', '.join(self.policies)}), "
+            f"sensor noise {self.sensor_noise} m, seed {self.seed}"
+        )
+
+
+_SETTINGS_ALL = [f"{s}-{n}-{v}" for s in SCENES for n in (5, 10, 20)
+                 for v in ("invisible", "visible")]  # fmt: skip
+
+CROWD_PRESETS: dict[str, dict[str, Any]] = {
+    # CrowdNav's benchmark: circle and square crossing, 5/10/20 people, robot unseen or seen
+    "crowdnav": {
+        "name": "crowdnav",
+        "settings": _SETTINGS_ALL,
+        "n": 500,
+        "policies": [
+            "mawdo",
+            "guide_only",
+            "mawdo_oracle",
+            "orca_robot",
+            "social_force_robot",
+            "straight",
+        ],  # fmt: skip
+    },
+    # the headline setting only, fewer episodes: minutes, not hours
+    "crowdnav-quick": {
+        "name": "crowdnav-quick",
+        "settings": ["circle-5-invisible"],
+        "n": 20,
+        "policies": ["mawdo", "orca_robot", "straight"],
+        "batch_size": 5,
+    },
+}
+
+
+def crowd_preset(name: str) -> CrowdPlan:
+    """The named crowd preset; an unknown name raises :class:`PlanError` listing them."""
+    if name not in CROWD_PRESETS:
+        close = difflib.get_close_matches(name, list(CROWD_PRESETS), n=2)
+        hint = f" Did you mean {', '.join(map(repr, close))}?" if close else ""
+        raise PlanError(f"preset: unknown crowd preset {name!r}.{hint} "
+                        f"Presets: {', '.join(CROWD_PRESETS)}")  # fmt: skip
+    return CrowdPlan.from_dict(CROWD_PRESETS[name])

@@ -1,0 +1,103 @@
+"""The crowd study's report: one table, a row per (setting, policy), CrowdNav's metrics.
+
+Rates are shares of the episodes that ran; time to goal is the mean over successes (seconds);
+discomfort the mean share of steps closer than 0.2 m to a person; latency the median over
+episodes of each episode's p50 / p95 decision time (wall time of the policy's ``act``).
+Paired sign tests are the arena's business; here every policy meets the same people
+(common random numbers), so the columns compare directly.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from mawdo.experiments.progress import say
+from mawdo.experiments.store import Store
+from mawdo.experiments.tables import Table, to_csv, to_latex, to_markdown
+
+COLUMNS = [
+    "setting", "policy", "episodes", "success", "robot-caused", "collision", "timeout",
+    "time (s)", "discomfort", "min sep. (m)", "length (m)", "p50 (ms)", "p95 (ms)",
+]  # fmt: skip
+
+
+def _mean(xs) -> float:
+    xs = [x for x in xs if x is not None]
+    return float(np.mean(xs)) if xs else float("nan")
+
+
+def _median(xs) -> float:
+    xs = [x for x in xs if x is not None]
+    return float(np.median(xs)) if xs else float("nan")
+
+
+def crowd_summary(store: Store) -> dict[tuple[str, str], dict[str, float]]:
+    """Per ``(setting, policy)``: episodes and the report's aggregates (floats; NaN where no
+    episode gives the value)."""
+    plan = store.plan
+    rows: dict[tuple[str, str], list] = {}
+    for a, s, r in store.rows():
+        if r.status == "ok":
+            rows.setdefault((s, a), []).append(r)
+    out = {}
+    for s in plan.settings:
+        for p in plan.policies:
+            rs = rows.get((s, p), [])
+            if not rs:
+                continue
+            out[(s, p)] = {
+                "episodes": len(rs),
+                "success": _mean(r.success for r in rs),
+                "robot_caused": _mean(r.robot_caused for r in rs),
+                "collision": _mean(r.collision for r in rs),
+                "timeout": _mean(r.timeout for r in rs),
+                "time_s": _mean(r.time_s for r in rs),
+                "discomfort": _mean(r.discomfort for r in rs),
+                "min_separation_m": _median(r.min_separation_m for r in rs),
+                "length_m": _mean(r.length_m for r in rs),
+                "latency_p50_ms": _median(r.latency_p50_ms for r in rs),
+                "latency_p95_ms": _median(r.latency_p95_ms for r in rs),
+            }
+    return out
+
+
+def crowd_table(store: Store) -> Table:
+    """The report's table (see the module docstring)."""
+    keys = [
+        "episodes", "success", "robot_caused", "collision", "timeout", "time_s",
+        "discomfort", "min_separation_m", "length_m", "latency_p50_ms", "latency_p95_ms",
+    ]  # fmt: skip
+    rows = [[s, p, *(m[k] for k in keys)] for (s, p), m in crowd_summary(store).items()]
+    fmts = {c: ".3f" for c in COLUMNS[3:8]} | {"time (s)": ".2f", "min sep. (m)": ".3f",
+                                                "length (m)": ".2f", "p50 (ms)": ".1f",
+                                                "p95 (ms)": ".1f"}  # fmt: skip
+    return Table(
+        name="crowd", title="Crowd navigation (CrowdNav settings)", columns=COLUMNS, rows=rows,
+        formats=fmts,
+        notes=["rates are shares of episodes; time over successes; min sep. is the median "
+               "over episodes of the smallest clearance (negative: contact)"],
+    )  # fmt: skip
+
+
+def write_crowd_report(store_path, out_dir, **_options) -> Path:
+    """The table (Markdown, LaTeX, CSV) and ``crowd.md`` into ``out_dir``; returns its path."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    with Store.read(store_path) as store:
+        plan = store.plan
+        if plan.kind != "crowd":
+            raise ValueError(f"{store_path} holds a {plan.kind!r} study, not a crowd study")
+        say("crowd table")
+        table = crowd_table(store)
+        errors = [(a, s, r.run, r.error_text) for a, s, r in store.rows() if r.error_text]
+    for ext, f in (("md", to_markdown), ("tex", to_latex), ("csv", to_csv)):
+        (out / f"crowd_table.{ext}").write_text(f(table))
+    md = [f"# Crowd navigation: {plan.name}", "", plan.describe(), "", to_markdown(table)]
+    if errors:
+        md += ["", "## Runs that raised", ""]
+        md += [f"- {a} on {s} episode {k}: {e}" for a, s, k, e in errors]
+    path = out / "crowd.md"
+    path.write_text("\n".join(md) + "\n")
+    return path

@@ -1,0 +1,109 @@
+"""Every policy the stepped world can drive, by name: the registry the crowd study looks up.
+
+=====================  ==========  ====================================================
+name                   knowledge   what it is
+=====================  ==========  ====================================================
+mawdo                  observed    our planner (MAWDO, safe-interval guide on) on the
+                                   tracker's constant-velocity predictions
+guide_only             observed    the same without the optimizer: the guides' best seed
+mawdo_oracle           oracle      MAWDO told every agent's future (the upper bound;
+                                   exact when the people do not see the robot)
+orca_robot             observed    the robot driven by ORCA on the tracks (``crowd``)
+social_force_robot     observed    the robot driven by the social force (``crowd``)
+straight               none        straight to the goal at full speed
+=====================  ==========  ====================================================
+
+A policy is built by ``make(options)``, ``options`` holding the planner preset and overrides,
+the sensor's noise (for the tracker) and the predictor's name; each entry takes what it needs.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from mawdo.registry import Registry
+
+__all__ = ["POLICIES", "PolicySpec", "make_policy"]
+
+
+@dataclass(frozen=True)
+class PolicySpec:
+    """A registered policy.
+
+    Attributes
+    ----------
+    name : str
+        Registry name.
+    make : callable
+        ``make(options) -> Policy``.
+    knowledge : str
+        ``"oracle"`` (told the agents' future), ``"observed"`` (sensor readings only) or
+        ``"none"`` (sees no agent).
+    description : str
+        One line for listings and reports.
+    """
+
+    name: str
+    make: Callable[[dict[str, Any]], Any]
+    knowledge: str
+    description: str
+
+
+POLICIES: Registry[PolicySpec] = Registry("policy")
+
+
+def _tracker(options):
+    from mawdo.planning.sense.tracker import Tracker
+
+    return Tracker(noise=float(options.get("noise", 0.0)))
+
+
+def _planner(algorithm: str, knowledge: str):
+    def make(options):
+        from mawdo.planning.run.policy import PlannerPolicy
+
+        over = {"time_guide": True, **options.get("overrides", {})}
+        extra = {}
+        if knowledge == "observed":
+            extra = {"tracker": _tracker(options), "predictor": options.get("predictor",
+                     "constant_velocity")}  # fmt: skip
+        return PlannerPolicy(algorithm, options.get("preset"), knowledge, **extra, **over)
+
+    return make
+
+
+def _straight(options):
+    from mawdo.planning.run.policy import StraightLine
+
+    return StraightLine()
+
+
+def _robot(cls_name: str):
+    def make(options):
+        from mawdo.planning.people import robots
+
+        return getattr(robots, cls_name)(tracker=_tracker(options))
+
+    return make
+
+
+for _spec in (
+    PolicySpec("mawdo", _planner("mawdo", "observed"), "observed",
+               "MAWDO on constant-velocity predictions of the tracks"),
+    PolicySpec("guide_only", _planner("guide_only", "observed"), "observed",
+               "the guides' best seed on the same predictions, no optimizer"),
+    PolicySpec("mawdo_oracle", _planner("mawdo", "oracle"), "oracle",
+               "MAWDO told every agent's future (upper bound)"),
+    PolicySpec("orca_robot", _robot("OrcaRobot"), "observed", "ORCA on the tracks"),
+    PolicySpec("social_force_robot", _robot("SocialForceRobot"), "observed",
+               "social force on the tracks"),
+    PolicySpec("straight", _straight, "none", "straight to the goal, blind"),
+):  # fmt: skip
+    POLICIES.register(_spec.name, _spec)
+
+
+def make_policy(name: str, options: dict[str, Any] | None = None):
+    """A fresh policy by registered name (an unknown name lists the known ones)."""
+    return POLICIES[name].make(dict(options or {}))

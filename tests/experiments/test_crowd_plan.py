@@ -1,0 +1,57 @@
+"""The crowd study's plan: settings, policies, seeds and tasks."""
+
+import pytest
+
+from mawdo.experiments.kinds.crowd.plan import CROWD_PRESETS, CrowdPlan, crowd_preset, parse_setting
+from mawdo.experiments.plans import PlanError
+
+
+def test_settings_parse_and_normalise():
+    assert parse_setting("Circle-5-Invisible") == ("circle", 5, False)
+    assert parse_setting("square-20-visible") == ("square", 20, True)
+    plan = CrowdPlan.from_dict({"settings": ["CIRCLE-5-visible"], "policies": ["straight"]})
+    assert plan.settings == ("circle-5-visible",)
+
+
+@pytest.mark.parametrize("bad", ["circle-0-visible", "circle-5", "ring-5-visible", "circle-5-seen"])
+def test_a_bad_setting_names_the_form(bad):
+    with pytest.raises((ValueError, PlanError), match="<scene>-<people>-<visibility>"):
+        CrowdPlan.from_dict({"settings": [bad]})
+
+
+def test_unknown_policy_suggests_a_close_name():
+    with pytest.raises((ValueError, PlanError), match="orca_robot"):
+        CrowdPlan.from_dict({"settings": ["circle-5-visible"], "policies": ["orca"]})
+
+
+def test_bad_sensor_settings_are_refused():
+    for field, value in (("sensor_noise", -0.1), ("miss_rate", 1.0), ("sensor_range", 0.0)):
+        with pytest.raises((ValueError, PlanError), match=field):
+            CrowdPlan.from_dict({"settings": ["circle-5-visible"], field: value})
+
+
+def test_episode_seeds_are_common_to_policies_and_distinct_across_episodes():
+    plan = CrowdPlan.from_dict({"settings": ["circle-5-visible", "square-5-visible"], "n": 4,
+                                "policies": ["straight", "mawdo"], "batch_size": 3})  # fmt: skip
+    tasks = plan.tasks()
+    assert len(tasks) == 2 * 2 * 2  # two batches (3 + 1) per (setting, policy)
+    specs = [plan.task_spec(t) for t in tasks]
+    by = {(s["algorithm"], s["problem"], s["first_run"]): s["seeds"] for s in specs}
+    assert by[("straight", "circle-5-visible", 0)] == by[("mawdo", "circle-5-visible", 0)]
+    assert by[("straight", "circle-5-visible", 0)] != by[("straight", "square-5-visible", 0)]
+    seeds = by[("mawdo", "circle-5-visible", 0)] + by[("mawdo", "circle-5-visible", 3)]
+    assert len(set(seeds)) == 4
+    assert plan.total_runs == 16
+
+
+def test_done_runs_are_not_planned_again():
+    plan = CrowdPlan.from_dict({"settings": ["circle-5-visible"], "n": 3, "policies": ["straight"]})
+    left = plan.tasks(done={("straight", "circle-5-visible", 1)})
+    assert sorted(r for t in left for r in t.runs) == [0, 2]
+
+
+def test_presets_build_and_an_unknown_one_lists_them():
+    for name in CROWD_PRESETS:
+        assert crowd_preset(name).name == name
+    with pytest.raises(PlanError, match="crowdnav-quick"):
+        crowd_preset("crowdnav-quik")
