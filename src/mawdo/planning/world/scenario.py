@@ -31,6 +31,7 @@ from pydantic import ValidationError
 
 from mawdo.planning.world.motion import BoundedRandomWalk, ConstantVelocity, Motion, Patrol, Static
 from mawdo.planning.world.scenario_schema import (
+    MAX_MAP_SIZE,
     MAX_RUN_STEPS,
     SCHEMA_VERSION,
     CircleObstacle,
@@ -42,6 +43,7 @@ from mawdo.planning.world.scenario_schema import (
     ScenarioSpec,
     field_errors,
     offset_bounds,
+    pixel_note,
     semantic_errors,
 )
 from mawdo.planning.world.scenario_text import ScenarioTextError, parse_scenario_text
@@ -80,7 +82,7 @@ class Obstacle:
     id : str
         Name from the file, or ``obstacle-<index>``.
     shape : CircleObstacle or PolygonObstacle
-        The validated shape spec (pixels), as written in the file.
+        The validated shape spec (pixels), as written in the file (a metre file: converted).
     motion : Motion
         Translation of the shape over time (see :mod:`mawdo.planning.world.motion`).
     """
@@ -286,11 +288,20 @@ def pixel_spec(spec: ScenarioSpec, units: Units, source: str | None) -> Scenario
     """A metre spec converted to pixels and time steps, validated as a pixel file (its bounds
     hold in pixels: a 10 km map at 5 cm per pixel is too large)."""
     data = spec_to_pixels(spec.model_dump(exclude_none=True), units)
+    side = max(data["width"], data["height"])
+    if side > MAX_MAP_SIZE:  # every other bound then fails too: say what causes it
+        res, least = units.resolution, max(spec.width, spec.height) / MAX_MAP_SIZE
+        why = (
+            f"{res:g} m per px makes the {spec.width:g} x {spec.height:g} m map "
+            f"{data['width']:.4g} x {data['height']:.4g} px, more than the {MAX_MAP_SIZE:g} px "
+            f"a side the planner takes; give a resolution of at least {least:.3g} m per px"
+        )
+        raise ScenarioError([("resolution", why)], source)
     try:
         return ScenarioSpec.model_validate(data)
     except ValidationError as exc:
-        note = f"after conversion to pixels and time steps ({units.describe()})"
-        raise ScenarioError([(p, f"{m} {note}") for p, m in field_errors(exc)], source) from None
+        note = pixel_note(units)
+        raise ScenarioError([(p, f"{m} ({note})") for p, m in field_errors(exc)], source) from None
 
 
 def scenario_from_dict(data: Any, source: str | None = None) -> Scenario:

@@ -76,6 +76,7 @@ __all__ = [
     "ScenarioSpec",
     "field_errors",
     "offset_bounds",
+    "pixel_note",
     "semantic_errors",
 ]
 
@@ -412,12 +413,13 @@ def semantic_errors(spec: ScenarioSpec, units: Units = PIXELS) -> list[tuple[str
                 )
     moves = motion_errors(spec, offset_bounds)
     if not units.is_pixels:  # its bounds are written in the planner's units
-        moves = [(p, f"{m} ({_IN_PIXELS.format(units.resolution, units.dt)})") for p, m in moves]
+        moves = [(p, f"{m} ({pixel_note(units)})") for p, m in moves]
     return errors + _spot_errors(spec, say) + moves
 
 
-#: How a metre file's message in pixels and time steps says so.
-_IN_PIXELS = "in pixels and time steps: {0:g} m per px, {1:g} s per step"
+def pixel_note(units: Units) -> str:
+    """How a metre file's message written in pixels and time steps says so."""
+    return f"in pixels and time steps: {units.resolution:g} m per px, {units.dt:g} s per step"
 
 
 def _spot_errors(spec: ScenarioSpec, say: _Say) -> list[tuple[str, str]]:
