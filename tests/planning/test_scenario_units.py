@@ -376,3 +376,15 @@ def test_the_documented_metre_example_is_the_hand_converted_map():
     sc = scenario_from_dict(tomllib.loads(text))
     assert (sc.width, sc.height, sc.robot_speed) == (200.0, 160.0, 5.0)  # as its comments say
     assert sc.spec.obstacles[1].motion.velocity == (0.0, 2.5)
+
+
+def test_waiting_spots_of_a_metre_file_are_converted_and_written_back():
+    data = metre_dict()
+    data["spots"] = [[6.0, 6.5]]
+    sc = scenario_from_dict(data)
+    np.testing.assert_array_equal(sc.spots, [[120.0, 130.0]])  # 6 / 0.05, 6.5 / 0.05
+    assert sc.to_dict()["spots"] == [[6.0, 6.5]]
+    data["spots"] = [[3.5, 2.5]]  # inside the triangle inflated by 0.3 m
+    ((path, msg),) = errors_of(data)
+    assert path == "spots[0]" and msg.startswith("(3.5, 2.5) is inside static obstacles[0]")
+    assert "robot radius 0.3 m" in msg
