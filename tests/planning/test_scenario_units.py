@@ -296,9 +296,11 @@ def _write(tmp_path, data: dict):
     return path
 
 
-@pytest.mark.parametrize(
-    "case", ["dt zero", "no resolution", "pixel with dt", "hold not whole steps"]
-)
+CLI_CASES = ["dt zero", "resolution zero", "no dt", "no resolution", "pixel with dt",
+             "hold not whole steps"]  # fmt: skip
+
+
+@pytest.mark.parametrize("case", CLI_CASES)
 def test_plan_refuses_bad_unit_fields_with_exit_2(tmp_path, case):
     change, expected = BAD[case]
     data = metre_dict()
