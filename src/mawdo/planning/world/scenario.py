@@ -234,7 +234,8 @@ class Scenario:
     def to_dict(self) -> dict:
         """The scenario as a plain dict (JSON-compatible) that validates back to an equal one,
         in its file's units (a metre file's own values; ``units`` only when ``"m"``)."""
-        out = (self.file_spec or self.spec).model_dump(mode="json", exclude_none=True)
+        spec = self.spec if self.file_spec is None else self.file_spec
+        out = spec.model_dump(mode="json", exclude_none=True)
         if out.get("units") == "px":
             del out["units"]  # pixel files read and hash as they did before units existed
         return out
