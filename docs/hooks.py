@@ -108,7 +108,8 @@ def scenario_schema_markdown() -> str:
     schema = schema_module.ScenarioSpec.model_json_schema()
     lines = [
         f"Schema version {schema_module.SCHEMA_VERSION}. Unknown keys are errors; units are "
-        "pixels, time steps and pixels per time step.",
+        'pixels, time steps and pixels per time step, or with `units = "m"` metres, seconds '
+        "and metres per second.",
         "",
     ]
     lines += _model_table("ScenarioSpec", schema)

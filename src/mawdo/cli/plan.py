@@ -232,7 +232,7 @@ def _execute(run, sc, algorithm, seed, preset, static, threads, out, progress, j
     """Execute the run (its steps fed to the figures' process ``job`` as they are made, then
     the run itself: its figures need no metrics); print its metrics and save them in
     ``out/metrics.json``."""
-    from mawdo.planning.judge.metrics import run_metrics_kept
+    from mawdo.planning.judge.metrics import in_units, run_metrics_kept
 
     bar = _StepBar(progress, f"{algorithm} on {sc.name}")
     try:
@@ -243,6 +243,9 @@ def _execute(run, sc, algorithm, seed, preset, static, threads, out, progress, j
     if job is not None:
         job.send((res, None, None))  # drawn while the metrics are computed and printed
     m, error = run_metrics_kept(res)
+    units, given = sc.units, {}
+    if not units.is_pixels:  # lengths, times and speeds in the units of the scenario's file
+        given = {"units": "m", "dt_s": units.dt, "resolution_m": units.resolution}
     payload = {
         "scenario": sc.name,
         "algorithm": algorithm,
@@ -250,7 +253,8 @@ def _execute(run, sc, algorithm, seed, preset, static, threads, out, progress, j
         "preset": preset,
         "dynamic": not static,
         "threads": threads,
-        **(m or {"metrics_error": error}),
+        **given,
+        **(in_units(m, units) if m else {"metrics_error": error}),
     }
     (out / "metrics.json").write_text(json.dumps(payload, indent=1))
     for k, v in payload.items():

@@ -19,7 +19,14 @@ from mawdo.planning.guide.oracle import scenario_optimum
 from mawdo.planning.run.result import PlanResult
 from mawdo.planning.world.path import polyline_length, turning_angles
 
-__all__ = ["METRICS", "run_metrics", "run_metrics_kept", "snapshot_gaps", "static_optimum"]
+__all__ = [
+    "METRICS",
+    "in_units",
+    "run_metrics",
+    "run_metrics_kept",
+    "snapshot_gaps",
+    "static_optimum",
+]
 
 # Column order of the study table; units in the names.
 METRICS = (
@@ -193,6 +200,42 @@ def run_metrics_kept(
     if errors:
         m["metrics_error"] = "; ".join(errors)
     return m, None
+
+
+def in_units(metrics: dict, units) -> dict:
+    """The metrics of :func:`run_metrics` as the scenario's user reads them.
+
+    Parameters
+    ----------
+    metrics : dict
+        Metrics in pixels and time steps (their keys as :func:`run_metrics` names them).
+    units : Units
+        The scenario's units (:attr:`Scenario.units <mawdo.planning.world.scenario.Scenario
+        .units>`).
+
+    Returns
+    -------
+    dict
+        For pixel units a copy of ``metrics``. For metres and seconds, in the same order:
+        each ``<name>_px`` as ``<name>_m`` (times the resolution), ``t_star`` (steps) as
+        ``t_star_s``, and after ``steps`` (a count, kept) ``arrival_s``, the run's time in
+        seconds when it reached the goal (None otherwise); None and NaN stay as they are.
+        Latencies (``*_ms``, ``first_plan_s``) are wall-clock times, the same in any units.
+    """
+    if units.is_pixels:
+        return dict(metrics)
+    out: dict = {}
+    for key, value in metrics.items():
+        if key.endswith("_px"):
+            out[key[:-3] + "_m"] = None if value is None else float(units.length(value))
+        elif key == "t_star":
+            out["t_star_s"] = None if value is None else float(units.time(value))
+        else:
+            out[key] = value
+        if key == "steps":
+            reached = metrics.get("success") and value is not None
+            out["arrival_s"] = float(units.time(value)) if reached else None
+    return out
 
 
 def one_line(exc: BaseException) -> str:

@@ -13,7 +13,9 @@ exactly the same things. Figures are built with the object-oriented API
 changes the global backend or leaves figures registered in ``pyplot``.
 
 Units: pixels (x right, y up, origin at the lower-left map corner) and time steps, as in
-:mod:`mawdo.planning.world.scenario`.
+:mod:`mawdo.planning.world.scenario`. A scenario in metres and seconds is drawn in pixels as
+well, but its axes, ticks, panel times and legend read in metres and seconds
+(``Scenario.units``).
 
 A package, one module per job (every name is importable from here as before):
 :mod:`.style` (colours, sizes, shared helpers), :mod:`.world` (one map panel), :mod:`.snapshots`

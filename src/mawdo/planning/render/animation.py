@@ -15,12 +15,13 @@ from pathlib import Path
 import numpy as np
 
 from mawdo.planning.render.style import (
+    axis_label,
     checked_output_path,
     display_name,
-    format_time,
     new_figure,
     optimum_path,
     route_of,
+    time_title,
 )
 from mawdo.planning.render.world import (
     add_layer,
@@ -166,7 +167,7 @@ def _figure(scenario, title: str, dpi: int):
     fig.get_layout_engine().set(w_pad=0.02, h_pad=0.02)
     fig.suptitle(title, fontsize=10)
     ax = fig.add_subplot()
-    handles = legend_handles(scenario.robot_radius)
+    handles = legend_handles(scenario.robot_radius, scenario.units)
     fig.legend(
         handles=handles,
         loc="outside lower center",
@@ -177,8 +178,8 @@ def _figure(scenario, title: str, dpi: int):
         columnspacing=1.0,
     )
     draw_world(ax, scenario, 0.0, clear=False, moving=False)  # limits, ticks (a new axes)
-    ax.set_xlabel("x (px)", fontsize=7)
-    ax.set_ylabel("y (px)", fontsize=7)
+    ax.set_xlabel(axis_label(scenario, "x"), fontsize=7)
+    ax.set_ylabel(axis_label(scenario, "y"), fontsize=7)
     # the layout alone, not a whole draw with rendering off (the frames' first draw renders)
     fig.get_layout_engine().execute(fig)
     fig.set_layout_engine("none")
@@ -239,7 +240,7 @@ class _Frames:
                     a.set_animated(True)
             for a in arts:
                 a.set_visible(data is not None)
-        self.ax.title.set_text(f"t = {format_time(float(t))}")
+        self.ax.title.set_text(time_title(self.scenario, float(t)))
         canvas = self.fig.canvas
         canvas.restore_region(self.background)
         for a in [*self._artists(), self.ax.title]:

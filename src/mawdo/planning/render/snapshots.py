@@ -12,6 +12,7 @@ from mawdo.planning.render.style import (
     IMAGE_SUFFIXES,
     PANEL_IN,
     as_results,
+    axis_label,
     checked_output_path,
     display_name,
     keep_layout,
@@ -35,8 +36,10 @@ TIME_NOTE = (
 def run_headline(label: str, result: PlanResult, metrics: dict | None) -> str:
     parts = [f"{label}  (seed {result.seed})"]
     if metrics:
-        if "length_px" in metrics:
-            parts.append(f"length {metrics['length_px']:.1f} px")
+        if metrics.get("length_px") is not None:
+            u, px = result.scenario.units, metrics["length_px"]
+            length = f"{px:.1f}" if u.is_pixels else f"{u.length(px):.2f}"
+            parts.append(f"length {length} {u.length_label}")
         if "gap" in metrics:
             gap = metrics["gap"]
             parts.append(f"gap L/L* {gap:.3f}" if np.isfinite(gap) else "gap n/a")
@@ -150,13 +153,13 @@ class GridFrame:
                     continue
                 # a new axes: clearing it again would only rebuild its ticks (0.1-0.2 s a grid)
                 draw_world(ax, sc, 0.0, optimum=opt, clear=False, moving=False)
-                self._label(ax, i, k)
+                self._label(ax, sc, i, k)
                 # what moves, hidden until fill() places it: making 160 artists there cost
                 # 0.2-0.3 s of the grid's work after the run
                 self.layers[ax] = moving_layers(ax, sc)
             self.axes.append(axes)
             self.optima.append(opt)
-        _legend(self.subfigs[-1], self.scenarios[0].robot_radius)
+        _legend(self.subfigs[-1], self.scenarios[0])
         # Lay out once, and save with the layout fixed: savefig would otherwise draw the whole
         # figure twice (a layout pass with drawing off, then the real one), about 0.4 s of 2 s.
         keep_layout(fig)
@@ -170,15 +173,15 @@ class GridFrame:
         titles = [headline for _, headline, _ in blocks]
         return cls(scenarios, rows, cols, optimum, dpi, titles, [len(ts) for *_, ts in blocks])
 
-    def _label(self, ax, i: int, n: int) -> None:
+    def _label(self, ax, sc, i: int, n: int) -> None:
         """Axis labels of panel ``i`` of ``n``: y on the first column, x where none is below."""
         r, c = divmod(i, self.cols)
         if c == 0:
-            ax.set_ylabel("y (px)", fontsize=8)
+            ax.set_ylabel(axis_label(sc, "y"), fontsize=8)
         else:
             ax.tick_params(labelleft=False)
         if r == self.rows - 1 or i + self.cols >= n:
-            ax.set_xlabel("x (px)", fontsize=8)
+            ax.set_xlabel(axis_label(sc, "x"), fontsize=8)
         else:
             ax.tick_params(labelbottom=False)
 
@@ -298,9 +301,9 @@ def _checked_times(times, n_panels: int):
     return times
 
 
-def _legend(sub, robot_radius: float) -> None:
+def _legend(sub, scenario) -> None:
     """The legend and the time note, in the bottom sub-figure."""
-    handles = legend_handles(robot_radius)
+    handles = legend_handles(scenario.robot_radius, scenario.units)
     sub.legend(
         handles=handles,
         loc="upper center",

@@ -211,5 +211,33 @@ def format_time(t: float) -> str:
     return f"{t:.0f}" if abs(t - round(t)) < 1e-9 else f"{t:.1f}"
 
 
+def time_title(scenario: Scenario, t: float) -> str:
+    """A panel's title at time ``t`` (time steps): ``t = 12`` (steps), or in seconds for a
+    metre scenario (``t = 3 s``)."""
+    u = scenario.units
+    return f"t = {format_time(t)}" if u.is_pixels else f"t = {u.time(t):.4g} s"
+
+
+def axis_label(scenario: Scenario, axis: str) -> str:
+    """``"x (px)"``, or ``"x (m)"`` for a metre scenario."""
+    return f"{axis} ({scenario.units.length_label})"
+
+
+def metre_ticks(ax, scenario: Scenario) -> None:
+    """Ticks at round metres on a metre scenario's map panel (drawn in pixels); nothing for a
+    pixel scenario."""
+    u = scenario.units
+    if u.is_pixels:
+        return
+    from matplotlib.ticker import FixedLocator, FuncFormatter, MaxNLocator
+
+    for axis, size in ((ax.xaxis, scenario.width), (ax.yaxis, scenario.height)):
+        top = float(u.length(size))
+        ticks = MaxNLocator(nbins=6, steps=[1, 2, 2.5, 5, 10]).tick_values(0.0, top)
+        ticks = ticks[(ticks >= 0.0) & (ticks <= top * (1 + 1e-9))]
+        axis.set_major_locator(FixedLocator(u.length_to_px(ticks)))
+        axis.set_major_formatter(FuncFormatter(lambda v, _pos: f"{u.length(v):.6g}"))
+
+
 # --------------------------------------------------------------------------------------------
 # one map panel

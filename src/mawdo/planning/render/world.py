@@ -12,15 +12,17 @@ from mawdo.planning.render.style import (
     STYLE,
     TRACK_STEPS,
     active_replan,
-    format_time,
+    metre_ticks,
     reference_point,
     rings_of,
     route_of,
+    time_title,
     trail_until,
 )
 from mawdo.planning.run.result import PlanResult
 from mawdo.planning.world.geometry import inflate
 from mawdo.planning.world.scenario import Scenario
+from mawdo.planning.world.units import PIXELS, Units
 
 # drawing order of the line layers (obstacles: 2 static, 3 moving; robot 8)
 _ZORDER = {"track": 1.5, "optimum": 4, "plan": 5, "trail": 6, "start": 7, "goal": 7}
@@ -92,7 +94,9 @@ def draw_world(
         ax.set_ylim(0.0, scenario.height)
         ax.set_aspect("equal", adjustable="box")
         ax.tick_params(labelsize=small - 1, length=2, pad=1.5)
-    ax.set_title(f"t = {format_time(t)}" if title is None else title, fontsize=small + 1, pad=3)
+        metre_ticks(ax, scenario)
+    title = time_title(scenario, t) if title is None else title
+    ax.set_title(title, fontsize=small + 1, pad=3)
 
 
 def world_state(
@@ -173,7 +177,7 @@ def move_world(ax, layers: dict, scenario: Scenario, t: float, result, optimum=N
             return _redrawn(ax, layers, scenario, t, result, optimum)
         for a in arts:
             a.set_visible(data is not None)
-    ax.set_title(f"t = {format_time(t)}", fontsize=_SMALL + 1, pad=3)
+    ax.set_title(time_title(scenario, t), fontsize=_SMALL + 1, pad=3)
 
 
 def _redrawn(ax, layers: dict, scenario: Scenario, t: float, result, optimum) -> None:
@@ -255,8 +259,9 @@ def set_layer(artists: list, gid: str, data) -> bool:
     return True
 
 
-def legend_handles(robot_radius: float) -> list:
-    """Proxy artists for the figure legend, in the styles of :func:`draw_world`.
+def legend_handles(robot_radius: float, units: Units = PIXELS) -> list:
+    """Proxy artists for the figure legend, in the styles of :func:`draw_world`; the robot's
+    radius (pixels) and the track's length are written in ``units`` (the scenario's).
 
     Ordered so that a 5-column legend (filled column by column) pairs related entries:
     obstacles, their outline and track, the robot's path and plan, optimum and robot, start and
@@ -268,6 +273,7 @@ def legend_handles(robot_radius: float) -> list:
     s = STYLE
     lab = LEGEND_LABELS
     robot = s["robot"]
+    radius = f"r = {units.length(robot_radius):g} {units.length_label}"
     robot_marker = {
         "ls": "none",
         "marker": "o",
@@ -279,11 +285,17 @@ def legend_handles(robot_radius: float) -> list:
         Patch(label=lab["static"], **s["static"]),
         Patch(label=lab["moving"], **s["moving"]),
         Line2D([], [], label=lab["inflated"], **s["inflated"]),
-        Line2D([], [], label=lab["track"], **s["track"]),
+        Line2D([], [], label=_track_label(units), **s["track"]),
         Line2D([], [], label=lab["trail"], **s["trail"]),
         Line2D([], [], label=lab["plan"], **s["plan"]),
         Line2D([], [], label=lab["optimum"], **s["optimum"]),
-        Line2D([], [], label=f"{lab['robot']}, r = {robot_radius:g} px", **robot_marker),
+        Line2D([], [], label=f"{lab['robot']}, {radius}", **robot_marker),
         Line2D([], [], label=lab["start"], **s["start"]),
         Line2D([], [], label=lab["goal"], **s["goal"]),
     ]
+
+
+def _track_label(units: Units) -> str:
+    if units.is_pixels:
+        return LEGEND_LABELS["track"]
+    return f"obstacle track ({units.time(TRACK_STEPS):g} s)"

@@ -7,7 +7,11 @@ polygons simple, moving obstacles inside the map). Every problem is reported wit
 offending field, e.g. ``obstacles[2].radius: must be > 0``, in one :class:`ScenarioError`.
 
 Units: positions and sizes in pixels (x right, y up, origin at the lower-left map corner), time in
-time steps, speeds in pixels per time step.
+time steps, speeds in pixels per time step. A file may be written in metres and seconds instead
+(``units = "m"`` with ``dt`` and ``resolution``): :attr:`Scenario.spec` is then its pixel
+conversion, what every caller reads, while :meth:`Scenario.to_dict` writes the file back in
+metres and :attr:`Scenario.units` converts what the user reads (see
+:mod:`mawdo.planning.world.units` for why the conversion happens here).
 
 The file format (fields, validation and messages) is :mod:`mawdo.planning.world.scenario_schema`;
 its layout is shown there.
@@ -27,6 +31,7 @@ from pydantic import ValidationError
 
 from mawdo.planning.world.motion import BoundedRandomWalk, ConstantVelocity, Motion, Patrol, Static
 from mawdo.planning.world.scenario_schema import (
+    MAX_MAP_SIZE,
     MAX_RUN_STEPS,
     SCHEMA_VERSION,
     CircleObstacle,
@@ -38,9 +43,11 @@ from mawdo.planning.world.scenario_schema import (
     ScenarioSpec,
     field_errors,
     offset_bounds,
+    pixel_note,
     semantic_errors,
 )
 from mawdo.planning.world.scenario_text import ScenarioTextError, parse_scenario_text
+from mawdo.planning.world.units import PIXELS, Units, spec_to_pixels, spec_units, units_errors
 from mawdo.registry import Registry
 
 __all__ = [
@@ -53,6 +60,7 @@ __all__ = [
     "Scenario",
     "ScenarioError",
     "ScenarioSpec",
+    "Units",
     "get_scenario",
     "load_scenario",
     "scenario_from_dict",
@@ -74,7 +82,7 @@ class Obstacle:
     id : str
         Name from the file, or ``obstacle-<index>``.
     shape : CircleObstacle or PolygonObstacle
-        The validated shape spec (pixels), as written in the file.
+        The validated shape spec (pixels), as written in the file (a metre file: converted).
     motion : Motion
         Translation of the shape over time (see :mod:`mawdo.planning.world.motion`).
     """
@@ -111,13 +119,37 @@ class Scenario:
     Attributes
     ----------
     spec : ScenarioSpec
-        The validated file contents (round-trips with :meth:`to_dict`).
+        The validated scenario in pixels and time steps: the file's contents, or for a file in
+        metres (``units = "m"``) their conversion (:func:`~mawdo.planning.world.units
+        .spec_to_pixels`).
     obstacles : tuple of Obstacle
         Runtime obstacles, in file order.
+    file_spec : ScenarioSpec or None
+        The metre file's contents as written (round-trip with :meth:`to_dict`); None for a
+        pixel scenario, whose ``spec`` is its file. Replacing ``spec`` of a metre scenario
+        (``dataclasses.replace``) is refused: build it again from its dict instead.
     """
 
     spec: ScenarioSpec
     obstacles: tuple[Obstacle, ...]
+    file_spec: ScenarioSpec | None = None
+
+    def __post_init__(self) -> None:
+        if self.file_spec is None:
+            return
+        px = pixel_spec(self.file_spec, self.units, None)
+        if px.model_dump() != self.spec.model_dump():
+            raise ValueError(
+                f"scenario {self.file_spec.name!r}: spec is not the pixel conversion of "
+                "file_spec; change a metre scenario through its dict (to_dict, then "
+                "scenario_from_dict), not by replacing its spec"
+            )
+
+    @property
+    def units(self) -> Units:
+        """The units its user reads and writes: metres and seconds for a file with
+        ``units = "m"``, else pixels and time steps (every conversion the identity)."""
+        return PIXELS if self.file_spec is None else spec_units(self.file_spec)
 
     @property
     def name(self) -> str:
@@ -200,8 +232,13 @@ class Scenario:
         return np.stack([o.offset(t) for o in self.obstacles], axis=-2)
 
     def to_dict(self) -> dict:
-        """The scenario as a plain dict (JSON-compatible) that validates back to an equal one."""
-        return self.spec.model_dump(mode="json", exclude_none=True)
+        """The scenario as a plain dict (JSON-compatible) that validates back to an equal one,
+        in its file's units (a metre file's own values; ``units`` only when ``"m"``)."""
+        spec = self.spec if self.file_spec is None else self.file_spec
+        out = spec.model_dump(mode="json", exclude_none=True)
+        if out.get("units") == "px":
+            del out["units"]  # pixel files read and hash as they did before units existed
+        return out
 
 
 # --------------------------------------------------------------------------------------------
@@ -229,15 +266,43 @@ def _build_motion(ob, index: int, spec: ScenarioSpec) -> Motion:
 
 
 def scenario_from_spec(spec: ScenarioSpec, source: str | None = None) -> Scenario:
-    """Check a parsed spec as a whole and build the runtime :class:`Scenario`."""
-    errors = semantic_errors(spec)
+    """Check a parsed spec as a whole and build the runtime :class:`Scenario` (a spec in
+    metres is converted to pixels first; its messages keep the file's units)."""
+    errors = units_errors(spec)
+    if errors:
+        raise ScenarioError(errors, source)
+    units = spec_units(spec)
+    file_spec = None if units.is_pixels else spec
+    if file_spec is not None:
+        spec = pixel_spec(file_spec, units, source)
+    errors = semantic_errors(spec, units)
     if errors:
         raise ScenarioError(errors, source)
     obstacles = tuple(
         Obstacle(i, ob.id or f"obstacle-{i}", ob, _build_motion(ob, i, spec))
         for i, ob in enumerate(spec.obstacles)
     )
-    return Scenario(spec, obstacles)
+    return Scenario(spec, obstacles, file_spec)
+
+
+def pixel_spec(spec: ScenarioSpec, units: Units, source: str | None) -> ScenarioSpec:
+    """A metre spec converted to pixels and time steps, validated as a pixel file (its bounds
+    hold in pixels: a 10 km map at 5 cm per pixel is too large)."""
+    data = spec_to_pixels(spec.model_dump(exclude_none=True), units)
+    side = max(data["width"], data["height"])
+    if side > MAX_MAP_SIZE:  # every other bound then fails too: say what causes it
+        res, least = units.resolution, max(spec.width, spec.height) / MAX_MAP_SIZE
+        why = (
+            f"{res:g} m per px makes the {spec.width:g} x {spec.height:g} m map "
+            f"{data['width']:.4g} x {data['height']:.4g} px, more than the {MAX_MAP_SIZE:g} px "
+            f"a side the planner takes; give a resolution of at least {least:.3g} m per px"
+        )
+        raise ScenarioError([("resolution", why)], source)
+    try:
+        return ScenarioSpec.model_validate(data)
+    except ValidationError as exc:
+        note = pixel_note(units)
+        raise ScenarioError([(p, f"{m} ({note})") for p, m in field_errors(exc)], source) from None
 
 
 def scenario_from_dict(data: Any, source: str | None = None) -> Scenario:
@@ -258,7 +323,8 @@ def scenario_from_dict(data: Any, source: str | None = None) -> Scenario:
     if not isinstance(data, dict):
         raise ScenarioError([("", f"expected a table/object, got {type(data).__name__}")], source)
     try:
-        spec = ScenarioSpec.model_validate(data)
+        # a metre file's random-walk hold is in seconds (RandomWalkMotion)
+        spec = ScenarioSpec.model_validate(data, context={"units": data.get("units")})
     except ValidationError as exc:
         raise ScenarioError(field_errors(exc), source) from None
     return scenario_from_spec(spec, source)

@@ -3,7 +3,9 @@ scenario as a whole, and the messages that name each problem's field path
 (``obstacles[2].radius: must be > 0``), collected in one :class:`ScenarioError`.
 
 Units: positions and sizes in pixels, time in time steps, speeds in pixels per time step (see
-:mod:`mawdo.planning.world.scenario`).
+:mod:`mawdo.planning.world.scenario`); or, with ``units = "m"``, ``dt`` (seconds per time step)
+and ``resolution`` (metres per pixel), metres, seconds and metres per second
+(:mod:`mawdo.planning.world.units`).
 
 File layout (TOML)::
 
@@ -32,6 +34,13 @@ the written position; the route is closed through ``(0, 0)``; ``cycle = "back_an
 it instead; ``waits = [w0, w1, ...]`` stops it for that many steps at each point) and
 ``{ model = "bounded_random_walk", step = 1.5, hold = 5 }`` (speed at most
 ``step``, a new random velocity every ``hold`` steps).
+
+A file in metres and seconds adds (and must give ``width``, ``height`` and ``robot``: the pixel
+defaults mean nothing in metres)::
+
+    units = "m"
+    dt = 0.25                      # seconds per time step
+    resolution = 0.05              # metres per pixel
 """
 
 from __future__ import annotations
@@ -49,9 +58,14 @@ from pydantic import (
     Field,
     Tag,
     ValidationError,
+    ValidationInfo,
+    field_serializer,
+    field_validator,
 )
+from pydantic_core import PydanticCustomError
 
 from mawdo.planning.world.motion_bounds import motion_errors
+from mawdo.planning.world.units import PIXELS, Units
 
 __all__ = [
     "MAX_RUN_STEPS",
@@ -62,6 +76,7 @@ __all__ = [
     "ScenarioSpec",
     "field_errors",
     "offset_bounds",
+    "pixel_note",
     "semantic_errors",
 ]
 
@@ -129,11 +144,29 @@ class PatrolMotion(_Model):
 
 
 class RandomWalkMotion(_Model):
-    """Seeded random walk: speed at most ``step`` px per step, a new velocity every ``hold``."""
+    """Seeded random walk: speed at most ``step`` px per step, a new velocity every ``hold``
+    steps (a metre file: ``hold`` in seconds, a whole number of time steps)."""
 
     model: Literal["bounded_random_walk"] = "bounded_random_walk"
     step: float = Field(ge=0, le=MAX_MAP_SIZE)
     hold: int = Field(default=1, ge=1, le=10_000)
+
+    @field_validator("hold", mode="wrap")
+    @classmethod
+    def _hold_seconds(cls, value: Any, handler, info: ValidationInfo):
+        # a metre file (validation context units "m") gives seconds, checked as a whole
+        # number of steps once dt is known (units.spec_to_pixels); a pixel file an integer
+        if (info.context or {}).get("units") != "m":
+            return handler(value)
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            raise PydanticCustomError("float_type", "must be a number (seconds)")
+        if not value > 0 or not math.isfinite(value):
+            raise PydanticCustomError("greater_than", "", {"gt": 0})
+        return float(value)
+
+    @field_serializer("hold")
+    def _hold_out(self, value):
+        return value  # int steps, or float seconds in a metre file
 
 
 _MOTION_TAGS = ("static", "constant_velocity", "patrol", "bounded_random_walk")
@@ -214,6 +247,12 @@ class ScenarioSpec(_Model):
     name: str = "unnamed"
     description: str = ""
     seed: int = Field(default=0, ge=0, lt=2**63)
+    #: ``"m"``: the file is in metres and seconds, with ``dt`` (seconds per time step) and
+    #: ``resolution`` (metres per pixel); the default ``"px"`` is left out of
+    #: :meth:`Scenario.to_dict`, so pixel files read and hash as before.
+    units: Literal["px", "m"] = "px"
+    dt: float | None = None
+    resolution: float | None = None
     width: float = Field(default=366.0, gt=0, le=MAX_MAP_SIZE)
     height: float = Field(default=366.0, gt=0, le=MAX_MAP_SIZE)
     start: Point
@@ -271,6 +310,9 @@ def field_errors(exc: ValidationError) -> list[tuple[str, str]]:
         msg = make(err.get("ctx") or {}) if make else err["msg"]
         if err["type"] == "literal_error" and err["loc"] == ("schema_version",):
             msg = f"unsupported schema version {err['input']!r} (supported: {SCHEMA_VERSION})"
+        elif err["type"] == "literal_error" and err["loc"] == ("units",):
+            got = err["input"]
+            msg = f'must be "px" (pixels, time steps) or "m" (metres, seconds), got {got!r}'
         out.append((_format_loc(err["loc"]), msg))
     return out
 
@@ -281,29 +323,50 @@ def offset_bounds(shape, width: float, height: float) -> tuple[np.ndarray, np.nd
     return np.array([-xmin, -ymin]), np.array([width - xmax, height - ymax])
 
 
-def _border_message(x: float, y: float, W: float, H: float, r: float) -> str:
+class _Say:
+    """Numbers of a message in the file's units: lengths given in pixels are written in
+    ``units`` (metres for a metre file), with their label."""
+
+    def __init__(self, units: Units) -> None:
+        self.u, self.L = units, units.length_label
+
+    def __call__(self, *px: float) -> str | tuple[str, ...]:
+        out = tuple(f"{self.u.length(x):g}" for x in px)
+        return out[0] if len(out) == 1 else out
+
+
+def _border_message(x: float, y: float, W: float, H: float, r: float, say: _Say) -> str:
     """Why a point is refused for the robot's centre: its disc leaves the map."""
+    (x, y, Wu, Hu, ru), L = say(x, y, W, H, r), say.L
     if W < 2 * r or H < 2 * r:
         return (
-            f"({x:g}, {y:g}): the robot disc (radius {r:g} px) does not fit in the "
-            f"{W:g} x {H:g} px map; use a smaller robot radius or a larger map"
+            f"({x}, {y}): the robot disc (radius {ru} {L}) does not fit in the "
+            f"{Wu} x {Hu} {L} map; use a smaller robot radius or a larger map"
         )
+    lo_x, hi_x, hi_y = say(r, W - r, H - r)
     return (
-        f"({x:g}, {y:g}) is closer than the robot radius {r:g} px to the map border (the disc "
-        f"would leave the map); allowed: [{r:g}, {W - r:g}] x [{r:g}, {H - r:g}]"
+        f"({x}, {y}) is closer than the robot radius {ru} {L} to the map border (the disc "
+        f"would leave the map); allowed: [{lo_x}, {hi_x}] x [{lo_x}, {hi_y}]"
     )
 
 
-def semantic_errors(spec: ScenarioSpec) -> list[tuple[str, str]]:
-    """Whole-scenario checks that single fields cannot express."""
+def _outside(x: float, y: float, W: float, H: float, say: _Say) -> str:
+    x, y, W, H = say(x, y, W, H)
+    return f"({x}, {y}) is outside the map [0, {W}] x [0, {H}]"
+
+
+def semantic_errors(spec: ScenarioSpec, units: Units = PIXELS) -> list[tuple[str, str]]:
+    """Whole-scenario checks that single fields cannot express, on a pixel spec; the numbers
+    of the messages are written in ``units`` (the file's: a metre file reads its own numbers)."""
     W, H, r = spec.width, spec.height, spec.robot.radius
-    errors = _trip_errors(spec)
+    say = _Say(units)
+    errors = _trip_errors(spec, units)
     for name in ("start", "goal"):
         x, y = getattr(spec, name)
         if not (0.0 <= x <= W and 0.0 <= y <= H):
-            errors.append((name, f"({x:g}, {y:g}) is outside the map [0, {W:g}] x [0, {H:g}]"))
+            errors.append((name, _outside(x, y, W, H, say)))
         elif not (r <= x <= W - r and r <= y <= H - r):  # the border is a wall, as an obstacle
-            errors.append((name, _border_message(x, y, W, H, r)))
+            errors.append((name, _border_message(x, y, W, H, r, say)))
     seen: dict[str, int] = {}
     for i, ob in enumerate(spec.obstacles):
         path = f"obstacles[{i}]"
@@ -317,6 +380,8 @@ def semantic_errors(spec: ScenarioSpec) -> list[tuple[str, str]]:
             poly = shapely.Polygon(ob.vertices)
             if not poly.is_valid:
                 why = shapely.is_valid_reason(poly)
+                if not units.is_pixels:  # the reason's point is in pixels
+                    why += f"; at {units.resolution:g} m per px"
                 errors.append((f"{path}.vertices", f"polygon is not simple/valid ({why})"))
                 continue
             if poly.area <= 0.0:
@@ -343,11 +408,21 @@ def semantic_errors(spec: ScenarioSpec) -> list[tuple[str, str]]:
         for name in ("start", "goal"):
             if ob.distance(getattr(spec, name)) <= r:
                 who = f"obstacles[{i}]" + (f" ({ob.id!r})" if ob.id else "")
-                errors.append((name, f"inside {who} inflated by the robot radius {r:g} px at t=0"))
-    return errors + _spot_errors(spec) + motion_errors(spec, offset_bounds)
+                errors.append(
+                    (name, f"inside {who} inflated by the robot radius {say(r)} {say.L} at t=0")
+                )
+    moves = motion_errors(spec, offset_bounds)
+    if not units.is_pixels:  # its bounds are written in the planner's units
+        moves = [(p, f"{m} ({pixel_note(units)})") for p, m in moves]
+    return errors + _spot_errors(spec, say) + moves
 
 
-def _spot_errors(spec: ScenarioSpec) -> list[tuple[str, str]]:
+def pixel_note(units: Units) -> str:
+    """How a metre file's message written in pixels and time steps says so."""
+    return f"in pixels and time steps: {units.resolution:g} m per px, {units.dt:g} s per step"
+
+
+def _spot_errors(spec: ScenarioSpec, say: _Say) -> list[tuple[str, str]]:
     """Each waiting spot must hold the robot: its disc inside the map and clear of every
     static obstacle (movers may cross it: the time guide waits there only while it is safe)."""
     W, H, r = spec.width, spec.height, spec.robot.radius
@@ -358,41 +433,49 @@ def _spot_errors(spec: ScenarioSpec) -> list[tuple[str, str]]:
     for j, (x, y) in enumerate(spec.spots or []):
         path = f"spots[{j}]"
         if not (0.0 <= x <= W and 0.0 <= y <= H):
-            errors.append((path, f"({x:g}, {y:g}) is outside the map [0, {W:g}] x [0, {H:g}]; "
-                                 "move or drop the spot"))  # fmt: skip
+            errors.append((path, _outside(x, y, W, H, say) + "; move or drop the spot"))
             continue
         if not (r <= x <= W - r and r <= y <= H - r):
-            errors.append((path, _border_message(x, y, W, H, r) + "; move or drop the spot"))
+            errors.append((path, _border_message(x, y, W, H, r, say) + "; move or drop the spot"))
             continue
         for i, ob in statics:
             if ob.distance((x, y)) <= r:
                 who = f"obstacles[{i}]" + (f" ({ob.id!r})" if ob.id else "")
+                xs, ys = say(x, y)
                 errors.append(
-                    (path, f"({x:g}, {y:g}) is inside static {who} inflated by the robot "
-                           f"radius {r:g} px; a spot must hold the robot: move or drop it")
+                    (path, f"({xs}, {ys}) is inside static {who} inflated by the robot "
+                           f"radius {say(r)} {say.L}; a spot must hold the robot: move or drop it")
                 )  # fmt: skip
                 break
     return errors
 
 
-def _trip_errors(spec: ScenarioSpec) -> list[tuple[str, str]]:
+def _trip_errors(spec: ScenarioSpec, units: Units) -> list[tuple[str, str]]:
     """A goal away from the start, and a robot fast enough to cross the map in a bounded
     number of steps."""
     errors = []
+    say = _Say(units)
     if math.dist(spec.start, spec.goal) <= SAME_POINT:
-        x, y = spec.goal
-        errors.append(
-            ("goal", f"({x:g}, {y:g}) is the start: a run needs a goal away from the start")
-        )
+        x, y = say(*spec.goal)
+        errors.append(("goal", f"({x}, {y}) is the start: a run needs a goal away from the start"))
     diagonal, v = math.hypot(spec.width, spec.height), spec.robot.speed
     if diagonal / v > MAX_RUN_STEPS:
+        u, V, L, T = units, _per(units.speed_label), say.L, units.time_label
+        W, H = say(spec.width, spec.height)
+        lo, hi = u.speed(diagonal / MAX_RUN_STEPS), u.speed(MAX_MAP_SIZE)
+        m, steps = ("", "") if u.is_pixels else (" m", " steps")  # (pixel wording as it was)
         errors.append(
             (
                 "robot.speed",
-                f"{v:g} px per step is too slow for a {spec.width:g} x {spec.height:g} map: "
-                f"crossing its diagonal ({diagonal:.4g} px) would take {diagonal / v:.3g} steps, "
-                f"more than the {MAX_RUN_STEPS:,} a run may have; give a speed in "
-                f"[{diagonal / MAX_RUN_STEPS:.3g}, {MAX_MAP_SIZE:g}] px per step",
+                f"{u.speed(v):g} {V} is too slow for a {W} x {H}{m} map: crossing its "
+                f"diagonal ({u.length(diagonal):.4g} {L}) would take {u.time(diagonal / v):.3g} "
+                f"{T}, more than the {MAX_RUN_STEPS:,}{steps} a run may have; give a speed in "
+                f"[{lo:.3g}, {hi:g}] {V}",
             )
         )
     return errors
+
+
+def _per(label: str) -> str:
+    """``"px/step"`` as the messages write it (``px per step``); ``"m/s"`` as it is."""
+    return "px per step" if label == "px/step" else label
