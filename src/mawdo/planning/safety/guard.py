@@ -11,7 +11,11 @@ piecewise-linear motion, hit distance ``r + clearance``). The fallback order is:
    the margin from the map's border;
 3. the least-bad evasive move: of 16 headings at full and half speed (and waiting), one whose
    step keeps the margin (from the obstacles and the map's border) and gets closest to the
-   plan's next point, else the one with the largest clearance.
+   plan's next point, else the one with the largest clearance among those that stay off the
+   static obstacles and inside the map (a collision there is always the robot's own doing:
+   :mod:`mawdo.planning.judge.fault`), else the one with the largest clearance; moves whose
+   smallest clearance ties (a robot that starts the step overlapping) are ranked by the
+   clearance where they end.
 """
 
 from __future__ import annotations
@@ -28,6 +32,8 @@ from mawdo.util.stablesort import stable_argsort
 __all__ = ["Elite", "Guard"]
 
 _MIN = np.minimum.reduce  # (what ndarray.min calls, without its Python wrapper)
+#: Clearances (px) this close are a tie between evasive moves (then where a move ends decides).
+TIE_TOL = 1e-9
 
 
 @njit(cache=True)
@@ -167,8 +173,16 @@ class Guard:
     def step_clearance(self, pos: np.ndarray, to: np.ndarray, t: float, dt: float) -> float:
         """Smallest clearance (px, true radius) over a straight move ``pos -> to`` in ``dt``,
         to the obstacles and to the map's border (negative where the disc leaves the map)."""
+        return self.step_clearances(pos, to, t, dt)[0]
+
+    def step_clearances(self, pos, to, t: float, dt: float) -> tuple[float, float]:
+        """:meth:`step_clearance`, and the same to the static obstacles and the border only
+        (px): the part of it that only the robot's own motion can make negative."""
         rep = check_trajectory(np.vstack([pos, to]), self.scenario, times=np.array([t, t + dt]))
-        return min(float(rep.min_clearance), -rep.border_excess)
+        border = -rep.border_excess
+        static = self.scenario.static_indices
+        walls = float(rep.clearance[:, static].min()) if static and rep.clearance.size else np.inf
+        return min(float(rep.min_clearance), border), min(walls, border)
 
     def evasive_move(self, pos: np.ndarray, target: np.ndarray, t: float, dt: float, admit=None):
         """Best move over ``dt`` steps: ``(to, clearance, safe)`` (see the module docstring).
@@ -179,7 +193,7 @@ class Guard:
         v = self.scenario.robot_speed * dt
         dirs = unit_headings(16)
         moves = np.vstack([pos, pos + v * dirs, pos + 0.5 * v * dirs])
-        clear = np.array([self.step_clearance(pos, m, t, dt) for m in moves])
+        clear, walls = np.array([self.step_clearances(pos, m, t, dt) for m in moves]).T
         safe = clear >= self.clearance
         if safe.any():
             idx = np.nonzero(safe)[0]
@@ -190,6 +204,13 @@ class Guard:
                 if first is None:
                     return moves[best], float(clear[best]), False
                 best = first
-        else:
-            best = int(np.argmax(clear))
+        else:  # none keeps the margin: never into a wall or off the map if any move stays out
+            out = walls >= 0.0
+            key = np.where(out, clear, -np.inf) if out.any() else clear
+            top = np.nonzero(key >= key.max() - TIE_TOL)[0]
+            if len(top) > 1:  # e.g. the robot starts the step overlapping: the way out counts
+                end = [self.step_clearance(moves[i], moves[i], t + dt, 0.0) for i in top]
+                best = int(top[int(np.argmax(end))])
+            else:
+                best = int(top[0])
         return moves[best], float(clear[best]), bool(safe[best])

@@ -411,7 +411,9 @@ class Track(Motion):
 
     @property
     def is_static(self) -> bool:  # type: ignore[override]
-        return bool(np.all(self.offsets == self.offsets[0]))
+        """Always False: a tracked or predicted agent is a mover even while it stands (a
+        person at rest is not part of the map the guides are built on)."""
+        return False
 
     @property
     def top_speed(self) -> float:
