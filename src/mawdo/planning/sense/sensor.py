@@ -7,8 +7,8 @@ order, without identities: telling who is who is the tracker's job.
 
 Lines of sight go from the robot centre to three points of each disc: its centre and its two
 tangent points (where the sight lines graze the disc, the edges of its silhouette). The agent is
-visible when any of the three is, so a person half behind a pillar is still seen. Tests run in
-shapely, all sight lines of a step in one query.
+visible when any of the three is, so a person half behind a pillar is still seen
+(docs/deviations.md#d-sight-lines). Tests run in shapely, all sight lines of a step in one query.
 """
 
 from __future__ import annotations
