@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from mawdo.planning.sense.sensor import Sensor, sight_points, visible
+from mawdo.planning.sense.sensor import Sensor, Walls, sight_points, visible
 
 ROBOT = np.zeros(2)
 # a box wall between the robot at the origin and agents around x = 50
@@ -165,3 +165,21 @@ def test_an_unlimited_range_is_inf():
 def test_radii_must_match_centres():
     with pytest.raises(ValueError, match="radii"):
         read(Sensor(), [[1.0, 2.0], [3.0, 4.0]], [1.0])
+
+
+def test_prebuilt_walls_give_the_same_readings():
+    ring = 30.0 + 6.0 * np.column_stack(
+        [np.cos(np.arange(32) / 16 * np.pi), np.sin(np.arange(32) / 16 * np.pi)]
+    )
+    walls = [WALL, ring + (0.0, 30.0)]  # a box and a round pillar centred at (30, 60)
+    built = Walls(walls)
+    assert Walls.of(built) is built and len(built) == 2
+    centers = np.array([[50.0, 10.0], [50.0, 0.0], [60.0, 120.0], [15.0, 0.0], [-40.0, 5.0]])
+    radii = np.array([4.0, 4.0, 3.0, 2.0, 2.0])
+    # (60, 120) is straight behind the pillar: slope 2, the pillar's centre (30, 60) on that line
+    expect = [True, False, False, True, True]
+    assert visible(ROBOT, centers, radii, walls).tolist() == expect
+    assert visible(ROBOT, centers, radii, built).tolist() == expect
+    a = read(Sensor(noise=1.0), centers, radii, walls, seed=4)
+    b = read(Sensor(noise=1.0), centers, radii, built, seed=4)
+    assert np.array_equal(a.centers, b.centers) and len(a.centers) == 3

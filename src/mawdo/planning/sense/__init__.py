@@ -10,7 +10,7 @@ consume like the scenario's scripted ones.
 
 from mawdo.planning.sense.predict import PREDICTORS, Predicted, PredictorSpec, predict
 from mawdo.planning.sense.reading import Policy, Reading, Tracks
-from mawdo.planning.sense.sensor import Sensor
+from mawdo.planning.sense.sensor import Sensor, Walls
 from mawdo.planning.sense.tracker import Tracker
 
 __all__ = [
@@ -22,5 +22,6 @@ __all__ = [
     "Sensor",
     "Tracker",
     "Tracks",
+    "Walls",
     "predict",
 ]
