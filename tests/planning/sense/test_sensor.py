@@ -183,3 +183,38 @@ def test_prebuilt_walls_give_the_same_readings():
     a = read(Sensor(noise=1.0), centers, radii, walls, seed=4)
     b = read(Sensor(noise=1.0), centers, radii, built, seed=4)
     assert np.array_equal(a.centers, b.centers) and len(a.centers) == 3
+
+
+def _crosses(p, q, a, b):
+    """Segments pq and ab cross properly (general position: no touching, no collinearity)."""
+
+    def side(o, s, t):
+        return np.sign((s[0] - o[0]) * (t[1] - o[1]) - (s[1] - o[1]) * (t[0] - o[0]))
+
+    return side(p, q, a) != side(p, q, b) and side(a, b, p) != side(a, b, q)
+
+
+def test_visibility_agrees_with_a_loop_over_sight_lines_and_wall_edges():
+    # random triangles away from the robot; a sight line is blocked when it crosses an edge
+    # (its far end is never inside a wall here: the agents sit outside every triangle's box)
+    rng = np.random.default_rng(9)
+    walls = [rng.uniform(-60, 60, 2) + rng.uniform(-8, 8, (3, 2)) for _ in range(25)]
+    walls = [w for w in walls if np.hypot(*w.mean(axis=0)) > 15]
+    boxes = [(w.min(axis=0), w.max(axis=0)) for w in walls]
+    centers, radii = [], []
+    while len(centers) < 60:
+        c, r = rng.uniform(-80, 80, 2), rng.uniform(0.5, 3.0)
+        if all(np.any(c + r < lo) or np.any(c - r > hi) for lo, hi in boxes):
+            centers.append(c)
+            radii.append(r)
+    pts = sight_points(ROBOT, centers, radii)
+    expect = [
+        any(
+            not any(_crosses(ROBOT, end, w[k], w[(k + 1) % 3]) for w in walls for k in range(3))
+            for end in pts[i]
+        )
+        for i in range(len(centers))
+    ]
+    got = visible(ROBOT, centers, radii, walls)
+    assert got.tolist() == expect
+    assert 5 < sum(expect) < len(expect) - 5, sum(expect)  # both outcomes are exercised
