@@ -143,6 +143,17 @@ def test_oracle_refuses_a_truth_of_the_wrong_shape_and_bad_matches():
         predict("oracle", t, 0, 3, BOX, truth=good, agents=[2])
 
 
+def test_every_predictor_takes_the_uncertainty_options():
+    t = tracks([(50.0, 50.0)], [(1.0, 0.0)], position_sd=1.0)
+    opts = {"k_sd": 1.0, "tube_horizon": 3.0, "accel_sd": 0.0}
+    truth = {"truth": lambda times: np.zeros((len(times), 1, 2)) + (50.0, 50.0)}
+    for name, spec in PREDICTORS.items():
+        (p,) = predict(name, t, 0, 4, BOX, **opts, **(truth if spec.needs_truth else {}))
+        assert p.radius == (5.0 if spec.needs_truth else 6.0)
+    with pytest.raises(ValueError, match="k_sd"):
+        predict("oracle", t, 0, 4, BOX, k_sd=-1.0, **truth)
+
+
 def test_an_unknown_predictor_lists_the_known_ones():
     with pytest.raises(UnknownNameError) as err:
         predict("constant_velocit", tracks([(1, 1)], [(0, 0)]), 0, 3, BOX)

@@ -162,6 +162,11 @@ def test_an_unlimited_range_is_inf():
     assert "inf for an unlimited range" in str(pytest.raises(ValueError, Sensor, range=0).value)
 
 
+def test_the_random_source_must_be_a_generator():
+    with pytest.raises(TypeError, match="default_rng"):
+        Sensor().read(0, ROBOT, ROBOT, ROBOT, [[1.0, 1.0]], [1.0], [], 42)
+
+
 def test_radii_must_match_centres():
     with pytest.raises(ValueError, match="radii"):
         read(Sensor(), [[1.0, 2.0], [3.0, 4.0]], [1.0])

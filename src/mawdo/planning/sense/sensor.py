@@ -208,6 +208,11 @@ class Sensor:
         Reading
             The detected agents, their centres with noise, in random order.
         """
+        if not isinstance(rng, np.random.Generator):
+            raise TypeError(
+                f"rng must be a numpy.random.Generator (np.random.default_rng(seed)), "
+                f"not {type(rng).__name__}"
+            )
         c = np.asarray(centers, dtype=float).reshape(-1, 2)
         r = np.asarray(radii, dtype=float).reshape(-1)
         if len(r) != len(c):
