@@ -8,7 +8,7 @@ a tracker (:class:`~mawdo.planning.sense.tracker.Tracker`) turns readings into
 consume like the scenario's scripted ones.
 """
 
-from mawdo.planning.sense.predict import PREDICTORS, Predicted, PredictorSpec, predict
+from mawdo.planning.sense.predict import PREDICTORS, Predicted, PredictorSpec, run_predictor
 from mawdo.planning.sense.reading import Policy, Reading, Tracks
 from mawdo.planning.sense.sensor import Sensor, Walls
 from mawdo.planning.sense.tracker import Tracker
@@ -23,5 +23,5 @@ __all__ = [
     "Tracker",
     "Tracks",
     "Walls",
-    "predict",
+    "run_predictor",
 ]

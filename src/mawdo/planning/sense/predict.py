@@ -49,7 +49,7 @@ __all__ = [
     "constant_velocity",
     "match_agents",
     "oracle",
-    "predict",
+    "run_predictor",
     "stop",
     "tube_radius",
 ]
@@ -339,7 +339,7 @@ PREDICTORS.register(
 )
 
 
-def predict(name: str, tracks: Tracks, now, horizon, bounds, **options) -> list[Predicted]:
+def run_predictor(name: str, tracks: Tracks, now, horizon, bounds, **options) -> list[Predicted]:
     """Run the predictor registered as ``name`` (see :data:`PREDICTORS`); an unknown name is an
     error listing the known ones."""
     return PREDICTORS[name].predict(tracks, now, horizon, bounds, **options)
