@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from mawdo.planning.sense.sensor import Sensor, sight_points, visible
+from mawdo.planning.sense.sensor import Sensor, Walls, sight_points, visible
 
 ROBOT = np.zeros(2)
 # a box wall between the robot at the origin and agents around x = 50
@@ -162,6 +162,64 @@ def test_an_unlimited_range_is_inf():
     assert "inf for an unlimited range" in str(pytest.raises(ValueError, Sensor, range=0).value)
 
 
+def test_the_random_source_must_be_a_generator():
+    with pytest.raises(TypeError, match="default_rng"):
+        Sensor().read(0, ROBOT, ROBOT, ROBOT, [[1.0, 1.0]], [1.0], [], 42)
+
+
 def test_radii_must_match_centres():
     with pytest.raises(ValueError, match="radii"):
         read(Sensor(), [[1.0, 2.0], [3.0, 4.0]], [1.0])
+
+
+def test_prebuilt_walls_give_the_same_readings():
+    ring = 30.0 + 6.0 * np.column_stack(
+        [np.cos(np.arange(32) / 16 * np.pi), np.sin(np.arange(32) / 16 * np.pi)]
+    )
+    walls = [WALL, ring + (0.0, 30.0)]  # a box and a round pillar centred at (30, 60)
+    built = Walls(walls)
+    assert Walls.of(built) is built and len(built) == 2
+    centers = np.array([[50.0, 10.0], [50.0, 0.0], [60.0, 120.0], [15.0, 0.0], [-40.0, 5.0]])
+    radii = np.array([4.0, 4.0, 3.0, 2.0, 2.0])
+    # (60, 120) is straight behind the pillar: slope 2, the pillar's centre (30, 60) on that line
+    expect = [True, False, False, True, True]
+    assert visible(ROBOT, centers, radii, walls).tolist() == expect
+    assert visible(ROBOT, centers, radii, built).tolist() == expect
+    a = read(Sensor(noise=1.0), centers, radii, walls, seed=4)
+    b = read(Sensor(noise=1.0), centers, radii, built, seed=4)
+    assert np.array_equal(a.centers, b.centers) and len(a.centers) == 3
+
+
+def _crosses(p, q, a, b):
+    """Segments pq and ab cross properly (general position: no touching, no collinearity)."""
+
+    def side(o, s, t):
+        return np.sign((s[0] - o[0]) * (t[1] - o[1]) - (s[1] - o[1]) * (t[0] - o[0]))
+
+    return side(p, q, a) != side(p, q, b) and side(a, b, p) != side(a, b, q)
+
+
+def test_visibility_agrees_with_a_loop_over_sight_lines_and_wall_edges():
+    # random triangles away from the robot; a sight line is blocked when it crosses an edge
+    # (its far end is never inside a wall here: the agents sit outside every triangle's box)
+    rng = np.random.default_rng(9)
+    walls = [rng.uniform(-60, 60, 2) + rng.uniform(-8, 8, (3, 2)) for _ in range(25)]
+    walls = [w for w in walls if np.hypot(*w.mean(axis=0)) > 15]
+    boxes = [(w.min(axis=0), w.max(axis=0)) for w in walls]
+    centers, radii = [], []
+    while len(centers) < 60:
+        c, r = rng.uniform(-80, 80, 2), rng.uniform(0.5, 3.0)
+        if all(np.any(c + r < lo) or np.any(c - r > hi) for lo, hi in boxes):
+            centers.append(c)
+            radii.append(r)
+    pts = sight_points(ROBOT, centers, radii)
+    expect = [
+        any(
+            not any(_crosses(ROBOT, end, w[k], w[(k + 1) % 3]) for w in walls for k in range(3))
+            for end in pts[i]
+        )
+        for i in range(len(centers))
+    ]
+    got = visible(ROBOT, centers, radii, walls)
+    assert got.tolist() == expect
+    assert 5 < sum(expect) < len(expect) - 5, sum(expect)  # both outcomes are exercised

@@ -13,6 +13,7 @@ from mawdo.planning.sense.tracker import (
     mahalanobis2,
     process_noise,
     transition,
+    velocity_jump,
 )
 
 
@@ -192,7 +193,18 @@ def test_a_reversal_inside_the_disc_keeps_the_track():
     for k in range(7, 12):
         tracks = tracker.update(reading(k, [(xs[k], 20.0)]))
         assert tracks.ids.tolist() == [0]
-    assert np.allclose(tracks.velocities[0], (-2.0, 0.0), atol=0.2)
+        # a maneuver: the velocity is taken from the detection at once, not averaged in
+        assert np.allclose(tracks.velocities[0], (-2.0, 0.0), atol=0.01)
+
+
+def test_a_velocity_jump_is_a_widened_velocity_before_the_step():
+    rng = np.random.default_rng(2)
+    a = rng.normal(size=(4, 4))
+    p = a @ a.T
+    for dt in (1.0, 2.5):
+        f = transition(dt)
+        widened = p + np.diag([0.0, 0.0, 9.0, 9.0])
+        assert np.allclose(f @ widened @ f.T - f @ p @ f.T, velocity_jump(dt, 3.0))
 
 
 def test_readings_must_come_in_order_and_reset_restarts():

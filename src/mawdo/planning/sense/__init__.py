@@ -8,9 +8,9 @@ a tracker (:class:`~mawdo.planning.sense.tracker.Tracker`) turns readings into
 consume like the scenario's scripted ones.
 """
 
-from mawdo.planning.sense.predict import PREDICTORS, Predicted, PredictorSpec, predict
+from mawdo.planning.sense.predict import PREDICTORS, Predicted, PredictorSpec, run_predictor
 from mawdo.planning.sense.reading import Policy, Reading, Tracks
-from mawdo.planning.sense.sensor import Sensor
+from mawdo.planning.sense.sensor import Sensor, Walls
 from mawdo.planning.sense.tracker import Tracker
 
 __all__ = [
@@ -22,5 +22,6 @@ __all__ = [
     "Sensor",
     "Tracker",
     "Tracks",
-    "predict",
+    "Walls",
+    "run_predictor",
 ]

@@ -49,7 +49,7 @@ __all__ = [
     "constant_velocity",
     "match_agents",
     "oracle",
-    "predict",
+    "run_predictor",
     "stop",
     "tube_radius",
 ]
@@ -260,7 +260,17 @@ def match_agents(tracks: Tracks, true_centers) -> np.ndarray:
 
 
 def oracle(
-    tracks: Tracks, now, horizon, bounds, *, truth, agents=None, substeps=1
+    tracks: Tracks,
+    now,
+    horizon,
+    bounds,
+    *,
+    truth,
+    agents=None,
+    substeps=1,
+    k_sd=2.0,
+    tube_horizon=5.0,
+    accel_sd=0.2,
 ) -> list[Predicted]:
     """The true future: the upper bound of prediction, for evaluation only.
 
@@ -280,6 +290,9 @@ def oracle(
         Samples of the truth per time step (>= 1); the motion is linear between samples. The
         world moves its agents linearly between steps, so 1 is exact there; a scripted mover
         that bounces between two steps is cut short by at most half a step's travel.
+    k_sd, tube_horizon, accel_sd
+        Checked as for :func:`tube_radius` and otherwise unused, so that every predictor takes
+        the same options: the oracle's motion is exact and needs no margin.
 
     Returns
     -------
@@ -288,6 +301,7 @@ def oracle(
         uncertainty margin: the motion is the truth), starting at the agent's true centre.
     """
     now, horizon, _ = _check_window(now, horizon, bounds)
+    tube_radius(tracks, horizon, k_sd, tube_horizon, accel_sd)  # the same checks as the others
     substeps = check_int("substeps", substeps, 1)
     n_samples = int(np.ceil(horizon * substeps))
     times = _knot_times(now, horizon, np.arange(1, n_samples) / substeps)
@@ -325,7 +339,7 @@ PREDICTORS.register(
 )
 
 
-def predict(name: str, tracks: Tracks, now, horizon, bounds, **options) -> list[Predicted]:
+def run_predictor(name: str, tracks: Tracks, now, horizon, bounds, **options) -> list[Predicted]:
     """Run the predictor registered as ``name`` (see :data:`PREDICTORS`); an unknown name is an
     error listing the known ones."""
     return PREDICTORS[name].predict(tracks, now, horizon, bounds, **options)

@@ -8,9 +8,12 @@ A step of the tracker (:meth:`Tracker.update`):
 2. associates the detections with the tracks by the Hungarian method
    (:func:`scipy.optimize.linear_sum_assignment`) on the squared Mahalanobis distance of each
    detection from each predicted centre (:func:`mahalanobis2`), pairs outside the gate being
-   forbidden;
+   forbidden unless the detection lies inside the track's predicted disc;
 3. corrects the matched tracks with their detections (the Joseph form, which keeps the
-   covariance symmetric and positive semi-definite);
+   covariance symmetric and positive semi-definite); a pair admitted by the disc alone is a
+   maneuver (a turn, a bounce off a wall), and its track's covariance is first widened by
+   :func:`velocity_jump` so that it takes the new velocity at once
+   (docs/deviations.md#d-track-gate);
 4. counts a miss for every unmatched track, which stays reported at its predicted centre (with
    the predicted, growing covariance) until it has been missed on more than ``max_missed``
    consecutive steps, and then dies;
@@ -32,7 +35,14 @@ from scipy.optimize import linear_sum_assignment
 from mawdo.planning.sense.reading import Reading, Tracks
 from mawdo.util.validate import check_int, check_real
 
-__all__ = ["NOISE_FLOOR", "Tracker", "mahalanobis2", "process_noise", "transition"]
+__all__ = [
+    "NOISE_FLOOR",
+    "Tracker",
+    "mahalanobis2",
+    "process_noise",
+    "transition",
+    "velocity_jump",
+]
 
 #: Smallest measurement noise s.d. the filter assumes (pixels): a noiseless sensor still gets a
 #: filter with a positive-definite innovation covariance, and a tenth of a pixel is below any
@@ -62,6 +72,15 @@ def process_noise(dt: float, accel_sd: float) -> np.ndarray:
     g = np.array([0.5 * dt * dt, dt])
     # x and y independent: the same block on (x, vx) and on (y, vy)
     return np.kron(accel_sd**2 * np.outer(g, g), np.eye(2))
+
+
+def velocity_jump(dt: float, speed_sd: float) -> np.ndarray:
+    """Covariance added to a track that maneuvered, ``(4, 4)``: its velocity jumped at the start
+    of the last ``dt`` steps by a change of s.d. ``speed_sd`` per axis (pixels per time step), so
+    per axis ``speed_sd^2 h h^T`` with ``h = (dt, 1)``; the correction then takes the velocity
+    the detection shows instead of averaging it with the old one."""
+    h = np.array([dt, 1.0])
+    return np.kron(speed_sd**2 * np.outer(h, h), np.eye(2))
 
 
 def mahalanobis2(centers, cov, detections, noise_var: float) -> np.ndarray:
@@ -113,16 +132,17 @@ class Tracker:
         Association gate, a Mahalanobis distance (standard deviations), > 0: a detection may be
         matched with a track only when it is within ``gate`` of the predicted centre, or inside
         the track's disc there (a centre inside an agent's disc is that agent's under any noise
-        the filter expects; this lets a track follow an agent that bounced off a wall). The
-        default 4 leaves a detection outside it with probability ``exp(-8) = 3e-4``.
+        the filter expects; this lets a track follow an agent that bounced off a wall, as a
+        maneuver, see :func:`velocity_jump`). The default 4 leaves a detection outside it with
+        probability ``exp(-8) = 3e-4``.
     max_missed : int
         Most consecutive missed steps a track survives, >= 0: while missed it is predicted
         forward and reported; missed once more, it is dropped. The default 5 keeps a person who
         walks behind a pillar for five steps.
     birth_speed_sd : float
         S.d. of a new track's velocity per axis (pixels per time step), > 0: its velocity is 0
-        with this uncertainty until a second detection. The default 4 is the default robot
-        speed, above the speed of the scenes' movers.
+        with this uncertainty until a second detection; also the s.d. of a maneuver's velocity
+        jump. The default 4 is the default robot speed, above the speed of the scenes' movers.
 
     Notes
     -----
@@ -181,16 +201,20 @@ class Tracker:
             Every live track (matched, newly born, or predicted while missed), by increasing id.
         """
         step = int(reading.step)
+        dt = 1.0  # no track before the first reading: nothing is predicted or turned
         if self._step is not None:
             if step <= self._step:
                 raise ValueError(
                     f"reading of step {step} after step {self._step}: readings must come in "
                     "increasing steps; call reset() to start a new episode"
                 )
-            self._predict(float(step - self._step))
+            dt = float(step - self._step)
+            self._predict(dt)
         self._step = step
         z, radii = reading.centers, reading.radii
-        rows, cols = self._associate(z)
+        rows, cols, turned = self._associate(z)
+        if turned.any():
+            self._cov[rows[turned]] += velocity_jump(dt, self.birth_speed_sd)
         self._correct(rows, z[cols], radii[cols])
         missed = np.ones(len(self._ids), dtype=bool)
         missed[rows] = False
@@ -217,18 +241,22 @@ class Tracker:
         self._x = self._x @ f.T
         self._cov = f @ self._cov @ f.T + process_noise(dt, self.accel_sd)
 
-    def _associate(self, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Matched (track row, detection index) pairs, both sorted by track row."""
+    def _associate(self, z: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Matched (track row, detection index) pairs, sorted by track row, and whether each
+        pair is outside the Mahalanobis gate (admitted by the disc rule: a maneuver)."""
         if len(self._ids) == 0 or len(z) == 0:
-            return np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64)
+            none = np.empty(0, dtype=np.int64)
+            return none, none, np.empty(0, dtype=bool)
         centers = self._x[:, :2]
         d2 = mahalanobis2(centers, self._cov[:, :2, :2], z, self.noise_var)
         gap = np.hypot(*(z[None, :, :] - centers[:, None, :]).transpose(2, 0, 1))
         inside = gap <= (self._radius_sum / self._hits)[:, None]
-        allowed = (d2 <= self.gate**2) | inside
+        gated = d2 <= self.gate**2
+        allowed = gated | inside
         rows, cols = linear_sum_assignment(np.where(allowed, d2, _FORBIDDEN))
         keep = allowed[rows, cols]
-        return rows[keep], cols[keep]
+        rows, cols = rows[keep], cols[keep]
+        return rows, cols, ~gated[rows, cols]
 
     def _correct(self, rows: np.ndarray, z: np.ndarray, radii: np.ndarray) -> None:
         if len(rows) == 0:
