@@ -1,0 +1,88 @@
+"""Observed knowledge on scripted scenes that fool a constant-velocity predictor: a person who
+stops in front of the robot, one who turns, a head-on walker, one hidden behind a wall. The
+robot may wait or evade; it must never cause a collision, and a success must be real."""
+
+import numpy as np
+import pytest
+
+from mawdo.planning.run.episode import run_episode
+from mawdo.planning.run.policy import PlannerPolicy
+from mawdo.planning.sense.sensor import Sensor
+from mawdo.planning.world.scenario import scenario_from_dict
+from mawdo.planning.world.stepped import SteppedWorld
+
+
+def _scene(obstacles, start=(20.0, 60.0), goal=(180.0, 60.0)):
+    return scenario_from_dict({
+        "schema_version": 1, "name": "observed-test", "width": 200.0, "height": 120.0,
+        "start": list(start), "goal": list(goal), "robot": {"radius": 4.0, "speed": 4.0},
+        "obstacles": obstacles,
+    })  # fmt: skip
+
+
+def _run(sc, algorithm="guide_only", sensor=None, steps=200, seed=0):
+    policy = PlannerPolicy(algorithm, "quick", "observed", time_guide=True)
+    return run_episode(SteppedWorld(sc), policy, steps, seed=seed, sensor=sensor)
+
+
+def _assert_safe(res):
+    assert res.robot_caused == 0, res.reason
+    if res.success:  # a success is checker-approved against the realised motion
+        assert res.collision_free and res.other_collisions == 0
+
+
+HEAD_ON = {"shape": "circle", "center": [150.0, 60.0], "radius": 8.0,
+           "motion": {"velocity": [-2.5, 0.0]}}  # fmt: skip
+# walks toward the robot's line, then stops on it for 40 steps, then walks on
+STOPPER = {"shape": "circle", "center": [100.0, 100.0], "radius": 8.0,
+           "motion": {"model": "patrol", "waypoints": [[0.0, -40.0], [0.0, -80.0]],
+                      "speed": 2.0, "waits": [0.0, 40.0, 0.0], "cycle": "back_and_forth"}}  # fmt: skip
+# walks along the robot's line toward it, then turns across it
+TURNER = {"shape": "circle", "center": [150.0, 60.0], "radius": 8.0,
+          "motion": {"model": "patrol", "waypoints": [[-30.0, 0.0], [-30.0, 40.0]],
+                     "speed": 2.5, "cycle": "back_and_forth"}}  # fmt: skip
+
+
+@pytest.mark.parametrize("mover", [HEAD_ON, STOPPER, TURNER], ids=["head-on", "stops", "turns"])
+def test_observed_robot_never_causes_a_collision(mover):
+    res = _run(_scene([mover]))
+    _assert_safe(res)
+    assert res.success, res.reason  # room enough to evade in all three
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("mover", [HEAD_ON, STOPPER, TURNER], ids=["head-on", "stops", "turns"])
+def test_observed_mawdo_never_causes_a_collision(mover):
+    res = _run(_scene([mover]), algorithm="mawdo")
+    _assert_safe(res)
+    assert res.success, res.reason
+
+
+def test_a_walker_hidden_behind_a_wall_appears_and_is_avoided():
+    # a wall between the robot's start and a walker crossing its line further on; the sensor
+    # sees 60 px: the walker is detected only late, from behind the wall's end
+    wall = {"shape": "polygon", "vertices": [[60, 66], [110, 66], [110, 110], [60, 110]]}
+    walker = {"shape": "circle", "center": [120.0, 110.0], "radius": 6.0,
+              "motion": {"velocity": [0.0, -2.0]}}  # fmt: skip
+    sensor = Sensor(range=60.0)
+    res = _run(_scene([wall, walker], start=(20.0, 50.0), goal=(180.0, 50.0)), sensor=sensor)
+    _assert_safe(res)
+    assert res.success, res.reason
+
+
+def test_noisy_sensor_keeps_the_robot_blameless():
+    sc = _scene([HEAD_ON, TURNER])
+    for seed in range(3):
+        res = _run(sc, sensor=Sensor(noise=1.0), seed=seed)
+        _assert_safe(res)
+
+
+def test_observed_planner_ignores_the_scenarios_future():
+    # two scenes whose movers are identical until step 10 and then differ: the first ten
+    # decisions of an observing planner are the same (it cannot know what comes later)
+    a = {"shape": "circle", "center": [120.0, 60.0], "radius": 8.0,
+         "motion": {"model": "patrol", "waypoints": [[-20.0, 0.0], [-20.0, 40.0]], "speed": 2.0}}
+    b = {"shape": "circle", "center": [120.0, 60.0], "radius": 8.0,
+         "motion": {"model": "patrol", "waypoints": [[-20.0, 0.0], [-20.0, -40.0]], "speed": 2.0}}
+    ra, rb = _run(_scene([a]), steps=10), _run(_scene([b]), steps=10)
+    assert np.array_equal(ra.trajectory, rb.trajectory)
