@@ -34,9 +34,9 @@ def _assert_safe(res):
 HEAD_ON = {"shape": "circle", "center": [150.0, 60.0], "radius": 8.0,
            "motion": {"velocity": [-2.5, 0.0]}}  # fmt: skip
 # walks toward the robot's line, then stops on it for 40 steps, then walks on
-STOPPER = {"shape": "circle", "center": [100.0, 100.0], "radius": 8.0,
-           "motion": {"model": "patrol", "waypoints": [[0.0, -40.0], [0.0, -80.0]],
-                      "speed": 2.0, "waits": [0.0, 40.0, 0.0], "cycle": "back_and_forth"}}  # fmt: skip
+STOPPER = {"shape": "circle", "center": [100.0, 100.0], "radius": 8.0, "motion": {
+    "model": "patrol", "waypoints": [[0.0, -40.0], [0.0, -80.0]], "speed": 2.0,
+    "waits": [0.0, 40.0, 0.0], "cycle": "back_and_forth"}}  # fmt: skip
 # walks along the robot's line toward it, then turns across it
 TURNER = {"shape": "circle", "center": [150.0, 60.0], "radius": 8.0,
           "motion": {"model": "patrol", "waypoints": [[-30.0, 0.0], [-30.0, 40.0]],
