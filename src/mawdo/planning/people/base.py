@@ -72,7 +72,7 @@ def _array(name: str, value, shape: tuple, fix: str) -> np.ndarray:
         raise ValueError(f"{name} must have shape {shape}, got {a.shape}; {fix}")
     bad = np.flatnonzero(~np.isfinite(a).reshape(len(a), -1).all(axis=1)) if a.size else []
     if len(bad):
-        raise ValueError(f"{name}[{bad[0]}] = {a[bad[0]]!r} is not finite; {fix}")
+        raise ValueError(f"{name}[{bad[0]}] = {a[bad[0]].tolist()} is not finite; {fix}")
     return a.copy()
 
 
@@ -129,7 +129,7 @@ class People:
         bad = np.flatnonzero(~(self.radii > 0))
         if len(bad):
             raise ValueError(
-                f"radii[{bad[0]}] = {self.radii[bad[0]]!r} must be > 0; give the person's disc "
+                f"radii[{bad[0]}] = {self.radii[bad[0]]:g} must be > 0; give the person's disc "
                 "radius in pixels"
             )
         self.preferred_speed = _array(
@@ -138,7 +138,7 @@ class People:
         bad = np.flatnonzero(~(self.preferred_speed >= 0))
         if len(bad):
             raise ValueError(
-                f"preferred_speed[{bad[0]}] = {self.preferred_speed[bad[0]]!r} must be >= 0 "
+                f"preferred_speed[{bad[0]}] = {self.preferred_speed[bad[0]]:g} must be >= 0 "
                 "pixels per step"
             )
         self._vel = (

@@ -99,7 +99,7 @@ def _polygon(vertices, name: str) -> np.ndarray:
     if not poly.is_valid or poly.area <= 0:
         raise ValueError(
             f"{name} is not a simple polygon of positive area "
-            f"({shapely.validation.explain_validity(poly)}); list its corners in order around it"
+            f"({shapely.is_valid_reason(poly)}); list its corners in order around it"
         )
     return v
 
