@@ -11,7 +11,8 @@ starts on one side of the 10 m square and walks to a random point on the other. 
 A person who reaches its goal picks a new one as CrowdNav++ does (``end_goal_changing``,
 Shuijing725/CrowdNav_Prediction_AttnGraph): a fresh point drawn like a start (circle), or on the
 other side of the square (square crossing, our analogue); ``goal_changing=False`` keeps the
-original CrowdNav behaviour (people stop at their goals).
+original CrowdNav behaviour (people stop at their goals). Departures from CrowdNav:
+docs/deviations.md#d-crowdnav-scenes.
 
 Pixels: the map is a ``2 half_size`` square box (14 m x 14 m by default, 280 x 280 px at
 0.05 m/px) with CrowdNav's origin at its centre, so every start, goal and new goal lies at least
@@ -120,6 +121,22 @@ def _others(i: int, people: People, robot_position, robot_radius, robot_goal):
     return xy, goals, radii
 
 
+def _first_clear(draw, people, i, agents_xy, agents_r, gap, batch: int = 64):
+    """The first of the candidate goals ``draw(k) -> (k, 2)`` (tries in order, drawn ``batch``
+    at a time) that keeps ``r_i + r + gap`` from every agent point and whose disc is free; None
+    after ``MAX_TRIES``. Drawing in batches consumes whole batches of random numbers, so the goals
+    that follow differ from one-at-a-time draws, but the same seed gives the same goals."""
+    r = people.radii[i]
+    for _ in range(MAX_TRIES // batch):
+        cand = draw(batch)
+        d = np.hypot(*(cand[:, None, :] - agents_xy[None, :, :]).transpose(2, 0, 1))
+        ok = np.all(d >= r + agents_r + gap, axis=1)
+        for k in np.flatnonzero(ok):
+            if people.free(cand[k], [r])[0]:
+                return cand[k]
+    return None
+
+
 @dataclass(frozen=True, eq=False)
 class CircleGoals:
     """CrowdNav++'s ``update_human_goal`` (pixels): with probability ``change_chance`` a person
@@ -158,20 +175,16 @@ class CircleGoals:
         xy, goals, radii = _others(i, people, robot_position, robot_radius, self.robot_goal)
         v = people.preferred_speed[i] * self.noise_time
         width = self.unit_noise if v == 0 else v
-        r = people.radii[i]
-        for _ in range(MAX_TRIES):
-            angle = rng.random() * np.pi * 2
-            gx_noise = (rng.random() - 0.5) * width
-            gy_noise = (rng.random() - 0.5) * width
-            g = self.centre + self.radius * np.array([np.cos(angle), np.sin(angle)])
-            g = g + np.array([gx_noise, gy_noise])
-            if (
-                _clear(g, r, xy, radii, self.discomfort)
-                and _clear(g, r, goals, radii, self.discomfort)
-                and people.free(g, [r])[0]
-            ):
-                return g
-        return None
+
+        def draw(k):
+            u = rng.random((k, 3))  # (angle, x noise, y noise) per try, CrowdNav's order
+            angle = u[:, 0] * np.pi * 2
+            ring = self.radius * np.column_stack([np.cos(angle), np.sin(angle)])
+            return self.centre + ring + (u[:, 1:] - 0.5) * width
+
+        return _first_clear(
+            draw, people, i, np.vstack([xy, goals]), np.tile(radii, 2), self.discomfort
+        )
 
 
 @dataclass(frozen=True, eq=False)
@@ -201,14 +214,14 @@ class SquareGoals:
     def new_goal(self, i, people, robot_position, robot_radius, rng):
         _, goals, radii = _others(i, people, robot_position, robot_radius, self.robot_goal)
         side = 1.0 if people.positions()[i, 0] >= self.centre[0] else -1.0
-        r = people.radii[i]
-        for _ in range(MAX_TRIES):
-            g = self.centre + np.array(
-                [rng.random() * self.width * 0.5 * -side, (rng.random() - 0.5) * self.width]
+
+        def draw(k):
+            u = rng.random((k, 2))  # (x, y) per try, CrowdNav's order
+            return self.centre + np.column_stack(
+                [u[:, 0] * self.width * 0.5 * -side, (u[:, 1] - 0.5) * self.width]
             )
-            if _clear(g, r, goals, radii, self.discomfort) and people.free(g, [r])[0]:
-                return g
-        return None
+
+        return _first_clear(draw, people, i, goals, radii, self.discomfort)
 
 
 def _frozen(a) -> np.ndarray:

@@ -7,7 +7,7 @@ times ``1/dt``): the velocities it picks scale the same way (tested against a si
 metres and seconds). CrowdNav gives each human a simulator of its own in which the others have a
 zero preferred velocity; a human's new velocity depends only on its own preferred velocity and
 the others' positions, velocities and radii, so one shared simulator picks the same velocities
-(tested against a port of CrowdNav's per-human simulators).
+(tested against a port of CrowdNav's per-human simulators; docs/deviations.md#d-orca-people).
 """
 
 from __future__ import annotations

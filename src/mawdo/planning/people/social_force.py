@@ -17,6 +17,7 @@ force and sliding friction, which act only when discs overlap) are left out; the
 keeps people out of the walls instead.
 
 Units: pixels, time steps; :meth:`SocialForceParams.from_metres` converts the published values.
+Parameter values, what is left out and the sub-steps: docs/deviations.md#d-social-force.
 """
 
 from __future__ import annotations
@@ -107,7 +108,7 @@ class SocialForceParams:
         fov_angle: float = np.deg2rad(100.0),
         fov_weight: float = 0.5,
         max_speed_factor: float = 1.3,
-        substeps: int = 4,
+        substeps: int = 8,
     ) -> SocialForceParams:
         """Convert metre/second parameters at resolution ``res`` (m/px, > 0) and time step
         ``dt`` (s, > 0). Defaults: HM1995's ``tau = 0.5 s``, ``V0 = 2.1 m^2/s^2``,

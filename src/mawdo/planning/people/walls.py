@@ -2,7 +2,7 @@
 out of walls and inside the map.
 
 Units: pixels. A wall is a simple polygon given by its vertices, shape ``(k, 2)``, ``k >= 3``,
-in either orientation.
+in either orientation. Why people need a guard: docs/deviations.md#d-people-guard.
 """
 
 from __future__ import annotations
