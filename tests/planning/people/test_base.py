@@ -168,3 +168,20 @@ def test_people_never_enter_a_wall(model):
             assert path.distance(block) >= 6.0 - 1e-9
         assert np.all((now >= 6.0) & (now <= 194.0))
         prev = now
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_nobody_and_a_robot_that_comes_and_goes(model):
+    empty = make(model, np.zeros((0, 2)), np.zeros((0, 2)))
+    for visible in (True, False, True):
+        empty.step([100.0, 100.0], [1.0, 0.0], 6.0, visible)
+    assert empty.positions().shape == (0, 2) and empty.velocities().shape == (0, 2)
+    # one person: the robot toggling visible/invisible (a parked ORCA agent) changes nothing
+    # while it is far away
+    runs = []
+    for pattern in ((True, False) * 10, (False,) * 20):
+        crowd = make(model, [[20.0, 20.0]], [[20.0, 180.0]])
+        for visible in pattern:
+            crowd.step([190.0, 100.0], [0.0, 0.0], 6.0, visible)
+        runs.append(crowd.positions())
+    np.testing.assert_allclose(runs[0], runs[1], atol=1e-4)

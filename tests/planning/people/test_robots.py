@@ -198,3 +198,19 @@ def test_act_uses_the_tracker(cls):
         robot.act(reading), lone.decide([100.0, 20.0], [0.0, 4.0], sc.goal, tr)
     )
     assert tracker.readings == [reading]
+
+
+@pytest.mark.parametrize(
+    "cls, params", [(OrcaRobot, OrcaParams), (SocialForceRobot, SocialForceParams)]
+)
+def test_from_metres(cls, params):
+    robot = (
+        cls.from_metres(0.05, 0.25, time_horizon=2.0)
+        if cls is OrcaRobot
+        else cls.from_metres(0.05, 0.25, tau=1.0)
+    )
+    assert robot.arrival_time == pytest.approx(4.0) and robot.tracker is None
+    if cls is OrcaRobot:
+        assert robot.params == params.from_metres(0.05, 0.25, time_horizon=2.0)
+    else:
+        assert robot.params == params.from_metres(0.05, 0.25, tau=1.0)

@@ -109,6 +109,12 @@ class OrcaRobot(_TrackedRobot):
             raise ValueError("params must be an OrcaParams (e.g. OrcaParams.from_metres(res, dt))")
         self.params = params
 
+    @classmethod
+    def from_metres(cls, res: float, dt: float, tracker=None, **params) -> OrcaRobot:
+        """CrowdNav's ORCA robot at ``res`` (m/px) and ``dt`` (s): ``OrcaParams.from_metres``
+        (``params`` override its metre values) and a 1 s slow-down into the goal."""
+        return cls(OrcaParams.from_metres(res, dt, **params), 1.0 / dt, tracker)
+
     def _setup(self) -> None:
         self._orca = OrcaSim(self.params, self.polygons)
 
@@ -159,6 +165,13 @@ class SocialForceRobot(_TrackedRobot):
                 "params must be a SocialForceParams (e.g. SocialForceParams.from_metres(res, dt))"
             )
         self.params = params
+
+    @classmethod
+    def from_metres(cls, res: float, dt: float, tracker=None, **params) -> SocialForceRobot:
+        """The social force robot at ``res`` (m/px) and ``dt`` (s):
+        ``SocialForceParams.from_metres`` (``params`` override its metre values) and a 1 s
+        slow-down into the goal."""
+        return cls(SocialForceParams.from_metres(res, dt, **params), 1.0 / dt, tracker)
 
     def _setup(self) -> None:
         s = self.scenario
