@@ -80,9 +80,17 @@ def test_noisy_sensor_keeps_the_robot_blameless():
 def test_observed_planner_ignores_the_scenarios_future():
     # two scenes whose movers are identical until step 10 and then differ: the first ten
     # decisions of an observing planner are the same (it cannot know what comes later)
-    a = {"shape": "circle", "center": [120.0, 60.0], "radius": 8.0,
-         "motion": {"model": "patrol", "waypoints": [[-20.0, 0.0], [-20.0, 40.0]], "speed": 2.0}}
-    b = {"shape": "circle", "center": [120.0, 60.0], "radius": 8.0,
-         "motion": {"model": "patrol", "waypoints": [[-20.0, 0.0], [-20.0, -40.0]], "speed": 2.0}}
+    a = {
+        "shape": "circle",
+        "center": [120.0, 60.0],
+        "radius": 8.0,
+        "motion": {"model": "patrol", "waypoints": [[-20.0, 0.0], [-20.0, 40.0]], "speed": 2.0},
+    }
+    b = {
+        "shape": "circle",
+        "center": [120.0, 60.0],
+        "radius": 8.0,
+        "motion": {"model": "patrol", "waypoints": [[-20.0, 0.0], [-20.0, -40.0]], "speed": 2.0},
+    }
     ra, rb = _run(_scene([a]), steps=10), _run(_scene([b]), steps=10)
     assert np.array_equal(ra.trajectory, rb.trajectory)

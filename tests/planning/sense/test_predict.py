@@ -52,7 +52,8 @@ def test_constant_velocity_stops_where_the_disc_touches_the_border():
     # b: x stops at t = 5 (90 + t = 95) before y (20 - 2 t = 5 at t = 7.5)
     assert np.allclose(b.motion.offset(10.0), (5.0, -10.0))
     assert np.allclose(b.motion.offset(4.0), (4.0, -8.0))
-    assert still.motion.is_static
+    assert np.allclose(still.motion.offset([0.0, 5.0, 10.0]), 0.0)
+    assert not still.motion.is_static  # a standing person is a mover, never part of the map
     # the centre in world coordinates stays inside [r, 100 - r]
     centre = t.centers[1] + b.motion.offset(np.linspace(0, 10, 41))
     assert centre.min() >= 5.0 - 1e-12 and centre.max() <= 95.0 + 1e-12
@@ -61,7 +62,7 @@ def test_constant_velocity_stops_where_the_disc_touches_the_border():
 def test_a_disc_already_past_the_border_stops_at_once_unless_it_comes_back():
     t = tracks([(97.0, 50.0), (97.0, 50.0)], [(1.0, 0.0), (-1.0, 0.5)])
     out, back = run_predictor("constant_velocity", t, now=3, horizon=4, bounds=BOX)
-    assert out.motion.is_static
+    assert np.allclose(out.motion.offset([3.0, 5.0, 7.0]), 0.0)
     assert np.allclose(back.motion.offset(7.0), (-4.0, 2.0))
     assert np.allclose(border_stop_times([(97.0, 50.0)], [(-1.0, 0.0)], [5.0], BOX), 92.0)
 

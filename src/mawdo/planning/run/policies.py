@@ -14,7 +14,8 @@ straight               none        straight to the goal at full speed
 =====================  ==========  ====================================================
 
 A policy is built by ``make(options)``, ``options`` holding the planner preset and overrides,
-the sensor's noise (for the tracker) and the predictor's name; each entry takes what it needs.
+the sensor's noise (for the tracker, pixels), the predictor's name and the world's resolution
+``res`` (metres per pixel) and time step ``dt`` (seconds); each entry takes what it needs.
 """
 
 from __future__ import annotations
@@ -84,7 +85,9 @@ def _robot(cls_name: str):
     def make(options):
         from mawdo.planning.people import robots
 
-        return getattr(robots, cls_name)(tracker=_tracker(options))
+        # CrowdNav's settings in metres and seconds, at the world's resolution and time step
+        res, dt = options.get("res", 0.05), options.get("dt", 0.25)
+        return getattr(robots, cls_name).from_metres(res, dt, tracker=_tracker(options))
 
     return make
 

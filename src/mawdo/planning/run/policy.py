@@ -80,13 +80,17 @@ class PlannerPolicy:
         (:class:`mawdo.planning.sense.tracker.Tracker`) for an exact sensor.
     horizon : int
         How far ahead (time steps, >= 1) predictions reach; beyond it a prediction stands still.
+    predictor_options : dict, optional
+        Keyword options of the predictor (e.g. ``k_sd``, ``tube_horizon``:
+        :func:`~mawdo.planning.sense.predict.constant_velocity`).
     **overrides
         Fields of :class:`~mawdo.planning.run.config.PlannerConfig`.
     """
 
     def __init__(
         self, algorithm: str = "mawdo", config=None, knowledge: str = "observed",
-        predictor: str = "constant_velocity", tracker=None, horizon: int = 200, **overrides,
+        predictor: str = "constant_velocity", tracker=None, horizon: int = 200,
+        predictor_options=None, **overrides,
     ):  # fmt: skip
         from mawdo.planning.run.config import resolve_config
 
@@ -116,6 +120,7 @@ class PlannerPolicy:
                 )
             self.predict = spec.predict
         self.predictor, self.tracker = predictor, tracker
+        self.predictor_options = dict(predictor_options or {})
         self.name = f"{algorithm}-{knowledge}"
 
     def reset(self, scenario, seed) -> None:
@@ -148,7 +153,7 @@ class PlannerPolicy:
         moving as the predictor says (times from 0 = now), the robot starting where it is."""
         tracks = self.tracker.update(reading)
         sc = self.known
-        preds = self.predict(tracks, 0.0, float(self.horizon), sc.bounds)
+        preds = self.predict(tracks, 0.0, float(self.horizon), sc.bounds, **self.predictor_options)
         centre = {int(i): c for i, c in zip(tracks.ids, tracks.centers, strict=True)}
         movers = [(p.motion.times, centre[int(p.id)] + p.motion.offsets) for p in preds]
         radii = [p.radius for p in preds]

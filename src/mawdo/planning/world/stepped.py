@@ -188,6 +188,9 @@ class SteppedWorld:
         if length > speed * (1.0 + 1e-9):  # a policy cannot drive faster than the robot
             pts = np.vstack([self.position, move.points])
             move = Move((pts[1:] - self.position) * (speed / length) + self.position, move.fracs)
+        if self.people is not None:  # everyone acts on the same moment's state (as CrowdNav)
+            r = self.scenario.robot_radius
+            self.people.step(self.position, self.velocity, r, self.visible)
         start = self.position
         for p, f in zip(move.points, move.fracs, strict=True):
             self.route.append(p.copy())
@@ -195,9 +198,6 @@ class SteppedWorld:
         self.position = move.points[-1].copy()
         self.velocity = self.position - start
         self.trajectory.append(self.position.copy())
-        if self.people is not None:
-            r = self.scenario.robot_radius
-            self.people.step(self.position, self.velocity, r, self.visible)
         self.step_index += 1
         self._record_people()
 
