@@ -24,6 +24,19 @@ def test_diff_sees_every_kind_of_change():
     assert diff(a, _plain(a) | {"r": [{"n": 3, "latency": 9.0}]}) == []  # wall time only
 
 
+def test_a_field_added_at_its_default_is_no_difference_and_at_another_value_is():
+    a = {"spec": {"width": 10.0}, "success": True}
+    assert (
+        diff(a, {"spec": {"width": 10.0, "units": "px"}, "success": True, "robot_caused": None})
+        == []
+    )
+    assert diff(a, {"spec": {"width": 10.0, "units": "m"}, "success": True}) == [
+        ".spec keys ['units']"
+    ]
+    assert diff(a, {"spec": {"width": 10.0}, "success": True, "robot_caused": 0}) != []
+    assert diff(a, {"spec": {}, "success": True}) != []  # a field that went missing
+
+
 def test_seed_sequences_compare_by_state():
     a = _plain({"seed": np.random.SeedSequence(5, spawn_key=(1,))})
     assert diff(a, _plain({"seed": np.random.SeedSequence(5, spawn_key=(1,))})) == []
