@@ -24,6 +24,7 @@ SUITES = [
     "bench_startup",
     "bench_threads",
     "bench_scaling",
+    "bench_crowd",
 ]
 
 

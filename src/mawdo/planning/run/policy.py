@@ -33,6 +33,10 @@ __all__ = ["KNOWLEDGE", "PlannerPolicy", "StraightLine", "step_move"]
 #: The planner without an optimizer (the guides' best seed), a choice beside the optimizers.
 GUIDE_ONLY = "guide_only"
 
+#: How far short of the robot (px) a predicted disc's uncertainty margin stops when it would
+#: otherwise cover the robot (see PlannerPolicy._held_margin).
+MARGIN_SLACK = 1e-6
+
 #: What a planner may know about the moving agents.
 KNOWLEDGE = ("oracle", "observed")
 
@@ -154,11 +158,25 @@ class PlannerPolicy:
         tracks = self.tracker.update(reading)
         sc = self.known
         preds = self.predict(tracks, 0.0, float(self.horizon), sc.bounds, **self.predictor_options)
-        centre = {int(i): c for i, c in zip(tracks.ids, tracks.centers, strict=True)}
-        movers = [(p.motion.times, centre[int(p.id)] + p.motion.offsets) for p in preds]
-        radii = [p.radius for p in preds]
+        rows = {int(i): k for k, i in enumerate(tracks.ids)}
+        k = np.array([rows[int(p.id)] for p in preds], dtype=np.int64)
+        centres = tracks.centers[k] if len(k) else np.zeros((0, 2))
+        pairs = zip(preds, centres, strict=True)
+        movers = [(p.motion.times, c + p.motion.offsets) for p, c in pairs]
+        grown = np.array([p.radius for p in preds])
+        radii = self._held_margin(reading.position, centres, grown, tracks.radii[k])
         ids = [f"track-{int(p.id)}" for p in preds]
         return with_movers(sc, radii, movers, ids, start=reading.position)
+
+    def _held_margin(self, position, centres, radii, own) -> np.ndarray:
+        """Predicted radii whose uncertainty margin stops short of the robot: a margin that
+        already covers the robot (with the planner's clearance) would leave it no route at all,
+        not even away from the agent; the agent's own radius is never cut."""
+        if not len(radii):
+            return radii
+        gap = np.hypot(*(np.asarray(position) - centres).T)
+        room = gap - self.known.robot_radius - self.fitted.clearance - MARGIN_SLACK
+        return np.where(radii > room, np.maximum(own, room), radii)
 
     def _step_config(self, step: int):
         """The settings of one step's run: one step long; after the first, the budget of a

@@ -13,9 +13,10 @@ piecewise-linear motion, hit distance ``r + clearance``). The fallback order is:
    step keeps the margin (from the obstacles and the map's border) and gets closest to the
    plan's next point, else the one with the largest clearance among those that stay off the
    static obstacles and inside the map (a collision there is always the robot's own doing:
-   :mod:`mawdo.planning.judge.fault`), else the one with the largest clearance; moves whose
-   smallest clearance ties (a robot that starts the step overlapping) are ranked by the
-   clearance where they end.
+   :mod:`mawdo.planning.judge.fault`), else any; ranked by the clearance the robot keeps after
+   the move if it holds the move's velocity a few steps more (:data:`AHEAD`: running
+   straight away from a faster pursuer loses to stepping aside), the step's own clearance
+   breaking ties.
 """
 
 from __future__ import annotations
@@ -32,8 +33,11 @@ from mawdo.util.stablesort import stable_argsort
 __all__ = ["Elite", "Guard"]
 
 _MIN = np.minimum.reduce  # (what ndarray.min calls, without its Python wrapper)
-#: Clearances (px) this close are a tie between evasive moves (then where a move ends decides).
+#: Clearances (px) this close are a tie between evasive moves (then the step's own decides).
 TIE_TOL = 1e-9
+#: Moves the least-bad evasion looks ahead: it ranks moves by how clear the robot stays if it
+#: keeps the move's velocity that long (a step's own clearance only breaks ties).
+AHEAD = 4
 
 
 @njit(cache=True)
@@ -184,6 +188,16 @@ class Guard:
         walls = float(rep.clearance[:, static].min()) if static and rep.clearance.size else np.inf
         return min(float(rep.min_clearance), border), min(walls, border)
 
+    def ahead_clearance(self, pos, to, t: float, dt: float) -> float:
+        """Smallest clearance (px) after a move ``pos -> to`` over ``dt`` steps if the robot
+        then keeps that velocity for :data:`AHEAD` more moves (a wait keeps waiting): where a
+        move leads, the obstacles' and the border's."""
+        step = np.asarray(to, float) - np.asarray(pos, float)
+        pts = np.asarray(to, float) + np.arange(AHEAD + 1)[:, None] * step
+        times = t + dt * (1.0 + np.arange(AHEAD + 1))
+        rep = check_trajectory(pts, self.scenario, times=times)
+        return min(float(rep.min_clearance), -rep.border_excess)
+
     def evasive_move(self, pos: np.ndarray, target: np.ndarray, t: float, dt: float, admit=None):
         """Best move over ``dt`` steps: ``(to, clearance, safe)`` (see the module docstring).
 
@@ -206,11 +220,8 @@ class Guard:
                 best = first
         else:  # none keeps the margin: never into a wall or off the map if any move stays out
             out = walls >= 0.0
-            key = np.where(out, clear, -np.inf) if out.any() else clear
+            ahead = np.array([self.ahead_clearance(pos, m, t, dt) for m in moves])
+            key = np.where(out, ahead, -np.inf) if out.any() else ahead
             top = np.nonzero(key >= key.max() - TIE_TOL)[0]
-            if len(top) > 1:  # e.g. the robot starts the step overlapping: the way out counts
-                end = [self.step_clearance(moves[i], moves[i], t + dt, 0.0) for i in top]
-                best = int(top[int(np.argmax(end))])
-            else:
-                best = int(top[0])
+            best = int(top[int(np.argmax(clear[top]))])
         return moves[best], float(clear[best]), bool(safe[best])

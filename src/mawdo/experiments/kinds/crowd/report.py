@@ -70,9 +70,8 @@ def crowd_table(store: Store) -> Table:
         "discomfort", "min_separation_m", "length_m", "latency_p50_ms", "latency_p95_ms",
     ]  # fmt: skip
     rows = [[s, p, *(m[k] for k in keys)] for (s, p), m in crowd_summary(store).items()]
-    fmts = {c: ".3f" for c in COLUMNS[3:8]} | {"time (s)": ".2f", "min sep. (m)": ".3f",
-                                                "length (m)": ".2f", "p50 (ms)": ".1f",
-                                                "p95 (ms)": ".1f"}  # fmt: skip
+    fmts = {c: ".3f" for c in [*COLUMNS[3:7], "discomfort", "min sep. (m)"]}
+    fmts |= {"time (s)": ".2f", "length (m)": ".2f", "p50 (ms)": ".1f", "p95 (ms)": ".1f"}
     return Table(
         name="crowd", title="Crowd navigation (CrowdNav settings)", columns=COLUMNS, rows=rows,
         formats=fmts,
