@@ -66,12 +66,19 @@ def check_threads(threads: int) -> None:
         )
 
 
-def _prepare(sc, algorithm, seed, preset, static, threads, max_steps):
-    """The run, set up and checked; a run that may take minutes says so (stderr) first."""
+def _prepare(sc, algorithm, seed, preset, static, threads, max_steps, sense=None):
+    """The run, set up and checked; a run that may take minutes says so (stderr) first.
+    ``sense``: ``(knowledge, sensor)`` for a stepped run (a scenario with people, or
+    ``--knowledge observed``)."""
     from mawdo.planning.run.planner import prepare
 
     extra = {} if max_steps is None else {"max_steps": max_steps}
     run = prepare(sc, algorithm, seed, preset, not static, threads=threads, **extra)
+    if sense is not None:
+        from mawdo.planning.run.stepped_cli import stepped_run
+
+        run = stepped_run(sc, algorithm, seed, preset, run.step_limit()[0], *sense,
+                          threads=threads)  # fmt: skip
     steps, rule = run.step_limit()
     capped = rule > steps and max_steps is None
     seconds = run.estimate_seconds(steps)
@@ -83,6 +90,13 @@ def _prepare(sc, algorithm, seed, preset, static, threads, max_steps):
             note += f"; this run may take up to about {seconds / 60:.0f} min"
         typer.echo(note, err=True)
     return run
+
+
+def _sense(sc, knowledge, static, sensor_range, sensor_noise, miss_rate):
+    """``(knowledge, sensor)`` of a stepped run, or None for the planner's own run loop."""
+    from mawdo.planning.run.stepped_cli import sense_of
+
+    return sense_of(sc, knowledge, static, sensor_range, sensor_noise, miss_rate)
 
 
 @contextmanager
@@ -196,6 +210,16 @@ def run_cmd(
         help="step limit (default: 4 straight lines or 2 detours around the static obstacles, "
         "at most 20000)",
     ),
+    knowledge: str = typer.Option(
+        None,
+        help="what the planner knows of the moving agents: oracle (their future) or observed "
+        "(sensor, tracker, predictor each step); default observed with people, else oracle",
+    ),
+    sensor_range: float = typer.Option(None, min=0, help="sensor range (scenario units)"),
+    sensor_noise: float = typer.Option(
+        0.0, min=0, help="s.d. of sensed positions (scenario units)"
+    ),
+    miss_rate: float = typer.Option(0.0, min=0, max=0.999, help="chance to miss an agent"),
 ):
     """Plan and execute one run; print and save its metrics."""
     from mawdo.cli.errors import bad_input, check_output_dir, on_ctrl_c
@@ -205,14 +229,15 @@ def run_cmd(
     # every input is checked before --out is created (exit 2, as for the other commands)
     try:
         sc = _scenario(scenario)
-    except (KeyError, ValueError, FileNotFoundError) as exc:
+        sense = _sense(sc, knowledge, static, sensor_range, sensor_noise, miss_rate)
+    except (KeyError, ValueError, FileNotFoundError, ImportError) as exc:
         raise bad_input(exc) from None
     # the figures' process starts now: it imports matplotlib while this one sets its run up,
     # then lays the figures out while this one plans (ended unwritten if the input is bad)
     with early_figures(figures, sc, algorithm, seed, out / "snapshots.png", out / "run.gif") as job:
         try:
             with notice_compiles(progress):  # setting up the run compiles the kernels
-                run = _prepare(sc, algorithm, seed, preset, static, threads, max_steps)
+                run = _prepare(sc, algorithm, seed, preset, static, threads, max_steps, sense)
         except (KeyError, ValueError, FileNotFoundError) as exc:
             raise bad_input(exc) from None
         check_output_dir(out, "--out folder")

@@ -16,7 +16,7 @@ from mawdo.planning.run.result import PlanResult, Replan
 from mawdo.planning.sense.reading import Reading
 from mawdo.streams import episode_seed_sequences
 
-__all__ = ["perfect_reading", "run_episode"]
+__all__ = ["EpisodeRun", "perfect_reading", "run_episode"]
 
 
 def perfect_reading(world) -> Reading:
@@ -38,10 +38,12 @@ def _read(world, sensor, rng) -> Reading:
     )  # fmt: skip
 
 
-def _record(step: int, position, latency: float) -> Replan:
-    """A decision's record: the policy's wall time (its plan is its own business)."""
-    empty = np.zeros((0, 2))
-    return Replan(step, np.array(position), empty, np.nan, np.nan, 0, latency, 0, np.zeros(0))
+def _record(step: int, position, latency: float, policy) -> Replan:
+    """A decision's record: the policy's wall time, and its plan's waypoints when it shows
+    them (a ``waypoints`` attribute, pixels; for the figures' current plan)."""
+    way = getattr(policy, "waypoints", None)
+    way = np.zeros((0, 2)) if way is None else np.asarray(way, dtype=float).reshape(-1, 2)
+    return Replan(step, np.array(position), way, np.nan, np.nan, 0, latency, 0, np.zeros(0))
 
 
 def run_episode(
@@ -101,7 +103,7 @@ def run_episode(
         reading = _read(world, sensor, rng)
         t0 = time.perf_counter()
         action = policy.act(reading)
-        decisions.append(_record(step, world.position, time.perf_counter() - t0))
+        decisions.append(_record(step, world.position, time.perf_counter() - t0, policy))
         world.step(action)
     else:
         if world.at_goal():
@@ -121,3 +123,53 @@ def run_episode(
         min_clearance=float(rep.min_clearance), hits=int(rep.hits),
         robot_caused=len(mine) + len(rep.border), other_collisions=len(theirs),
     )  # fmt: skip
+
+
+class EpisodeRun:
+    """A stepped episode set up to run, with the interface of a planner's
+    :class:`~mawdo.planning.run.execute.Run` that the command line uses (``step_limit``,
+    ``estimate_seconds``, ``execute(progress)``).
+
+    Parameters
+    ----------
+    scenario : Scenario
+        The world: map, scripted obstacles and, from its ``[crowd]`` table, people.
+    policy : Policy
+        What drives the robot.
+    seed : int
+        The episode's seed (the people's, the sensor's and the policy's streams).
+    max_steps : int
+        Step limit, >= 1.
+    sensor : Sensor, optional
+        ``None``: every agent, exactly.
+    name : str
+        The result's ``algorithm``.
+    config : PlannerConfig, optional
+        Stored in the result.
+    """
+
+    def __init__(self, scenario, policy, seed, max_steps: int, sensor=None, name="policy",
+                 config=None):  # fmt: skip
+        from mawdo.planning.people.from_scenario import people_of
+        from mawdo.planning.world.stepped import SteppedWorld
+
+        self.scenario, self.policy, self.seed, self.max_steps = scenario, policy, seed, max_steps
+        self.sensor, self.name, self.config = sensor, name, config
+        self.known = None  # what the policy is told at reset (None: the scenario)
+        rng = np.random.default_rng(episode_seed_sequences(seed)["world"])
+        crowd = scenario.spec.crowd
+        people = people_of(scenario, rng)
+        self.world = SteppedWorld(scenario, people, visible=bool(crowd and crowd.visible))
+
+    def step_limit(self) -> tuple[int, int]:
+        """The step limit, twice (it is given, not derived)."""
+        return self.max_steps, self.max_steps
+
+    def estimate_seconds(self, steps: int) -> float:
+        """Unknown before the run: 0 (no warning is printed)."""
+        return 0.0
+
+    def execute(self, progress=None) -> PlanResult:
+        """Run the episode (:func:`run_episode`)."""
+        return run_episode(self.world, self.policy, self.max_steps, self.seed, self.sensor,
+                           self.name, self.config, progress, self.known)  # fmt: skip

@@ -145,7 +145,13 @@ class PlannerPolicy:
 
             self.tracker = Tracker(noise=0.0)
         self.tracker.reset()
-        self._guided = None  # the run whose guide the next predictions share
+        self.last = None
+
+    @property
+    def waypoints(self):
+        """The last step's plan (pixels, ``(m, 2)``), or None before the first step."""
+        last = getattr(self, "last", None)
+        return None if last is None or not last.replans else last.replans[-1].waypoints
 
     def act(self, reading: Reading):
         if self.knowledge == "oracle":

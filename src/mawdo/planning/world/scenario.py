@@ -128,11 +128,16 @@ class Scenario:
         The metre file's contents as written (round-trip with :meth:`to_dict`); None for a
         pixel scenario, whose ``spec`` is its file. Replacing ``spec`` of a metre scenario
         (``dataclasses.replace``) is refused: build it again from its dict instead.
+    derived_units : Units or None
+        The units of the scenario a derived one (a prediction, the realised world of a
+        stepped run: :mod:`mawdo.planning.world.stepped`) was made from, when it has no file of
+        its own; None otherwise.
     """
 
     spec: ScenarioSpec
     obstacles: tuple[Obstacle, ...]
     file_spec: ScenarioSpec | None = None
+    derived_units: Units | None = None
 
     def __post_init__(self) -> None:
         if self.file_spec is None:
@@ -149,7 +154,9 @@ class Scenario:
     def units(self) -> Units:
         """The units its user reads and writes: metres and seconds for a file with
         ``units = "m"``, else pixels and time steps (every conversion the identity)."""
-        return PIXELS if self.file_spec is None else spec_units(self.file_spec)
+        if self.file_spec is None:
+            return PIXELS if self.derived_units is None else self.derived_units
+        return spec_units(self.file_spec)
 
     @property
     def name(self) -> str:

@@ -64,6 +64,7 @@ from pydantic import (
 )
 from pydantic_core import PydanticCustomError
 
+from mawdo.planning.world.crowd_schema import CrowdSpec, crowd_errors
 from mawdo.planning.world.motion_bounds import motion_errors
 from mawdo.planning.world.units import PIXELS, Units
 
@@ -263,6 +264,9 @@ class ScenarioSpec(_Model):
     #: corners), added to the safe-interval guide's roadmap. None (the default) is left out
     #: of :meth:`Scenario.to_dict`, so files without spots read and hash as before.
     spots: list[Point] | None = None
+    #: People who react (:mod:`mawdo.planning.world.crowd_schema`); None is left out of
+    #: :meth:`Scenario.to_dict`.
+    crowd: CrowdSpec | None = None
 
 
 def _format_loc(loc: tuple) -> str:
@@ -414,7 +418,7 @@ def semantic_errors(spec: ScenarioSpec, units: Units = PIXELS) -> list[tuple[str
     moves = motion_errors(spec, offset_bounds)
     if not units.is_pixels:  # its bounds are written in the planner's units
         moves = [(p, f"{m} ({pixel_note(units)})") for p, m in moves]
-    return errors + _spot_errors(spec, say) + moves
+    return errors + _spot_errors(spec, say) + moves + crowd_errors(spec, units, say)
 
 
 def pixel_note(units: Units) -> str:

@@ -21,7 +21,7 @@ import numpy as np
 from mawdo.planning.world.motion import Track
 from mawdo.planning.world.scenario import CircleObstacle, Obstacle, Scenario
 
-__all__ = ["Move", "SteppedWorld", "bounding_disc", "static_part", "with_movers"]
+__all__ = ["Move", "SteppedWorld", "bounding_disc", "people_future", "static_part", "with_movers"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -97,7 +97,9 @@ def with_movers(scenario: Scenario, radii, tracks, ids=None, start=None) -> Scen
     update = {"obstacles": specs}
     if start is not None:
         update["start"] = (float(start[0]), float(start[1]))
-    return Scenario(scenario.spec.model_copy(update=update), tuple(obstacles))
+    units = scenario.units
+    return Scenario(scenario.spec.model_copy(update=update), tuple(obstacles),
+                    derived_units=None if units.is_pixels else units)  # fmt: skip
 
 
 def bounding_disc(obstacle: Obstacle, t: float) -> tuple[np.ndarray, float]:
@@ -223,4 +225,21 @@ def static_part(scenario: Scenario) -> Scenario:
         for j, i in enumerate(keep)
     )  # fmt: skip
     specs = [scenario.spec.obstacles[i] for i in keep]
-    return Scenario(scenario.spec.model_copy(update={"obstacles": specs}), obstacles)
+    units = None if scenario.units.is_pixels else scenario.units
+    spec = scenario.spec.model_copy(update={"obstacles": specs})
+    return Scenario(spec, obstacles, derived_units=units)
+
+
+def people_future(scenario: Scenario, people, steps: int) -> Scenario:
+    """``scenario`` plus every person's next ``steps`` steps as they walk without the robot
+    (it is invisible to them): their exact future when they do not see it, an estimate when
+    they do. ``people`` is stepped (pass a fresh copy)."""
+    far = np.array([-1e9, -1e9])
+    track = [np.array(people.positions(), dtype=float)]
+    for _ in range(int(steps)):
+        people.step(far, np.zeros(2), scenario.robot_radius, False)
+        track.append(np.array(people.positions(), dtype=float))
+    track = np.stack(track, axis=1)  # (people, steps + 1, 2)
+    times = np.arange(int(steps) + 1, dtype=float)
+    ids = [f"person-{j}" for j in range(len(track))]
+    return with_movers(scenario, people.radii, [(times, t) for t in track], ids)

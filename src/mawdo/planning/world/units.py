@@ -220,6 +220,13 @@ def spec_to_pixels(data: dict[str, Any], units: Units) -> dict[str, Any]:
     robot = data["robot"]
     out["robot"] = {**robot, "radius": L(robot["radius"]), "speed": V(robot["speed"])}
     out["obstacles"] = [_obstacle(ob, L, V, T) for ob in data.get("obstacles", [])]
+    if data.get("crowd") is not None:
+        people = [
+            {**p, "start": _points(p["start"], L), "goal": _points(p["goal"], L),
+             "radius": L(p["radius"]), "speed": V(p["speed"])}
+            for p in data["crowd"]["people"]
+        ]  # fmt: skip
+        out["crowd"] = {**data["crowd"], "people": people}
     return out
 
 

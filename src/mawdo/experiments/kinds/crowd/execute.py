@@ -76,17 +76,9 @@ def world_of(scene, seed: int):
 def future_of(scene, seed: int, steps: int):
     """The scenario with every person's future as if the robot were absent (exact for an
     invisible robot): what an ``oracle`` policy is told."""
-    from mawdo.planning.world.stepped import with_movers
+    from mawdo.planning.world.stepped import people_future
 
-    people = _people(scene, seed)
-    far = np.array([-1e6, -1e6])
-    track = [np.array(people.positions(), dtype=float)]
-    for _ in range(steps):
-        people.step(far, np.zeros(2), scene.scenario.robot_radius, False)
-        track.append(np.array(people.positions(), dtype=float))
-    track = np.stack(track, axis=1)  # (people, steps + 1, 2)
-    times = np.arange(steps + 1, dtype=float)
-    return with_movers(scene.scenario, people.radii, [(times, t) for t in track])
+    return people_future(scene.scenario, _people(scene, seed), steps)
 
 
 def _sensor(spec: dict, res: float):

@@ -1,0 +1,81 @@
+"""What ``mawdo plan run`` needs for a stepped run: the knowledge and sensor settings checked,
+and the run built (:class:`~mawdo.planning.run.episode.EpisodeRun`).
+
+A scenario with people (a ``[crowd]`` table) always runs in the stepped world; so does any
+scenario with ``--knowledge observed``. ``oracle`` knowledge with people is offered only when they
+do not see the robot (their future is then theirs alone: the world records it beforehand).
+"""
+
+from __future__ import annotations
+
+import math
+
+from mawdo.planning.run.policy import KNOWLEDGE
+
+__all__ = ["sense_of", "stepped_run"]
+
+
+def sense_of(sc, knowledge, static: bool, sensor_range, sensor_noise, miss_rate):
+    """``(knowledge, sensor)`` for a stepped run, or ``None`` for the planner's own loop.
+
+    Raises
+    ------
+    ValueError
+        An unknown knowledge, ``observed`` with ``--static``, oracle knowledge of people who see
+        the robot, or sensor settings with oracle knowledge; each message says what to change.
+    """
+    crowd = sc.spec.crowd
+    if knowledge is not None and knowledge not in KNOWLEDGE:
+        raise ValueError(f"--knowledge {knowledge!r}: give one of {', '.join(KNOWLEDGE)}")
+    knowledge = knowledge or ("observed" if crowd is not None else "oracle")
+    sensed = sensor_range is not None or sensor_noise > 0 or miss_rate > 0
+    if knowledge == "oracle" and sensed:
+        raise ValueError("--sensor-range/--sensor-noise/--miss-rate need --knowledge observed")
+    if static and (knowledge == "observed" or crowd is not None):
+        raise ValueError("--static plans once on a frozen map: it takes no people and no "
+                         "--knowledge observed; drop --static")  # fmt: skip
+    if knowledge == "oracle" and crowd is not None and crowd.visible:
+        raise ValueError("--knowledge oracle: these people see the robot, so their future is "
+                         "not known beforehand; use --knowledge observed")  # fmt: skip
+    if crowd is not None and crowd.model == "orca":
+        from mawdo.planning.people.orca import require_pyrvo
+
+        require_pyrvo()  # ImportError naming the extra to install
+    if knowledge == "oracle" and crowd is None:
+        return None
+    return knowledge, _sensor(sc, sensor_range, sensor_noise, miss_rate) if sensed else None
+
+
+def _sensor(sc, sensor_range, sensor_noise, miss_rate):
+    from mawdo.planning.sense.sensor import Sensor
+
+    px = sc.units.length_to_px
+    rng = math.inf if sensor_range is None else px(sensor_range)
+    return Sensor(range=rng, noise=px(sensor_noise), miss_rate=miss_rate)
+
+
+def stepped_run(sc, algorithm, seed, preset, max_steps: int, knowledge: str, sensor, threads=1):
+    """The :class:`~mawdo.planning.run.episode.EpisodeRun` of ``mawdo plan run``: our planner
+    with that knowledge, the people of the scenario, ``max_steps`` steps."""
+    from mawdo.planning.run.episode import EpisodeRun
+    from mawdo.planning.run.policy import PlannerPolicy
+    from mawdo.planning.world.stepped import people_future
+
+    run = EpisodeRun(sc, None, seed, max_steps, sensor, name=f"{algorithm}-{knowledge}")
+    if knowledge == "observed":
+        from mawdo.planning.sense.tracker import Tracker
+
+        tracker = Tracker(noise=0.0 if sensor is None else sensor.noise)
+        run.policy = PlannerPolicy(algorithm, preset, "observed", tracker=tracker,
+                                   threads=threads)  # fmt: skip
+    else:  # invisible people: their future recorded on a copy, told to the planner
+        import numpy as np
+
+        from mawdo.planning.people.from_scenario import people_of
+        from mawdo.streams import episode_seed_sequences
+
+        rng = np.random.default_rng(episode_seed_sequences(seed)["world"])  # the world's own
+        run.known = people_future(sc, people_of(sc, rng), max_steps)
+        run.policy = PlannerPolicy(algorithm, preset, "oracle", threads=threads)
+    run.config = run.policy.config
+    return run
