@@ -39,7 +39,10 @@ class ArenaRow(RunRow):
     steps), ``time_gap`` = arrival step / ``t_star`` (NaN unless the run succeeded), and the
     checker's ``active_collisions`` (the robot moving) and ``passive_collisions`` (the robot at
     rest, hit by an obstacle); ``inevitable`` counts the steps at which no option kept a safe
-    continuation. Stores made before these columns existed read them as None.
+    continuation; ``robot_caused`` the collisions the robot's own motion produced, for runs
+    stepped in a world (observed knowledge; None for the others:
+    :func:`~mawdo.planning.judge.fault.blame`). Stores made before these columns existed read
+    them as None.
     """
 
     status: str | None = column("text", required=True)
@@ -69,6 +72,7 @@ class ArenaRow(RunRow):
     active_collisions: int | None = column("int")
     passive_collisions: int | None = column("int")
     inevitable: int | None = column("int")
+    robot_caused: int | None = column("int")
 
 
 #: Row fields a caller that needs no trace or scene text leaves unread (large blobs).
@@ -131,6 +135,7 @@ def row_metrics(res, l_star: float, t_star: float | None = None) -> dict[str, An
         out[col] = None if out[col] is None else int(out[col])
     for col in _NONE_IF_NAN:
         out[col] = None if np.isnan(out[col]) else out[col]
+    out["robot_caused"] = getattr(res, "robot_caused", None)
     return out
 
 

@@ -177,6 +177,24 @@ CROWD_PRESETS: dict[str, dict[str, Any]] = {
             "straight",
         ],  # fmt: skip
     },
+    # the headline setting in full: circle crossing, 5 people who do not see the robot
+    "crowdnav-circle5": {
+        "name": "crowdnav-circle5",
+        "settings": ["circle-5-invisible"],
+        "n": 500,
+        "policies": ["mawdo", "guide_only", "mawdo_oracle", "orca_robot", "social_force_robot",
+                     "straight"],  # fmt: skip
+        "batch_size": 25,
+    },
+    # every setting, 100 episodes each
+    "crowdnav-100": {
+        "name": "crowdnav-100",
+        "settings": _SETTINGS_ALL,
+        "n": 100,
+        "policies": ["mawdo", "guide_only", "mawdo_oracle", "orca_robot", "social_force_robot",
+                     "straight"],  # fmt: skip
+        "batch_size": 25,
+    },
     # the headline setting only, fewer episodes: minutes, not hours
     "crowdnav-quick": {
         "name": "crowdnav-quick",
