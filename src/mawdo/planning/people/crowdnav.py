@@ -22,7 +22,7 @@ Pixels: the map is a ``2 half_size`` square box (14 m x 14 m by default, 280 x 2
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -30,6 +30,7 @@ from mawdo.planning.people.base import KeepGoal, People
 from mawdo.planning.people.orca import OrcaParams, OrcaPeople
 from mawdo.planning.people.social_force import SocialForceParams, SocialForcePeople
 from mawdo.planning.world.scenario import Scenario, scenario_from_dict
+from mawdo.planning.world.units import Units
 
 __all__ = [
     "CircleGoals",
@@ -365,8 +366,10 @@ def _scene(rule, n_people, seed, visible, res, dt, model, goal_changing, half_si
         "goal": (origin + np.array([0.0, CIRCLE_RADIUS]) / res).tolist(),
         "robot": {"radius": ROBOT_RADIUS / res, "speed": ROBOT_SPEED * dt / res},
     }
+    # a pixel scenario that reads and draws in metres and seconds (CrowdNav's units)
+    scenario = replace(scenario_from_dict(spec), derived_units=Units("m", float(dt), float(res)))
     return CrowdScene(
-        scenario=scenario_from_dict(spec),
+        scenario=scenario,
         rule=rule,
         model=model,
         positions=_frozen(origin + starts / res),

@@ -28,10 +28,10 @@ _SETTING = re.compile(r"^(circle|square)-(\d+)-(visible|invisible)$")
 def parse_setting(name: str) -> tuple[str, int, bool]:
     """``(scene, people, visible)`` of a setting name; ``ValueError`` naming the form."""
     m = _SETTING.match(str(name).strip().lower())
-    if m is None or not 1 <= int(m.group(2)) <= 50:
+    if m is None or not 0 <= int(m.group(2)) <= 50:
         raise ValueError(
             f"unknown crowd setting {name!r}: write <scene>-<people>-<visibility> with scene "
-            f"circle or square, 1-50 people, visible or invisible (e.g. circle-5-invisible)"
+            f"circle or square, 0-50 people, visible or invisible (e.g. circle-5-invisible)"
         )
     return m.group(1), int(m.group(2)), m.group(3) == "visible"
 

@@ -80,8 +80,11 @@ def crowd_table(store: Store) -> Table:
     )  # fmt: skip
 
 
-def write_crowd_report(store_path, out_dir, **_options) -> Path:
-    """The table (Markdown, LaTeX, CSV) and ``crowd.md`` into ``out_dir``; returns its path."""
+def write_crowd_report(store_path, out_dir, *, figures: bool = True, **_options) -> Path:
+    """The table (Markdown, LaTeX, CSV), the figures (rates per setting and policy; one
+    episode of each policy, re-run) and ``crowd.md`` into ``out_dir``; returns its path."""
+    from mawdo.experiments.kinds.crowd.figures import episode_figure, rates_figure
+
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     with Store.read(store_path) as store:
@@ -91,9 +94,15 @@ def write_crowd_report(store_path, out_dir, **_options) -> Path:
         say("crowd table")
         table = crowd_table(store)
         errors = [(a, s, r.run, r.error_text) for a, s, r in store.rows() if r.error_text]
+        figs = []
+        if figures:
+            say("figures: rates, and episode 0 re-run with every policy")
+            figs = [rates_figure(store, crowd_summary(store), out)]
+            figs += [f for f in [episode_figure(store, out)] if f is not None]
     for ext, f in (("md", to_markdown), ("tex", to_latex), ("csv", to_csv)):
         (out / f"crowd_table.{ext}").write_text(f(table))
-    md = [f"# Crowd navigation: {plan.name}", "", plan.describe(), "", to_markdown(table)]
+    md = [f"# Crowd navigation: {plan.name}", "", plan.describe(), "", to_markdown(table), ""]
+    md += [f"![{p.stem}]({p.name})\n" for p in figs]
     if errors:
         md += ["", "## Runs that raised", ""]
         md += [f"- {a} on {s} episode {k}: {e}" for a, s, k, e in errors]
