@@ -13,7 +13,7 @@ def test_settings_parse_and_normalise():
     assert plan.settings == ("circle-5-visible",)
 
 
-@pytest.mark.parametrize("bad", ["circle-51-visible", "circle-5", "ring-5-visible", "circle-5-seen"])
+@pytest.mark.parametrize("bad", ["circle-51-visible", "circle-5", "ring-5-seen", "circle-5-x"])
 def test_a_bad_setting_names_the_form(bad):
     with pytest.raises((ValueError, PlanError), match="<scene>-<people>-<visibility>"):
         CrowdPlan.from_dict({"settings": [bad]})

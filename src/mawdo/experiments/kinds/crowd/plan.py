@@ -182,8 +182,14 @@ CROWD_PRESETS: dict[str, dict[str, Any]] = {
         "name": "crowdnav-circle5",
         "settings": ["circle-5-invisible"],
         "n": 500,
-        "policies": ["mawdo", "guide_only", "mawdo_oracle", "orca_robot", "social_force_robot",
-                     "straight"],  # fmt: skip
+        "policies": [
+            "mawdo",
+            "guide_only",
+            "mawdo_oracle",
+            "orca_robot",
+            "social_force_robot",
+            "straight",
+        ],  # fmt: skip
         "batch_size": 25,
     },
     # every setting, 100 episodes each
@@ -191,8 +197,14 @@ CROWD_PRESETS: dict[str, dict[str, Any]] = {
         "name": "crowdnav-100",
         "settings": _SETTINGS_ALL,
         "n": 100,
-        "policies": ["mawdo", "guide_only", "mawdo_oracle", "orca_robot", "social_force_robot",
-                     "straight"],  # fmt: skip
+        "policies": [
+            "mawdo",
+            "guide_only",
+            "mawdo_oracle",
+            "orca_robot",
+            "social_force_robot",
+            "straight",
+        ],  # fmt: skip
         "batch_size": 25,
     },
     # the headline setting only, fewer episodes: minutes, not hours
