@@ -94,3 +94,14 @@ def test_observed_planner_ignores_the_scenarios_future():
     }
     ra, rb = _run(_scene([a]), steps=10), _run(_scene([b]), steps=10)
     assert np.array_equal(ra.trajectory, rb.trajectory)
+
+
+def test_the_robot_looks_once_before_it_plans_around_people():
+    sc = _scene([HEAD_ON])
+    policy = PlannerPolicy("guide_only", "quick", "observed", time_guide=True)
+    res = run_episode(SteppedWorld(sc), policy, 3, seed=0)
+    assert np.array_equal(res.trajectory[1], res.trajectory[0])  # step 0: it watches
+    assert not np.array_equal(res.trajectory[2], res.trajectory[1])  # then it moves
+    eager = PlannerPolicy("guide_only", "quick", "observed", look_first=0, time_guide=True)
+    res = run_episode(SteppedWorld(sc), eager, 2, seed=0)
+    assert not np.array_equal(res.trajectory[1], res.trajectory[0])

@@ -130,6 +130,10 @@ class Run(TimedRun, SafeRun, LimitedRun):
         self.following = None
         self.timed_follows = 0  # replans at which the guard chose a timed route
         self._timed = (-1, [])
+        # a plan to start from instead of a first plan (a route from sc.start to the goal): a
+        # policy that runs one step per Run hands each step the last one's remainder
+        self.warm_start = None
+        self.remainder = None
 
     def _make_optimizers(self) -> dict:
         return _optimizers(self.algorithm, self.cfg)
@@ -262,7 +266,7 @@ class Run(TimedRun, SafeRun, LimitedRun):
         # kept on the run: a progress callback may read the moves so far (the GIF's frames
         # are drawn while the run goes on: mawdo.planning.render.live)
         self.drive = drive = Drive(pos)
-        remainder, stuck, force = None, 0, False
+        remainder, stuck, force = self.warm_start, 0, False
         reason = step_limit_note(cfg.max_steps, max_steps, rule)
         for step in range(max_steps + 1):
             if progress is not None:
@@ -303,6 +307,7 @@ class Run(TimedRun, SafeRun, LimitedRun):
             if self.limits is not None:  # the step the kinematic limits allow
                 pos, remainder, passed, frac = self._limited_step(prev, pos, remainder, step)
             drive.move(step, pos, passed, frac)
+        self.remainder = remainder  # where the plan goes on (a stepped policy's next warm start)
         return self._finish(drive, reason)
 
     def step_limit(self) -> tuple[int, int]:
