@@ -10,6 +10,8 @@ mawdo_oracle           oracle      MAWDO told every agent's future (the upper bo
                                    exact when the people do not see the robot)
 orca_robot             observed    the robot driven by ORCA on the tracks (``crowd``)
 social_force_robot     observed    the robot driven by the social force (``crowd``)
+dwa                    observed    a sampling local planner (dynamic window) on the
+                                   tracks moving at constant velocity
 straight               none        straight to the goal at full speed
 =====================  ==========  ====================================================
 
@@ -75,6 +77,12 @@ def _planner(algorithm: str, knowledge: str):
     return make
 
 
+def _dwa(options):
+    from mawdo.planning.run.dwa import DynamicWindow
+
+    return DynamicWindow(tracker=_tracker(options))
+
+
 def _straight(options):
     from mawdo.planning.run.policy import StraightLine
 
@@ -102,6 +110,8 @@ for _spec in (
     PolicySpec("orca_robot", _robot("OrcaRobot"), "observed", "ORCA on the tracks"),
     PolicySpec("social_force_robot", _robot("SocialForceRobot"), "observed",
                "social force on the tracks"),
+    PolicySpec("dwa", _dwa, "observed",
+               "sampling local planner (dynamic window) on constant-velocity tracks"),
     PolicySpec("straight", _straight, "none", "straight to the goal, blind"),
 ):  # fmt: skip
     POLICIES.register(_spec.name, _spec)
