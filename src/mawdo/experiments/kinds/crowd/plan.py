@@ -174,6 +174,7 @@ CROWD_PRESETS: dict[str, dict[str, Any]] = {
             "mawdo_oracle",
             "orca_robot",
             "social_force_robot",
+            "dwa",
             "straight",
         ],  # fmt: skip
     },
@@ -188,6 +189,7 @@ CROWD_PRESETS: dict[str, dict[str, Any]] = {
             "mawdo_oracle",
             "orca_robot",
             "social_force_robot",
+            "dwa",
             "straight",
         ],  # fmt: skip
         "batch_size": 25,
@@ -203,6 +205,7 @@ CROWD_PRESETS: dict[str, dict[str, Any]] = {
             "mawdo_oracle",
             "orca_robot",
             "social_force_robot",
+            "dwa",
             "straight",
         ],  # fmt: skip
         "batch_size": 25,
