@@ -54,3 +54,31 @@ def test_a_straight_line_robot_measures_as_by_hand():
     assert m["success"] == 1 and m["steps"] == 31
     assert m["time_s"] == pytest.approx(7.75) and m["length_m"] == pytest.approx(7.75)
     assert m["discomfort"] == 0.0 and np.all(np.isinf(separations(res)))
+
+
+def test_separation_is_the_smallest_during_a_step_not_at_its_ends():
+    from mawdo.planning.run.episode import run_episode
+    from mawdo.planning.world.scenario import scenario_from_dict
+    from mawdo.planning.world.stepped import SteppedWorld
+
+    # a disc of radius 2 crossing x = 50 at 16 px per step (at t = 2.5), 10 px above a robot of
+    # radius 3 that stands at (50, 50): at the ends of step 2 it is 8 px to either side (gap
+    # 12.8 - 5), mid-step right above it (gap 10 - 5 = 5 px)
+    sc = scenario_from_dict({
+        "schema_version": 1, "width": 200.0, "height": 100.0, "start": [50.0, 50.0],
+        "goal": [150.0, 50.0], "robot": {"radius": 3.0, "speed": 4.0},
+        "obstacles": [{"shape": "circle", "center": [10.0, 60.0], "radius": 2.0,
+                       "motion": {"velocity": [16.0, 0.0]}}],
+    })  # fmt: skip
+
+    class Stand:
+        def reset(self, scenario, seed): ...
+
+        def act(self, reading):
+            return np.zeros(2)
+
+    res = run_episode(SteppedWorld(sc), Stand(), 3, seed=0)
+    sep = separations(res)
+    assert sep[2] == pytest.approx(5.0)
+    ends = np.hypot(8.0, 10.0) - 5.0  # at either end of the step
+    assert sep[1] == pytest.approx(ends) and sep[2] < ends  # step 1 is closest at its end

@@ -28,7 +28,7 @@ class CrowdRow(RunRow):
     collision the robot's motion produced (:func:`~mawdo.planning.judge.fault.blame`);
     ``collision``: any collision; ``timeout``: the time limit ran out first. ``time_s``: arrival
     time (successes only); ``discomfort``: share of steps whose separation from the nearest
-    person (surface to surface, at the step's end) is below :data:`DISCOMFORT_M`;
+    person (surface to surface, the smallest during the step) is below :data:`DISCOMFORT_M`;
     ``min_separation_m``: the checker's smallest clearance over the episode (continuous in time).
     """
 
@@ -92,19 +92,21 @@ def _sensor(spec: dict, res: float):
 
 
 def separations(res) -> np.ndarray:
-    """Surface-to-surface distance (pixels) from the robot to the nearest moving agent at each
-    step's end, from the realised scenario."""
+    """Smallest surface-to-surface distance (pixels) from the robot to any moving agent during
+    each step (continuous in time: the checker's clearance of every piece of the executed
+    route, as CrowdNav measures within a step); ``inf`` without agents."""
+    from mawdo.planning.judge.check import check_trajectory
+
     sc = res.scenario
-    t = np.arange(1, len(res.trajectory), dtype=float)
+    n = len(res.trajectory) - 1
     moving = sc.moving_indices
-    if not moving or not len(t):
-        return np.full(len(t), np.inf)
-    out = np.full(len(t), np.inf)
-    for i in moving:
-        o = sc.obstacles[i]
-        c = np.asarray(o.shape.center, float) + o.offset(t)
-        d = np.hypot(*(res.trajectory[1:] - c).T) - sc.robot_radius - o.shape.radius
-        out = np.minimum(out, d)
+    if not moving or n < 1:
+        return np.full(max(n, 0), np.inf)
+    rep = check_trajectory(res.route, sc, times=res.route_times)
+    piece = rep.clearance[:, moving].min(axis=1)
+    step = np.clip(np.floor(res.route_times[:-1] + 1e-9).astype(int), 0, n - 1)
+    out = np.full(n, np.inf)
+    np.minimum.at(out, step, piece)
     return out
 
 
