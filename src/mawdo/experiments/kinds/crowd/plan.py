@@ -153,7 +153,8 @@ class CrowdPlan(StudyPlanBase):
 
     def describe(self) -> str:
         return (
-            f"{self.name}: {len(self.settings)} settings ({', '.join(self.settings)}) x "
+            f"{self.name}: {len(self.settings)} setting{'s' * (len(self.settings) > 1)} "
+            f"({', '.join(self.settings)}) x "
             f"{self.n} episodes x {len(self.policies)} policies ({', '.join(self.policies)}), "
             f"sensor noise {self.sensor_noise} m, seed {self.seed}"
         )
@@ -194,11 +195,11 @@ CROWD_PRESETS: dict[str, dict[str, Any]] = {
         ],  # fmt: skip
         "batch_size": 25,
     },
-    # every setting, 100 episodes each
-    "crowdnav-100": {
-        "name": "crowdnav-100",
+    # every setting, 50 episodes each
+    "crowdnav-50": {
+        "name": "crowdnav-50",
         "settings": _SETTINGS_ALL,
-        "n": 100,
+        "n": 50,
         "policies": [
             "mawdo",
             "guide_only",
