@@ -87,7 +87,8 @@ class SafeIntervalGuide:
         ``(accel, turn)``: acceleration (px per step squared) and turn rate (radians per
         step), ``inf`` for a free one: every edge is driven from rest to rest in whole steps
         and the robot turns in place at its vertices
-        (:mod:`~mawdo.planning.guide.sipp.search_limited`); ``t0`` must then be a whole step.
+        (:func:`~mawdo.planning.guide.sipp.search.search_limited`); ``t0`` must then be a
+        whole step.
         None (default): straight moves at full speed, instant starts, stops and turns.
     lead : array_like, shape (j, 2), optional
         With ``profile``: the robot's positions at ``t0, t0 + 1, ...`` before it comes to

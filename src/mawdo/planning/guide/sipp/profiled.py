@@ -1,7 +1,7 @@
 """The safe-interval guide's timed routes under acceleration and turn-rate limits.
 
 :class:`~mawdo.planning.guide.sipp.guide.SafeIntervalGuide` with a ``profile`` searches with
-:func:`~mawdo.planning.guide.sipp.search_limited.search_limited` and writes each edge of the route
+:func:`~mawdo.planning.guide.sipp.search.search_limited` and writes each edge of the route
 found as its rest-to-rest profile (:mod:`mawdo.planning.guide.sipp.profile`): one point per piece
 boundary, at whole steps, so that the route's straight uniform pieces between its points are
 the motion the run drives (:func:`~mawdo.planning.guide.timeguide.position_at` at whole steps gives
@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from mawdo.planning.guide.sipp.intervals import segment_free
-from mawdo.planning.guide.sipp.search_limited import search_limited
+from mawdo.planning.guide.sipp.search import search_limited
 
 __all__ = ["lead_clear", "profiled_route", "profiled_search"]
 
