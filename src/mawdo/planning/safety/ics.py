@@ -29,10 +29,18 @@ Assumptions (what "safe" rests on):
   ``r + clearance``) is not rejected by rounding; the disc must stay inside the map (a goal
   may lie ``r`` from the border);
 * the robot may stop, start and turn at once, at up to its full speed, unless the run sets
-  an acceleration or turn-rate limit (:attr:`SafeContinuation.limits`): then every step the
-  run drives is checked with continuations simulated within the limits from the robot's
-  velocity (:mod:`mawdo.planning.safety.ics_limits`: it brakes over ``|u|^2 / (2 a)`` px, turns
-  ``max_turn`` per step);
+  an acceleration or turn-rate limit (:attr:`SafeContinuation.limits`) and the rule is asked
+  with the robot's velocity: then every continuation starts from that velocity and is
+  *simulated* step by step through :func:`~mawdo.planning.safety.kinematics.project`, so it
+  meets every limit by construction, and it ends at rest: ``"goal"`` follows the plan's rest
+  as the run follows it (:func:`~mawdo.planning.safety.kinematics.wanted_step`: a carrot ``v``
+  px ahead, braking to stop at the goal, slowing for turns), ``"wait"`` brakes along the
+  current heading (``|u|`` falls by ``max_accel`` per step, about ``|u|^2 / (2 a)`` px) and
+  then stands, ``"spot"`` wants full speed along one of the headings for ``k`` steps, then
+  brakes and stands. The executed motion is straight and uniform between whole steps, so the
+  simulated polyline, one vertex per step, *is* a motion the run could drive; tested exactly
+  like any other continuation, it is a witness that a motion within the limits stays safe
+  (conservative: a cleverer motion may be missed; never optimistic);
 * the horizon is finite: what happens after ``t0 + horizon`` is not looked at. A continuation
   is a witness that a safe motion exists, not the motion the run will drive.
 
@@ -62,9 +70,10 @@ import numpy as np
 import shapely
 
 from mawdo.planning.guide.sipp.intervals import Movers, forbidden, segment_free
+from mawdo.planning.safety.kinematics import project, turned, wanted_step
 from mawdo.planning.world.geometry import FlatObstacles
 from mawdo.planning.world.motion import BoundedRandomWalk, ConstantVelocity, Patrol, Track
-from mawdo.planning.world.path import advance, segment_lengths, unit_headings
+from mawdo.planning.world.path import advance, polyline_length, segment_lengths, unit_headings
 from mawdo.planning.world.scenario import CircleObstacle, Scenario
 
 __all__ = ["Continuation", "SafeContinuation"]
@@ -149,11 +158,8 @@ class SafeContinuation:
         )
         # the shapes' tables never change: built once, not at every decision
         self._flat = FlatObstacles.from_obstacles(moving, scenario.robot_radius + self.clearance)
-        self._moving, self._centre, self._rho = (
-            moving,
-            self._flat.bound[:, 4:6],
-            self._flat.bound[:, 6],
-        )
+        self._moving, self._centre = moving, self._flat.bound[:, 4:6]
+        self._rho = self._flat.bound[:, 6]
         self._speed = np.array([_top_speed(o.motion) for o in moving])
         # (first valid time, last, movers' centres then, their pieces, tables per mover set)
         self._mv = (0.0, 0.0, None, {}, {})
@@ -224,10 +230,10 @@ class SafeContinuation:
         F = forbidden(float(p[0]), float(p[1]), 0.0, 0.0, 0.0, ta, tb, mv)
         return len(F) == 0
 
-    def path_safe(self, points: np.ndarray, times: np.ndarray, t0: float, mv=None) -> bool:
+    def path_safe(self, points, times, t0: float, mv=None, statics: bool = True) -> bool:
         """A timed polyline (pixels, time steps; straight and uniform between vertices) meets
-        no mover and keeps clear of the statics and the border; ``mv`` as in
-        :meth:`wait_safe`."""
+        no mover and (unless ``statics`` is False) keeps clear of the statics and the border;
+        ``mv`` as in :meth:`wait_safe`."""
         mv = self.movers(t0) if mv is None else mv
         for i in range(len(points) - 1):
             (ux, uy), (vx, vy) = points[i], points[i + 1]
@@ -235,7 +241,7 @@ class SafeContinuation:
                 ux, uy, vx, vy, times[i], times[i + 1], mv
             ):
                 return False
-        return bool(np.all(self.static_clear(points[:-1], points[1:])))
+        return not statics or bool(np.all(self.static_clear(points[:-1], points[1:])))
 
     # -- continuations ---------------------------------------------------------------------
 
@@ -247,26 +253,30 @@ class SafeContinuation:
 
         ``route`` (pixels, from ``p``) is the plan's rest, tried first unless ``wait_first``
         (a run that gives up wants to stop, not to drive on); ``t0`` is the decision's time.
-        ``vel`` (px per step): the robot's velocity at ``p``; with :attr:`limits` set it makes
-        the search :func:`~mawdo.planning.safety.ics_limits.limited_find` (continuations within the
-        kinematic limits from that velocity); otherwise it is not looked at. ``turn``: the
-        robot's ``(heading, still)`` state (:func:`~mawdo.planning.safety.kinematics.turned`;
-        None: no heading yet), for the turn-rate limit from rest.
+        ``vel`` (px per step): the robot's velocity at ``p``; with :attr:`limits` set, every
+        continuation is simulated within the limits from that velocity (module docstring);
+        otherwise it is not looked at. ``turn``: the robot's ``(heading, still)`` state
+        (:func:`~mawdo.planning.safety.kinematics.turned`; None: no heading yet), for the
+        turn-rate limit from rest.
         """
-        if self.limits is not None and vel is not None:
-            from mawdo.planning.safety.ics_limits import limited_find
-
-            found = limited_find(self, p, t, t0, vel, route, wait_first, turn=turn)
-            return None if found is None else Continuation(*found)
         p = np.asarray(p, dtype=float)
         end = t0 + self.horizon
+        if self.limits is None or vel is None:
+            drive = _Instant(self.v)
+        else:
+            drive = _Limited(self.limits, self.v, vel, turn, int(np.ceil(end - t)) + 1)
         mv = self.movers(t0, near=(p, t))  # every continuation below leaves p at t
-        along = None if route is None else self._along(route, t, end, t0, mv)
+        along = None
+        if route is not None:
+            pts, times = drive.follow(route, p, t, end)
+            along = self._rests("goal", pts, times, None, t0, mv)
         if along is not None and not wait_first:
             return along
-        if self.wait_safe(p, t, end, t0, mv):
-            return Continuation("wait", np.vstack([p, p]), np.array([t, max(t, end)]))
-        spot = self._spot(p, t, end, t0, mv)
+        pts = drive.brake([p])
+        found = self._rests("wait", pts, t + np.arange(len(pts), dtype=float), end, t0, mv)
+        if found is not None:
+            return found
+        spot = self._spot(drive, p, t, end, t0, mv)
         return spot if spot is not None else along
 
     def after_stretch(self, route: np.ndarray, t: float, distance: float) -> bool:
@@ -279,31 +289,126 @@ class SafeContinuation:
         t1 = t + distance / self.v
         return self.find(end, t1, t, route=rest) is not None
 
-    def _along(self, route, t: float, end: float, t0: float, mv):
+    def _rests(self, kind: str, pts, times, end, t0: float, mv, statics: bool = True):
+        """The continuation ``kind`` driving the timed polyline ``pts, times`` (movers, and
+        the statics and border unless ``statics`` is False: already checked), then standing
+        at its last point until ``end`` (None: no rest), when it is safe; else None. A lone
+        point stands (a wait repeats a position); a motion past ``end`` does not."""
+        pts = np.asarray(pts, dtype=float)
+        if len(pts) > 1 and not self.path_safe(pts, times, t0, mv, statics):
+            return None
+        if end is not None and (times[-1] < end or len(pts) == 1):
+            if not self.wait_safe(pts[-1], times[-1], end, t0, mv):
+                return None
+            pts, times = np.vstack([pts, pts[-1]]), np.append(times, max(times[-1], end))
+        return Continuation(kind, pts, times)
+
+    def _spot(self, drive, p, t: float, end: float, t0: float, mv):
+        """The first escape (shortest hop first, then by heading) that ends where standing is
+        safe until ``end``; the statics are checked for a hop's escapes at once."""
+        for k, offsets in self._moves:
+            if t + k >= end:
+                break
+            paths = drive.escapes(p, t, k, offsets)
+            a = np.concatenate([pts[:-1] for pts, _ in paths])
+            b = np.concatenate([pts[1:] for pts, _ in paths])
+            ok = np.split(self.static_clear(a, b), np.cumsum([len(q) - 1 for q, _ in paths])[:-1])
+            for (pts, times), clear in zip(paths, ok, strict=True):
+                if clear.all():
+                    found = self._rests("spot", pts, times, end, t0, mv, statics=False)
+                    if found is not None:
+                        return found
+        return None
+
+
+# How a continuation is driven: at once (no limits) or simulated within the limits. Without
+# limits the plan's rest is driven as it is and an escape is one straight move; the simulation
+# with no limit would drive the same routes in whole steps (cutting the plan's corners by its
+# carrot, adding k equal steps instead of one move of k steps): other points and other
+# floating-point values, so other verdicts at touching contacts. Hence two formulas for
+# "follow" and for "escapes"; the braking is one (none at all without limits).
+
+
+class _Instant:
+    """Continuations without limits: full speed ``v`` (px per step) at once, stops at once."""
+
+    def __init__(self, v: float) -> None:
+        self.v = v
+
+    def follow(self, route, p, t: float, end: float):
+        """The plan's rest at full speed (straight and uniform between its vertices), cut at
+        ``end``: ``(points, times)``."""
         pts = np.asarray(route, dtype=float)
         times = t + np.concatenate([[0.0], np.cumsum(segment_lengths(pts))]) / self.v
         if times[-1] > end:  # cut at the horizon's end
             k = int(np.searchsorted(times, end, side="right"))
             last, _, _, _ = advance(pts, (end - t) * self.v)
             pts, times = np.vstack([pts[:k], last]), np.append(times[:k], end)
-        ok = self.path_safe(pts, times, t0, mv)
-        return Continuation("goal", pts, times) if ok else None
+        return pts, times
 
-    def _spot(self, p, t: float, end: float, t0: float, mv):
-        """The first escape move (shortest hop first, then by heading) to a spot where
-        standing is safe until ``end``."""
-        for k, offsets in self._moves:
-            tk = t + k
-            if tk >= end:
+    def brake(self, points: list) -> list:
+        return points  # a stop takes no time
+
+    def escapes(self, p, t: float, k: int, offsets):
+        """Per heading, the straight move of ``k`` steps by ``offsets[i]`` (pixels)."""
+        times = np.array([t, t + k])
+        return [(np.vstack([p, q]), times) for q in p + offsets]
+
+
+class _Limited:
+    """Continuations within ``limits`` from velocity ``vel`` (px per step) and heading state
+    ``turn`` (``(heading, still)``; None: not moved yet), one vertex per step; braking takes
+    at most ``cap`` steps."""
+
+    def __init__(self, limits, v: float, vel, turn, cap: int) -> None:
+        self.limits, self.v, self.cap = limits, v, cap
+        self.vel = np.asarray(vel, dtype=float)
+        self.turn = (None, 0) if turn is None else turn
+
+    def brake(self, points: list, u=None) -> list:
+        """``points`` extended by the steps that brake velocity ``u`` (default ``vel``) to
+        rest."""
+        u, zero = self.vel if u is None else u, np.zeros(2)
+        for _ in range(self.cap):
+            if not (u[0] or u[1]):
                 break
-            spots = p + offsets
-            clear = self.static_clear(np.repeat(p[None], len(spots), axis=0), spots)
-            for q in spots[clear]:
-                if segment_free(p[0], p[1], q[0], q[1], t, tk, mv) and self.wait_safe(
-                    q, tk, end, t0, mv
-                ):
-                    return Continuation("spot", np.vstack([p, q, q]), np.array([t, tk, end]))
-        return None
+            u = project(zero, u, self.limits)
+            points.append(points[-1] + u)
+        return points
+
+    def follow(self, route, p, t: float, end: float):
+        """The plan's rest from ``p`` followed as the run follows it until the goal or
+        ``end``: ``(points, times)``."""
+        lim, v = self.limits, self.v
+        pts, u, rest = [np.asarray(p, float)], self.vel, np.asarray(route, float)
+        heading, still = self.turn
+        goal = rest[-1]
+        for _ in range(int(np.ceil(max(end - t, 0.0)))):
+            if np.hypot(*(goal - pts[-1])) <= 1e-9:
+                break
+            target, after, _, _ = advance(rest, v)
+            want = target - pts[-1]
+            left = float(np.hypot(*want)) + polyline_length(after)
+            u = project(wanted_step(want, left, u, lim), u, lim, heading, still)
+            heading, still = turned(u, heading, still)
+            to = pts[-1] + u
+            pts.append(to)
+            rest = after if np.max(np.abs(to - target)) <= 1e-12 else np.vstack([to, after])
+        arr = np.asarray(pts)
+        return arr, t + np.arange(len(arr), dtype=float)
+
+    def escapes(self, p, t: float, k: int, offsets):
+        """Per heading, ``k`` steps wanting ``offsets[i] / k`` each, then braking to rest."""
+        out = []
+        for off in offsets / k:
+            pts, u, (heading, still) = [p], self.vel, self.turn
+            for _ in range(k):
+                u = project(off, u, self.limits, heading, still)
+                heading, still = turned(u, heading, still)
+                pts.append(pts[-1] + u)
+            pts = np.asarray(self.brake(pts, u), dtype=float)
+            out.append((pts, t + np.arange(len(pts), dtype=float)))
+        return out
 
 
 def _top_speed(motion) -> float:
