@@ -30,17 +30,10 @@ Assumptions (what "safe" rests on):
   may lie ``r`` from the border);
 * the robot may stop, start and turn at once, at up to its full speed, unless the run sets
   an acceleration or turn-rate limit (:attr:`SafeContinuation.limits`) and the rule is asked
-  with the robot's velocity: then every continuation starts from that velocity and is
-  *simulated* step by step through :func:`~mawdo.planning.safety.kinematics.project`, so it
-  meets every limit by construction, and it ends at rest: ``"goal"`` follows the plan's rest
-  as the run follows it (:func:`~mawdo.planning.safety.kinematics.wanted_step`: a carrot ``v``
-  px ahead, braking to stop at the goal, slowing for turns), ``"wait"`` brakes along the
-  current heading (``|u|`` falls by ``max_accel`` per step, about ``|u|^2 / (2 a)`` px) and
-  then stands, ``"spot"`` wants full speed along one of the headings for ``k`` steps, then
-  brakes and stands. The executed motion is straight and uniform between whole steps, so the
-  simulated polyline, one vertex per step, *is* a motion the run could drive; tested exactly
-  like any other continuation, it is a witness that a motion within the limits stays safe
-  (conservative: a cleverer motion may be missed; never optimistic);
+  with the robot's velocity: then every continuation is simulated step by step within the
+  limits from that velocity and ends at rest (:mod:`mawdo.planning.safety.ics_limits`: it
+  brakes over about ``|u|^2 / (2 a)`` px, turns ``max_turn`` per step), and is checked as
+  any other;
 * the horizon is finite: what happens after ``t0 + horizon`` is not looked at. A continuation
   is a witness that a safe motion exists, not the motion the run will drive.
 
@@ -70,10 +63,10 @@ import numpy as np
 import shapely
 
 from mawdo.planning.guide.sipp.intervals import Movers, forbidden, segment_free
-from mawdo.planning.safety.kinematics import project, turned, wanted_step
+from mawdo.planning.safety.ics_limits import continuation_drive
 from mawdo.planning.world.geometry import FlatObstacles
 from mawdo.planning.world.motion import BoundedRandomWalk, ConstantVelocity, Patrol, Track
-from mawdo.planning.world.path import advance, polyline_length, segment_lengths, unit_headings
+from mawdo.planning.world.path import advance, segment_lengths, unit_headings
 from mawdo.planning.world.scenario import CircleObstacle, Scenario
 
 __all__ = ["Continuation", "SafeContinuation"]
@@ -235,11 +228,9 @@ class SafeContinuation:
         no mover and (unless ``statics`` is False) keeps clear of the statics and the border;
         ``mv`` as in :meth:`wait_safe`."""
         mv = self.movers(t0) if mv is None else mv
-        for i in range(len(points) - 1):
-            (ux, uy), (vx, vy) = points[i], points[i + 1]
-            if times[i + 1] > times[i] and not segment_free(
-                ux, uy, vx, vy, times[i], times[i + 1], mv
-            ):
+        P, T = np.asarray(points, dtype=float).tolist(), np.asarray(times, dtype=float).tolist()
+        for (ux, uy), (vx, vy), ta, tb in zip(P, P[1:], T, T[1:], strict=False):
+            if tb > ta and not segment_free(ux, uy, vx, vy, ta, tb, mv):
                 return False
         return not statics or bool(np.all(self.static_clear(points[:-1], points[1:])))
 
@@ -261,10 +252,8 @@ class SafeContinuation:
         """
         p = np.asarray(p, dtype=float)
         end = t0 + self.horizon
-        if self.limits is None or vel is None:
-            drive = _Instant(self.v)
-        else:
-            drive = _Limited(self.limits, self.v, vel, turn, int(np.ceil(end - t)) + 1)
+        limits = None if vel is None else self.limits
+        drive = continuation_drive(limits, self.v, vel, turn, int(np.ceil(end - t)) + 1)
         mv = self.movers(t0, near=(p, t))  # every continuation below leaves p at t
         along = None
         if route is not None:
@@ -309,106 +298,15 @@ class SafeContinuation:
         for k, offsets in self._moves:
             if t + k >= end:
                 break
-            paths = drive.escapes(p, t, k, offsets)
-            a = np.concatenate([pts[:-1] for pts, _ in paths])
-            b = np.concatenate([pts[1:] for pts, _ in paths])
-            ok = np.split(self.static_clear(a, b), np.cumsum([len(q) - 1 for q, _ in paths])[:-1])
-            for (pts, times), clear in zip(paths, ok, strict=True):
-                if clear.all():
+            paths, a, b = drive.escapes(p, t, k, offsets)
+            ok, i = self.static_clear(a, b).tolist(), 0
+            for pts, times in paths:
+                i += len(pts) - 1
+                if all(ok[i - len(pts) + 1 : i]):
                     found = self._rests("spot", pts, times, end, t0, mv, statics=False)
                     if found is not None:
                         return found
         return None
-
-
-# How a continuation is driven: at once (no limits) or simulated within the limits. Without
-# limits the plan's rest is driven as it is and an escape is one straight move; the simulation
-# with no limit would drive the same routes in whole steps (cutting the plan's corners by its
-# carrot, adding k equal steps instead of one move of k steps): other points and other
-# floating-point values, so other verdicts at touching contacts. Hence two formulas for
-# "follow" and for "escapes"; the braking is one (none at all without limits).
-
-
-class _Instant:
-    """Continuations without limits: full speed ``v`` (px per step) at once, stops at once."""
-
-    def __init__(self, v: float) -> None:
-        self.v = v
-
-    def follow(self, route, p, t: float, end: float):
-        """The plan's rest at full speed (straight and uniform between its vertices), cut at
-        ``end``: ``(points, times)``."""
-        pts = np.asarray(route, dtype=float)
-        times = t + np.concatenate([[0.0], np.cumsum(segment_lengths(pts))]) / self.v
-        if times[-1] > end:  # cut at the horizon's end
-            k = int(np.searchsorted(times, end, side="right"))
-            last, _, _, _ = advance(pts, (end - t) * self.v)
-            pts, times = np.vstack([pts[:k], last]), np.append(times[:k], end)
-        return pts, times
-
-    def brake(self, points: list) -> list:
-        return points  # a stop takes no time
-
-    def escapes(self, p, t: float, k: int, offsets):
-        """Per heading, the straight move of ``k`` steps by ``offsets[i]`` (pixels)."""
-        times = np.array([t, t + k])
-        return [(np.vstack([p, q]), times) for q in p + offsets]
-
-
-class _Limited:
-    """Continuations within ``limits`` from velocity ``vel`` (px per step) and heading state
-    ``turn`` (``(heading, still)``; None: not moved yet), one vertex per step; braking takes
-    at most ``cap`` steps."""
-
-    def __init__(self, limits, v: float, vel, turn, cap: int) -> None:
-        self.limits, self.v, self.cap = limits, v, cap
-        self.vel = np.asarray(vel, dtype=float)
-        self.turn = (None, 0) if turn is None else turn
-
-    def brake(self, points: list, u=None) -> list:
-        """``points`` extended by the steps that brake velocity ``u`` (default ``vel``) to
-        rest."""
-        u, zero = self.vel if u is None else u, np.zeros(2)
-        for _ in range(self.cap):
-            if not (u[0] or u[1]):
-                break
-            u = project(zero, u, self.limits)
-            points.append(points[-1] + u)
-        return points
-
-    def follow(self, route, p, t: float, end: float):
-        """The plan's rest from ``p`` followed as the run follows it until the goal or
-        ``end``: ``(points, times)``."""
-        lim, v = self.limits, self.v
-        pts, u, rest = [np.asarray(p, float)], self.vel, np.asarray(route, float)
-        heading, still = self.turn
-        goal = rest[-1]
-        for _ in range(int(np.ceil(max(end - t, 0.0)))):
-            if np.hypot(*(goal - pts[-1])) <= 1e-9:
-                break
-            target, after, _, _ = advance(rest, v)
-            want = target - pts[-1]
-            left = float(np.hypot(*want)) + polyline_length(after)
-            u = project(wanted_step(want, left, u, lim), u, lim, heading, still)
-            heading, still = turned(u, heading, still)
-            to = pts[-1] + u
-            pts.append(to)
-            rest = after if np.max(np.abs(to - target)) <= 1e-12 else np.vstack([to, after])
-        arr = np.asarray(pts)
-        return arr, t + np.arange(len(arr), dtype=float)
-
-    def escapes(self, p, t: float, k: int, offsets):
-        """Per heading, ``k`` steps wanting ``offsets[i] / k`` each, then braking to rest."""
-        out = []
-        for off in offsets / k:
-            pts, u, (heading, still) = [p], self.vel, self.turn
-            for _ in range(k):
-                u = project(off, u, self.limits, heading, still)
-                heading, still = turned(u, heading, still)
-                pts.append(pts[-1] + u)
-            pts = np.asarray(self.brake(pts, u), dtype=float)
-            out.append((pts, t + np.arange(len(pts), dtype=float)))
-        return out
 
 
 def _top_speed(motion) -> float:
