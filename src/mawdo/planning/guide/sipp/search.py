@@ -227,6 +227,17 @@ def start_state(ptr, lo, hi, start, t0, pos, mv):
 
 
 @njit(cache=True)
+def _states(ptr, S):
+    """Per interval state: its vertex, and the search's arrays (arrival, parent, departure,
+    heading in, closed) before it starts."""
+    owner = np.empty(S, np.int64)
+    for q in range(len(ptr) - 1):
+        owner[ptr[q] : ptr[q + 1]] = q
+    arrival, parent, depart = np.full(S, np.inf), np.full(S, -1, np.int64), np.full(S, np.nan)
+    return owner, arrival, parent, depart, np.zeros((S, 2)), np.zeros(S, np.bool_)
+
+
+@njit(cache=True)
 def timed_search(graph, moves, kin, start, goal, t_start, h0, t_end, ptr, lo, hi, banned, mv):
     """Earliest arrival at ``goal`` from ``start`` at ``t_start`` over (vertex, interval) states.
 
@@ -265,15 +276,7 @@ def timed_search(graph, moves, kin, start, goal, t_start, h0, t_end, ptr, lo, hi
         Per interval state: earliest arrival, previous state, departure from its vertex.
     """
     nodes, indptr, indices, weights, to_goal = graph
-    S = len(lo)
-    owner = np.empty(S, np.int64)
-    for q in range(len(ptr) - 1):
-        owner[ptr[q] : ptr[q + 1]] = q
-    arrival = np.full(S, np.inf)
-    parent = np.full(S, -1, np.int64)
-    depart = np.full(S, np.nan)
-    heading = np.zeros((S, 2))
-    closed = np.zeros(S, np.bool_)
+    owner, arrival, parent, depart, heading, closed = _states(ptr, len(lo))
     s0 = start_state(ptr, lo, hi, start, t_start, nodes[start], mv)
     if s0 < 0:
         return -2, arrival, parent, depart
