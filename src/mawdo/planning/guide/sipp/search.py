@@ -75,43 +75,34 @@ _WINDOW = 8.0
 def straight_moves(nodes, indptr, indices, weights, speed):
     """The moves of every edge without limits: one piece at ``speed`` (px per step).
 
-    Returns ``(eptr, steps, hx, hy, k0, ax, ay, ex, ey, dur, bx, by)``: per edge ``e`` its
-    pieces ``eptr[e]:eptr[e + 1]``, its duration ``steps[e]`` (time steps) and unit heading
-    ``(hx, hy)[e]`` (zeros for a zero-length edge); per piece its start ``k0`` (steps after the
-    departure), from ``(ax, ay)`` to ``(bx, by)`` (pixels) at velocity ``(ex, ey)`` (px per
-    step) for ``dur`` steps.
+    Returns ``(eptr, edge, piece)``: edge ``e`` has the pieces ``eptr[e]:eptr[e + 1]`` and
+    ``edge[e] = (T, hx, hy)``, its duration (time steps) and unit heading (zeros for a
+    zero-length edge); ``piece[j] = (k0, ax, ay, ex, ey, dur, bx, by)``: it starts ``k0`` steps
+    after the departure and runs ``dur`` steps from ``(ax, ay)`` to ``(bx, by)`` (pixels) at
+    velocity ``(ex, ey)`` (px per step).
     """
     E = len(weights)
-    steps, hx, hy = weights / speed, np.zeros(E), np.zeros(E)
-    ex, ey = np.zeros(E), np.zeros(E)
-    ax, ay, bx, by = np.empty(E), np.empty(E), np.empty(E), np.empty(E)
+    edge, piece = np.zeros((E, 3)), np.zeros((E, 8))
     for u in range(len(indptr) - 1):
         for e in range(indptr[u], indptr[u + 1]):
-            v, T, L = indices[e], steps[e], weights[e]
-            ax[e], ay[e], bx[e], by[e] = nodes[u, 0], nodes[u, 1], nodes[v, 0], nodes[v, 1]
+            v, T, L = indices[e], weights[e] / speed, weights[e]
+            ux, uy, vx, vy = nodes[u, 0], nodes[u, 1], nodes[v, 0], nodes[v, 1]
+            edge[e, 0] = piece[e, 5] = T
+            piece[e, 1], piece[e, 2], piece[e, 6], piece[e, 7] = ux, uy, vx, vy
             if T > 0.0:  # a zero-length edge (the start on a vertex): a move of no duration
-                ex[e], ey[e] = (bx[e] - ax[e]) / T, (by[e] - ay[e]) / T
+                piece[e, 3], piece[e, 4] = (vx - ux) / T, (vy - uy) / T
             if L > 0.0:
-                hx[e], hy[e] = (bx[e] - ax[e]) / L, (by[e] - ay[e]) / L
-    return np.arange(E + 1), steps, hx, hy, np.zeros(E), ax, ay, ex, ey, steps.copy(), bx, by
+                edge[e, 1], edge[e, 2] = (vx - ux) / L, (vy - uy) / L
+    return np.arange(E + 1), edge, piece
 
 
 @njit(cache=True)
 def profiled_moves(nodes, indptr, indices, weights, table):
     """The moves of every edge under limits: its rest-to-rest profile ``table``
     (:func:`~mawdo.planning.guide.sipp.profile.profile_table` of ``weights``), laid along the
-    edge; the same arrays as :func:`straight_moves`."""
+    edge; as :func:`straight_moves` returns."""
     tptr, k0, c0, dur, w, steps = table
-    E, P = len(weights), len(k0)
-    hx, hy = np.zeros(E), np.zeros(E)
-    ax, ay, ex, ey, bx, by = (
-        np.empty(P),
-        np.empty(P),
-        np.empty(P),
-        np.empty(P),
-        np.empty(P),
-        np.empty(P),
-    )
+    edge, piece = np.zeros((len(weights), 3)), np.empty((len(k0), 8))
     for u in range(len(indptr) - 1):
         ux, uy = nodes[u, 0], nodes[u, 1]
         for e in range(indptr[u], indptr[u + 1]):
@@ -119,25 +110,26 @@ def profiled_moves(nodes, indptr, indices, weights, table):
             dx, dy = 0.0, 0.0
             if L > 0.0:
                 dx, dy = (nodes[indices[e], 0] - ux) / L, (nodes[indices[e], 1] - uy) / L
-            hx[e], hy[e] = dx, dy
+            edge[e, 0], edge[e, 1], edge[e, 2] = steps[e], dx, dy
             for j in range(tptr[e], tptr[e + 1]):
                 c1 = c0[j] + w[j] * dur[j]
-                ax[j], ay[j] = ux + c0[j] * dx, uy + c0[j] * dy
-                ex[j], ey[j] = w[j] * dx, w[j] * dy
-                bx[j], by[j] = ux + c1 * dx, uy + c1 * dy
-    return tptr, steps, hx, hy, k0, ax, ay, ex, ey, dur, bx, by
+                piece[j, 0], piece[j, 5] = k0[j], dur[j]
+                piece[j, 1], piece[j, 2] = ux + c0[j] * dx, uy + c0[j] * dy
+                piece[j, 3], piece[j, 4] = w[j] * dx, w[j] * dy
+                piece[j, 6], piece[j, 7] = ux + c1 * dx, uy + c1 * dy
+    return tptr, edge, piece
 
 
 @njit(cache=True)
-def pieces_forbidden(moves, i, j, lo, hi, mv):
+def pieces_forbidden(piece, i, j, lo, hi, mv):
     """Departures in ``[lo, hi]`` (time steps) at which the pieces ``i:j`` of a move (one
-    edge's) meet a mover: the union of each piece's, shifted by its start; sorted, disjoint
-    closed intervals ``(k, 2)``."""
-    _, _, _, _, k0, ax, ay, ex, ey, dur, _, _ = moves
+    edge's, rows of :func:`straight_moves`'s ``piece``) meet a mover: the union of each
+    piece's, shifted by its start; sorted, disjoint closed intervals ``(k, 2)``."""
     parts = np.empty((0, 2))
     for q in range(i, j):
-        F = forbidden(ax[q], ay[q], ex[q], ey[q], dur[q], lo + k0[q], hi + k0[q], mv)
-        parts = np.concatenate((parts, F - k0[q]))
+        k0, ax, ay, ex, ey, dur = piece[q, :6]
+        F = forbidden(ax, ay, ex, ey, dur, lo + k0, hi + k0, mv)
+        parts = np.concatenate((parts, F - k0))
     parts = parts[np.argsort(parts[:, 0])]
     out = np.empty_like(parts)
     k = 0
@@ -151,13 +143,14 @@ def pieces_forbidden(moves, i, j, lo, hi, mv):
 
 
 @njit(cache=True)
-def pieces_free(moves, i, j, tau, mv):
+def pieces_free(piece, i, j, tau, mv):
     """True iff the pieces ``i:j`` of a move departing at ``tau`` keep clear of every mover
     (each by :func:`~mawdo.planning.guide.sipp.intervals.segment_free`)."""
-    _, _, _, _, k0, ax, ay, _, _, dur, bx, by = moves
     for q in range(i, j):
-        t1 = tau + k0[q]
-        if not segment_free(ax[q], ay[q], bx[q], by[q], t1, t1 + dur[q], mv):
+        t1 = tau + piece[q, 0]
+        if not segment_free(
+            piece[q, 1], piece[q, 2], piece[q, 6], piece[q, 7], t1, t1 + piece[q, 5], mv
+        ):
             return False
     return True
 
@@ -181,19 +174,20 @@ def _depart(moves, e, ux, uy, a, T, x, top, J_hi, whole, mv):
     arrival precedes ``J_hi`` (``inf`` if none). The forbidden departures are computed over
     windows growing from ``x`` (the answer is usually at or just after it), each exact over its
     span."""
-    eptr, _, _, _, k0, ax, ay, ex, ey, dur, bx, by = moves
+    eptr, _, piece = moves
     i, j = eptr[e], eptr[e + 1]
     # one piece from the departure (every edge without limits): the movers near the window
     # serve its departure sets and the re-check of the move alike, as one query
-    one, near = j - i == 1 and k0[i] == 0.0, np.empty(0, np.int64)
+    one, near = j - i == 1 and piece[i, 0] == 0.0, np.empty(0, np.int64)
+    ax, ay, ex, ey, dur, bx, by = piece[i, 1:8] if one else np.zeros(7)
     lo, span, tries = x, _WINDOW, 0
     while lo <= top and lo + T < J_hi:
         hi = min(top, lo + span)
         if one:
-            near = candidates(ax[i], ay[i], ex[i], ey[i], dur[i], lo, hi, mv[15])
-            F = forbidden_among(ax[i], ay[i], ex[i], ey[i], dur[i], lo, hi, mv, near)
+            near = candidates(ax, ay, ex, ey, dur, lo, hi, mv[15])
+            F = forbidden_among(ax, ay, ex, ey, dur, lo, hi, mv, near)
         else:
-            F = pieces_forbidden(moves, i, j, lo, hi, mv)
+            F = pieces_forbidden(piece, i, j, lo, hi, mv)
         tau = _integer_free(F, lo) if whole else earliest_free(F, lo)
         if tau > hi:  # forbidden up to the window's end: look further
             if hi == top:
@@ -203,9 +197,9 @@ def _depart(moves, e, ux, uy, a, T, x, top, J_hi, whole, mv):
         if tau + T >= J_hi:
             return math.inf
         if segment_free(ux, uy, ux, uy, a, tau, mv) and (
-            segment_free_among(ax[i], ay[i], bx[i], by[i], tau, tau + dur[i], mv, near)
+            segment_free_among(ax, ay, bx, by, tau, tau + dur, mv, near)
             if one
-            else pieces_free(moves, i, j, tau, mv)
+            else pieces_free(piece, i, j, tau, mv)
         ):
             return tau
         tries += 1  # refused at a touching contact (rounding): push on a little
@@ -300,9 +294,9 @@ def timed_search(graph, moves, kin, start, goal, t_start, h0, t_end, ptr, lo, hi
             v = indices[e]
             if not to_goal[v] < math.inf:
                 continue
-            T = moves[1][e]
+            T = moves[1][e, 0]
             # standing at u first: turning in place, or the stop between two profiles
-            ready = a + rest_steps(heading[sid, 0], heading[sid, 1], moves[2][e], moves[3][e],
+            ready = a + rest_steps(heading[sid, 0], heading[sid, 1], moves[1][e, 1], moves[1][e, 2],
                                    kin[1], kin[2])  # fmt: skip
             top = min(hi[sid], t_end - T)
             if top < ready:
@@ -337,7 +331,7 @@ def _relax(edge, pu, j0, j1, lo, hi, moves, whole, state, keys, ids, nh, mv):
         if tau + T < arrival[J]:
             arrival[J], parent[J], depart[J] = tau + T, sid, tau
             if moving:
-                heading[J, 0], heading[J, 1] = moves[2][e], moves[3][e]
+                heading[J, 0], heading[J, 1] = moves[1][e, 1], moves[1][e, 2]
             else:
                 heading[J, 0], heading[J, 1] = heading[sid, 0], heading[sid, 1]
             keys, ids, nh = heap_push(keys, ids, nh, tau + T + hv, tau + T, J)
