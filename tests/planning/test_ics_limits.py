@@ -1,7 +1,8 @@
-"""The inevitable-collision rule within kinematic limits (issue 27, item 3):
-:mod:`mawdo.planning.safety.ics_limits`. A robot at speed cannot stop at once: with an acceleration
-limit ``a`` its speed falls by ``a`` per step, so from 4 px per step with ``a = 1`` it drives
-3 + 2 + 1 = 6 px before it rests. Expected values are worked out by hand in the comments."""
+"""The inevitable-collision rule within kinematic limits (issue 27, item 3): the continuations
+:mod:`mawdo.planning.safety.ics` simulates within them. A robot at speed cannot stop at once:
+with an acceleration limit ``a`` its speed falls by ``a`` per step, so from 4 px per step with
+``a = 1`` it drives 3 + 2 + 1 = 6 px before it rests. Expected values are worked out by hand
+in the comments."""
 
 from __future__ import annotations
 

@@ -17,7 +17,7 @@ import pytest
 
 from mawdo.planning.guide.sipp.intervals import Movers, safe_intervals
 from mawdo.planning.guide.sipp.profile import edge_pieces, edge_steps, profile_table
-from mawdo.planning.guide.sipp.search_limited import search_limited
+from mawdo.planning.guide.sipp.search import search_limited
 from mawdo.planning.guide.timeguide import position_at
 from mawdo.planning.judge.check import check_trajectory
 from mawdo.planning.judge.kincheck import check_kinematics

@@ -29,10 +29,11 @@ Assumptions (what "safe" rests on):
   ``r + clearance``) is not rejected by rounding; the disc must stay inside the map (a goal
   may lie ``r`` from the border);
 * the robot may stop, start and turn at once, at up to its full speed, unless the run sets
-  an acceleration or turn-rate limit (:attr:`SafeContinuation.limits`): then every step the
-  run drives is checked with continuations simulated within the limits from the robot's
-  velocity (:mod:`mawdo.planning.safety.ics_limits`: it brakes over ``|u|^2 / (2 a)`` px, turns
-  ``max_turn`` per step);
+  an acceleration or turn-rate limit (:attr:`SafeContinuation.limits`) and the rule is asked
+  with the robot's velocity: then every continuation is simulated step by step within the
+  limits from that velocity and ends at rest (:mod:`mawdo.planning.safety.ics_limits`: it
+  brakes over about ``|u|^2 / (2 a)`` px, turns ``max_turn`` per step), and is checked as
+  any other;
 * the horizon is finite: what happens after ``t0 + horizon`` is not looked at. A continuation
   is a witness that a safe motion exists, not the motion the run will drive.
 
@@ -62,6 +63,7 @@ import numpy as np
 import shapely
 
 from mawdo.planning.guide.sipp.intervals import Movers, forbidden, segment_free
+from mawdo.planning.safety.ics_limits import continuation_drive
 from mawdo.planning.world.geometry import FlatObstacles
 from mawdo.planning.world.motion import BoundedRandomWalk, ConstantVelocity, Patrol, Track
 from mawdo.planning.world.path import advance, segment_lengths, unit_headings
@@ -149,11 +151,8 @@ class SafeContinuation:
         )
         # the shapes' tables never change: built once, not at every decision
         self._flat = FlatObstacles.from_obstacles(moving, scenario.robot_radius + self.clearance)
-        self._moving, self._centre, self._rho = (
-            moving,
-            self._flat.bound[:, 4:6],
-            self._flat.bound[:, 6],
-        )
+        self._moving, self._centre = moving, self._flat.bound[:, 4:6]
+        self._rho = self._flat.bound[:, 6]
         self._speed = np.array([_top_speed(o.motion) for o in moving])
         # (first valid time, last, movers' centres then, their pieces, tables per mover set)
         self._mv = (0.0, 0.0, None, {}, {})
@@ -224,18 +223,16 @@ class SafeContinuation:
         F = forbidden(float(p[0]), float(p[1]), 0.0, 0.0, 0.0, ta, tb, mv)
         return len(F) == 0
 
-    def path_safe(self, points: np.ndarray, times: np.ndarray, t0: float, mv=None) -> bool:
+    def path_safe(self, points, times, t0: float, mv=None, statics: bool = True) -> bool:
         """A timed polyline (pixels, time steps; straight and uniform between vertices) meets
-        no mover and keeps clear of the statics and the border; ``mv`` as in
-        :meth:`wait_safe`."""
+        no mover and (unless ``statics`` is False) keeps clear of the statics and the border;
+        ``mv`` as in :meth:`wait_safe`."""
         mv = self.movers(t0) if mv is None else mv
-        for i in range(len(points) - 1):
-            (ux, uy), (vx, vy) = points[i], points[i + 1]
-            if times[i + 1] > times[i] and not segment_free(
-                ux, uy, vx, vy, times[i], times[i + 1], mv
-            ):
+        P, T = np.asarray(points, dtype=float).tolist(), np.asarray(times, dtype=float).tolist()
+        for (ux, uy), (vx, vy), ta, tb in zip(P, P[1:], T, T[1:], strict=False):
+            if tb > ta and not segment_free(ux, uy, vx, vy, ta, tb, mv):
                 return False
-        return bool(np.all(self.static_clear(points[:-1], points[1:])))
+        return not statics or bool(np.all(self.static_clear(points[:-1], points[1:])))
 
     # -- continuations ---------------------------------------------------------------------
 
@@ -247,26 +244,28 @@ class SafeContinuation:
 
         ``route`` (pixels, from ``p``) is the plan's rest, tried first unless ``wait_first``
         (a run that gives up wants to stop, not to drive on); ``t0`` is the decision's time.
-        ``vel`` (px per step): the robot's velocity at ``p``; with :attr:`limits` set it makes
-        the search :func:`~mawdo.planning.safety.ics_limits.limited_find` (continuations within the
-        kinematic limits from that velocity); otherwise it is not looked at. ``turn``: the
-        robot's ``(heading, still)`` state (:func:`~mawdo.planning.safety.kinematics.turned`;
-        None: no heading yet), for the turn-rate limit from rest.
+        ``vel`` (px per step): the robot's velocity at ``p``; with :attr:`limits` set, every
+        continuation is simulated within the limits from that velocity (module docstring);
+        otherwise it is not looked at. ``turn``: the robot's ``(heading, still)`` state
+        (:func:`~mawdo.planning.safety.kinematics.turned`; None: no heading yet), for the
+        turn-rate limit from rest.
         """
-        if self.limits is not None and vel is not None:
-            from mawdo.planning.safety.ics_limits import limited_find
-
-            found = limited_find(self, p, t, t0, vel, route, wait_first, turn=turn)
-            return None if found is None else Continuation(*found)
         p = np.asarray(p, dtype=float)
         end = t0 + self.horizon
+        limits = None if vel is None else self.limits
+        drive = continuation_drive(limits, self.v, vel, turn, int(np.ceil(end - t)) + 1)
         mv = self.movers(t0, near=(p, t))  # every continuation below leaves p at t
-        along = None if route is None else self._along(route, t, end, t0, mv)
+        along = None
+        if route is not None:
+            pts, times = drive.follow(route, p, t, end)
+            along = self._rests("goal", pts, times, None, t0, mv)
         if along is not None and not wait_first:
             return along
-        if self.wait_safe(p, t, end, t0, mv):
-            return Continuation("wait", np.vstack([p, p]), np.array([t, max(t, end)]))
-        spot = self._spot(p, t, end, t0, mv)
+        pts = drive.brake([p])
+        found = self._rests("wait", pts, t + np.arange(len(pts), dtype=float), end, t0, mv)
+        if found is not None:
+            return found
+        spot = self._spot(drive, p, t, end, t0, mv)
         return spot if spot is not None else along
 
     def after_stretch(self, route: np.ndarray, t: float, distance: float) -> bool:
@@ -279,30 +278,34 @@ class SafeContinuation:
         t1 = t + distance / self.v
         return self.find(end, t1, t, route=rest) is not None
 
-    def _along(self, route, t: float, end: float, t0: float, mv):
-        pts = np.asarray(route, dtype=float)
-        times = t + np.concatenate([[0.0], np.cumsum(segment_lengths(pts))]) / self.v
-        if times[-1] > end:  # cut at the horizon's end
-            k = int(np.searchsorted(times, end, side="right"))
-            last, _, _, _ = advance(pts, (end - t) * self.v)
-            pts, times = np.vstack([pts[:k], last]), np.append(times[:k], end)
-        ok = self.path_safe(pts, times, t0, mv)
-        return Continuation("goal", pts, times) if ok else None
+    def _rests(self, kind: str, pts, times, end, t0: float, mv, statics: bool = True):
+        """The continuation ``kind`` driving the timed polyline ``pts, times`` (movers, and
+        the statics and border unless ``statics`` is False: already checked), then standing
+        at its last point until ``end`` (None: no rest), when it is safe; else None. A lone
+        point stands (a wait repeats a position); a motion past ``end`` does not."""
+        pts = np.asarray(pts, dtype=float)
+        if len(pts) > 1 and not self.path_safe(pts, times, t0, mv, statics):
+            return None
+        if end is not None and (times[-1] < end or len(pts) == 1):
+            if not self.wait_safe(pts[-1], times[-1], end, t0, mv):
+                return None
+            pts, times = np.vstack([pts, pts[-1]]), np.append(times, max(times[-1], end))
+        return Continuation(kind, pts, times)
 
-    def _spot(self, p, t: float, end: float, t0: float, mv):
-        """The first escape move (shortest hop first, then by heading) to a spot where
-        standing is safe until ``end``."""
+    def _spot(self, drive, p, t: float, end: float, t0: float, mv):
+        """The first escape (shortest hop first, then by heading) that ends where standing is
+        safe until ``end``; the statics are checked for a hop's escapes at once."""
         for k, offsets in self._moves:
-            tk = t + k
-            if tk >= end:
+            if t + k >= end:
                 break
-            spots = p + offsets
-            clear = self.static_clear(np.repeat(p[None], len(spots), axis=0), spots)
-            for q in spots[clear]:
-                if segment_free(p[0], p[1], q[0], q[1], t, tk, mv) and self.wait_safe(
-                    q, tk, end, t0, mv
-                ):
-                    return Continuation("spot", np.vstack([p, q, q]), np.array([t, tk, end]))
+            paths, a, b = drive.escapes(p, t, k, offsets)
+            ok, i = self.static_clear(a, b).tolist(), 0
+            for pts, times in paths:
+                i += len(pts) - 1
+                if all(ok[i - len(pts) + 1 : i]):
+                    found = self._rests("spot", pts, times, end, t0, mv, statics=False)
+                    if found is not None:
+                        return found
         return None
 
 

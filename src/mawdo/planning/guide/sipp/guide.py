@@ -21,7 +21,7 @@ import numpy as np
 from mawdo.planning.guide.homotopy import GUIDE_SEGMENTS
 from mawdo.planning.guide.sipp.intervals import safe_intervals
 from mawdo.planning.guide.sipp.profile import profile_table
-from mawdo.planning.guide.sipp.profiled import lead_clear, profiled_route, profiled_search
+from mawdo.planning.guide.sipp.profiled import lead_clear, profile_points, profiled_search
 from mawdo.planning.guide.sipp.roadmap import Roadmap
 from mawdo.planning.guide.sipp.search import search
 from mawdo.planning.world.scenario import Scenario
@@ -87,7 +87,8 @@ class SafeIntervalGuide:
         ``(accel, turn)``: acceleration (px per step squared) and turn rate (radians per
         step), ``inf`` for a free one: every edge is driven from rest to rest in whole steps
         and the robot turns in place at its vertices
-        (:mod:`~mawdo.planning.guide.sipp.search_limited`); ``t0`` must then be a whole step.
+        (:func:`~mawdo.planning.guide.sipp.search.search_limited`); ``t0`` must then be a
+        whole step.
         None (default): straight moves at full speed, instant starts, stops and turns.
     lead : array_like, shape (j, 2), optional
         With ``profile``: the robot's positions at ``t0, t0 + 1, ...`` before it comes to
@@ -165,21 +166,29 @@ class SafeIntervalGuide:
         )  # fmt: skip
 
     def _route(self, goal_state, arrival, parent, depart) -> TimedRoute:
-        if self.profile is not None:
-            return TimedRoute(*profiled_route(self, goal_state, arrival, parent, depart))
+        """The route ending in ``goal_state``: the lead (without a profile: the start), then
+        per edge its wait (rests and turns included), its profile's inner piece boundaries
+        (:func:`~mawdo.planning.guide.sipp.profiled.profile_points`, at whole steps) and its
+        end."""
         chain = [int(goal_state)]
         while parent[chain[-1]] >= 0:
             chain.append(int(parent[chain[-1]]))
         chain.reverse()
         owner = np.searchsorted(self.ptr, chain, side="right") - 1  # each state's vertex
-        pts, times = [self.nodes[owner[0]]], [self.t0]
+        lead = self.nodes[owner[:1]] if self.profile is None else self.lead
+        pts, times = list(lead), [self.t0 + i for i in range(len(lead))]
         for j in range(1, len(chain)):
-            if depart[chain[j]] > times[-1]:  # an explicit wait
-                pts.append(pts[-1])
-                times.append(float(depart[chain[j]]))
-            pts.append(self.nodes[owner[j]])
+            u, v = int(owner[j - 1]), int(owner[j])
+            tau = float(depart[chain[j]])
+            if tau > times[-1]:  # an explicit wait (a rest, a turn in place)
+                pts.append(self.nodes[u])
+                times.append(tau)
+            if self.profile is not None:
+                inner, at = profile_points(self, u, v, tau)
+                pts, times = pts + inner, times + at
+            pts.append(self.nodes[v])
             times.append(float(arrival[chain[j]]))
-        return TimedRoute(np.array(pts), np.array(times), tuple(chain))
+        return TimedRoute(np.array(pts, dtype=float), np.array(times, dtype=float), tuple(chain))
 
     def routes(self, k: int = 1) -> list[TimedRoute]:
         """The earliest-arrival route and up to ``k - 1`` time-diverse alternatives.

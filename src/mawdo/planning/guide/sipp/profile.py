@@ -18,7 +18,7 @@ Without an acceleration limit (``a = inf``) an edge takes ``ceil(L / v)`` unifor
 
 A profile is a few uniform pieces (:func:`edge_pieces`: one per step of speeding up and of
 slowing down, one for the cruise), so the guide checks it exactly, piece by piece, with the
-same closed-form tests as a straight uniform move (:mod:`mawdo.planning.guide.sipp.search_limited`).
+same closed-form tests as a straight uniform move (:mod:`mawdo.planning.guide.sipp.search`).
 
 At a vertex where the heading changes the robot stands :func:`rest_steps` whole steps: it
 turns in place at ``max_turn`` (``ceil(angle / max_turn)`` steps), and with an acceleration
@@ -108,7 +108,10 @@ def rest_steps(hx, hy, dx, dy, accel_on, turn):
     """Whole steps at rest at a vertex entered with unit heading ``h`` (zero: none, the robot
     was at rest with no heading) and left with unit heading ``d`` (zero: no move):
     ``ceil(angle / turn)`` (``turn`` in radians per step, ``inf`` for none), at least one with
-    an acceleration limit (``accel_on``); none where the heading does not change."""
+    an acceleration limit (``accel_on``); none where the heading does not change, and none
+    without limits (instant turns and stops)."""
+    if turn == math.inf and not accel_on:
+        return 0.0
     if (hx == 0.0 and hy == 0.0) or (dx == 0.0 and dy == 0.0):
         return 0.0
     ang = abs(math.atan2(hx * dy - hy * dx, hx * dx + hy * dy))

@@ -1,12 +1,13 @@
 """The safe-interval guide's timed routes under acceleration and turn-rate limits.
 
 :class:`~mawdo.planning.guide.sipp.guide.SafeIntervalGuide` with a ``profile`` searches with
-:func:`~mawdo.planning.guide.sipp.search_limited.search_limited` and writes each edge of the route
-found as its rest-to-rest profile (:mod:`mawdo.planning.guide.sipp.profile`): one point per piece
-boundary, at whole steps, so that the route's straight uniform pieces between its points are
-the motion the run drives (:func:`~mawdo.planning.guide.timeguide.position_at` at whole steps gives
-the profile's positions). A robot moving when the guide is asked first brakes along its
-heading (the ``lead``), each step checked as an edge is (:func:`lead_clear`).
+:func:`~mawdo.planning.guide.sipp.search.search_limited` and writes each edge of the route
+found as its rest-to-rest profile (:func:`profile_points`;
+:mod:`mawdo.planning.guide.sipp.profile`): one point per piece boundary, at whole steps, so
+that the route's straight uniform pieces between its points are the motion the run drives
+(:func:`~mawdo.planning.guide.timeguide.position_at` at whole steps gives the profile's
+positions). A robot moving when the guide is asked first brakes along its heading (the
+``lead``), each step checked as an edge is (:func:`lead_clear`).
 """
 
 from __future__ import annotations
@@ -14,9 +15,9 @@ from __future__ import annotations
 import numpy as np
 
 from mawdo.planning.guide.sipp.intervals import segment_free
-from mawdo.planning.guide.sipp.search_limited import search_limited
+from mawdo.planning.guide.sipp.search import search_limited
 
-__all__ = ["lead_clear", "profiled_route", "profiled_search"]
+__all__ = ["lead_clear", "profile_points", "profiled_search"]
 
 
 def _heading(lead: np.ndarray) -> np.ndarray:
@@ -59,30 +60,12 @@ def _edge_index(guide, u: int, v: int) -> int:
     return int(lo + np.flatnonzero(guide.indices[lo:hi] == v)[0])
 
 
-def profiled_route(guide, goal_state, arrival, parent, depart):
-    """``(points, times, states)`` of the route ending in ``goal_state``: the lead, then per
-    edge its wait (rests and turns included) and its profile's piece boundaries."""
-    chain = [int(goal_state)]
-    while parent[chain[-1]] >= 0:
-        chain.append(int(parent[chain[-1]]))
-    chain.reverse()
-    owner = np.searchsorted(guide.ptr, chain, side="right") - 1
+def profile_points(guide, u: int, v: int, tau: float):
+    """The inner piece boundaries of the profile of edge ``u -> v`` departing at ``tau``:
+    ``(points, times)`` lists (pixels, time steps; empty for an edge of one piece)."""
+    e = _edge_index(guide, u, v)
     tptr, k0, c0, dur, w, _ = guide._table
-    pts = [p for p in guide.lead]
-    times = [guide.t0 + i for i in range(len(guide.lead))]
-    for j in range(1, len(chain)):
-        u, v = int(owner[j - 1]), int(owner[j])
-        tau, arr = float(depart[chain[j]]), float(arrival[chain[j]])
-        pu, pv = guide.nodes[u], guide.nodes[v]
-        if tau > times[-1]:  # a wait (a rest, a turn in place)
-            pts.append(pu)
-            times.append(tau)
-        e = _edge_index(guide, u, v)
-        L = guide.weights[e]
-        d = (pv - pu) / L if L > 0 else np.zeros(2)
-        for i in range(tptr[e], tptr[e + 1] - 1):  # inner piece boundaries
-            pts.append(pu + d * (c0[i] + w[i] * dur[i]))
-            times.append(tau + k0[i] + dur[i])
-        pts.append(pv)
-        times.append(arr)
-    return np.array(pts, dtype=float), np.array(times, dtype=float), tuple(chain)
+    pu, pv, L = guide.nodes[u], guide.nodes[v], guide.weights[e]
+    d = (pv - pu) / L if L > 0 else np.zeros(2)
+    idx = range(tptr[e], tptr[e + 1] - 1)
+    return [pu + d * (c0[i] + w[i] * dur[i]) for i in idx], [tau + k0[i] + dur[i] for i in idx]

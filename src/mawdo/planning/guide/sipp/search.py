@@ -1,18 +1,39 @@
-"""Compiled A* over (vertex, safe interval) states on arrival time.
+"""Compiled A* over (vertex, safe interval) states on arrival time, with or without limits.
 
 A state is one safe interval of one graph vertex (its global index in the interval arrays);
-its value is the earliest arrival in it. Expanding a state reached at ``a`` tries every graph
-edge ``u -> v`` (driven straight at full speed, duration ``T``): the departures that collide
-are :func:`~mawdo.planning.guide.sipp.intervals.forbidden` within ``[a, end of u's interval]`` (the
-robot may wait in its interval), and for each safe interval ``J`` of ``v`` the earliest free
-departure that arrives no earlier than ``J`` opens gives the arrival in ``J`` (the forbidden
-sets are computed over windows that grow from there until a free departure is found). Every accepted
-departure is re-checked by :func:`~mawdo.planning.guide.sipp.intervals.segment_free` (the wait at
-``u``, then the move); one the exact intervals allow but the re-check refuses (rounding at a
-touching contact) is pushed on by ``10 EPS`` a few times, then dropped. The heuristic, the
-static shortest time to the goal over the same graph, never exceeds a move's duration plus
-its wait plus the heuristic where it arrives, so it is consistent and the first goal state
-popped has the earliest arrival on this graph.
+its value is the earliest arrival in it. An edge ``u -> v`` is driven as its *moves*, a table of
+straight uniform pieces, and how the robot drives is data, ``kin = (v, accel_on, turn, whole)``:
+
+* without limits (:func:`search`, moves :func:`straight_moves`): one piece at full speed ``v``,
+  duration ``T = L / v``, departures at any time, instant starts, stops and turns;
+* under acceleration or turn-rate limits (:func:`search_limited`, moves
+  :func:`profiled_moves`): the edge's rest-to-rest profile
+  (:mod:`mawdo.planning.guide.sipp.profile`), ``T`` its whole steps, departures at whole steps
+  (the run's clock; the start time is one), and the robot stands at ``u`` at least
+  :func:`~mawdo.planning.guide.sipp.profile.rest_steps` steps after arriving there (its heading
+  in is the edge it arrived by, or the start's; without limits that rest is zero).
+
+Expanding a state reached at ``a`` tries every edge ``u -> v``: the departures that collide are
+the union over its pieces of the departures at which each piece, shifted by its start, meets a
+mover (:func:`~mawdo.planning.guide.sipp.intervals.forbidden`, exact), within ``[ready, end of
+u's interval]`` (the robot may wait in its interval), and for each safe interval ``J`` of ``v``
+the earliest free departure that arrives no earlier than ``J`` opens gives the arrival in ``J``
+(the forbidden sets are computed over windows that grow from there until a free departure is
+found). Every accepted departure is re-checked by
+:func:`~mawdo.planning.guide.sipp.intervals.segment_free` (the wait at ``u``, then each piece); one
+the exact intervals allow but the re-check refuses (rounding at a touching contact) is pushed on
+(by ``10 EPS``, or to the next whole step) a few times, then dropped. The positions driven are
+the pieces', straight and uniform in between, so the check covers exactly what is driven.
+
+The heuristic, the static shortest time to the goal at speed ``v``, never exceeds a move's
+duration plus its wait plus the heuristic where it arrives (``T >= L / v``). Without limits it is
+consistent and the first goal state popped has the earliest arrival on this graph. With limits
+the rest at a vertex depends on the edge the robot came by, which a state does not hold: the
+route found is safe and its timing exact, but a later arrival in the same interval from another
+heading, which could turn faster, is not kept, so the earliest arrival is over the routes this
+search keeps. Either way, once a goal arrival is known, a target interval whose earliest
+possible arrival plus heuristic exceeds it cannot be popped before that goal state, so its exact
+departure is never searched.
 """
 
 from __future__ import annotations
@@ -27,46 +48,164 @@ from mawdo.planning.guide.sipp.index import candidates
 from mawdo.planning.guide.sipp.intervals import (
     EPS,
     earliest_free,
+    forbidden,
     forbidden_among,
     segment_free,
     segment_free_among,
 )
+from mawdo.planning.guide.sipp.profile import rest_steps
 
-__all__ = ["search", "start_state"]
+__all__ = [
+    "pieces_forbidden",
+    "pieces_free",
+    "profiled_moves",
+    "search",
+    "search_limited",
+    "start_state",
+    "straight_moves",
+    "timed_search",
+]
 
 _RETRIES = 3
 #: First window of departures examined per edge and target interval (time steps).
 _WINDOW = 8.0
 
 
+@njit(cache=True)
+def straight_moves(nodes, indptr, indices, weights, speed):
+    """The moves of every edge without limits: one piece at ``speed`` (px per step).
+
+    Returns ``(eptr, edge, piece)``: edge ``e`` has the pieces ``eptr[e]:eptr[e + 1]`` and
+    ``edge[e] = (T, hx, hy)``, its duration (time steps) and unit heading (zeros for a
+    zero-length edge); ``piece[j] = (k0, ax, ay, ex, ey, dur, bx, by)``: it starts ``k0`` steps
+    after the departure and runs ``dur`` steps from ``(ax, ay)`` to ``(bx, by)`` (pixels) at
+    velocity ``(ex, ey)`` (px per step).
+    """
+    E = len(weights)
+    edge, piece = np.zeros((E, 3)), np.zeros((E, 8))
+    for u in range(len(indptr) - 1):
+        for e in range(indptr[u], indptr[u + 1]):
+            v, T, L = indices[e], weights[e] / speed, weights[e]
+            ux, uy, vx, vy = nodes[u, 0], nodes[u, 1], nodes[v, 0], nodes[v, 1]
+            edge[e, 0] = piece[e, 5] = T
+            piece[e, 1], piece[e, 2], piece[e, 6], piece[e, 7] = ux, uy, vx, vy
+            if T > 0.0:  # a zero-length edge (the start on a vertex): a move of no duration
+                piece[e, 3], piece[e, 4] = (vx - ux) / T, (vy - uy) / T
+            if L > 0.0:
+                edge[e, 1], edge[e, 2] = (vx - ux) / L, (vy - uy) / L
+    return np.arange(E + 1), edge, piece
+
+
+@njit(cache=True)
+def profiled_moves(nodes, indptr, indices, weights, table):
+    """The moves of every edge under limits: its rest-to-rest profile ``table``
+    (:func:`~mawdo.planning.guide.sipp.profile.profile_table` of ``weights``), laid along the
+    edge; as :func:`straight_moves` returns."""
+    tptr, k0, c0, dur, w, steps = table
+    edge, piece = np.zeros((len(weights), 3)), np.empty((len(k0), 8))
+    for u in range(len(indptr) - 1):
+        ux, uy = nodes[u, 0], nodes[u, 1]
+        for e in range(indptr[u], indptr[u + 1]):
+            L = weights[e]
+            dx, dy = 0.0, 0.0
+            if L > 0.0:
+                dx, dy = (nodes[indices[e], 0] - ux) / L, (nodes[indices[e], 1] - uy) / L
+            edge[e, 0], edge[e, 1], edge[e, 2] = steps[e], dx, dy
+            for j in range(tptr[e], tptr[e + 1]):
+                c1 = c0[j] + w[j] * dur[j]
+                piece[j, 0], piece[j, 5] = k0[j], dur[j]
+                piece[j, 1], piece[j, 2] = ux + c0[j] * dx, uy + c0[j] * dy
+                piece[j, 3], piece[j, 4] = w[j] * dx, w[j] * dy
+                piece[j, 6], piece[j, 7] = ux + c1 * dx, uy + c1 * dy
+    return tptr, edge, piece
+
+
+@njit(cache=True)
+def pieces_forbidden(piece, i, j, lo, hi, mv):
+    """Departures in ``[lo, hi]`` (time steps) at which the pieces ``i:j`` of a move (one
+    edge's, rows of :func:`straight_moves`'s ``piece``) meet a mover: the union of each
+    piece's, shifted by its start; sorted, disjoint closed intervals ``(k, 2)``."""
+    parts = np.empty((0, 2))
+    for q in range(i, j):
+        k0, ax, ay, ex, ey, dur = piece[q, :6]
+        F = forbidden(ax, ay, ex, ey, dur, lo + k0, hi + k0, mv)
+        parts = np.concatenate((parts, F - k0))
+    parts = parts[np.argsort(parts[:, 0])]
+    out = np.empty_like(parts)
+    k = 0
+    for q in range(len(parts)):
+        if k > 0 and parts[q, 0] <= out[k - 1, 1]:
+            out[k - 1, 1] = max(out[k - 1, 1], parts[q, 1])
+        else:
+            out[k] = parts[q]
+            k += 1
+    return out[:k]
+
+
+@njit(cache=True)
+def pieces_free(piece, i, j, tau, mv):
+    """True iff the pieces ``i:j`` of a move departing at ``tau`` keep clear of every mover
+    (each by :func:`~mawdo.planning.guide.sipp.intervals.segment_free`)."""
+    for q in range(i, j):
+        t1 = tau + piece[q, 0]
+        if not segment_free(
+            piece[q, 1], piece[q, 2], piece[q, 6], piece[q, 7], t1, t1 + piece[q, 5], mv
+        ):
+            return False
+    return True
+
+
+@njit(cache=True)
+def _integer_free(F, x):
+    """The first whole step ``>= x`` outside the closed intervals ``F`` (sorted, disjoint)."""
+    tau = float(math.ceil(x))
+    for j in range(len(F)):
+        if F[j, 1] < tau:
+            continue
+        if F[j, 0] > tau:
+            break
+        tau = math.floor(F[j, 1]) + 1.0
+    return tau
+
+
 @njit(cache=True, inline="always")
-def _depart(ux, uy, vx, vy, a, T, x, top, J_hi, mv):
-    """Earliest checked departure ``>= x`` and ``<= top`` whose arrival precedes ``J_hi``
-    (``inf`` if none). The forbidden departures are computed over windows growing from ``x``
-    (the answer is usually at or just after it), each exact over its span."""
-    # a zero-length edge (the start on a vertex) is a move of no duration
-    ex, ey = ((vx - ux) / T, (vy - uy) / T) if T > 0.0 else (0.0, 0.0)
+def _depart(moves, e, ux, uy, a, T, x, top, J_hi, whole, mv):
+    """Earliest checked departure ``>= x`` and ``<= top`` (a whole step if ``whole``) whose
+    arrival precedes ``J_hi`` (``inf`` if none). The forbidden departures are computed over
+    windows growing from ``x`` (the answer is usually at or just after it), each exact over its
+    span."""
+    eptr, _, piece = moves
+    i, j = eptr[e], eptr[e + 1]
+    # one piece from the departure (every edge without limits): the movers near the window
+    # serve its departure sets and the re-check of the move alike, as one query
+    one, near = j - i == 1 and piece[i, 0] == 0.0, np.empty(0, np.int64)
+    ax, ay, ex, ey, dur, bx, by = piece[i, 1:8] if one else np.zeros(7)
     lo, span, tries = x, _WINDOW, 0
     while lo <= top and lo + T < J_hi:
         hi = min(top, lo + span)
-        # the movers near the move, for the departure sets and the re-check of the move alike
-        near = candidates(ux, uy, ex, ey, T, lo, hi, mv[15])
-        tau = earliest_free(forbidden_among(ux, uy, ex, ey, T, lo, hi, mv, near), lo)
+        if one:
+            near = candidates(ax, ay, ex, ey, dur, lo, hi, mv[15])
+            F = forbidden_among(ax, ay, ex, ey, dur, lo, hi, mv, near)
+        else:
+            F = pieces_forbidden(piece, i, j, lo, hi, mv)
+        tau = _integer_free(F, lo) if whole else earliest_free(F, lo)
         if tau > hi:  # forbidden up to the window's end: look further
-            lo, span = hi, 2.0 * span
             if hi == top:
                 return math.inf
+            lo, span = hi, 2.0 * span
             continue
         if tau + T >= J_hi:
             return math.inf
-        if segment_free(ux, uy, ux, uy, a, tau, mv) and segment_free_among(
-            ux, uy, vx, vy, tau, tau + T, mv, near
+        if segment_free(ux, uy, ux, uy, a, tau, mv) and (
+            segment_free_among(ax, ay, bx, by, tau, tau + dur, mv, near)
+            if one
+            else pieces_free(piece, i, j, tau, mv)
         ):
             return tau
         tries += 1  # refused at a touching contact (rounding): push on a little
         if tries == _RETRIES:
             return math.inf
-        lo = tau + 10.0 * EPS
+        lo = tau + (1.0 if whole else 10.0 * EPS)
     return math.inf
 
 
@@ -82,23 +221,40 @@ def start_state(ptr, lo, hi, start, t0, pos, mv):
 
 
 @njit(cache=True)
-def search(
-    nodes, indptr, indices, weights, to_goal, speed, start, goal, t0, t_end, ptr, lo, hi, banned, mv
-):
-    """Earliest arrival at ``goal`` from ``start`` at ``t0`` over (vertex, interval) states.
+def _states(ptr, S):
+    """Per interval state: its vertex, and the search's arrays (arrival, parent, departure,
+    heading in, closed) before it starts."""
+    owner = np.empty(S, np.int64)
+    for q in range(len(ptr) - 1):
+        owner[ptr[q] : ptr[q + 1]] = q
+    arrival, parent, depart = np.full(S, np.inf), np.full(S, -1, np.int64), np.full(S, np.nan)
+    return owner, arrival, parent, depart, np.zeros((S, 2)), np.zeros(S, np.bool_)
+
+
+@njit(cache=True)
+def timed_search(graph, moves, kin, start, goal, t_start, h0, t_end, ptr, lo, hi, banned, mv):
+    """Earliest arrival at ``goal`` from ``start`` at ``t_start`` over (vertex, interval) states.
 
     Parameters
     ----------
-    nodes : numpy.ndarray, shape (n, 2)
-        Vertices (pixels); ``indptr, indices, weights`` their graph (CSR, edge lengths in px).
-    to_goal : numpy.ndarray, shape (n,)
-        Static distance to the goal over the graph (px; ``inf``: cut off): the heuristic.
-    speed : float
-        Robot speed (px per time step), > 0.
+    graph : tuple
+        ``(nodes, indptr, indices, weights, to_goal)``: vertices (pixels, shape ``(n, 2)``),
+        their graph (CSR, edge lengths in px) and the static distance to the goal over it
+        (px; ``inf``: cut off), the heuristic.
+    moves : tuple
+        The edges' pieces (:func:`straight_moves` or :func:`profiled_moves`).
+    kin : tuple
+        ``(v, accel_on, turn, whole)``: speed (px per step, > 0), whether acceleration is
+        limited, turn rate (radians per step, ``inf`` for none), whether departures are whole
+        steps (module docstring).
     start, goal : int
         Vertex indices.
-    t0, t_end : float
-        Departure time and horizon (time steps).
+    t_start : float
+        Departure time (time steps; a whole step if ``whole``).
+    h0 : numpy.ndarray, shape (2,)
+        Unit heading the robot has at the start (zeros: none).
+    t_end : float
+        Horizon (time steps).
     ptr, lo, hi : numpy.ndarray
         Safe intervals per vertex (:func:`~mawdo.planning.guide.sipp.intervals.safe_intervals`).
     banned : numpy.ndarray of bool
@@ -109,28 +265,23 @@ def search(
     Returns
     -------
     goal_state : int
-        The goal's interval reached first (-1: none; -2: the start is not safe at ``t0``).
+        The goal's interval reached first (-1: none; -2: the start is not safe at ``t_start``).
     arrival, parent, depart : numpy.ndarray
         Per interval state: earliest arrival, previous state, departure from its vertex.
     """
-    S = len(lo)
-    owner = np.empty(S, np.int64)
-    for v in range(len(ptr) - 1):
-        owner[ptr[v] : ptr[v + 1]] = v
-    arrival = np.full(S, np.inf)
-    parent = np.full(S, -1, np.int64)
-    depart = np.full(S, np.nan)
-    closed = np.zeros(S, np.bool_)
-    s0 = start_state(ptr, lo, hi, start, t0, nodes[start], mv)
+    nodes, indptr, indices, weights, to_goal = graph
+    owner, arrival, parent, depart, heading, closed = _states(ptr, len(lo))
+    s0 = start_state(ptr, lo, hi, start, t_start, nodes[start], mv)
     if s0 < 0:
         return -2, arrival, parent, depart
-    arrival[s0] = t0
+    arrival[s0] = t_start
+    heading[s0, 0], heading[s0, 1] = h0[0], h0[1]
     keys, ids, nh = heap_new()
-    keys, ids, nh = heap_push(keys, ids, nh, t0 + to_goal[start] / speed, t0, s0)
+    keys, ids, nh = heap_push(keys, ids, nh, t_start + to_goal[start] / kin[0], t_start, s0)
     # the earliest goal arrival found so far: no state whose arrival plus heuristic exceeds it
     # can precede the goal off the heap, so its exact departure is never needed
     bound = np.full(1, np.inf)
-    state = (arrival, parent, depart, closed, banned, bound)
+    state = (arrival, parent, depart, heading, closed, banned, bound)
     while nh > 0:
         _, a, sid, nh = heap_pop(keys, ids, nh)
         if closed[sid]:
@@ -139,43 +290,83 @@ def search(
         u = owner[sid]
         if u == goal:
             return sid, arrival, parent, depart
-        ux, uy = nodes[u, 0], nodes[u, 1]
         for e in range(indptr[u], indptr[u + 1]):
             v = indices[e]
-            T = weights[e] / speed
-            top = min(hi[sid], t_end - T)
-            if top < a or not to_goal[v] < math.inf:
+            if not to_goal[v] < math.inf:
                 continue
-            hv = to_goal[v] / speed
+            T = moves[1][e, 0]
+            # standing at u first: turning in place, or the stop between two profiles
+            ready = a + rest_steps(heading[sid, 0], heading[sid, 1], moves[1][e, 1], moves[1][e, 2],
+                                   kin[1], kin[2])  # fmt: skip
+            top = min(hi[sid], t_end - T)
+            if top < ready:
+                continue
+            edge = (e, sid, a, ready, T, top, to_goal[v] / kin[0], v == goal, weights[e] > 0.0)
             keys, ids, nh = _relax(
-                ux, uy, nodes[v], ptr[v], ptr[v + 1], sid, a, T, top, hv, v == goal, lo, hi,
-                state, keys, ids, nh, mv,
-            )  # fmt: skip
+                edge, nodes[u], ptr[v], ptr[v + 1], lo, hi, moves, kin[3], state, keys, ids, nh, mv
+            )
     return -1, arrival, parent, depart
 
 
 @njit(cache=True, inline="always")
-def _relax(ux, uy, pv, j0, j1, sid, a, T, top, hv, is_goal, lo, hi, state, keys, ids, nh, mv):
-    """Arrivals in the safe intervals ``j0:j1`` of vertex ``pv`` (the goal if ``is_goal``) by
-    the move from ``u``, pushed on the heap ``(keys, ids, nh)``
+def _relax(edge, pu, j0, j1, lo, hi, moves, whole, state, keys, ids, nh, mv):
+    """Arrivals in the safe intervals ``j0:j1`` of the vertex an edge leads to, by the move
+    ``edge`` from ``pu``, pushed on the heap ``(keys, ids, nh)``
     (:mod:`mawdo.planning.guide.heap`), which it returns."""
-    arrival, parent, depart, closed, banned, bound = state
+    arrival, parent, depart, heading, closed, banned, bound = state
+    e, sid, a, ready, T, top, hv, is_goal, moving = edge
     for J in range(j0, j1):
-        if hi[J] <= a + T or closed[J] or banned[J]:
+        if hi[J] <= ready + T or closed[J] or banned[J]:
             continue
         if lo[J] >= top + T:
             break
-        x = max(a, lo[J] - T)
+        x = max(ready, lo[J] - T)
+        if whole:
+            x = float(math.ceil(x))
         # the departure is >= x, so an arrival no earlier than the best known one is certain:
         # skip the exact (and costly) departure search, which could not change anything
         if x + T >= arrival[J] or x + T + hv > bound[0]:
             continue
-        tau = _depart(ux, uy, pv[0], pv[1], a, T, x, top, hi[J], mv)
+        tau = _depart(moves, e, pu[0], pu[1], a, T, x, top, hi[J], whole, mv)
         if tau + T < arrival[J]:
-            arrival[J] = tau + T
-            parent[J] = sid
-            depart[J] = tau
+            arrival[J], parent[J], depart[J] = tau + T, sid, tau
+            if moving:
+                heading[J, 0], heading[J, 1] = moves[1][e, 1], moves[1][e, 2]
+            else:
+                heading[J, 0], heading[J, 1] = heading[sid, 0], heading[sid, 1]
             keys, ids, nh = heap_push(keys, ids, nh, tau + T + hv, tau + T, J)
             if is_goal:
                 bound[0] = min(bound[0], tau + T)
     return keys, ids, nh
+
+
+@njit(cache=True)
+def search(
+    nodes, indptr, indices, weights, to_goal, speed, start, goal, t0, t_end, ptr, lo, hi, banned, mv
+):
+    """:func:`timed_search` without limits: straight moves at ``speed`` (px per step, > 0),
+    departures at any time from ``t0``, instant starts, stops and turns; the other arguments
+    and the results as there."""
+    moves = straight_moves(nodes, indptr, indices, weights, speed)
+    return timed_search(
+        (nodes, indptr, indices, weights, to_goal), moves, (speed, False, math.inf, False),
+        start, goal, t0, np.zeros(2), t_end, ptr, lo, hi, banned, mv,
+    )  # fmt: skip
+
+
+@njit(cache=True)
+def search_limited(graph, table, lim, start, goal, t_start, h0, t_end, ptr, lo, hi, banned, mv):
+    """:func:`timed_search` under acceleration or turn-rate limits: each edge its rest-to-rest
+    profile ``table`` (:func:`~mawdo.planning.guide.sipp.profile.profile_table` of the graph's
+    weights), departures at whole steps from the whole step ``t_start``, rests at the vertices.
+
+    ``lim`` is ``(v, accel_on, turn)``: speed (px per step, > 0), whether acceleration is
+    limited, turn rate (radians per step, ``inf`` for none); the other arguments and the
+    results as in :func:`timed_search`.
+    """
+    nodes, indptr, indices, weights, _ = graph
+    moves = profiled_moves(nodes, indptr, indices, weights, table)
+    return timed_search(
+        graph, moves, (lim[0], lim[1], lim[2], True), start, goal, t_start, h0, t_end, ptr, lo,
+        hi, banned, mv,
+    )  # fmt: skip
