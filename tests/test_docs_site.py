@@ -37,6 +37,7 @@ GENERATED = {"results"}
 #: compile on a cold cache), studies of planning runs, a local Dask cluster.
 SLOW = {
     "planning.md",
+    "observed.md",
     "tutorials/first-planning-run.md",
     "bbob.md",
     "tutorials/first-study.md",

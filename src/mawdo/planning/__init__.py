@@ -10,7 +10,9 @@ One folder per stage of the planning loop (guide -> refine -> guard -> move -> j
   the greedy polish.
 * :mod:`~mawdo.planning.safety` - the guard, the inevitable-collision rule, kinematic limits.
 * :mod:`~mawdo.planning.run` - settings, the receding-horizon loop, results, every planner by name.
-* :mod:`~mawdo.planning.judge` - the independent checkers and the per-run metrics.
+* :mod:`~mawdo.planning.judge` - the independent checkers, who is at fault, the per-run metrics.
+* :mod:`~mawdo.planning.sense` - what the robot knows: sensor readings, the tracker, predictors,
+  the policy contract; :mod:`~mawdo.planning.people` - people who react.
 * :mod:`~mawdo.planning.scenes`, :mod:`~mawdo.planning.baselines`, :mod:`~mawdo.planning.render` -
   seeded scene families, baseline planners, figures.
 
@@ -52,6 +54,22 @@ _LAZY = {
     "get_scenario": "world.scenario",
     "load_scenario": "world.scenario",
     "scenario_from_dict": "world.scenario",
+    "SteppedWorld": "world.stepped",
+    "Move": "world.stepped",
+    "Track": "world.motion",
+    "Units": "world.units",
+    "run_episode": "run.episode",
+    "PlannerPolicy": "run.policy",
+    "StraightLine": "run.policy",
+    "POLICIES": "run.policies",
+    "make_policy": "run.policies",
+    "Reading": "sense.reading",
+    "Tracks": "sense.reading",
+    "Policy": "sense.reading",
+    "Sensor": "sense.sensor",
+    "Tracker": "sense.tracker",
+    "PREDICTORS": "sense.predict",
+    "blame": "judge.fault",
 }
 
 
@@ -67,20 +85,34 @@ def __getattr__(name):
 
 __all__ = [
     "PLANNERS",
+    "POLICIES",
+    "PREDICTORS",
     "PRESETS",
     "SCENARIOS",
     "CheckReport",
     "CostWeights",
+    "Move",
     "Obstacle",
     "OracleResult",
     "PathCost",
     "PlanResult",
     "PlannerConfig",
+    "PlannerPolicy",
     "PlannerSpec",
+    "Policy",
+    "Reading",
     "Replan",
     "Scenario",
     "ScenarioError",
+    "Sensor",
+    "SteppedWorld",
+    "StraightLine",
+    "Track",
+    "Tracker",
+    "Tracks",
+    "Units",
     "assemble_paths",
+    "blame",
     "check_static_path",
     "check_trajectory",
     "from_movingai_map",
@@ -89,7 +121,9 @@ __all__ = [
     "inflate",
     "inflated_obstacles",
     "load_scenario",
+    "make_policy",
     "plan",
+    "run_episode",
     "run_metrics",
     "run_planner",
     "scenario_from_dict",
