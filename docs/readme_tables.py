@@ -130,10 +130,28 @@ def arena_table() -> list[str]:
     return lines
 
 
+def crowd_table() -> list[str]:
+    """CrowdNav's circle crossing: each policy's success, robot-caused collisions and time to
+    the goal, from the crowd report's table."""
+    lines = [
+        "| policy | knows | success | robot-caused collisions | time to goal (s) |",
+        "|---|---|---|---|---|",
+    ]
+    knows = {"mawdo_oracle": "the future", "straight": "nothing"}
+    for row in _rows(RESULTS / "crowdnav-circle5" / "crowd_table.md"):
+        share = f"{100 * float(row['robot-caused']):.1f} %"
+        lines.append(
+            f"| {row['policy']} | {knows.get(row['policy'], 'what it sees')} | "
+            f"{100 * float(row['success']):.1f} % | {share} | {row['time (s)']} |"
+        )
+    return lines
+
+
 TABLES = {
     "paper": paper_table,
     "suites": suites_table,
     "arena": arena_table,
+    "crowd": crowd_table,
 }
 
 

@@ -63,6 +63,28 @@ def crowd_summary(store: Store) -> dict[tuple[str, str], dict[str, float]]:
     return out
 
 
+def crowd_headline(store: Store) -> list[str]:
+    """One sentence per setting (Markdown bullets), from the stored rows: each policy observing
+    the people beside the oracle-fed upper bound and the baselines."""
+    summary = crowd_summary(store)
+    plan = store.plan
+    out = []
+    for s in plan.settings:
+        here = {p: summary[(s, p)] for p in plan.policies if (s, p) in summary}
+        if not here:
+            continue
+        parts = []
+        for p, m in here.items():
+            part = (f"{p} {100 * m['success']:.1f} % success, {100 * m['robot_caused']:.1f} % "
+                    f"robot-caused collisions")  # fmt: skip
+            if np.isfinite(m["time_s"]):
+                part += f", {m['time_s']:.2f} s to the goal"
+            parts.append(part)
+        n = max(m["episodes"] for m in here.values())
+        out.append(f"- {s}, {n} episodes: " + "; ".join(parts) + ".")
+    return out
+
+
 def crowd_table(store: Store) -> Table:
     """The report's table (see the module docstring)."""
     keys = [
@@ -93,6 +115,7 @@ def write_crowd_report(store_path, out_dir, *, figures: bool = True, **_options)
             raise ValueError(f"{store_path} holds a {plan.kind!r} study, not a crowd study")
         say("crowd table")
         table = crowd_table(store)
+        headline = crowd_headline(store)
         errors = [(a, s, r.run, r.error_text) for a, s, r in store.rows() if r.error_text]
         figs = []
         if figures:
@@ -101,7 +124,9 @@ def write_crowd_report(store_path, out_dir, *, figures: bool = True, **_options)
             figs += [f for f in [episode_figure(store, out)] if f is not None]
     for ext, f in (("md", to_markdown), ("tex", to_latex), ("csv", to_csv)):
         (out / f"crowd_table.{ext}").write_text(f(table))
-    md = [f"# Crowd navigation: {plan.name}", "", plan.describe(), "", to_markdown(table), ""]
+    (out / "summary.md").write_text("\n".join(headline) + "\n", encoding="utf-8")
+    md = [f"# Crowd navigation: {plan.name}", "", plan.describe(), "", *headline, ""]
+    md += [to_markdown(table), ""]
     md += [f"![{p.stem}]({p.name})\n" for p in figs]
     if errors:
         md += ["", "## Runs that raised", ""]
