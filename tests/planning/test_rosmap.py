@@ -1,5 +1,7 @@
 """ROS map_server maps: a hand-made map read at hand-computed metre coordinates, written back."""
 
+import json
+
 import numpy as np
 import pytest
 import shapely
@@ -201,3 +203,27 @@ def test_bad_maps_are_clear_errors(tmp_path):
             read_ros_map(write_yaml(tmp_path / "e.yaml", **fields))
     with pytest.raises(ScenarioError, match="start: "):
         load_ros_map(write_yaml(tmp_path / "f.yaml"), start=(1.05, 4.95), goal=(3.0, 4.5))
+
+
+def test_the_command_plans_on_a_ros_map(ros_map, tmp_path):
+    from tests.cli_run import mawdo
+
+    out = tmp_path / "out"
+    done = mawdo("plan", "run", str(ros_map), "--start", "-1.5,2.0", "--goal", "3.0,4.5",
+                 "--preset", "quick", "--max-steps", "3", "--no-figures", "--no-progress",
+                 "--out", str(out))  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    metrics = json.loads((out / "metrics.json").read_text())
+    assert (metrics["units"], metrics["resolution_m"], metrics["dt_s"]) == ("m", RES, 0.25)
+    bad = [
+        ((str(ros_map), "--goal", "3,4.5"), "a ROS map needs --start as x,y in ROS world metres"),
+        ((str(ros_map), "--start", "1;2", "--goal", "3,4.5"), "--start '1;2': give x,y"),
+        (("paper", "--start", "1,2"), "--start: only for a ROS map (.yaml)"),
+        ((str(write_yaml(tmp_path / "x.yaml", image="no.pgm")), "--start", "0,2", "--goal",
+          "3,4.5"), "'no.pgm' is not there"),
+        ((str(ros_map), "--start", "1.05,4.95", "--goal", "3,4.5"), "start: inside"),
+    ]  # fmt: skip
+    for args, message in bad:
+        done = mawdo("plan", "run", *args, "--out", str(tmp_path / "never"))
+        assert done.returncode == 2 and message in done.stderr, (args, done.stderr)
+    assert not (tmp_path / "never").exists()
