@@ -15,7 +15,7 @@ from pathlib import Path
 import typer
 from rich.console import Console
 
-from mawdo.cli import quick_exit, study
+from mawdo.cli import quick_exit, record_output, rosmap_input, study
 from mawdo.cli.errors import DefaultRunGroup
 from mawdo.cli.progress import ERR, notice_compiles, step
 
@@ -194,7 +194,9 @@ class _StepBar:
 
 @plan_app.command("run")
 def run_cmd(
-    scenario: str = typer.Argument(..., help="built-in name (paper) or a .toml/.json file"),
+    scenario: str = typer.Argument(
+        ..., help="built-in name (paper), a .toml/.json file or a ROS map .yaml"
+    ),
     algorithm: str = typer.Option("mawdo", "--algorithm", "-a", help="registered optimizer"),
     seed: int = typer.Option(0, min=0, help="seed of the run (an integer >= 0)"),
     preset: str = typer.Option("realtime", help="planner preset: realtime, paper or quick"),
@@ -220,6 +222,11 @@ def run_cmd(
         0.0, min=0, help="s.d. of sensed positions (scenario units)"
     ),
     miss_rate: float = typer.Option(0.0, min=0, max=0.999, help="chance to miss an agent"),
+    start: str = rosmap_input.START,
+    goal: str = rosmap_input.GOAL,
+    robot_radius: float = rosmap_input.ROBOT_RADIUS,
+    robot_speed: float = rosmap_input.ROBOT_SPEED,
+    record: Path = record_output.RECORD,
 ):
     """Plan and execute one run; print and save its metrics."""
     from mawdo.cli.errors import bad_input, check_output_dir, on_ctrl_c
@@ -228,8 +235,10 @@ def run_cmd(
     check_threads(threads)
     # every input is checked before --out is created (exit 2, as for the other commands)
     try:
-        sc = _scenario(scenario)
+        sc = rosmap_input.ros_map_scenario(scenario, start, goal, robot_radius, robot_speed)
+        sc = sc or _scenario(scenario)
         sense = _sense(sc, knowledge, static, sensor_range, sensor_noise, miss_rate)
+        record_output.check_record(record)
     except (KeyError, ValueError, FileNotFoundError, ImportError) as exc:
         raise bad_input(exc) from None
     # the figures' process starts now: it imports matplotlib while this one sets its run up,
@@ -243,6 +252,7 @@ def run_cmd(
         check_output_dir(out, "--out folder")
         begin_figures(job, sc)
         res = _execute(run, sc, algorithm, seed, preset, static, threads, out, progress, job)
+        record_output.write_record(res, record, console)
         if job is not None:
             from mawdo.planning.render.animation import animation_times
 
