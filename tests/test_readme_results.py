@@ -60,7 +60,7 @@ def test_the_readme_tables_are_rendered_from_the_committed_results():
     tables = readme_tables()
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
     written = tables.tables_in(readme)
-    assert set(written) == set(tables.TABLES) == {"paper", "suites", "arena"}
+    assert set(written) == set(tables.TABLES) == {"paper", "suites", "arena", "crowd"}
     for name, render in tables.TABLES.items():
         rows = render()
         assert len(rows) >= 5, name  # header, rule and at least three rows
@@ -265,3 +265,25 @@ def test_the_committed_arena_figures_are_drawn_from_the_committed_store(tmp_path
         assert new.shape == old.shape, name
         off = np.abs(new.astype(float) - old.astype(float)) > 3 / 255
         assert off.mean() <= 1e-3, f"{name}: {off.mean():.2%} of values differ"
+
+
+def test_crowd_sentences_and_readme_table_are_those_of_the_committed_store(tmp_path):
+    """The committed crowd store (xz) gives exactly the committed headline sentences, and the
+    README's crowd table carries the store's success and robot-caused shares."""
+    from mawdo.experiments import Store
+    from mawdo.experiments.kinds.crowd import crowd_summary
+    from mawdo.experiments.kinds.crowd.report import crowd_headline
+
+    folder = ROOT / "docs" / "results" / "crowdnav-circle5"
+    db = unpack(folder / "store.db.xz", tmp_path)
+    with Store.read(db) as store:
+        lines = crowd_headline(store)
+        summary = crowd_summary(store)
+    assert lines == (folder / "summary.md").read_text("utf-8").splitlines()
+    rows = readme_tables().crowd_table()[2:]
+    assert len(rows) == len(summary) == 7
+    for row in rows:
+        policy, _, success, caused, _ = (c.strip() for c in row.strip("|").split("|"))
+        m = summary[("circle-5-invisible", policy)]
+        assert success == f"{100 * m['success']:.1f} %" and m["episodes"] == 500
+        assert caused == f"{100 * m['robot_caused']:.1f} %"
