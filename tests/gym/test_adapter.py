@@ -1,0 +1,147 @@
+"""Adapters: the same episode in the environment and through ``run_episode``."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+gymnasium = pytest.importorskip("gymnasium")
+
+import mawdo.gym  # noqa: E402,F401
+from mawdo.experiments.kinds.crowd.execute import scene_of, world_of  # noqa: E402
+from mawdo.gym import CallablePolicy, policy_action, register_policy  # noqa: E402
+from mawdo.gym.options import COMMON, sensor_of  # noqa: E402
+from mawdo.planning.judge.check import check_trajectory  # noqa: E402
+from mawdo.planning.judge.fault import blame  # noqa: E402
+from mawdo.planning.run.episode import run_episode  # noqa: E402
+from mawdo.planning.run.policies import POLICIES, make_policy  # noqa: E402
+from mawdo.planning.sense.tracker import Tracker  # noqa: E402
+
+SETTING = "circle-5-invisible"
+
+
+class RandomPolicy:
+    """Uniform velocities (m/s) from a generator reseeded every episode; remembers what it saw."""
+
+    def __init__(self, speed: float) -> None:
+        self.speed, self.seen = speed, []
+
+    def reseed(self, seed) -> None:
+        self.rng = np.random.default_rng(seed)
+
+    def __call__(self, obs):
+        self.seen.append(np.array(obs))
+        return self.rng.uniform(-self.speed, self.speed, 2)
+
+
+def _drive(env, act, seed):
+    """Run ``act`` in ``env`` from ``reset(seed)``; the last info and the robot's positions."""
+    obs, _ = env.reset(seed=seed)
+    while True:
+        obs, _, term, trunc, info = env.step(act(obs))
+        if term or trunc:
+            return info, np.array(env.unwrapped.world.trajectory)
+
+
+def _first_collision(res):
+    """The first colliding step of a finished episode (None without) and whether the robot
+    caused a collision in it (the checker and the blame on the realised scenario)."""
+    rep = check_trajectory(res.route, res.scenario, times=res.route_times)
+    steps = sorted({s for s, _ in rep.collisions} | set(rep.border))
+    if not steps:
+        return None, False
+    s = steps[0]
+    hits = [c for c in rep.collisions if c[0] == s]
+    mine, _ = blame(res.route, res.route_times, res.scenario, hits)
+    return s, bool(mine) or s in rep.border
+
+
+def _compare(info, traj, res):
+    """The environment's episode is ``run_episode``'s up to its end."""
+    np.testing.assert_allclose(traj, res.trajectory[: len(traj)], rtol=0, atol=1e-9)
+    assert info["success"] == res.success
+    first, caused = _first_collision(res)
+    if info["collision"]:
+        assert first == len(traj) - 2  # the env stopped in the step that collided
+        assert info["robot_caused"] == caused
+    else:
+        assert first is None or first >= len(traj) - 1
+        assert len(traj) == len(res.trajectory)  # goal or time limit: the whole episode
+
+
+@pytest.mark.parametrize("seed, noise", [(0, 0.0), (1, 0.0), (2, 0.1)])
+def test_random_callable_policy_same_episode_in_env_and_run_episode(seed, noise):
+    scene = scene_of(SETTING, seed)
+    opts = {**COMMON, "sensor_noise": noise, "miss_rate": 0.1 if noise else 0.0}
+    env = gymnasium.make("mawdo/Crowd-v0", setting=SETTING, sensor_noise=noise,
+                         miss_rate=opts["miss_rate"])  # fmt: skip
+    in_env = RandomPolicy(1.0)
+    in_env.reseed(seed)  # the env path: the caller seeds its own policy
+    info, traj = _drive(env, in_env, seed)
+
+    judged = RandomPolicy(1.0)
+    policy = CallablePolicy(judged, tracker=Tracker(noise=noise / scene.res),
+                            on_reset=lambda s: judged.reseed(seed))  # fmt: skip
+    res = run_episode(world_of(scene, seed), policy, scene.time_limit_steps, seed=seed,
+                      sensor=sensor_of(opts, scene.res))  # fmt: skip
+    _compare(info, traj, res)
+    # the policy saw the same observations both ways
+    n = len(in_env.seen)
+    assert n >= 2
+    np.testing.assert_array_equal(np.array(in_env.seen), np.array(judged.seen[:n]))
+
+
+@pytest.mark.parametrize("seed", [0, 3])
+def test_orca_robot_same_episode_in_env_and_run_episode(seed):
+    scene = scene_of(SETTING, seed)
+    opts = {"res": scene.res, "dt": scene.dt}
+    env = gymnasium.make("mawdo/Crowd-v0", setting=SETTING)
+    info, traj = _drive(env, policy_action(make_policy("orca_robot", opts), env), seed)
+    res = run_episode(world_of(scene, seed), make_policy("orca_robot", opts),
+                      scene.time_limit_steps, seed=seed)  # fmt: skip
+    _compare(info, traj, res)
+    assert info["success"]  # ORCA crosses these scenes (a run to the goal, compared whole)
+
+
+def test_policy_action_resets_the_policy_every_episode():
+    env = gymnasium.make("mawdo/Crowd-v0", setting="circle-2-invisible", max_steps=3)
+    calls = []
+
+    class Spy:
+        def reset(self, scenario, seed):
+            calls.append(seed)
+
+        def act(self, reading):
+            return np.zeros(2)
+
+    act = policy_action(Spy(), env)
+    for seed in (4, 5):
+        _drive(env, act, seed)
+    from mawdo.streams import episode_seed_sequences
+
+    want = [episode_seed_sequences(s)["policy"].spawn_key for s in (4, 5)]
+    assert [c.spawn_key for c in calls] == want
+    fresh = gymnasium.make("mawdo/Crowd-v0", setting="circle-2-invisible")
+    with pytest.raises(RuntimeError, match="reset the environment"):
+        policy_action(Spy(), fresh)(None)
+
+
+def test_register_policy_puts_a_callable_in_the_registry():
+    name = "gym_test_still"
+    try:
+        spec = register_policy(name, lambda obs: np.zeros(2), "stands still", k=2, n_rays=4)
+        assert POLICIES[name] is spec and spec.knowledge == "observed"
+        policy = make_policy(name, {"noise": 2.0})
+        assert isinstance(policy, CallablePolicy) and policy.observer.tracker.noise == 2.0
+        scene = scene_of("circle-2-invisible", 0)
+        res = run_episode(world_of(scene, 0), policy, 5, seed=0)
+        np.testing.assert_array_equal(res.trajectory, np.repeat(res.trajectory[:1], 6, axis=0))
+        with pytest.raises(ValueError, match="already registered"):
+            register_policy(name, lambda obs: np.zeros(2))
+    finally:
+        POLICIES.unregister(name)
+    with pytest.raises(ValueError, match="callable"):
+        CallablePolicy(3)
+    with pytest.raises(ValueError, match="n_rays"):
+        register_policy("gym_test_bad", lambda obs: np.zeros(2), n_rays=-1)
+    assert "gym_test_bad" not in POLICIES
