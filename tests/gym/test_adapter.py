@@ -2,10 +2,9 @@
 
 from __future__ import annotations
 
+import gymnasium
 import numpy as np
 import pytest
-
-gymnasium = pytest.importorskip("gymnasium")
 
 import mawdo.gym  # noqa: E402,F401
 from mawdo.experiments.kinds.crowd.execute import scene_of, world_of  # noqa: E402

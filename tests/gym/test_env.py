@@ -5,10 +5,9 @@ from __future__ import annotations
 import warnings
 from pathlib import Path
 
+import gymnasium
 import numpy as np
 import pytest
-
-gymnasium = pytest.importorskip("gymnasium")  # the ``rl`` extra; in ``dev``
 
 import mawdo.gym  # noqa: E402,F401  (registers the environments)
 from mawdo.gym.options import COMMON  # noqa: E402

@@ -5,8 +5,6 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-pytest.importorskip("gymnasium")
-
 from mawdo.gym.observation import Observer, ray_ranges, static_lines  # noqa: E402
 from mawdo.planning.sense.reading import Reading  # noqa: E402
 from mawdo.planning.sense.tracker import Tracker  # noqa: E402

@@ -5,8 +5,6 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-pytest.importorskip("gymnasium")
-
 from mawdo.gym.reward import Rewards, crowdnav_reward, disc_clearance, judge_step  # noqa: E402
 
 

@@ -29,7 +29,7 @@ from mawdo.gym.options import check_options, sensor_of
 from mawdo.gym.reward import Rewards, crowdnav_reward, judge_step
 from mawdo.streams import episode_seed_sequences
 
-__all__ = ["CrowdEnv", "MawdoEnv", "ScenarioEnv"]
+__all__ = ["CrowdEnv", "MawdoEnv", "ScenarioEnv", "read_world"]
 
 _SEED_HIGH = 2**63 - 1
 
@@ -124,9 +124,7 @@ class MawdoEnv(gym.Env):
         return self._observe(), {"episode_seed": self.episode_seed}
 
     def _observe(self) -> np.ndarray:
-        from mawdo.planning.run.episode import _read
-
-        self.reading = _read(self.world, self.sensor, self._rng)
+        self.reading = read_world(self.world, self.sensor, self._rng)
         return self.observer.observe(self.reading)
 
     def step(self, action):
@@ -167,6 +165,19 @@ class MawdoEnv(gym.Env):
             "episode_seed": self.episode_seed,
         }  # fmt: skip
         return self._observe(), reward, terminated, truncated, info
+
+
+def read_world(world, sensor, rng):
+    """The reading ``run_episode`` takes of ``world`` at its current step: every agent exactly
+    without a sensor (no draw), else ``sensor``'s reading drawn from ``rng``."""
+    from mawdo.planning.run.episode import perfect_reading
+
+    if sensor is None:
+        return perfect_reading(world)
+    centres, radii = world.agents()
+    sc = world.scenario
+    args = (world.position, world.velocity, sc.goal, centres, radii, world.walls(), rng)
+    return sensor.read(world.step_index, *args)
 
 
 def _check_render(render_mode) -> None:
