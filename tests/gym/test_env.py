@@ -197,6 +197,8 @@ def test_scenario_env_bad_input():
         gymnasium.make("mawdo/Scenario-v0", scenario=3)
     with pytest.raises(ValueError, match="unknown option 'sensor'"):
         gymnasium.make("mawdo/Scenario-v0", scenario=str(HALL), sensor=None)
+    with pytest.raises(ValueError, match="goal_tolerance"):
+        gymnasium.make("mawdo/Scenario-v0", scenario=str(HALL), goal_tolerance=-0.1)
 
 
 def test_step_before_reset_and_bad_action():

@@ -17,6 +17,7 @@ from collections.abc import Callable
 import numpy as np
 
 from mawdo.gym.observation import Observer
+from mawdo.planning.world.stepped import Move, SteppedWorld
 
 __all__ = ["CallablePolicy", "policy_action", "register_policy"]
 
@@ -24,8 +25,6 @@ __all__ = ["CallablePolicy", "policy_action", "register_policy"]
 def _walls(scenario) -> list[np.ndarray]:
     """The static walls a world of ``scenario`` reports (pixels), the environment's rays'
     targets."""
-    from mawdo.planning.world.stepped import SteppedWorld
-
     return SteppedWorld(scenario).walls()
 
 
@@ -77,8 +76,14 @@ def policy_action(policy, env) -> Callable[[np.ndarray], np.ndarray]:
     The policy reads the environment's current :class:`~mawdo.planning.sense.reading.Reading`
     (``env.unwrapped.reading``, the one the observation was built from), not the observation;
     at each new episode it is reset with the world's scenario and the episode's policy seed, as
-    :func:`~mawdo.planning.run.episode.run_episode` resets it. The episode is then the one
-    ``run_episode`` gives on the same seed.
+    :func:`~mawdo.planning.run.episode.run_episode` resets it. For a policy that returns
+    velocities (the ORCA and social-force robots, ``dwa``, a :class:`CallablePolicy`) the
+    episode is then the one ``run_episode`` gives on the same seed.
+
+    A :class:`~mawdo.planning.world.stepped.Move` (our planner's step through corner points)
+    becomes the velocity of its net displacement: the environment's action is one straight
+    step, so the robot cuts the corners the planner's move would pass, and the episode can
+    differ from ``run_episode``'s.
 
     Parameters
     ----------
@@ -96,7 +101,10 @@ def policy_action(policy, env) -> Callable[[np.ndarray], np.ndarray]:
         if seen["episode"] != base.episode_id:
             policy.reset(base.world.scenario, base.policy_seed)
             seen["episode"] = base.episode_id
-        return base.observer.action_of(policy.act(base.reading))
+        out = policy.act(base.reading)
+        if isinstance(out, Move):  # one straight step to where the move ends
+            out = out.points[-1] - base.world.position
+        return base.observer.action_of(out)
 
     return act
 

@@ -28,6 +28,7 @@ from mawdo.gym.observation import Observer, unit_scales
 from mawdo.gym.options import check_options, sensor_of
 from mawdo.gym.reward import Rewards, crowdnav_reward, judge_step
 from mawdo.streams import episode_seed_sequences
+from mawdo.util.validate import check_real
 
 __all__ = ["CrowdEnv", "MawdoEnv", "ScenarioEnv", "read_world"]
 
@@ -266,12 +267,11 @@ class ScenarioEnv(MawdoEnv):
         self.scenario = scenario
         super().__init__(options, {"goal_tolerance": None})
         tol = self.options["goal_tolerance"]
-        units = scenario.units
-        self._goal_tolerance = (
-            float(scenario.robot_radius) if tol is None else float(units.length_to_px(tol))
-        )
-        if self._goal_tolerance < 0:
-            raise ValueError(f"goal_tolerance must be >= 0 m, got {tol!r}")
+        if tol is None:
+            self._goal_tolerance = float(scenario.robot_radius)
+        else:
+            check_real("goal_tolerance", tol, 0.0)
+            self._goal_tolerance = float(scenario.units.length_to_px(tol))
 
     def _template(self):
         return self.scenario
