@@ -217,3 +217,28 @@ def test_policy_action_drives_a_move_as_one_straight_step():
     env.step(policy_action(Corner(), env)(obs))
     np.testing.assert_allclose(env.unwrapped.world.position - start, [2.0, 2.0], atol=1e-12)
     assert len(env.unwrapped.world.route) == 2  # one straight segment, no corner
+
+
+def test_a_registered_callable_runs_in_the_crowd_study_as_in_the_env():
+    from mawdo.experiments.kinds.crowd.execute import execute_crowd_task
+
+    name = "gym_test_towards_goal"
+    register_policy(name, _towards_goal, "heads for the goal")
+    try:
+        spec = {"algorithm": name, "preset": None, "overrides": {},
+                "predictor": "constant_velocity",
+                "sensor": {"noise": 0.05, "range": None, "miss_rate": 0.0},
+                "problem": SETTING, "seeds": [0, 4], "first_run": 0}  # fmt: skip
+        rows = execute_crowd_task(spec)
+    finally:
+        POLICIES.unregister(name)
+    for seed, row in zip(spec["seeds"], rows, strict=True):
+        assert row.status == "ok", row.error_text
+        env = gymnasium.make("mawdo/Crowd-v0", setting=SETTING, sensor_noise=0.05)
+        info, traj = _drive(env, _towards_goal, seed)
+        assert row.success == int(info["success"])
+        if info["collision"]:  # the study's row counts the whole episode, the env its first hit
+            assert row.collision == 1
+            assert row.robot_caused >= int(info["robot_caused"])
+        else:
+            assert row.steps == len(traj) - 1
