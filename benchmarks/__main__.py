@@ -25,6 +25,7 @@ SUITES = [
     "bench_threads",
     "bench_scaling",
     "bench_crowd",
+    "bench_gym",
 ]
 
 

@@ -48,6 +48,7 @@ FLOORS = (
     ("mawdo.experiments.kinds.arena", 5),
     ("mawdo.experiments.__init__", 6),  # registers the built-in kinds
     ("mawdo.reproduce", 7),  # runs every kind's study: above the kinds, below the commands
+    ("mawdo.gym", 7),  # Gymnasium environments on the crowd kind's scenes: above the kinds too
     ("mawdo.cli", 8),
 )
 # prefixes that name one module, not the modules under it: a new top-level module must be
