@@ -1,6 +1,7 @@
 """People in scenario files: the ``[crowd]`` table, its errors, and ``mawdo plan run`` on it."""
 
 import json
+import os
 import tomllib
 from pathlib import Path
 
@@ -98,3 +99,20 @@ def test_cli_runs_a_crowd_scenario_observed_and_reports_metres(tmp_path):
     m = json.loads((tmp_path / "metrics.json").read_text())
     assert m["units"] == "m" and m["success"] is True and m["algorithm"] == "mawdo"
     assert 10.0 <= m["length_m"] <= 14.0  # the 10 m straight line, detours around two people
+
+
+def test_cli_unknown_or_oracle_predictor_exits_2(tmp_path):
+    for name, message in (("psychic", "unknown predictor"), ("oracle", "true future")):
+        proc = mawdo("plan", "run", str(HALL), "--out", str(tmp_path / "out"), "--predictor", name)
+        assert proc.returncode == 2 and message in proc.stderr.replace("\n", " "), proc.stderr
+
+
+def test_cli_without_pyrvo_names_the_extra_and_exits_2(tmp_path):
+    # a pyrvo that cannot be imported, first on the path: what a machine without the extra sees
+    (tmp_path / "pyrvo").mkdir()
+    (tmp_path / "pyrvo" / "__init__.py").write_text("raise ImportError('no RVO2 here')\n")
+    path = f"{tmp_path}{os.pathsep}{os.environ.get('PYTHONPATH', '')}"
+    proc = mawdo("plan", "run", str(HALL), "--out", str(tmp_path / "out"),
+                 env={"PYTHONPATH": path})  # fmt: skip
+    assert proc.returncode == 2, proc.stderr
+    assert "pip install 'mawdo[crowd]'" in proc.stderr.replace("\n", " ")

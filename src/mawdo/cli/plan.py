@@ -92,11 +92,12 @@ def _prepare(sc, algorithm, seed, preset, static, threads, max_steps, sense=None
     return run
 
 
-def _sense(sc, knowledge, static, sensor_range, sensor_noise, miss_rate):
-    """``(knowledge, sensor)`` of a stepped run, or None for the planner's own run loop."""
+def _sense(sc, knowledge, static, sensor_range, sensor_noise, miss_rate, predictor):
+    """``(knowledge, sensor, predictor)`` of a stepped run, or None for the planner's own run
+    loop."""
     from mawdo.planning.run.stepped_cli import sense_of
 
-    return sense_of(sc, knowledge, static, sensor_range, sensor_noise, miss_rate)
+    return sense_of(sc, knowledge, static, sensor_range, sensor_noise, miss_rate, predictor)
 
 
 @contextmanager
@@ -222,6 +223,9 @@ def run_cmd(
         0.0, min=0, help="s.d. of sensed positions (scenario units)"
     ),
     miss_rate: float = typer.Option(0.0, min=0, max=0.999, help="chance to miss an agent"),
+    predictor: str = typer.Option(
+        "constant_velocity", help="how observed agents are predicted: constant_velocity, stop"
+    ),
     start: str = rosmap_input.START,
     goal: str = rosmap_input.GOAL,
     robot_radius: float = rosmap_input.ROBOT_RADIUS,
@@ -237,7 +241,7 @@ def run_cmd(
     try:
         sc = rosmap_input.ros_map_scenario(scenario, start, goal, robot_radius, robot_speed)
         sc = sc or _scenario(scenario)
-        sense = _sense(sc, knowledge, static, sensor_range, sensor_noise, miss_rate)
+        sense = _sense(sc, knowledge, static, sensor_range, sensor_noise, miss_rate, predictor)
         record_output.check_record(record)
     except (KeyError, ValueError, FileNotFoundError, ImportError) as exc:
         raise bad_input(exc) from None

@@ -15,22 +15,34 @@ from mawdo.planning.run.policy import KNOWLEDGE
 __all__ = ["sense_of", "stepped_run"]
 
 
-def sense_of(sc, knowledge, static: bool, sensor_range, sensor_noise, miss_rate):
-    """``(knowledge, sensor)`` for a stepped run, or ``None`` for the planner's own loop.
+def sense_of(sc, knowledge, static: bool, sensor_range, sensor_noise, miss_rate,
+             predictor: str = "constant_velocity"):  # fmt: skip
+    """``(knowledge, sensor, predictor)`` for a stepped run, or ``None`` for the planner's own
+    loop.
 
     Raises
     ------
     ValueError
-        An unknown knowledge, ``observed`` with ``--static``, oracle knowledge of people who see
-        the robot, or sensor settings with oracle knowledge; each message says what to change.
+        An unknown knowledge or predictor, ``observed`` with ``--static``, oracle knowledge of
+        people who see the robot, sensor settings or a predictor with oracle knowledge, a
+        predictor that needs the true future; each message says what to change.
     """
     crowd = sc.spec.crowd
     if knowledge is not None and knowledge not in KNOWLEDGE:
         raise ValueError(f"--knowledge {knowledge!r}: give one of {', '.join(KNOWLEDGE)}")
     knowledge = knowledge or ("observed" if crowd is not None else "oracle")
+    from mawdo.planning.sense.predict import PREDICTORS
+
+    spec = PREDICTORS[predictor]  # an unknown name lists the known ones
+    if spec.needs_truth:
+        raise ValueError(
+            f"--predictor {predictor}: it needs the true future; observed knowledge has none "
+            "(use --knowledge oracle for the upper bound)"
+        )
     sensed = sensor_range is not None or sensor_noise > 0 or miss_rate > 0
-    if knowledge == "oracle" and sensed:
-        raise ValueError("--sensor-range/--sensor-noise/--miss-rate need --knowledge observed")
+    if knowledge == "oracle" and (sensed or predictor != "constant_velocity"):
+        raise ValueError("--sensor-range/--sensor-noise/--miss-rate/--predictor need "
+                         "--knowledge observed")  # fmt: skip
     if static and (knowledge == "observed" or crowd is not None):
         raise ValueError("--static plans once on a frozen map: it takes no people and no "
                          "--knowledge observed; drop --static")  # fmt: skip
@@ -43,7 +55,8 @@ def sense_of(sc, knowledge, static: bool, sensor_range, sensor_noise, miss_rate)
         require_pyrvo()  # ImportError naming the extra to install
     if knowledge == "oracle" and crowd is None:
         return None
-    return knowledge, _sensor(sc, sensor_range, sensor_noise, miss_rate) if sensed else None
+    sensor = _sensor(sc, sensor_range, sensor_noise, miss_rate) if sensed else None
+    return knowledge, sensor, predictor
 
 
 def _sensor(sc, sensor_range, sensor_noise, miss_rate):
@@ -54,7 +67,8 @@ def _sensor(sc, sensor_range, sensor_noise, miss_rate):
     return Sensor(range=rng, noise=px(sensor_noise), miss_rate=miss_rate)
 
 
-def stepped_run(sc, algorithm, seed, preset, max_steps: int, knowledge: str, sensor, threads=1):
+def stepped_run(sc, algorithm, seed, preset, max_steps: int, knowledge: str, sensor,
+                predictor: str = "constant_velocity", threads=1):  # fmt: skip
     """The :class:`~mawdo.planning.run.episode.EpisodeRun` of ``mawdo plan run``: our planner
     with that knowledge, the people of the scenario, ``max_steps`` steps."""
     from mawdo.planning.run.episode import EpisodeRun
@@ -66,8 +80,8 @@ def stepped_run(sc, algorithm, seed, preset, max_steps: int, knowledge: str, sen
         from mawdo.planning.sense.tracker import Tracker
 
         tracker = Tracker(noise=0.0 if sensor is None else sensor.noise)
-        run.policy = PlannerPolicy(algorithm, preset, "observed", tracker=tracker,
-                                   threads=threads)  # fmt: skip
+        run.policy = PlannerPolicy(algorithm, preset, "observed", predictor=predictor,
+                                   tracker=tracker, threads=threads)  # fmt: skip
     else:  # invisible people: their future recorded on a copy, told to the planner
         import numpy as np
 
