@@ -150,16 +150,12 @@ class EpisodeRun:
 
     def __init__(self, scenario, policy, seed, max_steps: int, sensor=None, name="policy",
                  config=None):  # fmt: skip
-        from mawdo.planning.people.from_scenario import people_of
         from mawdo.planning.world.stepped import SteppedWorld
 
         self.scenario, self.policy, self.seed, self.max_steps = scenario, policy, seed, max_steps
         self.sensor, self.name, self.config = sensor, name, config
         self.known = None  # what the policy is told at reset (None: the scenario)
-        rng = np.random.default_rng(episode_seed_sequences(seed)["world"])
-        crowd = scenario.spec.crowd
-        people = people_of(scenario, rng)
-        self.world = SteppedWorld(scenario, people, visible=bool(crowd and crowd.visible))
+        self.world = SteppedWorld.of(scenario, seed)
 
     def step_limit(self) -> tuple[int, int]:
         """The step limit, twice (it is given, not derived)."""

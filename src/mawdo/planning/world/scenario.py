@@ -386,6 +386,8 @@ def _builtin(filename: str) -> Callable[[], Scenario]:
 
 
 SCENARIOS.register("paper", _builtin("paper.toml"))
+# metres and seconds, with people who react (a stepped world: SteppedWorld.of)
+SCENARIOS.register("hall", _builtin("hall.toml"))
 
 
 def get_scenario(name: str | Path) -> Scenario:

@@ -143,6 +143,19 @@ class SteppedWorld:
         self._people_track = [[] for _ in range(n)]
         self._record_people()
 
+    @classmethod
+    def of(cls, scenario, seed=0, goal_tolerance: float = 1e-9) -> SteppedWorld:
+        """The world of a scenario: its scripted obstacles and, from its ``[crowd]`` table,
+        its people at their starts (drawing from the episode's world stream of ``seed``:
+        :func:`~mawdo.streams.episode_seed_sequences`)."""
+        from mawdo.planning.people.from_scenario import people_of
+        from mawdo.streams import episode_seed_sequences
+
+        rng = np.random.default_rng(episode_seed_sequences(seed)["world"])
+        crowd = scenario.spec.crowd
+        people = people_of(scenario, rng)
+        return cls(scenario, people, bool(crowd and crowd.visible), goal_tolerance)
+
     def _record_people(self) -> None:
         if self.people is None:
             return
