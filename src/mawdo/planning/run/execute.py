@@ -134,6 +134,7 @@ class Run(TimedRun, SafeRun, LimitedRun):
         # policy that runs one step per Run hands each step the last one's remainder
         self.warm_start = None
         self.remainder = None
+        self.judge = True  # the checker judges the run at its end (a stepped policy: no)
 
     def _make_optimizers(self) -> dict:
         return _optimizers(self.algorithm, self.cfg)
@@ -401,6 +402,9 @@ class Run(TimedRun, SafeRun, LimitedRun):
         return to
 
     def _finish(self, drive, reason: str) -> PlanResult:
+        if not self.judge:  # a stepped policy's one step: the episode is judged as a whole
+            return drive.unjudged(reason, self.given, self.algorithm, self.seed, self.cfg,
+                                  self.replans, **self.counts)  # fmt: skip
         return drive.result(
             reason,
             self.given,

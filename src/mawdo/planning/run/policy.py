@@ -223,6 +223,7 @@ class PlannerPolicy:
         kind = GuideOnlyRun if self.algorithm == GUIDE_ONLY else Run
         run = kind(sc, self.algorithm, seed, self._step_config(reading.step), True)
         run.warm_start = self._warm(reading.position) if self.warm else None
+        run.judge = False  # the episode is judged as a whole, on the realised world
         share_guide(sc, self.known)  # built on the first step, kept for the episode
         self.last = res = run.execute()
         self._remainder = run.remainder

@@ -148,6 +148,15 @@ class Drive:
         self.stamps.append(step + 1.0)
         self.traj.append(pos.copy())
 
+    def unjudged(self, reason: str, scenario, algorithm, seed, config, replans, **counts):
+        """The moves as a :class:`PlanResult` without the checker's verdict (``success`` and
+        ``collision_free`` False): for a part of a run judged as a whole elsewhere."""
+        return PlanResult(
+            scenario=scenario, algorithm=algorithm, seed=seed, config=config,
+            trajectory=np.array(self.traj), success=False, reason=reason, replans=replans,
+            route=np.array(self.route), route_times=np.array(self.stamps), **counts,
+        )  # fmt: skip
+
     def result(
         self, reason: str, scenario, margin: float = 0.0, limits=None, **fields
     ) -> PlanResult:
