@@ -287,3 +287,17 @@ def test_crowd_sentences_and_readme_table_are_those_of_the_committed_store(tmp_p
         m = summary[("circle-5-invisible", policy)]
         assert success == f"{100 * m['success']:.1f} %" and m["episodes"] == 500
         assert caused == f"{100 * m['robot_caused']:.1f} %"
+
+
+def test_every_crowd_setting_sentence_is_that_of_the_committed_store(tmp_path):
+    """docs/results/crowdnav-50: the store gives the committed sentences, 50 episodes each."""
+    from mawdo.experiments import Store
+    from mawdo.experiments.kinds.crowd import crowd_summary
+    from mawdo.experiments.kinds.crowd.report import crowd_headline
+
+    folder = ROOT / "docs" / "results" / "crowdnav-50"
+    with Store.read(unpack(folder / "store.db.xz", tmp_path)) as store:
+        lines = crowd_headline(store)
+        summary = crowd_summary(store)
+    assert lines == (folder / "summary.md").read_text("utf-8").splitlines()
+    assert len(summary) == 12 * 7 and {m["episodes"] for m in summary.values()} == {50}
