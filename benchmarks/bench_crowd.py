@@ -81,7 +81,7 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--episodes", type=int, default=5)
     ap.add_argument("--people", type=int, default=20)
     ap.add_argument("--policies", default="mawdo,guide_only")
-    args = ap.parse_args(argv)
+    args = ap.parse_args([] if argv is None else argv)  # (python -m benchmarks: defaults)
     print(f"load average {os.getloadavg()[0]:.2f} (one core per figure)")
     for model in ("orca", "social_force"):
         for n in (5, 20):
@@ -103,4 +103,6 @@ def main(argv: list[str] | None = None) -> None:
 
 
 if __name__ == "__main__":
-    main()
+    import sys
+
+    main(sys.argv[1:])
