@@ -201,3 +201,20 @@ def test_without_ompl_its_planners_say_how_to_install_it(monkeypatch):
     for name in (n for n in PLANNERS if PLANNERS[n].needs_extra == "ompl"):
         with pytest.raises(ImportError, match=r"pip install 'mawdo\[ompl\]'"):
             PLANNERS[name].run(_scene(), 0, PlannerConfig(), time_limit=0.1)
+
+
+def test_every_registered_policy_is_a_planner_judged_by_the_checker():
+    from mawdo.experiments.kinds.arena.plan import ArenaPlan
+    from mawdo.planning.judge.check import check_trajectory
+    from mawdo.planning.run.planners import PLANNERS, run_planner
+    from mawdo.planning.scenes import generate_scene
+
+    assert "policy:dwa" in PLANNERS and "policy:nope" not in PLANNERS
+    plan = ArenaPlan.from_dict({"families": ["corridor"], "n": 1, "algorithms": [],
+                                "baselines": ["policy:dwa", "policy:straight"]})  # fmt: skip
+    assert plan.baselines == ("policy:dwa", "policy:straight")
+    sc = generate_scene("corridor", 0, seed=0).scenario
+    res = run_planner("policy:straight", sc, seed=0)
+    rep = check_trajectory(res.route, res.scenario, times=res.route_times)
+    assert res.algorithm == "policy:straight" and res.collision_free == rep.ok
+    assert res.success == (res.reason == "goal reached" and rep.ok)

@@ -8,6 +8,7 @@ any optimizer      yes (predicted motion)  the receding-horizon planner driven b
 mawdo_literal      yes (predicted motion)  MAWDO with the paper's D <= 3 threshold
 mawdo_time         yes (+ safe intervals)  MAWDO with the safe-interval guide on
 guide_only         yes (+ safe intervals)  the guides' best seed, no optimizer
+policy:<name>      as the policy knows     any registered policy in a stepped world
 mawdo_observed,    tracked positions each  the same two told nothing of the future: a
 guide_only_        step                    tracker and a constant-velocity predictor
 observed                                   each step (:mod:`~mawdo.planning.run.policy`)
@@ -114,6 +115,25 @@ def optimizer_planner(algorithm: str, name: str | None = None, fixed=None, descr
     )
 
 
+#: ``policy:<name>`` is the registered policy ``<name>`` as a planner (``PLANNERS["policy:dwa"]``).
+POLICY_PREFIX = "policy:"
+
+
+def policy_planner(policy: str) -> PlannerSpec:
+    """The :class:`PlannerSpec` of a registered policy
+    (:data:`~mawdo.planning.run.policies.POLICIES`, an unknown name lists them): it drives the
+    robot through a stepped world of the scenario, seeing what the policy's knowledge allows."""
+    from mawdo.planning.run.policies import POLICIES
+    from mawdo.planning.run.policy import registered_policy_run
+
+    spec = POLICIES[policy]
+    sees = {"observed": OBSERVED, "oracle": PREDICTED, "none": "no"}[spec.knowledge]
+    return PlannerSpec(
+        name=POLICY_PREFIX + spec.name, run=partial(registered_policy_run, policy=spec.name),
+        sees_time=sees, description=f"the policy {spec.name}: {spec.description}",
+    )  # fmt: skip
+
+
 class PlannerRegistry(Registry[PlannerSpec]):
     """The registered planners, then every registered optimizer (looked up when asked)."""
 
@@ -131,6 +151,8 @@ class PlannerRegistry(Registry[PlannerSpec]):
         opts = self._optimizers()
         if key in opts:
             return optimizer_planner(opts[key].name)
+        if key.startswith(POLICY_PREFIX):
+            return policy_planner(key.removeprefix(POLICY_PREFIX))
         raise UnknownNameError(unknown_name_message(self.kind, name, list(self)))
 
     def __iter__(self) -> Iterator[str]:
@@ -140,7 +162,14 @@ class PlannerRegistry(Registry[PlannerSpec]):
         return len(list(iter(self)))
 
     def __contains__(self, name) -> bool:
-        return isinstance(name, str) and name.strip().lower() in list(self)
+        if not isinstance(name, str):
+            return False
+        key = name.strip().lower()
+        if key.startswith(POLICY_PREFIX):  # the policies are planners too, looked up when asked
+            from mawdo.planning.run.policies import POLICIES
+
+            return key.removeprefix(POLICY_PREFIX) in POLICIES
+        return key in list(self)
 
 
 def _baseline(base, scenario, seed, config: PlannerConfig, **options) -> PlanResult:
