@@ -123,8 +123,7 @@ def policy_planner(policy: str) -> PlannerSpec:
     """The :class:`PlannerSpec` of a registered policy
     (:data:`~mawdo.planning.run.policies.POLICIES`, an unknown name lists them): it drives the
     robot through a stepped world of the scenario, seeing what the policy's knowledge allows."""
-    from mawdo.planning.run.policies import POLICIES
-    from mawdo.planning.run.policy import registered_policy_run
+    from mawdo.planning.run.policies import POLICIES, registered_policy_run
 
     spec = POLICIES[policy]
     sees = {"observed": OBSERVED, "oracle": PREDICTED, "none": "no"}[spec.knowledge]

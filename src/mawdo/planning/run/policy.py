@@ -238,23 +238,6 @@ class PlannerPolicy:
         return rem
 
 
-def registered_policy_run(scenario, seed, config, policy: str):
-    """A scenario run by a registered policy (:data:`~mawdo.planning.run.policies.POLICIES`)
-    in a stepped world, under the planners' one step limit: any policy, a learned one
-    included, judged as a planner (``policy:<name>`` in the planner registry)."""
-    from mawdo.planning.run.episode import run_episode
-    from mawdo.planning.run.planner import prepare
-    from mawdo.planning.run.policies import make_policy
-    from mawdo.planning.world.stepped import SteppedWorld
-
-    steps = prepare(scenario, "mawdo", 0, replace(config, time_guide=False)).step_limit()[0]
-    units = scenario.units
-    options = {"res": units.resolution or 0.05, "dt": units.dt or 0.25}
-    world = SteppedWorld.of(scenario, seed)
-    return run_episode(world, make_policy(policy, options), steps, seed, name=f"policy:{policy}",
-                       config=config)  # fmt: skip
-
-
 def observed_run(scenario, seed, config, algorithm: str = "mawdo"):
     """A scripted scenario run with ``observed`` knowledge: the planner policy in a stepped
     world, under the planners' one step limit (:func:`~mawdo.planning.run.config.step_limit`);
