@@ -113,3 +113,32 @@ def test_advance_splits_the_length(pts, dist):
     pos, rem, passed, frac = advance(pts, dist)
     assert polyline_length(rem) == pytest.approx(max(total - dist, 0.0), abs=1e-7)
     assert np.all((frac >= 0) & (frac <= 1 + 1e-12))
+
+
+def test_densify_many_is_densify_bit_for_bit_ties_and_zero_lengths_included():
+    from mawdo.planning.world.path_kernels import densify_many
+
+    rng = np.random.default_rng(0)
+    for trial in range(600):
+        k, m = int(rng.integers(2, 6)), int(rng.integers(1, 14))
+        if trial % 3 == 0:  # a lattice: equal lengths (ties) and repeated points
+            pts = rng.integers(0, 4, (k, 2)).astype(float) * 10
+        else:
+            pts = rng.uniform(0, 366, (k, 2))
+        rows = np.zeros((1, 6, 2))
+        rows[0, :k] = pts
+        assert np.array_equal(densify_many(rows, np.array([k]), m)[0], densify(pts, m))
+
+
+def test_via_paths_are_the_loop_of_densify_on_the_same_draws():
+    from mawdo.planning.refine.seeding import via_paths
+
+    start, goal = np.array([20.0, 30.0]), np.array([340.0, 300.0])
+    got = via_paths(start, goal, 9, 50, np.random.default_rng(7), 0.0, 366.0, 366.0, 366.0)
+    rng = np.random.default_rng(7)  # the reference: one path at a time, as the draws come
+    ref = np.empty((50, 18))
+    for i in range(50):
+        k = 1 + int(rng.random() < 0.5)
+        via = rng.random((k, 2)) * [366.0, 366.0]
+        ref[i] = densify(np.vstack([start, via, goal]), 9).reshape(-1)
+    assert np.array_equal(got, np.clip(ref, 0.0, 366.0))

@@ -43,9 +43,15 @@ def via_paths(start, goal, m: int, n: int, rng, lb, ub, width: float, height: fl
     Uniform random waypoints make zig-zags that cross every obstacle; routes through random via
     points are short, diverse, and often collision-free, the usual way to seed a waypoint planner.
     """
-    out = np.empty((n, 2 * m))
-    for i in range(n):
+    from mawdo.planning.world.path_kernels import densify_many
+
+    pts = np.empty((n, 4, 2))
+    counts = np.empty(n, np.int64)
+    scale = np.array([width, height], dtype=float)
+    for i in range(n):  # the draws in the order they always had: one or two via points each
         k = 1 + int(rng.random() < 0.5)
-        via = rng.random((k, 2)) * [width, height]
-        out[i] = densify(np.vstack([start, via, goal]), m).reshape(-1)
-    return np.clip(out, lb, ub)
+        pts[i, 0], pts[i, 1 : k + 1], pts[i, k + 1] = start, rng.random((k, 2)) * scale, goal
+        counts[i] = k + 2
+    if n == 0:
+        return np.empty((0, 2 * m))
+    return np.clip(densify_many(pts, counts, m).reshape(n, -1), lb, ub)
