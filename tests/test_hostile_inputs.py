@@ -67,7 +67,6 @@ def smoke_store(tmp_path_factory) -> Path:
 
 @pytest.fixture(scope="module")
 def suite_store(tmp_path_factory) -> Path:
-    pytest.importorskip("ioh")
     db = tmp_path_factory.mktemp("suite") / "suite.db"
     res = mawdo("study", "run", "bbob-quick", *TINY_SUITE, "--out", str(db), "--no-progress")
     assert res.returncode == 0, res.stderr
@@ -76,7 +75,6 @@ def suite_store(tmp_path_factory) -> Path:
 
 # ---------------------------------------------------------------- 5: --set null, bools, options
 def test_set_null_sets_none_and_replaces_an_earlier_set(tmp_path):
-    pytest.importorskip("ioh")
     db = tmp_path / "s.db"
     res = mawdo("study", "run", "bbob-quick", "--set", "final_target=1e-3",
                 "--set", "final_target=null", *TINY_SUITE, "--out", str(db), "--no-progress",
