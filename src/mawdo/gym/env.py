@@ -27,6 +27,7 @@ import numpy as np
 from mawdo.gym.observation import Observer, unit_scales
 from mawdo.gym.options import check_options, sensor_of
 from mawdo.gym.reward import Rewards, crowdnav_reward, judge_step
+from mawdo.planning.run.episode import read_world  # the env reads the world as the runner does
 from mawdo.streams import episode_seed_sequences
 from mawdo.util.validate import check_real
 
@@ -166,19 +167,6 @@ class MawdoEnv(gym.Env):
             "episode_seed": self.episode_seed,
         }  # fmt: skip
         return self._observe(), reward, terminated, truncated, info
-
-
-def read_world(world, sensor, rng):
-    """The reading ``run_episode`` takes of ``world`` at its current step: every agent exactly
-    without a sensor (no draw), else ``sensor``'s reading drawn from ``rng``."""
-    from mawdo.planning.run.episode import perfect_reading
-
-    if sensor is None:
-        return perfect_reading(world)
-    centres, radii = world.agents()
-    sc = world.scenario
-    args = (world.position, world.velocity, sc.goal, centres, radii, world.walls(), rng)
-    return sensor.read(world.step_index, *args)
 
 
 def _check_render(render_mode) -> None:

@@ -16,7 +16,7 @@ from mawdo.planning.run.result import PlanResult, Replan
 from mawdo.planning.sense.reading import Reading
 from mawdo.streams import episode_seed_sequences
 
-__all__ = ["EpisodeRun", "perfect_reading", "run_episode"]
+__all__ = ["EpisodeRun", "perfect_reading", "read_world", "run_episode"]
 
 
 def perfect_reading(world) -> Reading:
@@ -27,15 +27,14 @@ def perfect_reading(world) -> Reading:
     )
 
 
-def _read(world, sensor, rng) -> Reading:
+def read_world(world, sensor, rng) -> Reading:
+    """The reading of ``world`` at its current step: every agent exactly without a sensor (no
+    draw), else ``sensor``'s reading drawn from ``rng``."""
     if sensor is None:
         return perfect_reading(world)
     centres, radii = world.agents()
-    sc = world.scenario
-    return sensor.read(
-        world.step_index, world.position, world.velocity, sc.goal, centres, radii,
-        world.walls(), rng,
-    )  # fmt: skip
+    args = (world.position, world.velocity, world.scenario.goal, centres, radii, world.walls(), rng)
+    return sensor.read(world.step_index, *args)
 
 
 def _record(step: int, position, latency: float, policy) -> Replan:
@@ -100,7 +99,7 @@ def run_episode(
         if world.at_goal():
             reason = "goal reached"
             break
-        reading = _read(world, sensor, rng)
+        reading = read_world(world, sensor, rng)
         t0 = time.perf_counter()
         action = policy.act(reading)
         decisions.append(_record(step, world.position, time.perf_counter() - t0, policy))
@@ -121,7 +120,7 @@ def run_episode(
         trajectory=np.array(world.trajectory), success=reached and rep.ok, reason=reason,
         replans=decisions, route=route, route_times=stamps, collision_free=bool(rep.ok),
         min_clearance=float(rep.min_clearance), hits=int(rep.hits),
-        robot_caused=len(mine) + len(rep.border), other_collisions=len(theirs),
+        robot_caused=len(mine) + len(rep.border), other_collisions=len(theirs), check=rep,
     )  # fmt: skip
 
 

@@ -123,18 +123,12 @@ def make_policy(name: str, options: dict[str, Any] | None = None):
 
 
 def registered_policy_run(scenario, seed, config, policy: str):
-    """A scenario run by a registered policy (:data:`~mawdo.planning.run.policies.POLICIES`)
-    in a stepped world, under the planners' one step limit: any policy, a learned one
-    included, judged as a planner (``policy:<name>`` in the planner registry)."""
-    from dataclasses import replace
+    """A scenario run by a registered policy in a stepped world, under the planners' one step
+    limit (:func:`~mawdo.planning.run.policy.run_as_planner`): any policy, a learned one
+    included, judged as a planner (``policy:<name>`` in the planner registry). Policies built
+    in metres get the scenario's resolution and time step (CrowdNav's for a pixel one)."""
+    from mawdo.planning.run.policy import run_as_planner
 
-    from mawdo.planning.run.episode import run_episode
-    from mawdo.planning.run.planner import prepare
-    from mawdo.planning.world.stepped import SteppedWorld
-
-    steps = prepare(scenario, "mawdo", 0, replace(config, time_guide=False)).step_limit()[0]
     units = scenario.units
     options = {"res": units.resolution or 0.05, "dt": units.dt or 0.25}
-    world = SteppedWorld.of(scenario, seed)
-    return run_episode(world, make_policy(policy, options), steps, seed, name=f"policy:{policy}",
-                       config=config)  # fmt: skip
+    return run_as_planner(scenario, seed, config, make_policy(policy, options), f"policy:{policy}")

@@ -238,15 +238,21 @@ class PlannerPolicy:
         return rem
 
 
-def observed_run(scenario, seed, config, algorithm: str = "mawdo"):
-    """A scripted scenario run with ``observed`` knowledge: the planner policy in a stepped
-    world, under the planners' one step limit (:func:`~mawdo.planning.run.config.step_limit`);
-    a :class:`~mawdo.planning.run.result.PlanResult` like every planner's."""
+def run_as_planner(scenario, seed, config, policy, name: str):
+    """``policy`` driven through the stepped world of ``scenario`` (its people included) under
+    the planners' one step limit (:func:`~mawdo.planning.run.config.step_limit`): a
+    :class:`~mawdo.planning.run.result.PlanResult` like every planner's, named ``name``."""
     from mawdo.planning.run.episode import run_episode
     from mawdo.planning.run.planner import prepare
     from mawdo.planning.world.stepped import SteppedWorld
 
     steps = prepare(scenario, "mawdo", 0, replace(config, time_guide=False)).step_limit()[0]
+    world = SteppedWorld.of(scenario, seed)
+    return run_episode(world, policy, steps, seed, name=name, config=config)
+
+
+def observed_run(scenario, seed, config, algorithm: str = "mawdo"):
+    """A scenario run with ``observed`` knowledge: the planner policy in a stepped world
+    (:func:`run_as_planner`)."""
     policy = PlannerPolicy(algorithm, config, "observed")
-    name = f"{algorithm}_observed"
-    return run_episode(SteppedWorld(scenario), policy, steps, seed, name=name, config=config)
+    return run_as_planner(scenario, seed, config, policy, f"{algorithm}_observed")

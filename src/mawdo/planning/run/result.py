@@ -91,6 +91,10 @@ class PlanResult:
         those the robot's own motion produced and the rest; ``None`` for runs that were not
         stepped in a world with reactive agents (their collisions split into active and
         passive instead).
+    check : CheckReport or None
+        The independent checker's report on the executed route, per piece and obstacle
+        (:func:`~mawdo.planning.judge.check.check_trajectory`), kept by stepped runs so that
+        their metrics read it instead of checking again; None for the others.
     """
 
     scenario: Scenario
@@ -117,6 +121,7 @@ class PlanResult:
     guarded: bool = True
     robot_caused: int | None = None
     other_collisions: int | None = None
+    check: object | None = None
 
     @property
     def steps(self) -> int:

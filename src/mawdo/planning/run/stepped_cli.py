@@ -73,7 +73,7 @@ def stepped_run(sc, algorithm, seed, preset, max_steps: int, knowledge: str, sen
     with that knowledge, the people of the scenario, ``max_steps`` steps."""
     from mawdo.planning.run.episode import EpisodeRun
     from mawdo.planning.run.policy import PlannerPolicy
-    from mawdo.planning.world.stepped import people_future
+    from mawdo.planning.world.stepped import SteppedWorld, people_future
 
     run = EpisodeRun(sc, None, seed, max_steps, sensor, name=f"{algorithm}-{knowledge}")
     if knowledge == "observed":
@@ -82,14 +82,8 @@ def stepped_run(sc, algorithm, seed, preset, max_steps: int, knowledge: str, sen
         tracker = Tracker(noise=0.0 if sensor is None else sensor.noise)
         run.policy = PlannerPolicy(algorithm, preset, "observed", predictor=predictor,
                                    tracker=tracker, threads=threads)  # fmt: skip
-    else:  # invisible people: their future recorded on a copy, told to the planner
-        import numpy as np
-
-        from mawdo.planning.people.from_scenario import people_of
-        from mawdo.streams import episode_seed_sequences
-
-        rng = np.random.default_rng(episode_seed_sequences(seed)["world"])  # the world's own
-        run.known = people_future(sc, people_of(sc, rng), max_steps)
+    else:  # invisible people: their future, walked by a fresh world's people, told the planner
+        run.known = people_future(sc, SteppedWorld.of(sc, seed).people, max_steps)
         run.policy = PlannerPolicy(algorithm, preset, "oracle", threads=threads)
     run.config = run.policy.config
     return run

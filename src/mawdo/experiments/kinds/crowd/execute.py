@@ -94,7 +94,8 @@ def _sensor(spec: dict, res: float):
 def separations(res) -> np.ndarray:
     """Smallest surface-to-surface distance (pixels) from the robot to any moving agent during
     each step (continuous in time: the checker's clearance of every piece of the executed
-    route, as CrowdNav measures within a step); ``inf`` without agents."""
+    route, as CrowdNav measures within a step, read from the run's own check when it kept
+    one); ``inf`` without agents."""
     from mawdo.planning.judge.check import check_trajectory
 
     sc = res.scenario
@@ -102,7 +103,7 @@ def separations(res) -> np.ndarray:
     moving = sc.moving_indices
     if not moving or n < 1:
         return np.full(max(n, 0), np.inf)
-    rep = check_trajectory(res.route, sc, times=res.route_times)
+    rep = res.check or check_trajectory(res.route, sc, times=res.route_times)
     piece = rep.clearance[:, moving].min(axis=1)
     step = np.clip(np.floor(res.route_times[:-1] + 1e-9).astype(int), 0, n - 1)
     out = np.full(n, np.inf)

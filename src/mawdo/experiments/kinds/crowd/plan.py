@@ -163,36 +163,24 @@ class CrowdPlan(StudyPlanBase):
 _SETTINGS_ALL = [f"{s}-{n}-{v}" for s in SCENES for n in (5, 10, 20)
                  for v in ("invisible", "visible")]  # fmt: skip
 
+# ours observing, ours without the optimizer, ours told the future, then the baselines
+_POLICIES_ALL = ("mawdo", "guide_only", "mawdo_oracle", "orca_robot", "social_force_robot",
+                 "dwa", "straight")  # fmt: skip
+
 CROWD_PRESETS: dict[str, dict[str, Any]] = {
     # CrowdNav's benchmark: circle and square crossing, 5/10/20 people, robot unseen or seen
     "crowdnav": {
         "name": "crowdnav",
         "settings": _SETTINGS_ALL,
         "n": 500,
-        "policies": [
-            "mawdo",
-            "guide_only",
-            "mawdo_oracle",
-            "orca_robot",
-            "social_force_robot",
-            "dwa",
-            "straight",
-        ],  # fmt: skip
+        "policies": list(_POLICIES_ALL),
     },
     # the headline setting in full: circle crossing, 5 people who do not see the robot
     "crowdnav-circle5": {
         "name": "crowdnav-circle5",
         "settings": ["circle-5-invisible"],
         "n": 500,
-        "policies": [
-            "mawdo",
-            "guide_only",
-            "mawdo_oracle",
-            "orca_robot",
-            "social_force_robot",
-            "dwa",
-            "straight",
-        ],  # fmt: skip
+        "policies": list(_POLICIES_ALL),
         "batch_size": 25,
     },
     # every setting, 50 episodes each
@@ -200,15 +188,7 @@ CROWD_PRESETS: dict[str, dict[str, Any]] = {
         "name": "crowdnav-50",
         "settings": _SETTINGS_ALL,
         "n": 50,
-        "policies": [
-            "mawdo",
-            "guide_only",
-            "mawdo_oracle",
-            "orca_robot",
-            "social_force_robot",
-            "dwa",
-            "straight",
-        ],  # fmt: skip
+        "policies": list(_POLICIES_ALL),
         "batch_size": 25,
     },
     # the headline setting only, fewer episodes: minutes, not hours
