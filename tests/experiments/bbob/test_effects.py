@@ -126,6 +126,7 @@ def test_effects_by_hand_on_a_two_unit_study():
 
 def test_centre_pull_is_the_position_along_centre_to_optimum():
     import ioh  # the bbob extra, installed with the dev extras
+
     x1 = np.asarray(ioh.get_problem(1, 1, 2, ioh.ProblemClass.REAL).optimum.x)
     x2 = np.asarray(ioh.get_problem(1, 2, 2, ioh.ProblemClass.REAL).optimum.x)
     ortho = np.array([-x1[1], x1[0]])  # a step across the line does not count
