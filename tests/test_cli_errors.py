@@ -65,3 +65,40 @@ def test_an_unwritable_report_folder_is_refused_before_reading(tmp_path):
     assert res.returncode == 2  # a bad --out is bad input, whoever runs the command
     assert str(target) in res.stderr and "Traceback" not in res.stderr
     assert "no results store" not in res.stderr  # the output was checked first
+
+
+#: A command-line program on the project's error edge whose Ctrl-C lands inside code run by
+#: ``exec`` of a string, as it does when it arrives while ``dataclasses`` builds a class.
+EXEC_INTERRUPTED = """
+import typer
+from mawdo.cli.errors import GuardedGroup
+
+app = typer.Typer(cls=GuardedGroup)
+
+@app.command()
+def raised():
+    exec("raise KeyboardInterrupt")
+
+@app.command()
+def caught():
+    try:
+        exec("raise KeyboardInterrupt")
+    except KeyboardInterrupt:
+        raise typer.Exit(130) from None
+
+if __name__ == "__main__":
+    app()
+"""
+
+
+@pytest.mark.parametrize("command", ["raised", "caught"])
+def test_ctrl_c_inside_exec_still_exits_130_under_python_m(tmp_path, command):
+    # CPython marks such an interrupt as unhandled and, under ``python -m``, kills itself with
+    # SIGINT after the program's own exit(130): a parent saw -2 about one run in ten
+    (tmp_path / "prog.py").write_text(EXEC_INTERRUPTED)
+    proc = subprocess.run(
+        [sys.executable, "-m", "prog", command], capture_output=True, text=True, cwd=tmp_path,
+        timeout=120,
+    )  # fmt: skip
+    assert proc.returncode == 130, (proc.returncode, proc.stderr)
+    assert "Traceback" not in proc.stderr

@@ -27,7 +27,7 @@ import typer
 from typer.core import TyperGroup
 
 from mawdo.cli import quick_exit
-from mawdo.util.interrupts import INTERRUPT_EXIT, is_interrupt
+from mawdo.util.interrupts import INTERRUPT_EXIT, forget_caught_interrupt, is_interrupt
 
 # Typer vendors its own click; its ClickException is what Typer's main loop shows and exits on.
 _ClickException = next(c for c in typer.BadParameter.__mro__ if c.__name__ == "ClickException")
@@ -114,12 +114,14 @@ class GuardedGroup(TyperGroup):
             code = super().main(*args, standalone_mode=False, **extra)
         except _ClickException as exc:
             show_error(exc)
+            forget_caught_interrupt()  # every Ctrl-C that gets here was handled
             sys.exit(exc.exit_code)
         except _Abort:
             typer.echo("Aborted!", err=True)
             sys.exit(1)
         # non-standalone click returns an Exit's code, or the command's return value
         code = code if isinstance(code, int) else 0
+        forget_caught_interrupt()
         quick_exit.end(code)  # (returns unless the program runs and the command allowed it)
         sys.exit(code)
 

@@ -16,7 +16,7 @@ from __future__ import annotations
 import signal
 import threading
 
-__all__ = ["INTERRUPT_EXIT", "SigintWatch", "is_interrupt"]
+__all__ = ["INTERRUPT_EXIT", "SigintWatch", "forget_caught_interrupt", "is_interrupt"]
 
 INTERRUPT_EXIT = 130
 """Exit status of a command stopped by Ctrl-C (128 + SIGINT, as a shell reports it)."""
@@ -48,6 +48,20 @@ def is_interrupt(exc: BaseException | None) -> bool:
         seen.add(id(e))
         todo += [e.__cause__, e.__context__]
     return False
+
+
+def forget_caught_interrupt() -> None:
+    """Let a ``KeyboardInterrupt`` that was caught and handled end the program with the exit
+    status it chose, not killed by SIGINT.
+
+    CPython (3.11 and later) remembers a ``KeyboardInterrupt`` that left any code run by
+    ``exec`` of a string (``dataclasses`` and ``collections.namedtuple`` build their methods so,
+    on import) as unhandled, even when a caller catches it; a program started with ``python -m``
+    then ends by killing itself with SIGINT after its own ``sys.exit(130)``, so its parent sees
+    a signal instead of the status. Running ``exec`` of a string once more resets that memory.
+    Call this where a Ctrl-C has been handled and the program is about to exit.
+    """
+    exec("None")  # noqa: S102 - (a fixed string: only CPython's reset matters)
 
 
 class SigintWatch:
