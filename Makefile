@@ -6,7 +6,7 @@ STAMP  := $(VENV)/.installed
 DEVSTAMP := $(VENV)/.installed-dev
 export MPLBACKEND ?= Agg
 
-.PHONY: install demo readme-img test test-all bench lint docs clean
+.PHONY: install demo readme-img test test-all test-rl bench lint docs clean
 
 $(PY):
 	$(PYTHON) -m venv $(VENV)
@@ -38,10 +38,23 @@ readme-img: demo
 
 # CI (CI=true) runs the fast tier; `make test-all` adds the slow convergence and study tests.
 test: $(DEVSTAMP)
-	$(PY) -m pytest -q -m "not slow" --timeout=600
+	$(PY) -m pytest -q -m "not slow and not rl" --timeout=600
 
 test-all: $(DEVSTAMP)
-	$(PY) -m pytest -q --timeout=1800
+	$(PY) -m pytest -q -m "not rl" --timeout=1800
+
+# The tests that train with stable-baselines3 (marker rl) need PyTorch, which the dev extras
+# leave out: they run in a venv of their own with the rl extra (pip picks the PyTorch build).
+RLVENV := .venv-rl
+RLSTAMP := $(RLVENV)/.installed-rl
+$(RLSTAMP): pyproject.toml
+	$(PYTHON) -m venv $(RLVENV)
+	$(RLVENV)/bin/python -m pip install -q --upgrade pip
+	$(RLVENV)/bin/python -m pip install -q -e ".[dev,rl]"
+	@touch $@
+
+test-rl: $(RLSTAMP)
+	$(RLVENV)/bin/python -m pytest -q -m rl --timeout=600
 
 bench: $(DEVSTAMP)
 	$(PY) -m benchmarks
