@@ -90,14 +90,19 @@ def train(setting: str = SETTING, steps: int = 20_000, seed: int = 0, n_envs: in
     steps in all (rounded up to whole rollouts of at most 2048 steps)."""
     if steps < 2 * n_envs:
         raise ValueError(f"steps={steps} must be at least 2 per environment ({2 * n_envs})")
-    log(f"train: building {n_envs} environments of {setting} (the first may compile kernels)")
-    # make_vec_env asks for render_mode="rgb_array" unless told otherwise; these do not render
-    kwargs = {"setting": setting, "render_mode": None}
-    env = make_vec_env("mawdo/Crowd-v0", n_envs=n_envs, seed=seed, env_kwargs=kwargs)
-    n_steps = max(2, min(2048, steps) // n_envs)  # per environment and rollout
-    model = PPO("MlpPolicy", env, n_steps=n_steps, batch_size=min(64, n_steps * n_envs),
-                policy_kwargs={"net_arch": [64, 64]}, seed=seed, device="cpu",
-                verbose=0)  # fmt: skip
+    what = f"train: building {n_envs} environments of {setting} (the first may compile kernels)"
+    log(what)
+    beat = Heartbeat(lambda s: log(f"{what}, {s:.0f} s"), every=1.0)
+    try:
+        # make_vec_env asks for render_mode="rgb_array" unless told otherwise; these do not render
+        kwargs = {"setting": setting, "render_mode": None}
+        env = make_vec_env("mawdo/Crowd-v0", n_envs=n_envs, seed=seed, env_kwargs=kwargs)
+        n_steps = max(2, min(2048, steps) // n_envs)  # per environment and rollout
+        model = PPO("MlpPolicy", env, n_steps=n_steps, batch_size=min(64, n_steps * n_envs),
+                    policy_kwargs={"net_arch": [64, 64]}, seed=seed, device="cpu",
+                    verbose=0)  # fmt: skip
+    finally:
+        beat.stop()
     model.learn(total_timesteps=steps, callback=TrainingLog(steps, log))
     env.close()
     return model
