@@ -94,8 +94,7 @@ def train(setting: str = SETTING, steps: int = 20_000, seed: int = 0, n_envs: in
     log(what)
     beat = Heartbeat(lambda s: log(f"{what}, {s:.0f} s"), every=1.0)
     try:
-        # make_vec_env asks for render_mode="rgb_array" unless told otherwise; these do not render
-        kwargs = {"setting": setting, "render_mode": None}
+        kwargs = {"setting": setting}
         env = make_vec_env("mawdo/Crowd-v0", n_envs=n_envs, seed=seed, env_kwargs=kwargs)
         n_steps = max(2, min(2048, steps) // n_envs)  # per environment and rollout
         model = PPO("MlpPolicy", env, n_steps=n_steps, batch_size=min(64, n_steps * n_envs),

@@ -185,9 +185,37 @@ def test_bad_option_values(kwargs, match):
         gymnasium.make("mawdo/Crowd-v0", setting="circle-5-invisible", **kwargs)
 
 
-def test_render_mode_is_refused():
-    with pytest.raises(ValueError, match="render_mode='human'.*do not render"):
+def test_an_unknown_render_mode_is_refused():
+    with pytest.raises(ValueError, match="render_mode='human'.*'rgb_array'"):
         mawdo.gym.CrowdEnv("circle-5-invisible", render_mode="human")
+
+
+def test_rgb_array_frames_show_the_robot_where_it_is_and_follow_the_episode():
+    env = gymnasium.make("mawdo/Crowd-v0", setting="circle-5-invisible", render_mode="rgb_array")
+    env.reset(seed=3)
+    base = env.unwrapped
+    first = env.render()
+    sc = base.world.scenario
+    assert first.dtype == np.uint8 and first.ndim == 3 and first.shape[2] == 3
+    assert max(first.shape[:2]) == mawdo.gym.render.FRAME_PX
+    assert first.shape[1] / first.shape[0] == pytest.approx(sc.width / sc.height, rel=0.02)
+
+    def robot_pixel(image):  # the robot's centre in image rows and columns (y grows upward)
+        s = image.shape[1] / sc.width
+        x, y = base.world.position
+        return image[int(image.shape[0] - y * s), int(x * s)]
+
+    # deepskyblue, the robot's colour in every mawdo figure
+    assert tuple(robot_pixel(first)) == (0, 191, 255)
+    for _ in range(8):
+        env.step(np.array([0.0, 1.0]))
+    later = env.render()
+    assert tuple(robot_pixel(later)) == (0, 191, 255)
+    assert not np.array_equal(first, later)  # the robot and the people moved
+    # no render mode: nothing drawn
+    plain = gymnasium.make("mawdo/Crowd-v0", setting="circle-5-invisible")
+    plain.reset(seed=3)
+    assert plain.render() is None
 
 
 def test_scenario_env_bad_input():

@@ -54,8 +54,9 @@ class MawdoEnv(gym.Env):
         Counts the resets (an adapter resets its policy when it changes).
     """
 
-    metadata = {"render_modes": []}
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 4}
     env_id = "mawdo env"
+    render_mode: str | None = None
 
     def __init__(self, options: dict[str, Any], extra: dict[str, Any]) -> None:
         self.options = check_options(self.env_id, options, extra)
@@ -125,6 +126,17 @@ class MawdoEnv(gym.Env):
         self.observer.reset(sc, self.world.walls())
         return self._observe(), {"episode_seed": self.episode_seed}
 
+    def render(self):
+        """With ``render_mode="rgb_array"``: the world now as an RGB image (``uint8``,
+        ``(height, width, 3)``; :func:`mawdo.gym.render.frame`); without a render mode, None."""
+        if self.render_mode is None:
+            return None
+        if self.world is None:
+            raise RuntimeError("render before reset(): call env.reset(seed=...) first")
+        from mawdo.gym.render import frame
+
+        return frame(self.world)
+
     def _observe(self) -> np.ndarray:
         self.reading = read_world(self.world, self.sensor, self._rng)
         return self.observer.observe(self.reading)
@@ -169,9 +181,13 @@ class MawdoEnv(gym.Env):
         return self._observe(), reward, terminated, truncated, info
 
 
-def _check_render(render_mode) -> None:
-    if render_mode is not None:
-        raise ValueError(f"render_mode={render_mode!r}: these environments do not render")
+def _check_render(render_mode) -> str | None:
+    if render_mode not in (None, *MawdoEnv.metadata["render_modes"]):
+        raise ValueError(
+            f"render_mode={render_mode!r}: these environments render 'rgb_array' frames "
+            "(or nothing: None)"
+        )
+    return render_mode
 
 
 class CrowdEnv(MawdoEnv):
@@ -185,8 +201,8 @@ class CrowdEnv(MawdoEnv):
         :func:`~mawdo.experiments.kinds.crowd.execute.scene_of` of the setting and the episode
         seed, its world :func:`~mawdo.experiments.kinds.crowd.execute.world_of`: the crowd
         study's episodes.
-    render_mode : None
-        No rendering.
+    render_mode : {None, "rgb_array"}
+        ``"rgb_array"``: :meth:`render` returns the world now as an image.
     **options
         See :data:`~mawdo.gym.options.COMMON`; ``max_steps`` defaults to the scene's 25 s.
     """
@@ -196,7 +212,7 @@ class CrowdEnv(MawdoEnv):
     def __init__(self, setting: str = "circle-5-invisible", render_mode=None, **options) -> None:
         from mawdo.experiments.kinds.crowd.plan import parse_setting
 
-        _check_render(render_mode)
+        self.render_mode = _check_render(render_mode)
         parse_setting(setting)
         self.setting = str(setting)
         super().__init__(options, {})
@@ -223,8 +239,8 @@ class ScenarioEnv(MawdoEnv):
     scenario : Scenario, str or pathlib.Path
         A scenario, a scenario file's path or a built-in scenario's name
         (:func:`~mawdo.planning.world.scenario.get_scenario`).
-    render_mode : None
-        No rendering.
+    render_mode : {None, "rgb_array"}
+        ``"rgb_array"``: :meth:`render` returns the world now as an image.
     **options
         See :data:`~mawdo.gym.options.COMMON`, plus ``goal_tolerance``: the goal counts as
         reached within this distance of the robot centre (m; default the robot's radius, as
@@ -242,7 +258,7 @@ class ScenarioEnv(MawdoEnv):
     def __init__(self, scenario=None, render_mode=None, **options) -> None:
         from mawdo.planning.world.scenario import Scenario, get_scenario
 
-        _check_render(render_mode)
+        self.render_mode = _check_render(render_mode)
         if scenario is None:
             raise ValueError("mawdo/Scenario-v0 needs scenario=<Scenario, file path or name>")
         if not isinstance(scenario, Scenario):
