@@ -301,3 +301,30 @@ def test_every_crowd_setting_sentence_is_that_of_the_committed_store(tmp_path):
         summary = crowd_summary(store)
     assert lines == (folder / "summary.md").read_text("utf-8").splitlines()
     assert len(summary) == 12 * 7 and {m["episodes"] for m in summary.values()} == {50}
+
+
+@pytest.mark.parametrize(
+    ("policy", "run"),
+    [("mawdo", 0), ("mawdo", 1), ("guide_only", 3), ("dwa", 2)],
+)
+def test_stored_crowd_episodes_are_what_the_code_computes(tmp_path, policy, run):
+    """A few committed episodes of crowdnav-circle5 run again give the stored outcome (run 0
+    of mawdo is one where someone starts within reach, so the robot plans without watching)."""
+    import json
+
+    from mawdo.experiments.kinds.crowd.execute import episode_row, run_one
+    from mawdo.experiments.kinds.crowd.plan import CrowdPlan
+    from mawdo.experiments.protocol import Task
+
+    db = unpack(ROOT / "docs" / "results" / "crowdnav-circle5" / "store.db.xz", tmp_path)
+    con = sqlite3.connect(db)
+    plan = CrowdPlan.from_dict(json.loads(con.execute("SELECT plan_json FROM meta").fetchone()[0]))
+    fields = ("success", "robot_caused", "steps", "time_s", "length_m", "discomfort")
+    stored = con.execute(
+        f"SELECT {', '.join(fields)} FROM runs WHERE algorithm = ? AND run = ?", (policy, run)
+    ).fetchone()
+    con.close()
+    spec = plan.task_spec(Task(policy, "circle-5-invisible", run, 1))
+    res, scene = run_one(spec, "circle-5-invisible", spec["seeds"][0])
+    row = episode_row(res, scene)
+    assert tuple(row[f] for f in fields) == stored

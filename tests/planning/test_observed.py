@@ -105,3 +105,45 @@ def test_the_robot_looks_once_before_it_plans_around_people():
     eager = PlannerPolicy("guide_only", "quick", "observed", look_first=0, time_guide=True)
     res = run_episode(SteppedWorld(sc), eager, 2, seed=0)
     assert not np.array_equal(res.trajectory[1], res.trajectory[0])
+
+
+def _reading(step, centers, radii):
+    from mawdo.planning.sense.reading import Reading
+
+    c = np.asarray(centers, float).reshape(-1, 2)
+    return Reading(step, np.array([20.0, 60.0]), np.zeros(2), np.array([180.0, 60.0]), c,
+                   np.asarray(radii, float))  # fmt: skip
+
+
+def test_the_robot_watches_only_while_nobody_can_reach_it_before_the_watch_ends():
+    policy = PlannerPolicy("guide_only", "quick", "observed", look_first=2, time_guide=True)
+    policy.reset(_scene([HEAD_ON]), 0)
+    # reach per watch step: k_sd (2) x the tracker's speed prior (4 px per step) = 8 px; gaps
+    # are centre distance - agent radius (8) - robot radius (4)
+    assert policy.tracker.birth_speed_sd == 4.0
+    assert policy.may_watch(_reading(0, [[20.0 + 12.0 + 16.5, 60.0]], [8.0]))  # gap 16.5 > 16
+    assert not policy.may_watch(_reading(0, [[20.0 + 12.0 + 15.5, 60.0]], [8.0]))  # 15.5
+    assert policy.may_watch(_reading(1, [[20.0, 60.0 + 12.0 + 8.5]], [8.0]))  # one step left
+    assert not policy.may_watch(_reading(1, [[20.0, 60.0 + 12.0 + 7.5]], [8.0]))
+    assert not policy.may_watch(_reading(2, [[150.0, 60.0]], [8.0]))  # the watch is over
+    assert not policy.may_watch(_reading(0, np.zeros((0, 2)), []))  # nobody to watch
+    # one agent in reach is enough to plan at once, and k_sd is the predictor's own
+    two = [[150.0, 60.0], [20.0 + 12.0 + 10.0, 60.0]]
+    assert not policy.may_watch(_reading(0, two, [8.0, 8.0]))  # 10 < 16
+    loose = PlannerPolicy("guide_only", "quick", "observed", look_first=1, time_guide=True,
+                          predictor_options={"k_sd": 1.0})  # fmt: skip
+    loose.reset(_scene([HEAD_ON]), 0)
+    assert loose.may_watch(_reading(0, two, [8.0, 8.0]))  # 10 > 1 x 4 x 1
+
+
+def test_a_pursuer_close_behind_at_the_start_gets_no_free_step():
+    # a disc 1.3x the robot's speed, 6 px behind the robot's disc, on its line: watching one
+    # step would let it close in (the fast chasers of the timed families)
+    chaser = {"shape": "circle", "center": [40.0 - 4.0 - 6.0 - 6.0, 60.0], "radius": 6.0,
+              "motion": {"velocity": [5.2, 0.0]}}  # fmt: skip
+    sc = _scene([chaser], start=(40.0, 60.0), goal=(190.0, 60.0))
+    policy = PlannerPolicy("guide_only", "quick", "observed", time_guide=True)
+    res = run_episode(SteppedWorld(sc), policy, 200, seed=0)
+    assert not np.array_equal(res.trajectory[1], res.trajectory[0])  # it moves at once
+    _assert_safe(res)
+    assert res.success, res.reason

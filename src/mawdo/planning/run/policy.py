@@ -94,7 +94,8 @@ class PlannerPolicy:
         Steps (>= 0) the robot stands and watches at the start of an episode when it sees
         anyone (``observed`` only): a tracker knows no velocity before its second reading, and
         a first plan around people of unknown velocity (discs grown by the tracker's whole
-        speed uncertainty) is a detour the following steps inherit.
+        speed uncertainty) is a detour the following steps inherit. It watches only while no
+        agent could reach it before the watch ends (:meth:`may_watch`).
     warm : bool
         Start each step's search from the last step's plan (a replan: cheaper, about 9 ms
         against 20 ms per step with 5 people) instead of afresh from the guides on a
@@ -172,10 +173,32 @@ class PlannerPolicy:
     def act(self, reading: Reading):
         if self.knowledge == "oracle":
             return step_move(self.result.route, self.result.route_times, reading.step)
-        if reading.step < self.look_first and len(reading.centers):
+        if self.may_watch(reading):
             self.tracker.update(reading)  # a velocity needs two readings: look, then plan
             return np.zeros(2)
         return self._decide(reading)
+
+    def may_watch(self, reading: Reading) -> bool:
+        """Whether the robot stands and watches at this reading: within the first
+        ``look_first`` steps, someone in sight, and nobody close enough to reach the robot
+        before the watch ends.
+
+        Standing still is safe only against an agent that cannot close its gap in the
+        meantime. Its speed is not known yet (one reading), so the bound is the one the
+        prediction would carry: ``k_sd`` standard deviations of the tracker's speed prior
+        (``birth_speed_sd``, pixels per time step; the robot's speed for a tracker without
+        one) per remaining watch step, against the gap between the agent's disc and the
+        robot's.
+        """
+        left = self.look_first - reading.step
+        if left <= 0 or not len(reading.centers):
+            return False
+        from mawdo.planning.sense.predict import K_SD
+
+        speed_sd = getattr(self.tracker, "birth_speed_sd", self.known.robot_speed)
+        reach = self.predictor_options.get("k_sd", K_SD) * speed_sd * left
+        gap = np.hypot(*(reading.centers - reading.position).T) - reading.radii
+        return bool(np.all(gap - self.known.robot_radius > reach))
 
     def prediction(self, reading: Reading):
         """The prediction scenario of a reading: the known map plus one circle per track,

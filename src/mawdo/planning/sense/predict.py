@@ -42,6 +42,7 @@ from mawdo.registry import Registry
 from mawdo.util.validate import check_int, check_real
 
 __all__ = [
+    "K_SD",
     "PREDICTORS",
     "Predicted",
     "PredictorSpec",
@@ -53,6 +54,9 @@ __all__ = [
     "stop",
     "tube_radius",
 ]
+
+#: Standard deviations of uncertainty margin a prediction carries by default (``k_sd``).
+K_SD = 2.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -118,7 +122,7 @@ def _knot_times(now: float, horizon: float, inner=()) -> np.ndarray:
 
 
 def tube_radius(
-    tracks: Tracks, horizon: float, k_sd: float = 2.0, tube_horizon: float = 5.0, accel_sd=0.2
+    tracks: Tracks, horizon: float, k_sd: float = K_SD, tube_horizon: float = 5.0, accel_sd=0.2
 ) -> np.ndarray:
     """Radii of the predicted discs: each agent's radius grown by its uncertainty.
 
@@ -179,7 +183,7 @@ def border_stop_times(centers, velocities, radii, bounds) -> np.ndarray:
 
 
 def constant_velocity(
-    tracks: Tracks, now, horizon, bounds, *, k_sd=2.0, tube_horizon=5.0, accel_sd=0.2
+    tracks: Tracks, now, horizon, bounds, *, k_sd=K_SD, tube_horizon=5.0, accel_sd=0.2
 ) -> list[Predicted]:
     """Straight on at the tracked velocity, stopping where the disc would leave the map.
 
@@ -217,7 +221,7 @@ def constant_velocity(
 
 
 def stop(
-    tracks: Tracks, now, horizon, bounds, *, k_sd=2.0, tube_horizon=5.0, accel_sd=0.2
+    tracks: Tracks, now, horizon, bounds, *, k_sd=K_SD, tube_horizon=5.0, accel_sd=0.2
 ) -> list[Predicted]:
     """Every agent stands where it is now (the baseline that ignores motion).
 
@@ -268,7 +272,7 @@ def oracle(
     truth,
     agents=None,
     substeps=1,
-    k_sd=2.0,
+    k_sd=K_SD,
     tube_horizon=5.0,
     accel_sd=0.2,
 ) -> list[Predicted]:
