@@ -1,11 +1,11 @@
 """The README's result tables, rendered from the committed result files.
 
 Each number comes from a file that a report wrote from its store (``friedman.md``,
-``wilcoxon_totals.md``, ``table6.md``, and the headline sentences ``summary.md``, which the
-tests recompute from the committed stores). The README holds each table between
-``<!-- table: NAME -->`` and ``<!-- /table -->``; ``tests/test_readme_results.py`` checks that
-it is exactly what :func:`render` gives, and ``python docs/readme_tables.py`` rewrites the
-README's tables after a report was regenerated.
+``wilcoxon_totals.md``, ``table6.md``, ``swarm_share.md``, and the headline sentences
+``summary.md``, which the tests recompute from the committed stores). The README holds each
+table (or generated sentence) between ``<!-- table: NAME -->`` and ``<!-- /table -->``;
+``tests/test_readme_results.py`` checks that it is exactly what :func:`render` gives, and
+``python docs/readme_tables.py`` rewrites the README's tables after a report was regenerated.
 """
 
 from __future__ import annotations
@@ -130,6 +130,33 @@ def arena_table() -> list[str]:
     return lines
 
 
+def _listed(rows: list[dict[str, str]]) -> str:
+    return ", ".join(f"{r['family']} ({r['mean difference']})" for r in rows) or "none"
+
+
+def swarm_sentence() -> list[str]:
+    """The swarm's share in one sentence: per optimizer-driven planner, the families where its
+    gap is significantly smaller or larger than ``guide_only``'s, from the arena report's
+    paired table (``swarm_share.md``: Wilcoxon signed-rank, Holm over the families, 5 %)."""
+    rows = _rows(RESULTS / "arena-default" / "swarm_share.md")
+    parts = []
+    for planner in dict.fromkeys(r["planner"] for r in rows):
+        mine = [r for r in rows if r["planner"] == planner]
+        helps = [r for r in mine if r["verdict"] == "helps"]
+        hurts = [r for r in mine if r["verdict"] == "hurts"]
+        parts.append(
+            f"{planner} shortens it on {_listed(helps)}, lengthens it on {_listed(hurts)}, no "
+            f"measurable difference on the other {len(mine) - len(helps) - len(hurts)}"
+        )
+    families = len({r["family"] for r in rows})
+    return [
+        "Where the swarm helps: each optimizer's gap (L/L* or T/T*) against the same planner "
+        f"with its optimizer off (`guide_only`), scene by scene over {families} families "
+        "(Wilcoxon signed-rank, Holm, 5 %; in brackets the mean paired difference; "
+        "[table](docs/results/arena-default/swarm_share.md)): " + "; ".join(parts) + "."
+    ]
+
+
 def crowd_table() -> list[str]:
     """CrowdNav's circle crossing: each policy's success, robot-caused collisions and time to
     the goal, from the crowd report's table."""
@@ -152,6 +179,7 @@ TABLES = {
     "suites": suites_table,
     "arena": arena_table,
     "crowd": crowd_table,
+    "swarm": swarm_sentence,
 }
 
 

@@ -60,10 +60,11 @@ def test_the_readme_tables_are_rendered_from_the_committed_results():
     tables = readme_tables()
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
     written = tables.tables_in(readme)
-    assert set(written) == set(tables.TABLES) == {"paper", "suites", "arena", "crowd"}
+    assert set(written) == set(tables.TABLES) == {"paper", "suites", "arena", "crowd", "swarm"}
     for name, render in tables.TABLES.items():
         rows = render()
-        assert len(rows) >= 5, name  # header, rule and at least three rows
+        # a table: header, rule and at least three rows; the swarm's share: one sentence
+        assert len(rows) == 1 if name == "swarm" else len(rows) >= 5, name
         assert written[name] == "\n".join(rows) + "\n", f"README table {name!r} is stale"
     assert tables.render(readme) == readme
 
@@ -246,6 +247,64 @@ def test_arena_sentences_are_those_of_the_committed_store(tmp_path):
         lines = headline(store)
     summary = (ROOT / "docs" / "results" / "arena-default" / "summary.md").read_text("utf-8")
     assert lines == summary.splitlines()
+
+
+def holm_by_hand(p: list[float]) -> list[float]:
+    """Holm's step-down adjusted p-values, written out a second time."""
+    order = sorted(range(len(p)), key=lambda i: p[i])
+    out, running = [0.0] * len(p), 0.0
+    for j, i in enumerate(order):
+        running = max(running, min(1.0, (len(p) - j) * p[i]))
+        out[i] = running
+    return out
+
+
+def test_the_swarm_share_is_that_of_the_committed_store(tmp_path):
+    """The committed swarm_share.md is the report's table from the committed store, and its
+    verdicts (which the README sentence names) are recomputed here from the raw rows with
+    sqlite3, scipy's Wilcoxon (direction: the one-sided tests) and Holm by hand."""
+    from scipy.stats import wilcoxon
+
+    from mawdo.experiments import Store
+    from mawdo.experiments.kinds.arena.share import share_table
+    from mawdo.experiments.tables import to_markdown
+
+    folder = ROOT / "docs" / "results" / "arena-default"
+    db = unpack(folder / "store.db.xz", tmp_path)
+    with Store.read(db) as store:
+        assert to_markdown(share_table(store)) == (folder / "swarm_share.md").read_text("utf-8")
+    conn = sqlite3.connect(db)
+    gaps = {
+        (a, f, n): g
+        for a, f, n, g in conn.execute(
+            "SELECT algorithm, problem, scene_name, CASE WHEN t_star IS NOT NULL THEN time_gap "
+            "ELSE gap END FROM runs WHERE status = 'ok' AND error_text IS NULL AND success = 1"
+        )
+    }
+    conn.close()
+    committed = {
+        (r["planner"], r["family"]): r for r in readme_tables()._rows(folder / "swarm_share.md")
+    }
+    for planner in ("mawdo", "woa", "gwo"):
+        families = [f for p, f in committed if p == planner.upper()]
+        assert len(families) == 12
+        p, lower, diff = [], [], []
+        for f in families:
+            both = sorted(
+                n for a, g, n in gaps if a == planner and g == f and ("guide_only", f, n) in gaps
+            )
+            x = np.array([gaps[planner, f, n] for n in both])
+            y = np.array([gaps["guide_only", f, n] for n in both])
+            d = np.where(np.isclose(x, y, rtol=1e-9, atol=0), 0.0, x - y)
+            nz = d[d != 0]
+            p.append(wilcoxon(nz).pvalue if nz.size else 1.0)
+            lower.append(bool(nz.size) and wilcoxon(nz, alternative="less").pvalue < 0.5)
+            diff.append(d.mean())
+        for f, adj, low, dm in zip(families, holm_by_hand(p), lower, diff, strict=True):
+            row = committed[planner.upper(), f]
+            verdict = ("helps" if low else "hurts") if adj < 0.05 else "no measurable difference"
+            assert row["verdict"] == verdict, (planner, f)
+            assert row["p Holm"] == f"{adj:.2g}" and row["mean difference"] == f"{dm:+.2g}"
 
 
 @pytest.mark.slow

@@ -14,11 +14,11 @@ from mawdo.experiments import Store, run_plan
 from mawdo.experiments.kinds.arena import ArenaPlan, arena_tables, write_arena_report
 from mawdo.experiments.kinds.arena.plan import ARENA_PRESETS, TIMED_FAMILIES
 from mawdo.experiments.kinds.arena.report import COLUMNS
+from mawdo.experiments.kinds.arena.share import share_rows
 from mawdo.experiments.kinds.arena.summary import (
     GAP_NOTE,
     headline,
     strengths,
-    swarm_share,
     timed_lines,
     worst_runs,
 )
@@ -133,8 +133,11 @@ def test_headline_judges_timed_scenes_by_arrival_time_and_static_ones_by_length(
 
 
 def test_swarm_share_compares_each_family_on_the_scenes_both_solve(timed_store):
+    from scipy.stats import wilcoxon
+
     with Store.read(timed_store) as store:
-        (line,) = swarm_share(store)
+        rows = {r["family"]: r for r in share_rows(store)}
+    assert set(rows) == {"forest", "doorway"}
     for fam, col, sign in (("forest", "gap", "L/L*"), ("doorway", "time_gap", "T/T*")):
         got = {}
         for algo in ("mawdo", "guide_only"):
@@ -149,9 +152,15 @@ def test_swarm_share_compares_each_family_on_the_scenes_both_solve(timed_store):
             )
         both = sorted(set(got["mawdo"]) & set(got["guide_only"]))
         assert both, f"the tiny study needs a {fam} scene both solve"
-        a = statistics.median(got["mawdo"][n] for n in both)
-        b = statistics.median(got["guide_only"][n] for n in both)
-        assert f"{fam} {sign} {a:.3f} vs {b:.3f} ({len(both)})" in line
+        a = np.array([got["mawdo"][n] for n in both])
+        b = np.array([got["guide_only"][n] for n in both])
+        r = rows[fam]
+        assert (r["gap"], r["pairs"]) == (sign, len(both))
+        assert r["median"] == pytest.approx(statistics.median(a))
+        assert r["base median"] == pytest.approx(statistics.median(b))
+        d = a - b
+        d = d[~np.isclose(a, b, rtol=1e-9, atol=0)]
+        assert r["test"].pvalue == (pytest.approx(wilcoxon(d).pvalue) if d.size else 1.0)
 
 
 def test_report_table_and_swarm_figure(timed_store, tmp_path):
@@ -171,4 +180,6 @@ def test_report_table_and_swarm_figure(timed_store, tmp_path):
     assert np.isnan(by["forest", "MAWDO"]["T/T* median"])
     write_arena_report(timed_store, tmp_path, gallery_limit=0, worst=0)
     assert (tmp_path / "swarm.png").stat().st_size > 10_000
-    assert "swarm.png" in (tmp_path / "arena.md").read_text(encoding="utf-8")
+    report = (tmp_path / "arena.md").read_text(encoding="utf-8")
+    assert "swarm.png" in report
+    assert (tmp_path / "swarm_share.md").read_text(encoding="utf-8") in report

@@ -3,6 +3,9 @@
 - ``arena.md/.tex/.csv``: per family and planner the success rate, collision rate (independent
   checker), gap L/L* median / p90 / max over successful runs, replan latency p95 / p99 and
   time to first plan; rejected scenes and planner errors are counted apart.
+- ``swarm_share.md/.tex/.csv``: each optimizer-driven planner against ``guide_only`` per family,
+  paired on the scenes both solve, with a Wilcoxon signed-rank test and Holm's correction
+  (:mod:`mawdo.experiments.kinds.arena.share`).
 - ``ecdf_runtime.png`` (wall time per run, all families) and ``ecdf_gap.png`` (one panel per
   family, T/T* on timed families), one line per planner; ``swarm.png``, the swarm's share over
   the guide alone (:mod:`mawdo.experiments.kinds.arena.figures`).
@@ -211,6 +214,7 @@ def write_arena_report(
     gallery and the ``worst`` worst scenes of MAWDO (re-run, see
     :func:`mawdo.experiments.kinds.arena.summary.render_worst`) into ``out_dir``; returns the
     Markdown report's path."""
+    from mawdo.experiments.kinds.arena.share import share_table
     from mawdo.experiments.kinds.arena.summary import headline, render_worst
 
     out = Path(out_dir)
@@ -219,6 +223,7 @@ def write_arena_report(
         plan = _plan_of(store)
         say("tables and sentences")
         tables = arena_tables(store)
+        tables += [t for t in [share_table(store)] if t is not None]
         summary = headline(store)
         say("ECDFs and the swarm's share")
         figs = arena_figures(store, out) if figures else []

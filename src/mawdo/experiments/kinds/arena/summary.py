@@ -54,6 +54,8 @@ def headline(store: Store) -> list[str]:
     Per planner over all families: success and collision rates, median gap (`judged_gap`);
     and the family where it succeeds least (ties: the largest median gap).
     """
+    from mawdo.experiments.kinds.arena.share import swarm_share
+
     plan = store.plan
     lines = [GAP_NOTE] if _timed_families(store) else []
     for p in plan.planners:
@@ -129,36 +131,6 @@ def _early(tg: np.ndarray) -> str:
 def _median_time_gap(rows: list) -> float:
     g = [r.time_gap for r in rows if r.success and r.time_gap is not None]
     return float(np.median(g)) if g else float("nan")
-
-
-def swarm_share(store: Store, base: str = "guide_only") -> list[str]:
-    """The swarm's measured contribution: per family, the median gap (L/L* on static
-    families, T/T* on timed ones) of each optimizer-driven planner beside the same planner
-    with the optimizer switched off (``guide_only``), over the scenes both solved."""
-    plan = store.plan
-    if base not in plan.planners:
-        return []
-    timed = set(_timed_families(store))
-    lines = []
-    for a in plan.algorithms:
-        parts = []
-        for f in plan.families:
-            ours = {r.scene_name: r for r in _ok_rows(store, a, f) if r.success}
-            theirs = {r.scene_name: r for r in _ok_rows(store, base, f) if r.success}
-            both = sorted(set(ours) & set(theirs))
-            if not both:
-                continue
-            key = "time_gap" if f in timed else "gap"
-            mine = np.median([getattr(ours[n], key) for n in both])
-            other = np.median([getattr(theirs[n], key) for n in both])
-            sign = "T/T*" if f in timed else "L/L*"
-            parts.append(f"{f} {sign} {mine:.3f} vs {other:.3f} ({len(both)})")
-        if parts:
-            lines.append(
-                f"- {a} against {base} (the same planner without its optimizer), median gap on "
-                f"the scenes both solve (count): " + "; ".join(parts) + "."
-            )
-    return lines
 
 
 def strengths(store: Store) -> list[str]:

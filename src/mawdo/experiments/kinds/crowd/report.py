@@ -3,8 +3,12 @@
 Rates are shares of the episodes that ran; time to goal is the mean over successes (seconds);
 discomfort the mean share of steps closer than 0.2 m to a person; latency the median over
 episodes of each episode's p50 / p95 decision time (wall time of the policy's ``act``).
-Paired sign tests are the arena's business; here every policy meets the same people
-(common random numbers), so the columns compare directly.
+Every policy meets the same people (common random numbers), so the columns compare directly;
+and since episode ``k`` of a setting is the same crowd for every policy, ``mawdo`` and
+``guide_only`` (the same planner with its optimizer switched off) are compared episode by
+episode in ``crowd_share`` (:func:`crowd_share_table`): paired Wilcoxon signed-rank tests of
+time to goal and discomfort on the episodes both succeed, Holm over the settings
+(:mod:`mawdo.experiments.kinds.arena.share`).
 """
 
 from __future__ import annotations
@@ -102,6 +106,75 @@ def crowd_table(store: Store) -> Table:
     )  # fmt: skip
 
 
+SHARE_COLUMNS = [
+    "setting", "pairs", "{a} success", "{b} success", "{a} robot-caused", "{b} robot-caused",
+    "{a} time (s)", "{b} time (s)", "time p", "time p Holm", "time verdict", "{a} discomfort",
+    "{b} discomfort", "discomfort p", "discomfort p Holm", "discomfort verdict",
+]  # fmt: skip
+
+
+def crowd_share(store: Store, ours: str = "mawdo", base: str = "guide_only") -> list[dict]:
+    """Per setting, ``ours`` against ``base`` episode by episode; empty unless both policies
+    are in the plan.
+
+    Each dict: ``setting``, ``pairs`` (episodes both succeed), ``success`` and
+    ``robot_caused`` (pairs of rates over each one's episodes), ``time_s`` and ``discomfort``
+    (pairs of means over the paired episodes), and per metric ``{metric}_test``
+    (:class:`~mawdo.experiments.kinds.arena.share.Paired`), ``{metric}_holm`` and
+    ``{metric}_verdict`` (Holm over the settings; ``helps`` = lower for ``ours``).
+    """
+    from mawdo.experiments.kinds.arena.share import holm_verdicts, signed_rank
+
+    plan = store.plan
+    if not {ours, base} <= set(plan.policies):
+        return []
+    out = []
+    for s in plan.settings:
+        mine, theirs = ({r.run: r for _, _, r in store.rows(p, s) if r.status == "ok"}
+                        for p in (ours, base))  # fmt: skip
+        if not mine or not theirs:
+            continue
+        both = sorted(k for k in set(mine) & set(theirs) if mine[k].success and theirs[k].success)
+        row = {"setting": s, "pairs": len(both)}
+        for key in ("success", "robot_caused"):
+            row[key] = tuple(_mean(getattr(r, key) for r in rs.values()) for rs in (mine, theirs))
+        for key in ("time_s", "discomfort"):
+            a, b = ([getattr(rs[k], key) for k in both] for rs in (mine, theirs))
+            row[key] = (_mean(a), _mean(b))
+            row[f"{key}_test"] = signed_rank(a, b)
+        out.append(row)
+    for key in ("time_s", "discomfort"):
+        for row, (p, v) in zip(out, holm_verdicts([r[f"{key}_test"] for r in out]), strict=True):
+            row[f"{key}_holm"], row[f"{key}_verdict"] = p, v
+    return out
+
+
+def crowd_share_table(store: Store, ours: str = "mawdo", base: str = "guide_only") -> Table | None:
+    """:func:`crowd_share` as a table (``crowd_share.md/.tex/.csv``); None without both."""
+    rows = crowd_share(store, ours, base)
+    if not rows:
+        return None
+    cols = [c.format(a=ours, b=base) for c in SHARE_COLUMNS]
+    body = [
+        [r["setting"], r["pairs"], *r["success"], *r["robot_caused"], *r["time_s"],
+         r["time_s_test"].pvalue, r["time_s_holm"], r["time_s_verdict"], *r["discomfort"],
+         r["discomfort_test"].pvalue, r["discomfort_holm"], r["discomfort_verdict"]]
+        for r in rows
+    ]  # fmt: skip
+    fmts = {c: ".3f" for c in cols[2:6] + cols[11:13]} | {c: ".2f" for c in cols[6:8]}
+    fmts |= {c: ".2g" for c in (cols[8], cols[9], cols[13], cols[14])}
+    return Table(
+        name="crowd_share", columns=cols, rows=body, formats=fmts,
+        title=f"{ours} against {base} (the same planner without its optimizer), episode by episode",
+        notes=[f"pairs: episodes both succeed (the same people for both); success and robot-caused "
+               "are shares of each one's episodes; time and discomfort are means over the pairs. "
+               "p: two-sided Wilcoxon signed-rank test of the paired values (scipy.stats.wilcoxon; "
+               "p = 1 when no pair differs); p Holm: Holm over the settings, per metric. Verdict "
+               f"at 0.05 after Holm: helps = {ours} significantly lower than {base}, hurts = "
+               "higher."],
+    )  # fmt: skip
+
+
 def write_crowd_report(store_path, out_dir, *, figures: bool = True, **_options) -> Path:
     """The table (Markdown, LaTeX, CSV), the figures (rates per setting and policy; one
     episode of each policy, re-run) and ``crowd.md`` into ``out_dir``; returns its path."""
@@ -115,6 +188,7 @@ def write_crowd_report(store_path, out_dir, *, figures: bool = True, **_options)
             raise ValueError(f"{store_path} holds a {plan.kind!r} study, not a crowd study")
         say("crowd table")
         table = crowd_table(store)
+        share = crowd_share_table(store)
         headline = crowd_headline(store)
         errors = [(a, s, r.run, r.error_text) for a, s, r in store.rows() if r.error_text]
         figs = []
@@ -124,9 +198,12 @@ def write_crowd_report(store_path, out_dir, *, figures: bool = True, **_options)
             figs += [f for f in [episode_figure(store, out)] if f is not None]
     for ext, f in (("md", to_markdown), ("tex", to_latex), ("csv", to_csv)):
         (out / f"crowd_table.{ext}").write_text(f(table))
+        if share is not None:
+            (out / f"crowd_share.{ext}").write_text(f(share))
     (out / "summary.md").write_text("\n".join(headline) + "\n", encoding="utf-8")
     md = [f"# Crowd navigation: {plan.name}", "", plan.describe(), "", *headline, ""]
     md += [to_markdown(table), ""]
+    md += [to_markdown(share), ""] if share is not None else []
     md += [f"![{p.stem}]({p.name})\n" for p in figs]
     if errors:
         md += ["", "## Runs that raised", ""]
