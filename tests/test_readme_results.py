@@ -387,3 +387,17 @@ def test_stored_crowd_episodes_are_what_the_code_computes(tmp_path, policy, run)
     res, scene = run_one(spec, "circle-5-invisible", spec["seeds"][0])
     row = episode_row(res, scene)
     assert tuple(row[f] for f in fields) == stored
+
+
+@pytest.mark.parametrize("folder", ["crowdnav-circle5", "crowdnav-50"])
+def test_the_crowd_share_is_that_of_the_committed_store(tmp_path, folder):
+    """The committed crowd_share.md is the report's table from the committed crowd store."""
+    from mawdo.experiments import Store
+    from mawdo.experiments.kinds.crowd.report import crowd_share_table
+    from mawdo.experiments.tables import to_markdown
+
+    path = ROOT / "docs" / "results" / folder
+    with Store.read(unpack(path / "store.db.xz", tmp_path)) as store:
+        table = crowd_share_table(store)
+    assert table is not None
+    assert to_markdown(table) == (path / "crowd_share.md").read_text("utf-8")
