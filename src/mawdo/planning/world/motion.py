@@ -33,6 +33,7 @@ Models
 from __future__ import annotations
 
 import math
+from bisect import bisect_left, bisect_right
 from dataclasses import dataclass, field
 from functools import cached_property
 
@@ -408,6 +409,11 @@ class Track(Motion):
             raise ValueError("track times must be strictly increasing")
         object.__setattr__(self, "times", t)
         object.__setattr__(self, "offsets", o)
+        # (the planner asks a predicted track for knots and offsets about a hundred times a
+        # step: contiguous columns and a list of times spare each call its conversions)
+        object.__setattr__(self, "_x", np.ascontiguousarray(o[:, 0]))
+        object.__setattr__(self, "_y", np.ascontiguousarray(o[:, 1]))
+        object.__setattr__(self, "_tlist", t.tolist())
 
     @property
     def is_static(self) -> bool:  # type: ignore[override]
@@ -425,11 +431,23 @@ class Track(Motion):
 
     def offset(self, t) -> np.ndarray:
         t = np.asarray(t, dtype=float)
-        x = np.interp(t, self.times, self.offsets[:, 0])
-        y = np.interp(t, self.times, self.offsets[:, 1])
-        return np.stack([x, y], axis=-1)
+        out = np.empty(t.shape + (2,))
+        out[..., 0] = np.interp(t, self.times, self._x)
+        out[..., 1] = np.interp(t, self.times, self._y)
+        return out
 
     def _inner_knots(self, t0: float, t1: float) -> np.ndarray:
-        lo, hi = np.searchsorted(self.times, [t0, t1], side="right")
-        inner = self.times[lo:hi]
-        return inner[(inner > t0) & (inner < t1)]
+        # the knots strictly inside (t0, t1): the times are strictly increasing
+        return self.times[bisect_right(self._tlist, t0) : bisect_left(self._tlist, t1)]
+
+    def knots(self, t0: float, t1: float) -> tuple[np.ndarray, np.ndarray]:
+        """Constant-velocity pieces of ``[t0, t1]`` (see :meth:`Motion.knots`); the same
+        arrays, built without a sort: the inner knots already lie strictly between the ends."""
+        t0, t1 = float(t0), float(t1)
+        if not t1 > t0:  # a point, or the error
+            return super().knots(t0, t1)
+        inner = self._inner_knots(t0, t1)
+        times = np.empty(len(inner) + 2)
+        times[0], times[-1] = t0, t1
+        times[1:-1] = inner
+        return times, self.offset(times)
