@@ -20,6 +20,11 @@ import numpy as np
 
 from mawdo.planning.world.motion import Track
 from mawdo.planning.world.scenario import CircleObstacle, Obstacle, Scenario
+from mawdo.planning.world.scenario_schema import StaticMotion
+
+#: The motion field of a mover's shape spec (its motion is the obstacle's ``Track``), shared:
+#: specs are frozen, and ``model_construct`` would deep-copy the default for every mover.
+_SPEC_MOTION = StaticMotion()
 
 __all__ = ["Move", "SteppedWorld", "bounding_disc", "people_future", "static_part", "with_movers"]
 
@@ -89,7 +94,7 @@ def with_movers(scenario: Scenario, radii, tracks, ids=None, start=None) -> Scen
         name = ids[j] if ids is not None else f"mover-{j}"
         shape = CircleObstacle.model_construct(
             shape="circle", id=name, center=(float(centres[0, 0]), float(centres[0, 1])),
-            radius=float(r),
+            radius=float(r), motion=_SPEC_MOTION,
         )  # fmt: skip
         motion = Track(np.asarray(times, dtype=float), centres - centres[0])
         obstacles.append(Obstacle(len(obstacles), name, shape, motion))
