@@ -68,4 +68,4 @@ lint: $(DEVSTAMP)
 	$(PY) -m ruff format --check src tests benchmarks
 
 clean:
-	rm -rf $(VENV) out build site *.egg-info src/*.egg-info
+	rm -rf $(VENV) $(RLVENV) out build site *.egg-info src/*.egg-info
