@@ -90,7 +90,8 @@ def run_case(scene: str, seed: int, overrides: dict):
 #: that lacks them compares equal to one that has them at these values.
 ADDED_DEFAULTS = {
     "robot_caused": None, "other_collisions": None, "units": "px", "dt": None, "resolution": None,
-    "file_spec": None, "derived_units": None, "crowd": None, "check": None,
+    "file_spec": None, "derived_units": None, "crowd": None, "check": None, "comfort": 0.0,
+    "comfort_weight": 8.0,
 }  # fmt: skip
 
 

@@ -171,6 +171,10 @@ class PathCost:
         into chunks of rows of at least 16 candidates evaluated at once; the numbers are the
         same bit for bit whatever the count. Leave it at 1 where processes already share the
         cores (a study with several workers).
+    obstacles : sequence of Obstacle, optional
+        The obstacles ``n`` counts (default all of the scenario's), e.g. its movers only.
+    border : bool
+        Whether the map's border counts in ``n`` (default True).
 
     Examples
     --------
@@ -186,6 +190,8 @@ class PathCost:
         n_waypoints: int = 20,
         clearance: float = 0.0,
         threads: int = 1,
+        obstacles=None,
+        border: bool = True,
     ) -> None:
         if mode not in MODES:
             raise ValueError(f"mode must be one of {MODES}, got {mode!r}")
@@ -203,8 +209,10 @@ class PathCost:
             raise ValueError(f"clearance must be finite and >= 0 px, got {clearance!r}")
         self.clearance = float(clearance)
         # the margin widens the hit distance: touching the inflated-plus-margin shape is a hit
+        self._obstacles = tuple(scenario.obstacles if obstacles is None else obstacles)
+        self._rows = None if obstacles is None else [o.index for o in self._obstacles]
         self.flat = FlatObstacles.from_obstacles(
-            scenario.obstacles, scenario.robot_radius + self.clearance
+            self._obstacles, scenario.robot_radius + self.clearance
         )
         self._table: MotionTable | None = None
         # the kernel's per-t0 inputs, kept for the next call with the same t0 (an optimizer
@@ -225,6 +233,8 @@ class PathCost:
         # (a map narrower than that leaves an empty box, where every segment hits)
         reach = float(scenario.robot_radius) + self.clearance
         self._box = (reach, reach, float(scenario.width) - reach, float(scenario.height) - reach)
+        if not border:
+            self._box = (-math.inf, -math.inf, math.inf, math.inf)
         self._bounds: tuple | None = None
         w = self.weights
         self._weights = (float(w.alpha), float(w.beta), float(w.lam), float(w.k))
@@ -320,7 +330,7 @@ class PathCost:
         table = self._table
         if table is None or not table.covers(t0, t_need):
             # a receding-horizon planner calls again with a later t0: cover twice what is needed
-            table = MotionTable.build(self.scenario.obstacles, t0, t0 + 2.0 * (t_need - t0) + 1.0)
+            table = MotionTable.build(self._obstacles, t0, t0 + 2.0 * (t_need - t0) + 1.0)
             self._table = table
         return table
 
@@ -366,7 +376,9 @@ class PathCost:
         else:
             motion = self._frozen
             if self._snap is None or self._snap[0] != t0:
-                offsets = np.ascontiguousarray(self.scenario.offsets(t0), dtype=np.float64)
+                offsets = self.scenario.offsets(t0)
+                offsets = offsets if self._rows is None else offsets[self._rows]
+                offsets = np.ascontiguousarray(offsets, dtype=np.float64)
                 self._snap = (t0, offsets)
             snap = self._snap[1]
         self._kernel(

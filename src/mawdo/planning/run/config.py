@@ -56,6 +56,13 @@ class PlannerConfig:
         Safety margin (px, >= 0) added to the robot radius in the cost, the guide and the guard;
         the checker reports steps closer than this as near misses. A run uses at most half the
         scene's narrowest-passage slack (:func:`mawdo.planning.guide.passage.fitted_clearance`).
+    comfort : float
+        Room (px, >= 0) beyond the robot radius and ``clearance`` that the refinement tries to
+        leave moving agents: each (segment, mover) pair of a candidate that comes closer costs
+        ``comfort_weight`` px of route length (:mod:`mawdo.planning.refine.comfort`). 0 (every
+        preset): the paper's cost.
+    comfort_weight : float
+        What one such near pair costs, in pixels of route length (>= 0).
     elite_size : int
         Distinct candidates kept from each optimisation for the guard to fall back on, >= 1.
     give_up_steps : int
@@ -150,6 +157,8 @@ class PlannerConfig:
     warm_sigma: float = 6.0
     options: dict = field(default_factory=dict)
     clearance: float = 0.5
+    comfort: float = 0.0
+    comfort_weight: float = 8.0
     elite_size: int = 8
     give_up_steps: int = 60
     guide_routes: int = 6
@@ -190,8 +199,10 @@ class PlannerConfig:
             )
         if self.max_steps is not None:
             check_int("PlannerConfig.max_steps", self.max_steps, 1, MAX_RUN_STEPS)
-        if not (np.isfinite(self.clearance) and self.clearance >= 0):
-            raise ValueError(f"PlannerConfig.clearance={self.clearance!r} must be >= 0 px")
+        for name in ("clearance", "comfort", "comfort_weight"):
+            v = getattr(self, name)
+            if not (np.isfinite(v) and v >= 0):
+                raise ValueError(f"PlannerConfig.{name}={v!r} must be finite and >= 0 px")
         for name in ("elite_size", "give_up_steps", "max_waypoints"):
             if getattr(self, name) < 1:
                 raise ValueError(f"PlannerConfig.{name}={getattr(self, name)!r} must be >= 1")

@@ -56,6 +56,18 @@ def share_guide(source: Scenario, target: Scenario) -> None:
         _GUIDES[target] = _GUIDES[source]
 
 
+def _path_cost(sc: Scenario, cfg: PlannerConfig, m: int, dynamic: bool) -> PathCost:
+    """The refinement's cost: the paper's, plus the comfort term where ``cfg.comfort`` asks
+    for it and the run sees time (near passes are judged along the robot's motion)."""
+    mode = cfg.mode if dynamic else "snapshot"
+    args = (sc, mode, cfg.weights, m, cfg.clearance, cfg.threads)
+    if cfg.comfort > 0 and mode == "spacetime":
+        from mawdo.planning.refine.comfort import ComfortPathCost
+
+        return ComfortPathCost(*args, comfort=cfg.comfort, comfort_weight=cfg.comfort_weight)
+    return PathCost(*args)
+
+
 def _waypoints_needed(routes, cfg: PlannerConfig) -> int:
     if not (cfg.auto_waypoints and routes):
         return cfg.n_waypoints
@@ -100,14 +112,7 @@ class Run(TimedRun, SafeRun, LimitedRun):
         self.guide = guide_for(sc, cfg.clearance, cfg.guide_routes) if cfg.guide_routes else None
         self.routes = self.guide.routes(sc.start) if self.guide else []
         self.m = _waypoints_needed(self.routes, cfg)
-        self.cost = PathCost(
-            sc,
-            mode=cfg.mode if dynamic else "snapshot",
-            weights=cfg.weights,
-            n_waypoints=self.m,
-            clearance=cfg.clearance,
-            threads=cfg.threads,
-        )
+        self.cost = _path_cost(sc, cfg, self.m, dynamic)
         self.guard = Guard(sc, cfg.clearance)
         self.optimizers = self._make_optimizers()
         self.replans: list[Replan] = []
