@@ -24,8 +24,8 @@ import numpy as np
 from numba import njit
 
 from mawdo.planning.guide.sipp import index as _index
-from mawdo.planning.guide.sipp.geometry import clip_range, cone_start, disc_range
-from mawdo.planning.guide.sipp.index import candidates
+from mawdo.planning.guide.sipp.geometry import clip_range, cone_start, disc_missed, disc_range
+from mawdo.planning.guide.sipp.index import PAD, candidates
 from mawdo.planning.refine.kernel.primitives import (
     point_in_polygon,
     point_segment_d2,
@@ -199,23 +199,12 @@ def _doubled(x):
 
 
 @njit(cache=True)
-def _push(buf, n, lo, hi):
-    if n == buf.shape[0]:
-        grown = np.empty((2 * n + 8, 2))
-        for r in range(n):  # (no slice assignment: see _sweep_order)
-            grown[r, 0] = buf[r, 0]
-            grown[r, 1] = buf[r, 1]
-        buf = grown
-    buf[n, 0] = lo
-    buf[n, 1] = hi
-    return buf, n + 1
-
-
-@njit(cache=True, inline="always")
 def _polygon_piece(d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, i, nv, thr, buf, n):
     """Forbidden departures of one piece against polygon ``i``: per vertex a disc, per edge a
-    rectangle of half-width ``thr``, and the gaps between them whose moves run inside."""
-    first = n
+    rectangle of half-width ``thr``, and the gaps between them whose moves run inside; written
+    to ``buf`` from row ``n`` on while it has room. Returns the rows then filled: more than
+    ``buf`` holds when it ran out of room (the rows past it are not written)."""
+    first, room = n, buf.shape[0]
     planes = np.empty((4, 3))
     half = max(thr, 1e-9)  # a zero-width strip would lose touching to rounding
     for k in range(nv):
@@ -224,7 +213,9 @@ def _polygon_piece(d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, i, nv, thr, buf, 
         if thr > 0.0:
             lo, hi = disc_range(d0x - ax, d0y - ay, ex, ey, wx, wy, T, ta, tb, thr)
             if lo <= hi:
-                buf, n = _push(buf, n, lo, hi)
+                if n < room:
+                    buf[n, 0], buf[n, 1] = lo, hi
+                n += 1
         length = math.hypot(bx - ax, by - ay)
         if length == 0.0:
             continue
@@ -235,8 +226,12 @@ def _polygon_piece(d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, i, nv, thr, buf, 
         planes[3, 0], planes[3, 1], planes[3, 2] = uy, -ux, uy * ax - ux * ay + half
         lo, hi = clip_range(d0x, d0y, ex, ey, wx, wy, T, ta, tb, planes)
         if lo <= hi:
-            buf, n = _push(buf, n, lo, hi)
+            if n < room:
+                buf[n, 0], buf[n, 1] = lo, hi
+            n += 1
     m = n - first
+    if n + m + 1 > room:  # no room for the gaps (or the rows above): the caller grows buf
+        return n + m + 1
     edges = buf[_sweep_order(buf, first, n)]
     cur = ta - T
     for j in range(m + 1):
@@ -246,10 +241,11 @@ def _polygon_piece(d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, i, nv, thr, buf, 
             s = 0.5 * (max(0.0, ta - tm) + min(T, tb - tm))
             t = tm + s
             if point_in_polygon(d0x + s * ex - t * wx, d0y + s * ey - t * wy, verts, i, nv):
-                buf, n = _push(buf, n, cur, g1)
+                buf[n, 0], buf[n, 1] = cur, g1
+                n += 1
         if j < m:
             cur = max(cur, edges[j, 1])
-    return buf, n
+    return n
 
 
 @njit(cache=True)
@@ -267,7 +263,13 @@ def forbidden_among(ux, uy, ex, ey, T, lo, hi, mv, cands):
     """:func:`forbidden` with the movers to test given (ascending indices): those of
     :func:`~mawdo.planning.guide.sipp.index.candidates` for this move, or for one whose
     departures include these."""
-    buf, n = _gather(ux, uy, ex, ey, T, lo, hi, mv, cands)
+    room = 16 + 2 * len(cands)
+    while True:  # (rarely more than once: polygons or many hits)
+        buf = np.empty((room, 2))
+        n = _gather(ux, uy, ex, ey, T, lo, hi, mv, cands, buf)
+        if n <= room:
+            break
+        room = 2 * n
     order = _sweep_order(buf, np.int64(0), n)  # (an int64: a literal 0 compiles it twice)
     out = np.empty((n, 2))
     k = 0
@@ -285,20 +287,20 @@ def forbidden_among(ux, uy, ex, ey, T, lo, hi, mv, cands):
 
 
 @njit(cache=True)
-def _gather(ux, uy, ex, ey, T, lo, hi, mv, cands):
+def _gather(ux, uy, ex, ey, T, lo, hi, mv, cands, buf):
     """Every candidate's forbidden departures (those within ``[lo, hi]`` among them), unsorted
-    and overlapping: ``(buf, n)``, the rows ``buf[:n]``.
+    and overlapping, written to the rows of ``buf`` while it has room. Returns the rows filled:
+    more than ``buf`` holds when it ran out of room (then call again with more).
 
-    The loop body is written out here, the tables bound once before it: as an inlined
-    function taking the tables it cost an atomic reference-count increment and decrement per
-    table and candidate (Numba counts every binding of an array), which took about 60 % of the
-    safe-interval search's CPU on the 1000 x 1000 px world with 200 movers."""
+    The loop body is written out here, the tables bound once before it, and ``buf`` is never
+    rebound: Numba counts every binding of an array (an atomic increment and decrement), and
+    as an inlined function taking the tables, growing ``buf`` as it went, this loop cost about
+    fifteen of those per candidate, 60 % of the safe-interval search's CPU on the
+    1000 x 1000 px world with 200 movers."""
     kind, box, circle, center, thr, verts, nverts = mv[:7]
     vmax, base, t_base, pptr, pt0, pt1, po, pv = mv[7:15]
-    buf = np.empty((16, 2))
-    # (an int64 from the start: a literal 0 made Numba compile _polygon_piece and _push a
-    # second time each, for the type Literal[int](0))
-    n = np.int64(0)
+    room = buf.shape[0]
+    n = np.int64(0)  # (not a literal 0: Numba would compile _polygon_piece for its type)
     # the move's bounding box: a piece whose swept box misses it cannot collide
     rx0, rx1 = min(ux, ux + T * ex), max(ux, ux + T * ex)
     ry0, ry1 = min(uy, uy + T * ey), max(uy, uy + T * ey)
@@ -309,7 +311,9 @@ def _gather(ux, uy, ex, ey, T, lo, hi, mv, cands):
                 nverts[m], base[m, 0], base[m, 1], vmax[m], t_base,
             )  # fmt: skip
             if tc <= hi:
-                buf, n = _push(buf, n, tc, math.inf)
+                if n < room:
+                    buf[n, 0], buf[n, 1] = tc, math.inf
+                n += 1
             continue
         b = pptr[m + 1]
         k = _first_not_before(pt1, pptr[m], b, lo)
@@ -327,19 +331,24 @@ def _gather(ux, uy, ex, ey, T, lo, hi, mv, cands):
                 continue
             d0x, d0y = ux - ox0 + wx * ta, uy - oy0 + wy * ta
             if not circle[m]:
-                buf, n = _polygon_piece(
-                    d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, m, nverts[m], thr[m], buf, n
-                )
+                if n < room:
+                    n = _polygon_piece(
+                        d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, m, nverts[m], thr[m], buf, n
+                    )
+                else:
+                    n += 1
                 continue
             dx, dy = d0x - center[m, 0], d0y - center[m, 1]
+            # a disc no departure of the window comes near: its departures (the piece's
+            # whole span) lie outside the window, where the merge drops them
+            if disc_missed(dx, dy, ex, ey, wx, wy, T, lo, hi, thr[m] + PAD):
+                continue
             f0, f1 = disc_range(dx, dy, ex, ey, wx, wy, T, ta, tb, thr[m])
             if f0 <= f1:
-                if n == buf.shape[0]:  # (not _push: rebinding buf at every push counts too)
-                    buf, n = _push(buf, n, f0, f1)
-                else:
+                if n < room:
                     buf[n, 0], buf[n, 1] = f0, f1
-                    n += 1
-    return buf, n
+                n += 1
+    return n
 
 
 @njit(cache=True)
