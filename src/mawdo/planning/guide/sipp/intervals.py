@@ -263,13 +263,71 @@ def forbidden_among(ux, uy, ex, ey, T, lo, hi, mv, cands):
     """:func:`forbidden` with the movers to test given (ascending indices): those of
     :func:`~mawdo.planning.guide.sipp.index.candidates` for this move, or for one whose
     departures include these."""
+    # The candidates' loop is written out here, the tables bound once before it and buf never
+    # rebound inside it: Numba counts every binding of an array (an atomic increment and
+    # decrement), and as an inlined function per candidate taking the tables, growing buf as it
+    # went, this loop spent 60 % of the safe-interval search's CPU on those (1000 x 1000 px,
+    # 200 movers); a function call binds each table once more (22 a call).
+    kind, box, circle, center, thr, verts, nverts = mv[:7]
+    vmax, base, t_base, pptr, pt0, pt1, po, pv = mv[7:15]
+    # the move's bounding box: a piece whose swept box misses it cannot collide
+    rx0, rx1 = min(ux, ux + T * ex), max(ux, ux + T * ex)
+    ry0, ry1 = min(uy, uy + T * ey), max(uy, uy + T * ey)
     room = 16 + 2 * len(cands)
-    while True:  # (rarely more than once: polygons or many hits)
+    while True:  # each candidate's departures, written while buf has room, else again with more
         buf = np.empty((room, 2))
-        n = _gather(ux, uy, ex, ey, T, lo, hi, mv, cands, buf)
+        n = np.int64(0)  # (not a literal 0: Numba would compile _polygon_piece for its type)
+        for m in cands:
+            if kind[m] == 1:
+                tc = cone_start(
+                    ux, uy, ex, ey, T, circle[m], center[m, 0], center[m, 1], thr[m], verts, m,
+                    nverts[m], base[m, 0], base[m, 1], vmax[m], t_base,
+                )  # fmt: skip
+                if tc <= hi:
+                    if n < room:
+                        buf[n, 0], buf[n, 1] = tc, math.inf
+                    n += 1
+                continue
+            b = pptr[m + 1]
+            k = _first_not_before(pt1, pptr[m], b, lo)
+            while k < b and pt0[k] <= hi + T:
+                ta, tb, wx, wy = pt0[k], pt1[k], pv[k, 0], pv[k, 1]
+                ox0, ox1 = po[k, 0], po[k, 0] + wx * (tb - ta)
+                oy0, oy1 = po[k, 1], po[k, 1] + wy * (tb - ta)
+                k += 1
+                if (
+                    box[m, 0] + min(ox0, ox1) > rx1
+                    or box[m, 2] + max(ox0, ox1) < rx0
+                    or box[m, 1] + min(oy0, oy1) > ry1
+                    or box[m, 3] + max(oy0, oy1) < ry0
+                ):
+                    continue
+                d0x, d0y = ux - ox0 + wx * ta, uy - oy0 + wy * ta
+                if not circle[m]:
+                    if n < room:
+                        n = _polygon_piece(d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, m,
+                                           nverts[m], thr[m], buf, n)  # fmt: skip
+                    else:
+                        n += 1
+                    continue
+                dx, dy = d0x - center[m, 0], d0y - center[m, 1]
+                # a disc no departure of the window comes near: its departures (the piece's
+                # whole span) lie outside the window, where the merge drops them
+                if disc_missed(dx, dy, ex, ey, wx, wy, T, lo, hi, thr[m] + PAD):
+                    continue
+                f0, f1 = disc_range(dx, dy, ex, ey, wx, wy, T, ta, tb, thr[m])
+                if f0 <= f1:
+                    if n < room:
+                        buf[n, 0], buf[n, 1] = f0, f1
+                    n += 1
         if n <= room:
-            break
+            return _union_within(buf, n, lo, hi)
         room = 2 * n
+
+
+@njit(cache=True)
+def _union_within(buf, n, lo, hi):
+    """The union of the closed intervals ``buf[:n]`` within ``[lo, hi]``: sorted, disjoint."""
     order = _sweep_order(buf, np.int64(0), n)  # (an int64: a literal 0 compiles it twice)
     out = np.empty((n, 2))
     k = 0
@@ -284,71 +342,6 @@ def forbidden_among(ux, uy, ex, ey, T, lo, hi, mv, cands):
             out[k, 1] = b
             k += 1
     return out[:k]
-
-
-@njit(cache=True)
-def _gather(ux, uy, ex, ey, T, lo, hi, mv, cands, buf):
-    """Every candidate's forbidden departures (those within ``[lo, hi]`` among them), unsorted
-    and overlapping, written to the rows of ``buf`` while it has room. Returns the rows filled:
-    more than ``buf`` holds when it ran out of room (then call again with more).
-
-    The loop body is written out here, the tables bound once before it, and ``buf`` is never
-    rebound: Numba counts every binding of an array (an atomic increment and decrement), and
-    as an inlined function taking the tables, growing ``buf`` as it went, this loop cost about
-    fifteen of those per candidate, 60 % of the safe-interval search's CPU on the
-    1000 x 1000 px world with 200 movers."""
-    kind, box, circle, center, thr, verts, nverts = mv[:7]
-    vmax, base, t_base, pptr, pt0, pt1, po, pv = mv[7:15]
-    room = buf.shape[0]
-    n = np.int64(0)  # (not a literal 0: Numba would compile _polygon_piece for its type)
-    # the move's bounding box: a piece whose swept box misses it cannot collide
-    rx0, rx1 = min(ux, ux + T * ex), max(ux, ux + T * ex)
-    ry0, ry1 = min(uy, uy + T * ey), max(uy, uy + T * ey)
-    for m in cands:
-        if kind[m] == 1:
-            tc = cone_start(
-                ux, uy, ex, ey, T, circle[m], center[m, 0], center[m, 1], thr[m], verts, m,
-                nverts[m], base[m, 0], base[m, 1], vmax[m], t_base,
-            )  # fmt: skip
-            if tc <= hi:
-                if n < room:
-                    buf[n, 0], buf[n, 1] = tc, math.inf
-                n += 1
-            continue
-        b = pptr[m + 1]
-        k = _first_not_before(pt1, pptr[m], b, lo)
-        while k < b and pt0[k] <= hi + T:
-            ta, tb, wx, wy = pt0[k], pt1[k], pv[k, 0], pv[k, 1]
-            ox0, ox1 = po[k, 0], po[k, 0] + wx * (tb - ta)
-            oy0, oy1 = po[k, 1], po[k, 1] + wy * (tb - ta)
-            k += 1
-            if (
-                box[m, 0] + min(ox0, ox1) > rx1
-                or box[m, 2] + max(ox0, ox1) < rx0
-                or box[m, 1] + min(oy0, oy1) > ry1
-                or box[m, 3] + max(oy0, oy1) < ry0
-            ):
-                continue
-            d0x, d0y = ux - ox0 + wx * ta, uy - oy0 + wy * ta
-            if not circle[m]:
-                if n < room:
-                    n = _polygon_piece(
-                        d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, m, nverts[m], thr[m], buf, n
-                    )
-                else:
-                    n += 1
-                continue
-            dx, dy = d0x - center[m, 0], d0y - center[m, 1]
-            # a disc no departure of the window comes near: its departures (the piece's
-            # whole span) lie outside the window, where the merge drops them
-            if disc_missed(dx, dy, ex, ey, wx, wy, T, lo, hi, thr[m] + PAD):
-                continue
-            f0, f1 = disc_range(dx, dy, ex, ey, wx, wy, T, ta, tb, thr[m])
-            if f0 <= f1:
-                if n < room:
-                    buf[n, 0], buf[n, 1] = f0, f1
-                n += 1
-    return n
 
 
 @njit(cache=True)
