@@ -6,9 +6,11 @@ whose static map cuts the start off from the goal (the exact oracle, :mod:`mawdo
 .oracle`) or that the scenario validation refuses is drawn again. Per size one realtime
 ``mawdo`` run of ``--steps`` steps: the first plan (from the call to the first step: roadmap,
 guides, first optimisation) and the replans after it (p50, p95), CPU seconds
-(``time.process_time``: the machine is shared), the peak of traced Python memory
-(:mod:`tracemalloc`; Numba's arrays are NumPy arrays and count), and the CPU per stage
-(:class:`StageClock`: each stage's own time, the stages it calls taken out).
+(``time.process_time``: the machine is shared), and the CPU per stage (:class:`StageClock`:
+each stage's own time, the stages it calls taken out); then the same run again for the peak of
+traced Python memory (:mod:`tracemalloc`; Numba's arrays are NumPy arrays and count). Traced
+apart: tracemalloc records a traceback at every allocation, Numba's arrays inside the compiled
+kernels included, which doubled the safe-interval search's CPU on the reference world.
 
 Three sweeps, each from the reference world (1000 x 1000 px, 200 movers, 40 polygons): movers
 10 -> 100 -> 1000, static polygons 10 -> 100 -> 300, map 366 -> 1000 -> 2000 px (movers and
@@ -24,6 +26,7 @@ By default two sizes per sweep (``make bench``); ``--size full`` (or
 from __future__ import annotations
 
 import argparse
+import copy
 import math
 import os
 import time
@@ -151,8 +154,9 @@ class StageClock:
 
 def run_world(sc, steps: int, seed: int = 0) -> dict:
     """One realtime ``mawdo`` run of at most ``steps`` steps: first-plan and replan CPU (s),
-    traced peak memory (MiB), CPU per stage (s; ``other``: the rest of the run: the static
-    guide, the waiting spots, the optimiser's Python), success of the steps driven."""
+    traced peak memory (MiB; from a second, untimed run), CPU per stage (s; ``other``: the rest
+    of the run: the static guide, the waiting spots, the optimiser's Python), success of the
+    steps driven."""
     from mawdo.planning.run.planner import plan
 
     marks = []
@@ -160,11 +164,14 @@ def run_world(sc, steps: int, seed: int = 0) -> dict:
     def mark(step, _, replans):
         marks.append((time.process_time(), replans))
 
-    tracemalloc.start()
     t0 = time.process_time()
     with StageClock() as clock:
         res = plan(sc, "mawdo", seed=seed, max_steps=steps, progress=mark)
     total = time.process_time() - t0
+    # the memory from a run of its own, untimed: the same run (same seed) of a copy of the world,
+    # which finds nothing the first built in the caches kept per world (roadmap, guides)
+    tracemalloc.start()
+    plan(copy.deepcopy(sc), "mawdo", seed=seed, max_steps=steps)
     peak = tracemalloc.get_traced_memory()[1] / 2**20
     tracemalloc.stop()
     first = marks[1][0] - t0 if len(marks) > 1 else total

@@ -8,7 +8,9 @@ state is pushed again only with a strictly smaller key, and keys are never NaN),
 order is the entries' sorted order, whichever heap holds them.
 
 The heap is ``(keys, ids, n)``: ``keys`` float64 ``(cap, 2)``, ``ids`` int64 ``(cap,)``, ``n``
-entries; :func:`heap_push` returns it, grown when full.
+entries; :func:`heap_push` returns it, grown when full. A search that pushes many entries in a
+loop makes room once (:func:`heap_room`) and adds them with :func:`heap_put`, which never
+rebinds the arrays (Numba counts every binding of an array, an atomic operation each).
 """
 
 from __future__ import annotations
@@ -34,13 +36,21 @@ def _less(a0, a1, ai, b0, b1, bi):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
-def heap_push(keys, ids, n, k0, k1, i):  # pragma: no cover - compiled
-    """Add ``(k0, k1, i)``; returns the heap ``(keys, ids, n + 1)``."""
-    if n == ids.shape[0]:
-        grown_k, grown_i = np.empty((2 * n, 2)), np.empty(2 * n, np.int64)
-        for r in range(n):
-            grown_k[r, 0], grown_k[r, 1], grown_i[r] = keys[r, 0], keys[r, 1], ids[r]
-        keys, ids = grown_k, grown_i
+def heap_room(keys, ids, n, extra):  # pragma: no cover - compiled
+    """The heap's arrays with room for ``extra`` more entries: as they are, or grown (at
+    least doubled) with the ``n`` entries copied."""
+    if n + extra <= ids.shape[0]:
+        return keys, ids
+    cap = max(2 * ids.shape[0], n + extra)
+    grown_k, grown_i = np.empty((cap, 2)), np.empty(cap, np.int64)
+    for r in range(n):
+        grown_k[r, 0], grown_k[r, 1], grown_i[r] = keys[r, 0], keys[r, 1], ids[r]
+    return grown_k, grown_i
+
+
+@njit(cache=True)
+def heap_put(keys, ids, n, k0, k1, i):  # pragma: no cover - compiled
+    """Add ``(k0, k1, i)`` to a heap with room for it (:func:`heap_room`); returns ``n + 1``."""
     j = n
     while j > 0:  # up from the new leaf while the parent is larger
         p = (j - 1) >> 1
@@ -49,7 +59,14 @@ def heap_push(keys, ids, n, k0, k1, i):  # pragma: no cover - compiled
         keys[j, 0], keys[j, 1], ids[j] = keys[p, 0], keys[p, 1], ids[p]
         j = p
     keys[j, 0], keys[j, 1], ids[j] = k0, k1, i
-    return keys, ids, n + 1
+    return n + 1
+
+
+@njit(cache=True)
+def heap_push(keys, ids, n, k0, k1, i):  # pragma: no cover - compiled
+    """Add ``(k0, k1, i)``; returns the heap ``(keys, ids, n + 1)``."""
+    keys, ids = heap_room(keys, ids, n, 1)
+    return keys, ids, heap_put(keys, ids, n, k0, k1, i)
 
 
 @njit(cache=True)

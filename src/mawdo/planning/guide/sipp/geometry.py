@@ -36,7 +36,7 @@ from numba import njit
 
 from mawdo.planning.refine.kernel.primitives import point_in_polygon
 
-__all__ = ["clip_range", "cone_start", "disc_range"]
+__all__ = ["clip_range", "cone_start", "disc_missed", "disc_range"]
 
 _INF = math.inf
 
@@ -89,6 +89,38 @@ def disc_range(dx, dy, ex, ey, wx, wy, T, ta, tb, rho):
             if -tol <= s <= T + tol and ta - tol <= t <= tb + tol:
                 lo, hi = _update(lo, hi, t - s)
     return lo, hi
+
+
+@njit(cache=True, inline="always")
+def disc_missed(dx, dy, ex, ey, wx, wy, T, lo, hi, rho):
+    """True when no departure ``tau`` in ``[lo, hi]`` (finite) brings the move within ``rho``
+    of the disc's centre: ``|d + s (e - w) - tau w| > rho`` for every ``s`` in ``[0, T]`` (the
+    robot's position relative to the centre, ``q = d + s e - t w`` at ``t = tau + s``, as in
+    :func:`disc_range`; the piece's own time span is not looked at, so a move this calls
+    missed meets the disc at no time at all). False when it cannot tell.
+
+    In the frame moving with the disc the robot runs along the direction ``m = e - w``, one
+    line per departure, these lines shifted by ``-tau w``: the test is that every such line
+    passes farther than ``rho`` from the centre (the cross-track offsets over ``[lo, hi]``), or
+    that along the track the part driven (``0 <= s <= T``) stays beyond ``rho`` on one side.
+    Squares and no root: the comparisons are of sums of products, so the rounding is orders of
+    magnitude below any margin a caller adds to ``rho``."""
+    mx, my = ex - wx, ey - wy
+    mm = mx * mx + my * my
+    if not (mm > 1e-12 and lo > -math.inf and hi < math.inf):
+        return False
+    r2 = rho * rho * mm
+    # cross-track: |q x m| / |m| over tau in [lo, hi] (linear in tau, s drops out)
+    c0 = (dx - lo * wx) * my - (dy - lo * wy) * mx
+    c1 = (dx - hi * wx) * my - (dy - hi * wy) * mx
+    if c0 * c1 > 0.0 and min(c0 * c0, c1 * c1) > r2:
+        return True
+    # along the track: q . m over s in [0, T], tau in [lo, hi] (bilinear: its corners bound it)
+    a0 = dx * mx + dy * my
+    wm = wx * mx + wy * my
+    a_lo = a0 + min(0.0, T * mm) - max(lo * wm, hi * wm)
+    a_hi = a0 + max(0.0, T * mm) - min(lo * wm, hi * wm)
+    return (a_lo > 0.0 and a_lo * a_lo > r2) or (a_hi < 0.0 and a_hi * a_hi > r2)
 
 
 @njit(cache=True)

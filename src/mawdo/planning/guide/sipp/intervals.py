@@ -24,8 +24,8 @@ import numpy as np
 from numba import njit
 
 from mawdo.planning.guide.sipp import index as _index
-from mawdo.planning.guide.sipp.geometry import clip_range, cone_start, disc_range
-from mawdo.planning.guide.sipp.index import candidates
+from mawdo.planning.guide.sipp.geometry import clip_range, cone_start, disc_missed, disc_range
+from mawdo.planning.guide.sipp.index import PAD, candidates
 from mawdo.planning.refine.kernel.primitives import (
     point_in_polygon,
     point_segment_d2,
@@ -199,23 +199,12 @@ def _doubled(x):
 
 
 @njit(cache=True)
-def _push(buf, n, lo, hi):
-    if n == buf.shape[0]:
-        grown = np.empty((2 * n + 8, 2))
-        for r in range(n):  # (no slice assignment: see _sweep_order)
-            grown[r, 0] = buf[r, 0]
-            grown[r, 1] = buf[r, 1]
-        buf = grown
-    buf[n, 0] = lo
-    buf[n, 1] = hi
-    return buf, n + 1
-
-
-@njit(cache=True, inline="always")
 def _polygon_piece(d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, i, nv, thr, buf, n):
     """Forbidden departures of one piece against polygon ``i``: per vertex a disc, per edge a
-    rectangle of half-width ``thr``, and the gaps between them whose moves run inside."""
-    first = n
+    rectangle of half-width ``thr``, and the gaps between them whose moves run inside; written
+    to ``buf`` from row ``n`` on while it has room. Returns the rows then filled: more than
+    ``buf`` holds when it ran out of room (the rows past it are not written)."""
+    first, room = n, buf.shape[0]
     planes = np.empty((4, 3))
     half = max(thr, 1e-9)  # a zero-width strip would lose touching to rounding
     for k in range(nv):
@@ -224,7 +213,9 @@ def _polygon_piece(d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, i, nv, thr, buf, 
         if thr > 0.0:
             lo, hi = disc_range(d0x - ax, d0y - ay, ex, ey, wx, wy, T, ta, tb, thr)
             if lo <= hi:
-                buf, n = _push(buf, n, lo, hi)
+                if n < room:
+                    buf[n, 0], buf[n, 1] = lo, hi
+                n += 1
         length = math.hypot(bx - ax, by - ay)
         if length == 0.0:
             continue
@@ -235,8 +226,12 @@ def _polygon_piece(d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, i, nv, thr, buf, 
         planes[3, 0], planes[3, 1], planes[3, 2] = uy, -ux, uy * ax - ux * ay + half
         lo, hi = clip_range(d0x, d0y, ex, ey, wx, wy, T, ta, tb, planes)
         if lo <= hi:
-            buf, n = _push(buf, n, lo, hi)
+            if n < room:
+                buf[n, 0], buf[n, 1] = lo, hi
+            n += 1
     m = n - first
+    if n + m + 1 > room:  # no room for the gaps (or the rows above): the caller grows buf
+        return n + m + 1
     edges = buf[_sweep_order(buf, first, n)]
     cur = ta - T
     for j in range(m + 1):
@@ -246,55 +241,11 @@ def _polygon_piece(d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, i, nv, thr, buf, 
             s = 0.5 * (max(0.0, ta - tm) + min(T, tb - tm))
             t = tm + s
             if point_in_polygon(d0x + s * ex - t * wx, d0y + s * ey - t * wy, verts, i, nv):
-                buf, n = _push(buf, n, cur, g1)
+                buf[n, 0], buf[n, 1] = cur, g1
+                n += 1
         if j < m:
             cur = max(cur, edges[j, 1])
-    return buf, n
-
-
-@njit(cache=True, inline="always")
-def _mover_forbidden(ux, uy, ex, ey, T, lo, hi, m, mv, buf, n):
-    """Append mover ``m``'s forbidden departures within ``[lo, hi]`` to ``buf``."""
-    kind, box, circle, center, thr, verts, nverts = mv[:7]
-    vmax, base, t_base, pptr, pt0, pt1, po, pv = mv[7:15]
-    if kind[m] == 1:
-        tc = cone_start(
-            ux, uy, ex, ey, T, circle[m], center[m, 0], center[m, 1], thr[m], verts, m,
-            nverts[m], base[m, 0], base[m, 1], vmax[m], t_base,
-        )  # fmt: skip
-        if tc <= hi:
-            buf, n = _push(buf, n, tc, math.inf)
-        return buf, n
-    a, b = pptr[m], pptr[m + 1]
-    k = _first_not_before(pt1, a, b, lo)
-    # the move's bounding box: a piece whose swept box misses it cannot collide
-    rx0, rx1 = min(ux, ux + T * ex), max(ux, ux + T * ex)
-    ry0, ry1 = min(uy, uy + T * ey), max(uy, uy + T * ey)
-    while k < b and pt0[k] <= hi + T:
-        ta, tb = pt0[k], pt1[k]
-        wx, wy = pv[k, 0], pv[k, 1]
-        k += 1
-        ox0, ox1 = po[k - 1, 0], po[k - 1, 0] + wx * (tb - ta)
-        oy0, oy1 = po[k - 1, 1], po[k - 1, 1] + wy * (tb - ta)
-        if (
-            box[m, 0] + min(ox0, ox1) > rx1
-            or box[m, 2] + max(ox0, ox1) < rx0
-            or box[m, 1] + min(oy0, oy1) > ry1
-            or box[m, 3] + max(oy0, oy1) < ry0
-        ):
-            continue
-        d0x = ux - ox0 + wx * ta
-        d0y = uy - oy0 + wy * ta
-        if circle[m]:
-            dx, dy = d0x - center[m, 0], d0y - center[m, 1]
-            f0, f1 = disc_range(dx, dy, ex, ey, wx, wy, T, ta, tb, thr[m])
-            if f0 <= f1:
-                buf, n = _push(buf, n, f0, f1)
-        else:
-            buf, n = _polygon_piece(
-                d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, m, nverts[m], thr[m], buf, n
-            )
-    return buf, n
+    return n
 
 
 @njit(cache=True)
@@ -312,12 +263,71 @@ def forbidden_among(ux, uy, ex, ey, T, lo, hi, mv, cands):
     """:func:`forbidden` with the movers to test given (ascending indices): those of
     :func:`~mawdo.planning.guide.sipp.index.candidates` for this move, or for one whose
     departures include these."""
-    buf = np.empty((16, 2))
-    # (an int64 from the start: a literal 0 made Numba compile _mover_forbidden, _polygon_piece
-    # and _push a second time each, for the type Literal[int](0))
-    n = np.int64(0)
-    for m in cands:
-        buf, n = _mover_forbidden(ux, uy, ex, ey, T, lo, hi, m, mv, buf, n)
+    # The candidates' loop is written out here, the tables bound once before it and buf never
+    # rebound inside it: Numba counts every binding of an array (an atomic increment and
+    # decrement), and as an inlined function per candidate taking the tables, growing buf as it
+    # went, this loop spent 60 % of the safe-interval search's CPU on those (1000 x 1000 px,
+    # 200 movers); a function call binds each table once more (22 a call).
+    kind, box, circle, center, thr, verts, nverts = mv[:7]
+    vmax, base, t_base, pptr, pt0, pt1, po, pv = mv[7:15]
+    # the move's bounding box: a piece whose swept box misses it cannot collide
+    rx0, rx1 = min(ux, ux + T * ex), max(ux, ux + T * ex)
+    ry0, ry1 = min(uy, uy + T * ey), max(uy, uy + T * ey)
+    room = 16 + 2 * len(cands)
+    while True:  # each candidate's departures, written while buf has room, else again with more
+        buf = np.empty((room, 2))
+        n = np.int64(0)  # (not a literal 0: Numba would compile _polygon_piece for its type)
+        for m in cands:
+            if kind[m] == 1:
+                tc = cone_start(
+                    ux, uy, ex, ey, T, circle[m], center[m, 0], center[m, 1], thr[m], verts, m,
+                    nverts[m], base[m, 0], base[m, 1], vmax[m], t_base,
+                )  # fmt: skip
+                if tc <= hi:
+                    if n < room:
+                        buf[n, 0], buf[n, 1] = tc, math.inf
+                    n += 1
+                continue
+            b = pptr[m + 1]
+            k = _first_not_before(pt1, pptr[m], b, lo)
+            while k < b and pt0[k] <= hi + T:
+                ta, tb, wx, wy = pt0[k], pt1[k], pv[k, 0], pv[k, 1]
+                ox0, ox1 = po[k, 0], po[k, 0] + wx * (tb - ta)
+                oy0, oy1 = po[k, 1], po[k, 1] + wy * (tb - ta)
+                k += 1
+                if (
+                    box[m, 0] + min(ox0, ox1) > rx1
+                    or box[m, 2] + max(ox0, ox1) < rx0
+                    or box[m, 1] + min(oy0, oy1) > ry1
+                    or box[m, 3] + max(oy0, oy1) < ry0
+                ):
+                    continue
+                d0x, d0y = ux - ox0 + wx * ta, uy - oy0 + wy * ta
+                if not circle[m]:
+                    if n < room:
+                        n = _polygon_piece(d0x, d0y, ex, ey, wx, wy, T, ta, tb, verts, m,
+                                           nverts[m], thr[m], buf, n)  # fmt: skip
+                    else:
+                        n += 1
+                    continue
+                dx, dy = d0x - center[m, 0], d0y - center[m, 1]
+                # a disc no departure of the window comes near: its departures (the piece's
+                # whole span) lie outside the window, where the merge drops them
+                if disc_missed(dx, dy, ex, ey, wx, wy, T, lo, hi, thr[m] + PAD):
+                    continue
+                f0, f1 = disc_range(dx, dy, ex, ey, wx, wy, T, ta, tb, thr[m])
+                if f0 <= f1:
+                    if n < room:
+                        buf[n, 0], buf[n, 1] = f0, f1
+                    n += 1
+        if n <= room:
+            return _union_within(buf, n, lo, hi)
+        room = 2 * n
+
+
+@njit(cache=True)
+def _union_within(buf, n, lo, hi):
+    """The union of the closed intervals ``buf[:n]`` within ``[lo, hi]``: sorted, disjoint."""
     order = _sweep_order(buf, np.int64(0), n)  # (an int64: a literal 0 compiles it twice)
     out = np.empty((n, 2))
     k = 0

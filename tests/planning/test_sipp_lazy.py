@@ -1,0 +1,122 @@
+"""The safe-interval search settles each move's exact departure lazily (when its lower bound
+comes off the heap) and the moves to the goal first: its routes are those of the eager search
+(each move settled when its source is expanded, the search before this change), ported here line
+by line, bit for bit (goal state, and arrival, parent and departure along the route), with and
+without acceleration and turn limits, for the earliest route and its alternatives."""
+
+from __future__ import annotations
+
+import heapq
+import math
+
+import numpy as np
+import pytest
+
+from mawdo.planning.guide.sipp import SafeIntervalGuide
+from mawdo.planning.guide.sipp.profile import profile_table, rest_steps
+from mawdo.planning.guide.sipp.search import (
+    _depart,
+    profiled_moves,
+    search_limited,
+    start_state,
+    straight_moves,
+    timed_search,
+)
+from tests.planning.test_sipp_index import _world
+
+
+def _eager(graph, moves, kin, start, goal, t_start, h0, t_end, ptr, lo, hi, banned, mv):
+    """The eager search: every move from a state settled when the state is expanded."""
+    nodes, indptr, indices, weights, to_goal = graph
+    S = len(lo)
+    owner = np.repeat(np.arange(len(ptr) - 1), np.diff(ptr))
+    arrival, parent, depart = np.full(S, np.inf), np.full(S, -1), np.full(S, np.nan)
+    heading, closed = np.zeros((S, 2)), np.zeros(S, bool)
+    s0 = start_state(ptr, lo, hi, start, t_start, nodes[start], mv)
+    if s0 < 0:
+        return -2, arrival, parent, depart
+    arrival[s0], heading[s0] = t_start, h0
+    heap, bound, edge = [(t_start + to_goal[start] / kin[0], t_start, s0)], math.inf, moves[1]
+    while heap:
+        _, a, sid = heapq.heappop(heap)
+        if closed[sid]:
+            continue
+        closed[sid] = True
+        u = owner[sid]
+        if u == goal:
+            return sid, arrival, parent, depart
+        for e in range(indptr[u], indptr[u + 1]):
+            v, T = indices[e], edge[e, 0]
+            if not to_goal[v] < math.inf:
+                continue
+            ready = a + rest_steps(*heading[sid], edge[e, 1], edge[e, 2], kin[1], kin[2])
+            top, hv = min(hi[sid], t_end - T), to_goal[v] / kin[0]
+            if top < ready:
+                continue
+            for J in range(ptr[v], ptr[v + 1]):
+                if hi[J] <= ready + T or closed[J] or banned[J]:
+                    continue
+                if lo[J] >= top + T:
+                    break
+                x = max(ready, lo[J] - T)
+                x = float(math.ceil(x)) if kin[3] else x
+                if x + T >= arrival[J] or x + T + hv > bound:
+                    continue
+                tau = _depart(moves, e, nodes[u, 0], nodes[u, 1], a, T, x, top, hi[J], kin[3], mv)
+                if not tau + T < arrival[J]:
+                    continue
+                arrival[J], parent[J], depart[J] = tau + T, sid, tau
+                heading[J] = edge[e, 1:3] if weights[e] > 0.0 else heading[sid]
+                heapq.heappush(heap, (tau + T + hv, tau + T, J))
+                if v == goal:
+                    bound = min(bound, tau + T)
+    return -1, arrival, parent, depart
+
+
+def _chain(res) -> np.ndarray:
+    """The route's states from the goal back, with their arrivals and departures (rows)."""
+    goal, arrival, parent, depart = res
+    out = [int(goal)]
+    while goal >= 0 and parent[out[-1]] >= 0:
+        out.append(int(parent[out[-1]]))
+    if goal < 0:
+        return np.array([[goal, np.nan, np.nan]])
+    return np.array([[s, arrival[s], depart[s]] for s in out])
+
+
+def _same(a, b) -> bool:
+    return a.shape == b.shape and np.array_equal(a, b, equal_nan=True)
+
+
+@pytest.mark.parametrize("limits", [None, (1.0, 0.6)])
+@pytest.mark.parametrize("seed", range(4))
+def test_lazy_search_finds_the_eager_searchs_routes_bit_for_bit(seed, limits):
+    sc = _world(seed, movers=25)
+    rng = np.random.default_rng(seed)
+    spots = rng.uniform(20, 280, (12, 2))
+    g = SafeIntervalGuide(sc, t0=float(seed), clearance=0.5, spots=spots, walkers="known")
+    graph = (g.nodes, g.indptr, g.indices, g.weights, g.to_goal)
+    v = float(sc.robot_speed)
+    if limits is None:
+        moves = straight_moves(g.nodes, g.indptr, g.indices, g.weights, v)
+        kin = (v, False, math.inf, False)
+    else:
+        moves = profiled_moves(g.nodes, g.indptr, g.indices, g.weights,
+                               profile_table(g.weights, v, limits[0]))  # fmt: skip
+        kin = (v, True, limits[1], True)
+    args = (g.start, 0, g.t0, np.zeros(2), g.t_end, g.ptr, g.lo, g.hi)
+    banned = np.zeros(len(g.lo), np.bool_)
+    found = 0
+    for _ in range(3):  # the earliest route, then alternatives with its states barred
+        lazy = timed_search(graph, moves, kin, *args, banned, g._mv)
+        eager = _eager(graph, moves, kin, *args, banned, g._mv)
+        assert _same(_chain(lazy), _chain(eager))
+        if lazy[0] < 0:
+            break
+        found += 1
+        banned[_chain(lazy)[1:-1, 0].astype(int)] = True
+    assert found >= 1
+    if limits is not None:  # search_limited is this search under the limits
+        table = profile_table(g.weights, v, limits[0])
+        res = search_limited(graph, table, kin[:3], *args, banned, g._mv)
+        assert _same(_chain(res), _chain(_eager(graph, moves, kin, *args, banned, g._mv)))
