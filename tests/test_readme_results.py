@@ -401,3 +401,42 @@ def test_the_crowd_share_is_that_of_the_committed_store(tmp_path, folder):
         table = crowd_share_table(store)
     assert table is not None
     assert to_markdown(table) == (path / "crowd_share.md").read_text("utf-8")
+
+
+def test_the_official_cec2022_ranks_are_those_of_the_committed_store(tmp_path):
+    """docs/results/cec2022-official-d10: the store holds CEC 2022's protocol (F1-F12, D = 10,
+    200 000 evaluations, 30 runs) as its plan file says, and gives the committed Friedman
+    table and competition table, from which the README's last suites row is rendered."""
+    import json
+
+    from mawdo.experiments.kinds.suite.competition import competition_tables
+    from mawdo.experiments.kinds.suite.data import load_runs
+    from mawdo.experiments.kinds.suite.report import friedman_table
+    from mawdo.experiments.tables import to_markdown
+
+    folder = ROOT / "docs" / "results" / "cec2022-official-d10"
+    db = unpack(folder / "store.db.xz", tmp_path)
+    plan = json.loads((folder / "plan.json").read_text("utf-8"))
+    stored = json.loads(sqlite3.connect(db).execute("SELECT plan_json FROM meta").fetchone()[0])
+    assert {k: stored[k] for k in plan} == plan
+    assert (plan["suite"], plan["dims"], plan["budget"] * 10, plan["runs"]) == (
+        "cec2022", [10], 200_000, 30,
+    )  # fmt: skip
+    assert plan["functions"] == list(range(1, 13)) and len(plan["algorithms"]) == 10
+    study = load_runs(db)
+    assert to_markdown(friedman_table(study)) == (folder / "friedman.md").read_text("utf-8")
+    tables = {t.name: t for t in competition_tables(study, 10)}
+    for name in ("competition_d10", "checkpoints_d10"):
+        assert to_markdown(tables[name]) == (folder / f"{name}.md").read_text("utf-8")
+    row = readme_tables().suites_table()[-1]
+    assert row.startswith("| CEC 2022 F1-F12, D = 10 (official") and "| WDO+ |" in row
+    # the results page's sentence names the first five in the store's order
+    fr = friedman_table(study).rows[-1]  # the "all" row: label, blocks, ranks..., chi2, p
+    ranks = dict(zip(study.algorithms, fr[2 : 2 + len(study.algorithms)], strict=True))
+    names = {
+        "nlshade_rsp": "NL-SHADE-RSP", "jso": "jSO", "lshade": "L-SHADE", "cmaes": "CMA-ES",
+        "wdo_plus": "WDO+", "gwo": "GWO", "wdo": "WDO", "woa": "WOA", "mawdo": "MAWDO",
+    }  # fmt: skip
+    top = [names[a] for a in sorted(ranks, key=ranks.get)[:5]]
+    page = " ".join((ROOT / "docs" / "results.md").read_text("utf-8").split())
+    assert f"order them {', '.join(top[:4])}, then {top[4]}" in page
