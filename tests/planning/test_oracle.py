@@ -77,17 +77,26 @@ def test_overlapping_obstacles_and_coincident_ends():
     assert shortest_path((5, 5), (5, 5), [a], (0, 0, 100, 100)).length == 0.0
 
 
+def grid(lo: float, hi: float):
+    """Coordinates on a 1/8 px grid: two of them are equal or at least 0.125 px apart. The oracle
+    decides visibility with a tolerance (``DEFAULT_TOL``, 1e-7 px), so a sliver thinner than it
+    (say a box edge 1e-83 px off the map's border, as unconstrained floats produce) is open or
+    closed by the tolerance, not by the geometry, and no property of the exact optimum holds
+    there."""
+    return st.integers(int(lo * 8), int(hi * 8)).map(lambda v: v / 8.0)
+
+
 @st.composite
 def maps(draw, max_boxes=4):
     boxes = []
     for _ in range(draw(st.integers(0, max_boxes))):
-        x, y = draw(st.floats(0, 90)), draw(st.floats(0, 90))
-        w, h = draw(st.floats(2, 40)), draw(st.floats(2, 40))
+        x, y = draw(grid(0, 90)), draw(grid(0, 90))
+        w, h = draw(grid(2, 40)), draw(grid(2, 40))
         boxes.append(shapely.box(x, y, min(x + w, 100), min(y + h, 100)))
     return boxes
 
 
-points = st.tuples(st.floats(0, 100), st.floats(0, 100))
+points = st.tuples(grid(0, 100), grid(0, 100))
 
 
 @given(obstacles=maps(), start=points, goal=points)

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mawdo.experiments.kinds.arena.figures import label
-from mawdo.experiments.kinds.arena.summary import _ok_rows, _timed_families, judged_gap
+from mawdo.experiments.kinds.arena.rows import judged_gap, ok_rows, timed_families
 from mawdo.experiments.stats import ALPHA, holm
 from mawdo.experiments.store import Store
 from mawdo.experiments.tables import Table
@@ -155,13 +155,13 @@ def share_rows(store: Store, base: str = "guide_only", alpha: float = ALPHA) -> 
     plan = store.plan
     if base not in plan.planners:
         return []
-    timed = set(_timed_families(store))
-    base_rows = {f: _ok_rows(store, base, f) for f in plan.families}
+    timed = set(timed_families(store))
+    base_rows = {f: ok_rows(store, base, f) for f in plan.families}
     out = []
     for a in plan.algorithms:
         mine = []
         for f in plan.families:
-            ours = _ok_rows(store, a, f)
+            ours = ok_rows(store, a, f)
             if ours or base_rows[f]:
                 gap = "T/T*" if f in timed else "L/L*"
                 mine.append({"planner": a, "family": f, "gap": gap} | _family(ours, base_rows[f]))

@@ -14,21 +14,9 @@ from pathlib import Path
 
 import numpy as np
 
-from mawdo.experiments.kinds.arena.execute import NO_TRACE, is_timed
+from mawdo.experiments.kinds.arena.rows import judged_gap, ok_rows, timed_families
 from mawdo.experiments.progress import say
 from mawdo.experiments.store import Store
-
-
-def _ok_rows(store: Store, planner: str, family: str | None = None) -> list:
-    rows = store.rows(planner, family, skip=NO_TRACE)
-    return [r for _, _, r in rows if r.status == "ok" and r.error_text is None]
-
-
-def judged_gap(row) -> float:
-    """The gap a run is judged by: T/T* on a scene with an earliest arrival (a timed family,
-    where the fastest route may be longer than L*, e.g. through a waiting bay), else L/L*."""
-    return row.time_gap if row.t_star is not None else row.gap
-
 
 GAP_NOTE = (
     "- Gap: arrival time over the earliest arrival (T/T*) on the timed families, route length "
@@ -57,13 +45,13 @@ def headline(store: Store) -> list[str]:
     from mawdo.experiments.kinds.arena.share import swarm_share
 
     plan = store.plan
-    lines = [GAP_NOTE] if _timed_families(store) else []
+    lines = [GAP_NOTE] if timed_families(store) else []
     for p in plan.planners:
-        rows = _ok_rows(store, p)
+        rows = ok_rows(store, p)
         if not rows:
             continue
         succ, coll, gap = _rates(rows)
-        per_fam = {f: _rates(_ok_rows(store, p, f)) for f in plan.families if _ok_rows(store, p, f)}
+        per_fam = {f: _rates(ok_rows(store, p, f)) for f in plan.families if ok_rows(store, p, f)}
         worst = min(per_fam, key=lambda f: (per_fam[f][0], -np.nan_to_num(per_fam[f][2])))
         ws, _, wg = per_fam[worst]
         lines.append(
@@ -74,26 +62,20 @@ def headline(store: Store) -> list[str]:
     return lines + timed_lines(store) + strengths(store) + swarm_share(store)
 
 
-def _timed_families(store: Store) -> list[str]:
-    """Families whose planned scenes carry an earliest arrival ``t_star``."""
-    rows = {f: [r for _, _, r in store.rows(None, f, skip=NO_TRACE)] for f in store.plan.families}
-    return [f for f, fam_rows in rows.items() if is_timed(fam_rows)]
-
-
 def timed_lines(store: Store) -> list[str]:
     """Per planner that sees time, on the timed families together: success over the scenes
     with a ``T*``, active collisions (the robot moving) in all runs, successful or not, and
     the arrival-time gap T/T* median and p95; then its weakest timed family."""
     from mawdo.planning.run.planners import PLANNERS, PREDICTED
 
-    fams = _timed_families(store)
+    fams = timed_families(store)
     if not fams:
         return []
     lines = []
     for p in store.plan.planners:
         if p not in PLANNERS or PLANNERS[p].sees_time != PREDICTED:
             continue
-        per = {f: _ok_rows(store, p, f) for f in fams}
+        per = {f: ok_rows(store, p, f) for f in fams}
         rows = [r for f in fams for r in per[f]]
         if not rows:
             continue
@@ -142,13 +124,13 @@ def strengths(store: Store) -> list[str]:
     of the machine that filled the store).
     """
     plan = store.plan
-    ours = [a for a in plan.algorithms if _ok_rows(store, a)]
+    ours = [a for a in plan.algorithms if ok_rows(store, a)]
     if not ours:
         return []
-    by_scene = {a: {r.scene_name: r for r in _ok_rows(store, a)} for a in ours}
+    by_scene = {a: {r.scene_name: r for r in ok_rows(store, a)} for a in ours}
     lines = []
     for b in plan.baselines:
-        hit = {r.scene_name for r in _ok_rows(store, b) if r.collision_free == 0}
+        hit = {r.scene_name for r in ok_rows(store, b) if r.collision_free == 0}
         if not hit:
             continue
         parts = []
@@ -162,7 +144,7 @@ def strengths(store: Store) -> list[str]:
     worst, lat = [], []
     for a in ours:
         gaps = [
-            (judged_gap(r), f) for f in plan.families for r in _ok_rows(store, a, f) if r.success
+            (judged_gap(r), f) for f in plan.families for r in ok_rows(store, a, f) if r.success
         ]
         if gaps:
             g, f = max(gaps)
@@ -172,7 +154,7 @@ def strengths(store: Store) -> list[str]:
             for f in plan.families
             if (
                 v := [
-                    r.latency_p95_ms for r in _ok_rows(store, a, f) if r.latency_p95_ms is not None
+                    r.latency_p95_ms for r in ok_rows(store, a, f) if r.latency_p95_ms is not None
                 ]
             )
         ]
@@ -199,7 +181,7 @@ def worst_runs(store: Store, planner: str, k: int = 3) -> list[tuple[str, object
         g = judged_gap(r)
         return (not failed, -(g if g is not None and np.isfinite(g) else np.inf))
 
-    items = [(f, r) for f in store.plan.families for r in _ok_rows(store, planner, f)]
+    items = [(f, r) for f in store.plan.families for r in ok_rows(store, planner, f)]
     return sorted(items, key=badness)[:k]
 
 
