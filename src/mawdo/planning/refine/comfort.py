@@ -23,6 +23,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from mawdo.planning.refine.cost import PathCost
 
 __all__ = ["ComfortPathCost"]
@@ -68,8 +70,9 @@ class ComfortPathCost(PathCost):
 
     def near_pairs(self, X, start=None, t0: float = 0.0):
         """``n_near`` of each candidate (int64, shape ``(n,)``; an int for one candidate)."""
-        if self._near is None:
-            return super().parts(X, start, t0)[1] * 0
+        if self._near is None:  # no movers: nothing to pass near
+            n = np.zeros(len(np.atleast_2d(X)), dtype=np.int64)
+            return n[0] if np.ndim(X) == 1 else n
         return self._near.parts(X, start, t0)[1]
 
     def _evaluate(self, X, start, t0, goal=None):
