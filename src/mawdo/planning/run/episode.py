@@ -111,9 +111,13 @@ def run_episode(
     route, stamps = np.array(world.route), np.array(world.stamps)
     rep = check_trajectory(route, realised, times=stamps)
     mine, theirs = blame(route, stamps, realised, rep.collisions)
+    kin = _kinematics(world, policy)
     reached = reason == "goal reached"
     if reached and not rep.ok:
         reason = f"goal reached but the route collides ({rep.hits} checker hits: {rep.describe()})"
+    elif reached and kin is not None and not kin.ok:
+        reason = f"goal reached but the motion breaks the kinematic limits ({kin.describe()})"
+        reached = False
     # the first decision is the plan, the rest replans (PlanResult.latencies skips the first)
     return PlanResult(
         scenario=realised, algorithm=name, seed=seed, config=config,
@@ -121,7 +125,20 @@ def run_episode(
         replans=decisions, route=route, route_times=stamps, collision_free=bool(rep.ok),
         min_clearance=float(rep.min_clearance), hits=int(rep.hits),
         robot_caused=len(mine) + len(rep.border), other_collisions=len(theirs), check=rep,
+        kinematic_violations=0 if kin is None else kin.count,
     )  # fmt: skip
+
+
+def _kinematics(world, policy):
+    """The independent kinematic check of the driven trajectory against the policy's
+    ``limits`` (:class:`~mawdo.planning.safety.kinematics.Limits`), or None when it has none."""
+    limits = getattr(policy, "limits", None)
+    if limits is None:
+        return None
+    from mawdo.planning.judge.kincheck import check_kinematics
+
+    traj = np.array(world.trajectory)
+    return check_kinematics(traj, limits.speed, limits.accel, limits.turn)
 
 
 class EpisodeRun:

@@ -24,6 +24,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from mawdo.planning.run.carried import CarriedMotion
 from mawdo.planning.sense.reading import Reading
 from mawdo.planning.world.stepped import Move, static_part, with_movers
 from mawdo.streams import step_seed_sequence
@@ -119,12 +120,6 @@ class PlannerPolicy:
         self.algorithm, self.knowledge, self.horizon = algorithm, knowledge, int(horizon)
         self.config = resolve_config(config, overrides)
         if knowledge == "observed":
-            if self.config.max_accel is not None or self.config.max_turn is not None:
-                raise ValueError(
-                    "max_accel/max_turn are not supported with knowledge='observed' yet: each "
-                    "step plans afresh and does not carry the robot's heading; drop the limits "
-                    "or use knowledge='oracle'"
-                )
             from mawdo.optimizers import OPTIMIZERS
             from mawdo.planning.sense.predict import PREDICTORS
 
@@ -145,7 +140,11 @@ class PlannerPolicy:
         self.name = f"{algorithm}-{knowledge}"
 
     def reset(self, scenario, seed) -> None:
+        from mawdo.planning.safety.kinematics import Limits
+
         self.seed = seed
+        # what the episode's judge holds the driven trajectory to (None: no limits)
+        self.limits = Limits.of(self.config, scenario.robot_speed)
         if self.knowledge == "oracle":
             from mawdo.planning.run.planner import plan
 
@@ -157,6 +156,7 @@ class PlannerPolicy:
         # the margin fitted once, to the passages between start and goal: a step's run starts
         # where the robot is, but fitting it again each step would cost more than the step
         self.fitted = fit_config(self.known, self.config)
+        self.motion = CarriedMotion.of(self.fitted, self.known.robot_speed)
         if self.tracker is None:
             from mawdo.planning.sense.tracker import Tracker
 
@@ -175,6 +175,8 @@ class PlannerPolicy:
             return step_move(self.result.route, self.result.route_times, reading.step)
         if self.may_watch(reading):
             self.tracker.update(reading)  # a velocity needs two readings: look, then plan
+            if self.motion is not None:
+                self.motion.stand()
             return np.zeros(2)
         return self._decide(reading)
 
@@ -248,8 +250,12 @@ class PlannerPolicy:
         run.warm_start = self._warm(reading.position) if self.warm else None
         run.judge = False  # the episode is judged as a whole, on the realised world
         share_guide(sc, self.known)  # built on the first step, kept for the episode
+        if self.motion is not None:
+            self.motion.hand_to(run, reading.position)
         self.last = res = run.execute()
         self._remainder = run.remainder
+        if self.motion is not None:
+            self.motion.take_from(run)
         return step_move(res.route, res.route_times, 0)
 
     def _warm(self, position):
