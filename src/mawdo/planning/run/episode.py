@@ -88,9 +88,6 @@ def run_episode(
     -----
     Leaving the map counts as robot-caused: only the robot's motion can do it.
     """
-    from mawdo.planning.judge.check import check_trajectory
-    from mawdo.planning.judge.fault import blame
-
     if int(max_steps) < 1:
         raise ValueError(f"max_steps must be >= 1, got {max_steps!r}")
     streams = episode_seed_sequences(seed)
@@ -111,6 +108,15 @@ def run_episode(
     # the world runner never reported the limit step to ``progress`` (the planner's loop does)
     reason = run_loop(max_steps, world.at_goal, decide, world_step, LIMIT_REASON, progress,
                       decisions.__len__, progress_at_limit=False)  # fmt: skip
+    return _judged(world, reason, decisions, name, seed, config)
+
+
+def _judged(world, reason: str, decisions, name: str, seed, config) -> PlanResult:
+    """The episode's result: the checker's verdict on the realised route, its collisions split
+    by :func:`~mawdo.planning.judge.fault.blame`."""
+    from mawdo.planning.judge.check import check_trajectory
+    from mawdo.planning.judge.fault import blame
+
     realised = world.realised()
     route, stamps = np.array(world.route), np.array(world.stamps)
     rep = check_trajectory(route, realised, times=stamps)
