@@ -1,6 +1,7 @@
-"""The world runner: one loop for every policy (our planner, every baseline).
+"""The world runner: a stepped world driven by any policy (our planner, every baseline).
 
-Each step the sensor reads the world, the policy decides, the world steps; at the end the
+Each step the sensor reads the world, the policy decides, the world steps (the one run loop,
+:func:`~mawdo.planning.run.loop.run_loop`, that the planner's own run uses too); at the end the
 independent checker judges the robot's realised route against the realised trajectories of every
 agent (:meth:`~mawdo.planning.world.stepped.SteppedWorld.realised`) and
 :func:`~mawdo.planning.judge.fault.blame` splits its collisions into robot-caused and other ones.
@@ -12,11 +13,14 @@ import time
 
 import numpy as np
 
+from mawdo.planning.run.loop import GOAL_REACHED, run_loop
 from mawdo.planning.run.result import PlanResult, Replan
 from mawdo.planning.sense.reading import Reading
 from mawdo.streams import episode_seed_sequences
 
 __all__ = ["EpisodeRun", "perfect_reading", "read_world", "run_episode"]
+
+LIMIT_REASON = "step limit reached before the goal"
 
 
 def perfect_reading(world) -> Reading:
@@ -84,35 +88,42 @@ def run_episode(
     -----
     Leaving the map counts as robot-caused: only the robot's motion can do it.
     """
-    from mawdo.planning.judge.check import check_trajectory
-    from mawdo.planning.judge.fault import blame
-
     if int(max_steps) < 1:
         raise ValueError(f"max_steps must be >= 1, got {max_steps!r}")
     streams = episode_seed_sequences(seed)
     rng = np.random.default_rng(streams["sensor"])
     policy.reset(world.scenario if known is None else known, streams["policy"])
-    decisions, reason = [], "step limit reached before the goal"
-    for step in range(int(max_steps)):
-        if progress is not None:
-            progress(step, max_steps, len(decisions))
-        if world.at_goal():
-            reason = "goal reached"
-            break
+    decisions: list[Replan] = []
+
+    def decide(step: int):
         reading = read_world(world, sensor, rng)
         t0 = time.perf_counter()
         action = policy.act(reading)
         decisions.append(_record(step, world.position, time.perf_counter() - t0, policy))
+        return action
+
+    def world_step(action) -> None:  # a stepped world never ends an episode by itself
         world.step(action)
-    else:
-        if world.at_goal():
-            reason = "goal reached"
+
+    # the world runner never reported the limit step to ``progress`` (the planner's loop does)
+    reason = run_loop(max_steps, world.at_goal, decide, world_step, LIMIT_REASON, progress,
+                      decisions.__len__, progress_at_limit=False)  # fmt: skip
+    return _judged(world, policy, reason, decisions, name, seed, config)
+
+
+def _judged(world, policy, reason: str, decisions, name: str, seed, config) -> PlanResult:
+    """The episode's result: the checker's verdict on the realised route, its collisions split
+    by :func:`~mawdo.planning.judge.fault.blame`, and the kinematic check of the driven
+    trajectory against the policy's ``limits`` when it has them."""
+    from mawdo.planning.judge.check import check_trajectory
+    from mawdo.planning.judge.fault import blame
+
     realised = world.realised()
     route, stamps = np.array(world.route), np.array(world.stamps)
     rep = check_trajectory(route, realised, times=stamps)
     mine, theirs = blame(route, stamps, realised, rep.collisions)
     kin = _kinematics(world, policy)
-    reached = reason == "goal reached"
+    reached = reason == GOAL_REACHED
     if reached and not rep.ok:
         reason = f"goal reached but the route collides ({rep.hits} checker hits: {rep.describe()})"
     elif reached and kin is not None and not kin.ok:

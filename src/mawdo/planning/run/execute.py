@@ -2,9 +2,11 @@
 judgement.
 
 :func:`mawdo.planning.run.planner.plan` builds a :class:`Run` and calls :meth:`Run.execute`. The
-steps of each (re)plan are those of the planner module's docstring; this module holds the loop
+steps of each (re)plan are those of the planner module's docstring; this module holds the search
 and the safety contract (a move is driven only after the guard verified it; the route is judged
-by the independent checker at the end).
+by the independent checker at the end). The run's decision of each step and the world's step are
+in :mod:`~mawdo.planning.run.decide`, the loop that drives them in
+:mod:`~mawdo.planning.run.loop`.
 """
 
 from __future__ import annotations
@@ -20,19 +22,17 @@ from mawdo.planning.refine.cost import PathCost, assemble_paths
 from mawdo.planning.refine.polish import polish
 from mawdo.planning.refine.seeding import RunGuide, via_paths, warm_seeds
 from mawdo.planning.run.config import PLANNING_OPTIONS, PlannerConfig, step_limit, step_limit_note
+from mawdo.planning.run.decide import NO_ROUTE, DecidingRun
+from mawdo.planning.run.loop import run_loop
 from mawdo.planning.run.result import Drive, PlanResult, Replan
 from mawdo.planning.safety.guard import Elite, Guard
 from mawdo.planning.safety.ics import SafeContinuation
 from mawdo.planning.safety.ics_run import SafeRun
 from mawdo.planning.safety.kinematics import LimitedRun, Limits, at_speed
-from mawdo.planning.world.path import densify, polyline_length
+from mawdo.planning.world.path import densify
 from mawdo.planning.world.scenario import Scenario
 from mawdo.streams import replan_seed_sequences
 
-NO_ROUTE = "no collision-free route found"
-# a plan whose waypoints lie within this of the straight line to the goal (px), and no longer
-# than it by more than this, is straight (see Run._holds)
-STRAIGHT_TOL = 1e-6
 # a replan whose best cost is below its warm start's by less than this (relative) found nothing
 STALL_TOL = 1e-9
 
@@ -101,7 +101,7 @@ class _Watched:
         return self.elite.add(X, f)
 
 
-class Run(TimedRun, SafeRun, LimitedRun):
+class Run(DecidingRun, TimedRun, SafeRun, LimitedRun):
     """State of one run (see :func:`mawdo.planning.run.planner.plan` for the parameters)."""
 
     def __init__(self, sc: Scenario, algorithm: str, seed, cfg: PlannerConfig, dynamic: bool):
@@ -261,60 +261,24 @@ class Run(TimedRun, SafeRun, LimitedRun):
         return self._least_bad(least, pos, step, self._target(pos, cands))
 
     def execute(self, progress=None) -> PlanResult:
-        """Drive the run; ``progress(step, max_steps, replans)`` is called before each step."""
-        sc, cfg = self.sc, self.cfg
-        v = sc.robot_speed
-        reach = self._reachable()
+        """Drive the run; ``progress(step, max_steps, replans)`` is called before each step.
+
+        The run loop is :func:`~mawdo.planning.run.loop.run_loop` over the run's decision
+        (:meth:`~mawdo.planning.run.decide.DecidingRun.decide`) and the world's step
+        (:meth:`~mawdo.planning.run.decide.DecidingRun.step`); ``drive`` holds the moves so
+        far, and after the run ``remainder`` the plan's rest (a stepped policy's next warm
+        start)."""
+        reach, start = self._reachable(), self.sc.start
         if isinstance(reach, str):
-            return self._finish(Drive(sc.start.copy()), f"{NO_ROUTE}: static obstacles: {reach}")
+            return self._finish(Drive(start.copy()), f"{NO_ROUTE}: static obstacles: {reach}")
         max_steps, rule = self.step_limit()
-        pos = sc.start.copy()
-        # kept on the run: a progress callback may read the moves so far (the GIF's frames
-        # are drawn while the run goes on: mawdo.planning.render.live)
-        self.drive = drive = Drive(pos)
-        remainder, stuck, force = self.warm_start, 0, False
-        reason = step_limit_note(cfg.max_steps, max_steps, rule)
-        for step in range(max_steps + 1):
-            if progress is not None:
-                progress(step, max_steps, len(self.replans))
-            if np.hypot(*(sc.goal - pos)) <= 1e-9:
-                reason = "goal reached"
-                break
-            if step == max_steps:
-                break
-            replan = remainder is None or force or (self.dynamic and step % cfg.replan_every == 0)
-            if replan and self._holds(remainder, force, step):
-                self.counts["holds"] += 1
-            elif replan and (chosen := self._kept_route(pos, step)) is not None:
-                stuck, remainder, force = 0, chosen, False  # (no search: it would be ignored)
-            elif replan:
-                cands, _ = self.optimise(pos, step, remainder)
-                left = cfg.replan_every - step % cfg.replan_every if self.dynamic else 0
-                chosen = self.choose(cands, pos, step, v * left)
-                if self.timer is not None:
-                    chosen = self._timed_choice(chosen, pos, step)
-                if chosen is None and not self.dynamic:
-                    n = self.replans[-1].collisions
-                    reason = f"{NO_ROUTE}: the best plan hits obstacles {n} times"
-                    break
-                if chosen is None:
-                    pos = self._fallback(drive, pos, step, cands)
-                    stuck, force = stuck + 1, True
-                    if stuck >= cfg.give_up_steps:
-                        pos, note = self._settle(drive, pos, step + 1)
-                        reason = f"{NO_ROUTE}: gave up after {stuck} steps of waiting or evading"
-                        reason += note
-                        break
-                    remainder = assemble_paths(cands[:1], pos, sc.goal)[0]
-                    continue
-                self.stalled = self.stalled and self.chosen_index == 0
-                stuck, remainder, force = 0, chosen, False
-            prev, (pos, remainder, passed, frac) = pos, self._drive(remainder, step)
-            if self.limits is not None:  # the step the kinematic limits allow
-                pos, remainder, passed, frac = self._limited_step(prev, pos, remainder, step)
-            drive.move(step, pos, passed, frac)
-        self.remainder = remainder  # where the plan goes on (a stepped policy's next warm start)
-        return self._finish(drive, reason)
+        self.begin()
+        limit = step_limit_note(self.cfg.max_steps, max_steps, rule)
+        replans = self.replans
+        reason = run_loop(max_steps, self.at_goal, self.decide, self.step, limit, progress,
+                          lambda: len(replans))  # fmt: skip
+        self.remainder = self.state.remainder
+        return self._finish(self.drive, reason)
 
     def step_limit(self) -> tuple[int, int]:
         """The run's step limit and the uncapped automatic one
@@ -343,44 +307,6 @@ class Run(TimedRun, SafeRun, LimitedRun):
         first = cfg.first_iters * (cfg.first_pop_size or cfg.pop_size) / cfg.pop_size
         return per_pop * (first + cfg.replan_iters * steps / cfg.replan_every)
 
-    def _holds(self, remainder, force: bool, step: int) -> bool:
-        """Keep the plan without optimising: it runs straight to the goal
-        (:attr:`PlannerConfig.hold_straight`) or the last search could not improve it and it is
-        near the shortest static route (:attr:`PlannerConfig.hold_gap`), and the guard finds it
-        collision-free to its end.
-
-        A straight plan has the least cost any candidate can have: C1 equals the straight-line
-        distance, its lower bound, and C2 = C3 = 0. The predictions a plan was verified against
-        are the same at every later step, so it stays verified until the goal.
-        """
-        if remainder is None or force or not self.dynamic or self.following is not None:
-            return False
-        if self.cfg.mode != "spacetime":  # the frozen-map planner judges by another model
-            return False
-        length = polyline_length(remainder)
-        if not (self._straight(remainder, length) or self._near_shortest(remainder, length)):
-            return False
-        return self.guard.stretch_hits(remainder, float(step), length) == 0
-
-    def _straight(self, remainder, length: float) -> bool:
-        if not self.cfg.hold_straight:
-            return False
-        a, b = remainder[0], remainder[-1]
-        d = b - a
-        direct = float(np.hypot(d[0], d[1]))
-        if len(remainder) > 2:
-            inner = remainder[1:-1] - a
-            off = np.abs(inner[:, 0] * d[1] - inner[:, 1] * d[0]) / max(direct, 1e-300)
-            if off.max() > STRAIGHT_TOL:
-                return False
-        return length <= direct + STRAIGHT_TOL  # else collinear but doubling back
-
-    def _near_shortest(self, remainder, length: float) -> bool:
-        gap = self.cfg.hold_gap
-        if not (self.stalled and gap > 0 and self.guide is not None):
-            return False
-        return length <= (1.0 + gap) * self.guide.shortest(remainder[0])
-
     def _reachable(self):
         """Length (px) of a route around the static obstacles, or why there is none.
 
@@ -395,16 +321,6 @@ class Run(TimedRun, SafeRun, LimitedRun):
             opt = scenario_optimum(self.sc, static_only=True)
             self._reach = opt.length if opt.reachable else opt.reason
         return self._reach
-
-    def _fallback(self, drive, pos, step: int, cands):
-        """No candidate is safe: wait if that is safe, else the least-bad evasive move (with
-        the rule on, one that keeps a safe continuation if any does: :class:`SafeRun`)."""
-        to, waited, kept = self._pending_escape(pos, step, self._target(pos, cands))
-        to = self._limited(pos, to, step)
-        self.counts["inevitable"] += not kept
-        self.counts["waits" if waited else "evasions"] += 1
-        drive.move(step, to.copy())
-        return to
 
     def _finish(self, drive, reason: str) -> PlanResult:
         if not self.judge:  # a stepped policy's one step: the episode is judged as a whole

@@ -14,6 +14,7 @@ import numpy as np
 
 from mawdo.planning.guide.oracle import scenario_optimum
 from mawdo.planning.run.config import PlannerConfig, resolve_scenario, step_limit, step_limit_note
+from mawdo.planning.run.loop import GOAL_TOL, run_loop
 from mawdo.planning.run.result import Drive, PlanResult, Replan
 from mawdo.planning.world.path import advance
 
@@ -48,24 +49,36 @@ def follow_oracle(scenario, max_steps: int | None = None, reach: float | None = 
         opt = scenario_optimum(sc, static_only=True)
         reach = opt.length if opt.reachable else 0.0
     limit, rule = step_limit(max_steps, sc.straight_line_length(), reach, v)
-    pos = sc.start.copy()
-    drive = Drive(pos)
-    replans: list[Replan] = []
-    reason = step_limit_note(max_steps, limit, rule)
-    for step in range(limit + 1):
-        if np.hypot(*(sc.goal - pos)) <= 1e-9:
-            reason = "goal reached"
-            break
-        if step == limit:
-            break
-        here = pos.copy()
-        pos, rep, passed, frac = _step(sc, pos, step)
-        replans.append(Replan(step=step, position=here, **rep))
-        drive.move(step, pos, passed, frac)
-    return drive.result(
+    run = _Following(sc)
+    limit_reason = step_limit_note(max_steps, limit, rule)
+    reason = run_loop(limit, run.at_goal, run.decide, run.step, limit_reason)
+    return run.drive.result(
         reason, scenario=sc, algorithm=ORACLE_FOLLOWER, seed=0, config=PlannerConfig(),
-        replans=replans,
+        replans=run.replans,
     )  # fmt: skip
+
+
+class _Following:
+    """The follower as a decision and the world's step, for
+    :func:`~mawdo.planning.run.loop.run_loop`: its world is the scenario (it knows the
+    obstacles' motion, and uses only where they are now)."""
+
+    def __init__(self, sc) -> None:
+        self.sc, self.pos = sc, sc.start.copy()
+        self.drive, self.replans = Drive(self.pos), []
+
+    def at_goal(self) -> bool:
+        return bool(np.hypot(*(self.sc.goal - self.pos)) <= GOAL_TOL)
+
+    def decide(self, step: int):
+        """The move of ``step``: ``(step, position, passed, frac)`` (Drive.move's arguments)."""
+        pos, rep, passed, frac = _step(self.sc, self.pos, step)
+        self.replans.append(Replan(step=step, position=self.pos.copy(), **rep))
+        return step, pos, passed, frac
+
+    def step(self, move) -> None:
+        self.drive.move(*move)
+        self.pos = move[1]
 
 
 def _step(sc, pos, step: int):
