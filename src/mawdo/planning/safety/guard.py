@@ -13,10 +13,11 @@ piecewise-linear motion, hit distance ``r + clearance``). The fallback order is:
    step keeps the margin (from the obstacles and the map's border) and gets closest to the
    plan's next point, else the one with the largest clearance among those that stay off the
    static obstacles and inside the map (a collision there is always the robot's own doing:
-   :mod:`mawdo.planning.judge.fault`), else any; ranked by the clearance the robot keeps after
-   the move if it holds the move's velocity a few steps more (:data:`AHEAD`: running
-   straight away from a faster pursuer loses to stepping aside), the step's own clearance
-   breaking ties.
+   :mod:`mawdo.planning.judge.fault`) and that touch no obstacle while moving toward it (at
+   its modelled size; waiting never does: if contact cannot be avoided, the robot is not the
+   one who makes it), else any; ranked by the clearance the robot keeps after the move if it
+   holds the move's velocity a few steps more (:data:`AHEAD`: running straight away from a
+   faster pursuer loses to stepping aside), the step's own clearance breaking ties.
 """
 
 from __future__ import annotations
@@ -188,6 +189,16 @@ class Guard:
         walls = float(rep.clearance[:, static].min()) if static and rep.clearance.size else np.inf
         return min(float(rep.min_clearance), border), min(walls, border)
 
+    def causes_contact(self, pos, to, t: float, dt: float) -> bool:
+        """The straight move ``pos -> to`` over ``dt`` steps touches an obstacle (at its
+        modelled size) while moving toward it: a contact the judge would put down to the robot
+        (:func:`~mawdo.planning.judge.fault.blame`); a wait never does."""
+        from mawdo.planning.judge.fault import blame
+
+        pts, times = np.vstack([pos, to]), np.array([t, t + dt])
+        rep = check_trajectory(pts, self.scenario, times=times)
+        return bool(rep.collisions) and bool(blame(pts, times, self.scenario, rep.collisions)[0])
+
     def ahead_clearance(self, pos, to, t: float, dt: float) -> float:
         """Smallest clearance (px) after a move ``pos -> to`` over ``dt`` steps if the robot
         then keeps that velocity for :data:`AHEAD` more moves (a wait keeps waiting): where a
@@ -220,6 +231,9 @@ class Guard:
                 best = first
         else:  # none keeps the margin: never into a wall or off the map if any move stays out
             out = walls >= 0.0
+            # nor into a contact of its own making, if any move is free of one (waiting is)
+            free = out & ~np.array([self.causes_contact(pos, m, t, dt) for m in moves])
+            out = free if free.any() else out
             ahead = np.array([self.ahead_clearance(pos, m, t, dt) for m in moves])
             key = np.where(out, ahead, -np.inf) if out.any() else ahead
             top = np.nonzero(key >= key.max() - TIE_TOL)[0]
