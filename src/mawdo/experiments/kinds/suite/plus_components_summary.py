@@ -168,7 +168,9 @@ def switch_line(f: PlusFacts, switch: str) -> str:
 
 
 def _changes(switches, effects) -> str:
-    return " and ".join(f"{CHANGES[s][0]} ({s} {_e(effects[s])})" for s in switches)
+    """``"its restarts (norestart -2.77 [-2.90, -2.62]), its ... and its ..."``."""
+    parts = [f"its {CHANGES[s][0]} ({s} {_e(effects[s])})" for s in switches]
+    return parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + " and " + parts[-1]
 
 
 def verdict_line(f: PlusFacts, group: str) -> str:
@@ -188,7 +190,7 @@ def verdict_line(f: PlusFacts, group: str) -> str:
     if back:
         what = (
             f"held back by {_changes(back, effects)}: turning "
-            f"{'either' if len(back) == 2 else 'any' if back[2:] else 'it'} back to WDO's "
+            f"{'either' if len(back) == 2 else 'any one' if back[2:] else 'it'} back to WDO's "
             "lowers its final error"
         )
     else:
