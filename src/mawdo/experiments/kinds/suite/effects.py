@@ -1,5 +1,6 @@
 """Component effects of a component study (:mod:`.components`): each switch against its base,
-per BBOB function group, with bootstrap confidence intervals over instances and runs.
+per function group of the suite (BBOB's five, CEC 2017's four), with bootstrap confidence
+intervals over instances and runs.
 
 A variant and its base share every seed (a run's seed depends on its problem and index only), so
 the two are compared *paired*, unit by unit, a unit being an (instance, run) pair. Two measures:
