@@ -22,6 +22,16 @@ from mawdo.suites.cec_tables import TABLES, CECFunction
 BOUND = 100.0
 CHECKPOINTS_2017 = (0.01, 0.02, 0.03, 0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0)
 """CEC 2017's checkpoints, as fractions of the budget (its technical report, 2.2)."""
+CEC2017_GROUPS: dict[str, tuple[int, ...]] = {
+    "unimodal": (1, 2, 3),
+    "simple multimodal": tuple(range(4, 11)),
+    "hybrid": tuple(range(11, 21)),
+    "composition": tuple(range(21, 31)),
+}
+"""CEC 2017's four function groups in the official numbering (Awad et al. 2016, the
+competition's technical report, Table I: unimodal F1-F3, simple multimodal F4-F10, hybrid
+F11-F20, composition F21-F30)."""
+GROUPS = {2017: CEC2017_GROUPS, 2022: {}}
 
 
 def checkpoints(year: int, dim: int, max_evals: int) -> tuple[int, ...]:
@@ -135,6 +145,7 @@ def _spec(year: int) -> SuiteSpec:
         max_instance=1,
         prepare=lambda fid, dim: _prepare(table[fid - 1], dim),
         checkpoints=lambda dim, max_evals: checkpoints(year, dim, max_evals),
+        groups=GROUPS[year],
     )
 
 

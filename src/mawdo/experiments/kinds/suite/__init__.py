@@ -8,7 +8,8 @@ evaluations), reading back (:mod:`.data`), measures (:mod:`.measures`), tables a
 (:mod:`.report`), figures (:mod:`.plots`), IOHanalyzer export (:mod:`.export`), COCO's measures
 as array functions (:mod:`.metrics`) and ioh's log format (:mod:`.ioh_logs`); the WDO family's
 component study (presets ``wdo-components`` and ``wdo-components-quick`` from
-:mod:`.components`, each switch's effect per function group in :mod:`.effects`) and the
+:mod:`.components`, each switch's effect per function group in :mod:`.effects`; WDO+'s on CEC
+2017, preset ``wdo-plus-components-cec2017``, findings from :mod:`.plus_components_summary`) and the
 hold-out study that judges WDO+ (presets in :mod:`.holdout`; its paragraph and rank tables from
 the CEC and F1-F16 stores in :mod:`.holdout_summary`, read by :mod:`.holdout_data`). Importing this
 package registers the ``suite`` study kind (called ``bbob`` before: stores and plans that say

@@ -12,12 +12,20 @@ The switches (``SWITCHES``): gravity off / toward the population mean / toward t
 and Coriolis weights without the rank, no velocity clamp, the other boundary policy, and, for
 MAWDO, no groups, no hierarchical guidance, no gate, no restart + OBL, no OBL. Low-dimensional
 stabilisation acts only at D <= 3 and is left out of the D 5 and 20 plans.
+
+WDO+ (:mod:`mawdo.optimizers.wdo_plus`) is a base of its own (``PLUS_SWITCHES``): each switch
+turns one of its five changes back to WDO's choice (``wdo_plus-origin``, ``-nopressure``,
+``-noadapt``, ``-norestart``, ``-clip``), and ``-best`` moves its gravity reference from the
+mean of the personal bests to the best. The preset ``wdo-plus-components-cec2017`` runs them
+with WDO and jSO on the official CEC 2017 at D = 10.
 """
 
 from __future__ import annotations
 
 from itertools import combinations
 from typing import Any
+
+from mawdo.experiments.kinds.suite.official import OFFICIAL_SEED
 
 MEANS = {"coef_draw": "fixed", "alpha": 0.5, "g": 0.5, "RT": 0.5, "c": 0.5}
 """AWDO's coefficient draws U[0, 1] replaced by their means (0.5 each)."""
@@ -64,12 +72,35 @@ BOUNDARY = {"wdo": "reflect", "awdo": "reflect", "mawdo": "clip"}
 PAIR_BASE = "mawdo"
 """Pairs of switches are studied on MAWDO, the algorithm the issue is about."""
 
+PLUS_BASE = "wdo_plus"
+"""WDO+, whose switches (``PLUS_SWITCHES``) are not those of the wind family's parameters."""
+
+PLUS_SWITCHES: dict[str, dict[str, Any]] = {
+    "origin": {"centre": "origin"},
+    "best": {"centre": "best"},
+    "nopressure": {"random_pressure": False},
+    "noadapt": {"adapt": False, "sigma0": 0.0},
+    "norestart": {"restart": False},
+    "clip": {"boundary": "clip"},
+}
+"""WDO+'s switches: each of its five changes back to WDO's choice (gravity toward the box
+centre, one pressure weight for every coordinate, no noise term, no restarts, clipping), and
+gravity toward the best instead of the mean of the personal bests."""
+
+
+def base_switches(base: str) -> tuple[str, ...]:
+    """The switch names that mean something for ``base`` (a wind base or WDO+)."""
+    return tuple(PLUS_SWITCHES) if base == PLUS_BASE else BASE_SWITCHES[base]
+
 
 def switch_options(base: str, names: tuple[str, ...]) -> dict[str, Any]:
     """The options of ``base`` with the switches ``names`` turned."""
     out: dict[str, Any] = {}
     for name in names:
-        out.update(SWITCHES[name] or {"boundary": BOUNDARY[base]})
+        if base == PLUS_BASE:
+            out.update(PLUS_SWITCHES[name])
+        else:
+            out.update(SWITCHES[name] or {"boundary": BOUNDARY[base]})
     return out
 
 
@@ -89,7 +120,7 @@ def component_variants(pairs: bool = True, bases=tuple(BASE_SWITCHES)) -> dict[s
     pairs : bool
         Also every compatible pair of switches on MAWDO (``mawdo-flat+noclamp``).
     bases : sequence of str
-        The base algorithms, among ``wdo``, ``awdo``, ``mawdo``.
+        The base algorithms, among ``wdo``, ``awdo``, ``mawdo`` and ``wdo_plus``.
 
     Returns
     -------
@@ -98,7 +129,7 @@ def component_variants(pairs: bool = True, bases=tuple(BASE_SWITCHES)) -> dict[s
         are ``BASE-SWITCH`` or ``BASE-SWITCH+SWITCH``.
     """
     algorithms, variants, options = list(bases), {}, {}
-    combos = [(b, (s,)) for b in bases for s in BASE_SWITCHES[b]]
+    combos = [(b, (s,)) for b in bases for s in base_switches(b)]
     if pairs and PAIR_BASE in bases:
         combos += [
             (PAIR_BASE, pair)
@@ -120,7 +151,8 @@ def parse_label(label: str) -> tuple[str, tuple[str, ...]]:
     """
     base, _, rest = label.partition("-")
     names = tuple(rest.split("+")) if rest else ()
-    if base not in BASE_SWITCHES or any(n not in BASE_SWITCHES[base] for n in names):
+    known = base_switches(base) if base in (*BASE_SWITCHES, PLUS_BASE) else None
+    if known is None or any(n not in known for n in names):
         raise ValueError(f"{label!r} is not a component variant (BASE-SWITCH[+SWITCH])")
     return base, names
 
@@ -160,3 +192,32 @@ def component_presets(seed: int) -> tuple[dict[str, dict[str, Any]], dict[str, s
         "1e3 x D, 2 runs",
     }
     return {"wdo-components": full, "wdo-components-quick": quick}, helps
+
+
+def plus_component_presets() -> tuple[dict[str, dict[str, Any]], dict[str, str]]:
+    """WDO+'s component-study preset on the official CEC 2017 and its help line.
+
+    ``wdo-plus-components-cec2017``: F1-F30 at D = 10, ``1e4 x D`` evaluations, 51 runs (the
+    competition's protocol at D = 10, and the official presets' seed, so WDO+, WDO and jSO make
+    the runs of ``cec2017-official`` at D = 10); WDO+ with each switch of ``PLUS_SWITCHES``, WDO,
+    and jSO as the reference it loses to.
+    """
+    name = "wdo-plus-components-cec2017"
+    plus = component_variants(pairs=False, bases=(PLUS_BASE,))
+    plan = {
+        "name": name,
+        "suite": "cec2017",
+        **plus,
+        "algorithms": [*plus["algorithms"], "wdo", "jso"],
+        "functions": list(range(1, 31)),
+        "instances": [1],
+        "dims": [10],
+        "budget": 1e4,
+        "runs": 51,
+        "seed": OFFICIAL_SEED,
+    }
+    helps = {
+        name: "WDO+'s component study on CEC 2017 F1-F30, D 10, 1e4 x D, 51 runs: WDO+ with each "
+        "of its changes turned back to WDO's, WDO, and jSO",
+    }
+    return {name: plan}, helps

@@ -36,7 +36,7 @@ SWITCH_TEXT = {
 }
 """What each switch of :data:`.components.SWITCHES` does, for the docs."""
 
-_FIELDS = ("dims", "instances", "runs", "budget", "algorithms")
+_FIELDS = ("dims", "instances", "runs", "budget", "algorithms", "functions")
 """The plan fields a component store may set on top of its preset (``--set``)."""
 
 

@@ -1,5 +1,6 @@
 """Component effects of a component study (:mod:`.components`): each switch against its base,
-per BBOB function group, with bootstrap confidence intervals over instances and runs.
+per function group of the suite (BBOB's five, CEC 2017's four), with bootstrap confidence
+intervals over instances and runs.
 
 A variant and its base share every seed (a run's seed depends on its problem and index only), so
 the two are compared *paired*, unit by unit, a unit being an (instance, run) pair. Two measures:
@@ -80,6 +81,14 @@ def unit_runtimes(study: StudyRuns, algo: str, fid: int, dim: int, targets, unit
 
     Raises ``ValueError`` when a unit (instance, run) has no stored run (an unfinished study).
     """
+    return runtime_table(unit_runs(study, algo, fid, dim, units), targets)
+
+
+def unit_runs(study: StudyRuns, algo: str, fid: int, dim: int, units) -> list:
+    """The stored runs of ``algo`` on ``fid`` at ``dim``, one per unit, in ``units`` order.
+
+    Raises ``ValueError`` when a unit (instance, run) has no stored run (an unfinished study).
+    """
     runs = {(r.instance, r.run): r for r in study.select(algo, fid, dim)}
     missing = [u for u in units if u not in runs]
     if missing:
@@ -87,7 +96,7 @@ def unit_runtimes(study: StudyRuns, algo: str, fid: int, dim: int, targets, unit
             f"{algo} has no stored run for instance {missing[0][0]}, run {missing[0][1]} of "
             f"f{fid} at D = {dim}: finish the study (mawdo study run resumes it) first"
         )
-    return runtime_table([runs[u] for u in units], targets)
+    return [runs[u] for u in units]
 
 
 def _units(study: StudyRuns, base: str, dim: int) -> list[tuple[int, int]]:
@@ -120,6 +129,10 @@ class EffectData:
     def area_effect(self, variant: str, base: str, fids) -> tuple[float, float, float]:
         """Mean area difference (percentage points) and its CI over the functions ``fids``."""
         d = np.mean([self.area[variant, f] - self.area[base, f] for f in fids], axis=0) * 100
+        return self.interval(d)
+
+    def interval(self, d: np.ndarray) -> tuple[float, float, float]:
+        """Mean of the per-unit values ``d`` ``(U,)`` and its bootstrap 95 % interval."""
         return float(d.mean()), *_ci(d[self.idx].mean(axis=1))
 
     def art_ratio(self, variant: str, base: str, fids) -> tuple[float, float, float, int, int, int]:

@@ -98,9 +98,11 @@ def friedman_final(study: StudyRuns, dims) -> Friedman:
 def groups(study: StudyRuns) -> dict[str, tuple[int, ...]]:
     """Function groups of the study: every function, then the suite's own groups
     (:attr:`mawdo.suites.SuiteSpec.groups`: COCO's five for BBOB), each cut to the functions
-    in the plan."""
+    in the plan. A store in opfunu's numbering (``study.numbering``) has no groups: its ids
+    are not those the groups name."""
     out = {"all functions": study.functions}
-    for name, ids in SUITES[study.suite].groups.items():
+    suite_groups = {} if study.numbering else SUITES[study.suite].groups
+    for name, ids in suite_groups.items():
         kept = tuple(f for f in ids if f in study.functions)
         if kept:
             out[name] = kept

@@ -20,7 +20,7 @@ from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import Field, ValidationInfo, field_validator, model_validator
 
-from mawdo.experiments.kinds.suite.components import component_presets
+from mawdo.experiments.kinds.suite.components import component_presets, plus_component_presets
 from mawdo.experiments.kinds.suite.holdout import HOLDOUT_HELP, HOLDOUT_PRESETS
 from mawdo.experiments.kinds.suite.keys import parse_key, problem_key
 from mawdo.experiments.kinds.suite.numbering import (
@@ -413,6 +413,9 @@ PRESET_HELP = {
 _COMPONENTS, _COMPONENT_HELP = component_presets(BBOB_SEED)
 PRESETS.update(_COMPONENTS)
 PRESET_HELP.update(_COMPONENT_HELP)
+_PLUS, _PLUS_HELP = plus_component_presets()
+PRESETS.update(_PLUS)
+PRESET_HELP.update(_PLUS_HELP)
 
 
 def preset_plan(name: str) -> SuitePlan:
