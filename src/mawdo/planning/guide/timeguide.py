@@ -71,6 +71,7 @@ class TimeGuide:
         spots = np.vstack([scenario.spots] + [dodge_spots(r, scenario) for r in static_routes])
         self.spots = usable_spots(scenario, self.clearance, np.unique(spots, axis=0))
         self.limits, self.profile = limits, None
+        self.last = None  # the guide of the last query (its movers' tables)
         if limits is not None and (limits.accel, limits.turn) != (None, None):
             free = np.inf
             # the projection's own margin, and as much again for rounding: a planned step is
@@ -92,8 +93,10 @@ class TimeGuide:
                 self.scenario, start=pos, t0=float(t), clearance=self.clearance,
                 spots=self.spots, profile=self.profile, lead=lead,
             )  # fmt: skip
+            self.last = guide
             return guide.routes(self.k)
         except ValueError:  # the start inside a grown obstacle: no safe timed route
+            self.last = None
             return []
 
     def _brake(self, pos, vel) -> np.ndarray:
@@ -282,6 +285,19 @@ class TimedRun:
         timed = self._timed_routes(pos, step)
         if not timed:
             return chosen
-        self.following = timed[0]
+        self.following = self._refined(timed[0], pos, step)
         self.timed_follows += 1
-        return route_geometry(timed[0], pos)
+        return route_geometry(self.following, pos)
+
+    def _refined(self, route, pos, step: int):
+        """``route``, or its faster drive when the run's trajectory refiner (``refiner``; None:
+        off) finds one verified (:mod:`mawdo.planning.refine.trajectory_search`)."""
+        from mawdo.streams import trajectory_seed_sequences
+
+        refiner = getattr(self, "refiner", None)
+        if refiner is None or self.timer.last is None:
+            return route
+        state = (self._vel, self._heading, self._still)
+        seeds = trajectory_seed_sequences(self.seed, len(self.replans))
+        faster = refiner.refine(route, pos, step, state, self.timer.last._mv, seeds)
+        return route if faster is None else faster
