@@ -18,7 +18,10 @@ robot braking first (:mod:`mawdo.planning.guide.sipp.profile`,
 the guide has one (a candidate is checked at full speed, not as the limited robot drives it), keeps
 it while it is on it, and drives it by its clock: the positions at whole steps are the profile's,
 so what the guide checked is what is driven (the rule still checks each step, with the route's rest
-as its first continuation).
+as its first continuation). With ``refine_trajectory`` the run's swarm first looks for a faster
+drive of the same route (:mod:`mawdo.planning.refine.trajectory_search`: corners rounded, speed
+carried), one point per step, and follows that one instead when it is strictly earlier and
+verified as driven.
 
 Waiting spots: the guide's roadmap has the static visibility graph's corners, the scenario's
 own waiting spots (:attr:`~mawdo.planning.world.scenario.Scenario.spots`: bays, corners; the timed
@@ -229,7 +232,10 @@ class TimedRun:
         turn limits the route is timed as driven (a rest-to-rest profile per edge, whole
         steps), so its steps are within the limits, and a step leaves the route only when the
         guard or the rule refuses it: it is then the guard-checked projection
-        (:class:`~mawdo.planning.safety.kinematics.LimitedRun`). Tested on corridor,
+        (:class:`~mawdo.planning.safety.kinematics.LimitedRun`). A route the swarm refined
+        (``refine_trajectory``) has one point per step; before it replaced the guide's, each of
+        its steps passed the guard's step test, the guide's mover test, the rule's route test
+        and the run's own projection unchanged. Tested on corridor,
         doorway, parked and crowd scenes with the independent checker
         (``tests/planning/test_timed_follow.py``)."""
         if self.following is None:

@@ -9,8 +9,8 @@ share of what the legs allow; below :data:`STOP_SHARE` the corner stays sharp: a
 much of the arc's top speed is carried (share of ``c_max``), and per leg its cruise speed
 (share of the speed cap: a robot that would reach a door before a mover leaves it slows down
 on the way instead of stopping), and per wait of the route whether the drive holds there
-(a share ``h >= 1/2``: it stops and leaves no earlier than ``h`` of the way from the route's
-arrival there to its departure, the route's own departure at ``h = 1``) or drives on (the
+(a share ``h >= 1/2``: it stops and leaves no earlier than ``2 h - 1`` of the way from the
+route's arrival there to its departure, the route's own departure at ``h = 1``) or drives on (the
 faster drive may pass before the mover the route waited for arrives).
 
 Cost of a candidate (time steps): its arrival step, plus :data:`PENALTY` per step that breaks a
@@ -66,6 +66,8 @@ MAX_CORNERS, MAX_LEGS = 16, 24
 POP, ITERS = 24, 20
 #: Most halvings of the arcs that come too close to a wall, per candidate.
 REPAIRS = 4
+#: Share of its cruise a leg keeps when a repair slows it (a drive that met a mover).
+SLOWER = 0.85
 #: Tolerance (px) of :func:`replay`: the run's step must give back the planned position.
 REPLAY_TOL = 1e-9
 
@@ -258,6 +260,15 @@ def _starts(plan: RoutePlan) -> np.ndarray:
     return np.array(rows)
 
 
+def _legs_of(Q, V) -> np.ndarray:
+    """Per point of ``Q`` (pixels), the leg of the polyline ``V`` nearest it."""
+    A, B = V[:-1], V[1:]
+    AB = B - A
+    t = np.einsum("mkd,kd->mk", Q[:, None] - A[None], AB) / np.maximum(np.sum(AB * AB, 1), 1e-300)
+    foot = A[None] + np.clip(t, 0.0, 1.0)[..., None] * AB[None]
+    return np.argmin(np.hypot(*(foot - Q[:, None]).transpose(2, 0, 1)), axis=1)
+
+
 class _Cost:
     """The swarm's cost of a batch of decisions (module docstring); ``pure``: it never writes
     into them."""
@@ -302,12 +313,16 @@ class TrajectoryRefiner:
 
     def breaks(self, P, plan: RoutePlan, mv):
         """Steps of ``P`` (from step ``plan.t0``) over a limit or meeting an obstacle, and the
-        positions (pixels) of those too close to a wall or the border."""
+        positions (pixels) of those too close to a wall or the border and of those meeting a
+        mover."""
         sc, t0 = self.sc, float(plan.t0)
         n = _limit_breaks(P, plan.vel, self.limits, plan.v)
-        for k in range(len(P) - 1):
-            (ux, uy), (vx, vy) = P[k], P[k + 1]
-            n += not segment_free(ux, uy, vx, vy, t0 + k, t0 + k + 1.0, mv)
+        X, Y = P[:, 0], P[:, 1]
+        hit = [
+            k for k in range(len(P) - 1)
+            if not segment_free(X[k], Y[k], X[k + 1], Y[k + 1], t0 + k, t0 + k + 1.0, mv)
+        ]  # fmt: skip
+        n += len(hit)
         walls = set()
         if self.statics:
             rep = check_static_path(P, self.statics, sc.robot_radius + self.clearance)
@@ -317,26 +332,33 @@ class TrajectoryRefiner:
             (P[:, 0] < lo) | (P[:, 0] > sc.width - lo) | (P[:, 1] < lo) | (P[:, 1] > sc.height - lo)
         )
         walls |= set(np.flatnonzero(out[1:]).tolist())
-        return n + len(walls), P[sorted(walls)]
+        return n + len(walls), P[sorted(walls)], P[hit]
 
     def repaired(self, x, plan: RoutePlan, mv):
-        """``(x, P, breaks)``: the decisions with each arc that comes too close to a wall
-        narrowed by half (up to :data:`REPAIRS` times; the arc of the corner nearest each such
-        step), their trajectory (None: not drivable) and its breaks (0 for a trajectory not
-        earlier than the route's: never taken, not judged)."""
+        """``(x, P, breaks)``: the decisions repaired up to :data:`REPAIRS` times (the arc of
+        the corner nearest each step too close to a wall narrowed by half; the legs up to each
+        step that meets a mover, it and the one before, slowed to :data:`SLOWER` of their
+        cruise: such a drive came too early), their trajectory (None: not drivable) and its
+        breaks (0 for a trajectory not earlier than the route's: never taken, not judged)."""
         x = np.array(x, float)
+        legs0 = 2 * len(plan.corners) + len(plan.waits)
         for attempt in range(REPAIRS + 1):
             P = plan.trajectory(x)
             if P is None or len(P) - 1 >= plan.seed_steps:
                 return x, P, 0
-            n, walls = self.breaks(P, plan, mv)
+            n, walls, movers = self.breaks(P, plan, mv)
             live = [j for j, i in enumerate(plan.corners) if x[2 * j] >= STOP_SHARE]
-            if not len(walls) or not live or attempt == REPAIRS:
+            if attempt == REPAIRS or not (len(walls) and live or len(movers)):
                 return x, P, n
-            V = plan.V[[plan.corners[j] for j in live]]
-            near = np.argmin(np.hypot(*(walls[:, None, :] - V[None]).transpose(2, 0, 1)), axis=1)
-            for j in set(near.tolist()):
-                x[2 * live[j]] *= 0.5
+            if len(walls) and live:
+                V = plan.V[[plan.corners[j] for j in live]]
+                near = np.argmin(np.hypot(*(walls[:, None] - V[None]).transpose(2, 0, 1)), axis=1)
+                for j in set(near.tolist()):
+                    x[2 * live[j]] *= 0.5
+            for leg in set(_legs_of(movers, plan.V).tolist()):
+                for j in (legs0 + leg - 1, legs0 + leg):
+                    if legs0 <= j < len(x):
+                        x[j] *= SLOWER
         return x, P, n
 
     def refine(self, route, pos, t0: int, state, mv, seeds):
