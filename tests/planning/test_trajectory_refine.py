@@ -50,21 +50,21 @@ def _cfg(**kw) -> PlannerConfig:
 def test_brake_bound_is_the_largest_speed_braking_can_bring_down_in_time():
     """Eq. 1 against a brute-force search: the largest ``w`` on a fine grid whose braking
     sequence ``w, w - b, ...`` keeps every step faster than ``c`` within ``d`` px."""
+
+    def fits(w, d, c, b):
+        pos = 0.0
+        while w > c:
+            pos += w
+            if pos > d:
+                return False
+            w -= b
+        return True
+
     rng = np.random.default_rng(7)
     for _ in range(100):
         d, c, b, v = rng.uniform(0, 30), rng.uniform(0, 2), rng.uniform(0.2, 1.5), 3.0
-
-        def fits(w):
-            pos = 0.0
-            while w > c:
-                pos += w
-                if pos > d:
-                    return False
-                w -= b
-            return True
-
         grid = np.linspace(0.0, v, 6001)
-        brute = max(w for w in grid if w <= c or fits(w))
+        brute = max(w for w in grid if w <= c or fits(w, d, c, b))
         assert brake_bound(d, c, b, v) == pytest.approx(brute, abs=v / 6000 + 1e-12)
 
 
