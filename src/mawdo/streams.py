@@ -223,11 +223,11 @@ def replan_seed_sequences(seed, k: int) -> tuple[np.random.SeedSequence, np.rand
     return keyed_seed_sequence(seed, k), keyed_seed_sequence(seed, k, 1)
 
 
-def trajectory_seed_sequences(seed, k: int):
-    """Seed sequences of the trajectory refinement at (re)plan ``k`` of a planning run: the
-    optimizer's ``(k, 2)`` and its start draws' ``(k, 3)`` below the run's master seed, apart
-    from the replan's own (:func:`replan_seed_sequences`)."""
-    return keyed_seed_sequence(seed, k, 2), keyed_seed_sequence(seed, k, 3)
+def trajectory_seed_sequences(seed, k: int, j: int = 0):
+    """Seed sequences of the trajectory refinement of timed route ``j`` (>= 0) at (re)plan
+    ``k`` of a planning run: the optimizer's ``(k, 2, j)`` and its start draws' ``(k, 3, j)``
+    below the run's master seed, apart from the replan's own (:func:`replan_seed_sequences`)."""
+    return keyed_seed_sequence(seed, k, 2, j), keyed_seed_sequence(seed, k, 3, j)
 
 
 #: The streams of a stepped episode, by name (spawn keys below the episode seed; the planner's

@@ -291,19 +291,24 @@ class TimedRun:
         timed = self._timed_routes(pos, step)
         if not timed:
             return chosen
-        self.following = self._refined(timed[0], pos, step)
+        self.following = self._refined(timed, pos, step)
         self.timed_follows += 1
         return route_geometry(self.following, pos)
 
-    def _refined(self, route, pos, step: int):
-        """``route``, or its faster drive when the run's trajectory refiner (``refiner``; None:
-        off) finds one verified (:mod:`mawdo.planning.refine.trajectory_search`)."""
+    def _refined(self, timed: list, pos, step: int):
+        """The earliest timed route ``timed[0]``, or, when the run's trajectory refiner
+        (``refiner``; None: off) finds verified faster drives of the routes, the one that
+        arrives first (ties: the guide's order)."""
         from mawdo.streams import trajectory_seed_sequences
 
         refiner = getattr(self, "refiner", None)
         if refiner is None or self.timer.last is None:
-            return route
+            return timed[0]
         state = (self._vel, self._heading, self._still)
-        seeds = trajectory_seed_sequences(self.seed, len(self.replans))
-        faster = refiner.refine(route, pos, step, state, self.timer.last._mv, seeds)
-        return route if faster is None else faster
+        best = timed[0]
+        for j, route in enumerate(timed):
+            seeds = trajectory_seed_sequences(self.seed, len(self.replans), j)
+            faster = refiner.refine(route, pos, step, state, self.timer.last._mv, seeds)
+            if faster is not None and faster.arrival < best.arrival:
+                best = faster
+        return best
