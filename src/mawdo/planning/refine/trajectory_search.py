@@ -27,7 +27,9 @@ own :func:`~mawdo.planning.safety.kinematics.wanted_step` and
 construction), the guard's exact step test (clearance >= the run's margin) and, with the
 inevitable-collision rule on, the rule's test of the whole route
 (:meth:`~mawdo.planning.safety.ics.SafeContinuation.path_safe`). Otherwise the guide's route is
-driven as before: the result is never later than it.
+driven as before: the result is never later than it. The run refines each timed route the guide
+returns and follows the verified drive that arrives first
+(:meth:`~mawdo.planning.guide.timeguide.TimedRun._refined`).
 """
 
 from __future__ import annotations
