@@ -150,8 +150,8 @@ def _without_waits(pts: np.ndarray) -> np.ndarray:
 
 class TimedRun:
     """The run loop's use of a :class:`TimeGuide` (mixed into
-    :class:`~mawdo.planning.run.execute.Run`, which sets ``timer``, ``following``, ``_timed`` and
-    ``timed_follows``)."""
+    :class:`~mawdo.planning.run.execute.Run`, which sets ``timer``, ``following``, ``_timed``,
+    ``timed_follows`` and ``refiner``, the trajectory refiner of limited runs or None)."""
 
     #: With a profile, follow the earliest timed route whenever the guide has one: it is the
     #: only plan timed as the robot drives it (a candidate is checked at full speed).
