@@ -21,6 +21,7 @@ SUITES = [
     "bench_cec",
     "bench_sipp",
     "bench_timed",
+    "bench_limits",
     "bench_startup",
     "bench_threads",
     "bench_scaling",

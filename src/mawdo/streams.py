@@ -223,6 +223,13 @@ def replan_seed_sequences(seed, k: int) -> tuple[np.random.SeedSequence, np.rand
     return keyed_seed_sequence(seed, k), keyed_seed_sequence(seed, k, 1)
 
 
+def trajectory_seed_sequences(seed, k: int, j: int = 0):
+    """Seed sequences of the trajectory refinement of timed route ``j`` (>= 0) at (re)plan
+    ``k`` of a planning run: the optimizer's ``(k, 2, j)`` and its start draws' ``(k, 3, j)``
+    below the run's master seed, apart from the replan's own (:func:`replan_seed_sequences`)."""
+    return keyed_seed_sequence(seed, k, 2, j), keyed_seed_sequence(seed, k, 3, j)
+
+
 #: The streams of a stepped episode, by name (spawn keys below the episode seed; the planner's
 #: replans keep their own children ``(k,)``, ``(k, 1)`` of the per-step seed).
 EPISODE_STREAMS = {"world": 1 << 20, "sensor": (1 << 20) + 1, "policy": (1 << 20) + 2}

@@ -18,7 +18,10 @@ robot braking first (:mod:`mawdo.planning.guide.sipp.profile`,
 the guide has one (a candidate is checked at full speed, not as the limited robot drives it), keeps
 it while it is on it, and drives it by its clock: the positions at whole steps are the profile's,
 so what the guide checked is what is driven (the rule still checks each step, with the route's rest
-as its first continuation).
+as its first continuation). With ``refine_trajectory`` the run's swarm first looks for a faster
+drive of the same route (:mod:`mawdo.planning.refine.trajectory_search`: corners rounded, speed
+carried), one point per step, and follows that one instead when it is strictly earlier and
+verified as driven.
 
 Waiting spots: the guide's roadmap has the static visibility graph's corners, the scenario's
 own waiting spots (:attr:`~mawdo.planning.world.scenario.Scenario.spots`: bays, corners; the timed
@@ -71,6 +74,7 @@ class TimeGuide:
         spots = np.vstack([scenario.spots] + [dodge_spots(r, scenario) for r in static_routes])
         self.spots = usable_spots(scenario, self.clearance, np.unique(spots, axis=0))
         self.limits, self.profile = limits, None
+        self.last = None  # the guide of the last query (its movers' tables)
         if limits is not None and (limits.accel, limits.turn) != (None, None):
             free = np.inf
             # the projection's own margin, and as much again for rounding: a planned step is
@@ -92,8 +96,10 @@ class TimeGuide:
                 self.scenario, start=pos, t0=float(t), clearance=self.clearance,
                 spots=self.spots, profile=self.profile, lead=lead,
             )  # fmt: skip
+            self.last = guide
             return guide.routes(self.k)
         except ValueError:  # the start inside a grown obstacle: no safe timed route
+            self.last = None
             return []
 
     def _brake(self, pos, vel) -> np.ndarray:
@@ -144,8 +150,8 @@ def _without_waits(pts: np.ndarray) -> np.ndarray:
 
 class TimedRun:
     """The run loop's use of a :class:`TimeGuide` (mixed into
-    :class:`~mawdo.planning.run.execute.Run`, which sets ``timer``, ``following``, ``_timed`` and
-    ``timed_follows``)."""
+    :class:`~mawdo.planning.run.execute.Run`, which sets ``timer``, ``following``, ``_timed``,
+    ``timed_follows`` and ``refiner``, the trajectory refiner of limited runs or None)."""
 
     #: With a profile, follow the earliest timed route whenever the guide has one: it is the
     #: only plan timed as the robot drives it (a candidate is checked at full speed).
@@ -226,7 +232,10 @@ class TimedRun:
         turn limits the route is timed as driven (a rest-to-rest profile per edge, whole
         steps), so its steps are within the limits, and a step leaves the route only when the
         guard or the rule refuses it: it is then the guard-checked projection
-        (:class:`~mawdo.planning.safety.kinematics.LimitedRun`). Tested on corridor,
+        (:class:`~mawdo.planning.safety.kinematics.LimitedRun`). A route the swarm refined
+        (``refine_trajectory``) has one point per step; before it replaced the guide's, each of
+        its steps passed the guard's step test, the guide's mover test, the rule's route test
+        and the run's own projection unchanged. Tested on corridor,
         doorway, parked and crowd scenes with the independent checker
         (``tests/planning/test_timed_follow.py``)."""
         if self.following is None:
@@ -282,6 +291,24 @@ class TimedRun:
         timed = self._timed_routes(pos, step)
         if not timed:
             return chosen
-        self.following = timed[0]
+        self.following = self._refined(timed, pos, step)
         self.timed_follows += 1
-        return route_geometry(timed[0], pos)
+        return route_geometry(self.following, pos)
+
+    def _refined(self, timed: list, pos, step: int):
+        """The earliest timed route ``timed[0]``, or, when the run's trajectory refiner
+        (``refiner``; None: off) finds verified faster drives of the routes, the one that
+        arrives first (ties: the guide's order)."""
+        from mawdo.streams import trajectory_seed_sequences
+
+        refiner = getattr(self, "refiner", None)
+        if refiner is None or self.timer.last is None:
+            return timed[0]
+        state = (self._vel, self._heading, self._still)
+        best = timed[0]
+        for j, route in enumerate(timed):
+            seeds = trajectory_seed_sequences(self.seed, len(self.replans), j)
+            faster = refiner.refine(route, pos, step, state, self.timer.last._mv, seeds)
+            if faster is not None and faster.arrival < best.arrival:
+                best = faster
+        return best

@@ -132,6 +132,13 @@ class PlannerConfig:
         grown by their reachable set. When no option keeps one the run drives the least bad
         and counts it (``PlanResult.inevitable``); a run that gives up first moves to where
         waiting is safe.
+    refine_trajectory : bool
+        With an acceleration or turn-rate limit (looked at only then), the run drives a timed
+        route it follows as the swarm's refinement of its trajectory finds faster: corners
+        rounded, speed carried through them (:mod:`mawdo.planning.refine.trajectory_search`),
+        when that drive is verified safe and strictly earlier; else the guide's own stops and
+        turns in place. On by default; off in the ``paper`` and ``study`` presets (which set no
+        limits).
     max_speed, max_accel, max_turn : float or None
         Opt-in kinematic limits of the executed motion (None: free, the default and the
         paper's set-up; :mod:`mawdo.planning.safety.kinematics`): most distance per step (px per
@@ -173,6 +180,7 @@ class PlannerConfig:
     time_guide: bool = True
     time_routes: int = 2
     ics_horizon: int = 30
+    refine_trajectory: bool = True
     max_speed: float | None = None
     max_accel: float | None = None
     max_turn: float | None = None
@@ -213,8 +221,11 @@ class PlannerConfig:
         check_int("PlannerConfig.time_routes", self.time_routes, 1)
         check_int("PlannerConfig.ics_horizon", self.ics_horizon, 0)
         _check_limits(self)
-        if not isinstance(self.time_guide, bool | np.bool_):
-            raise ValueError(f"PlannerConfig.time_guide={self.time_guide!r} must be True or False")
+        for name in ("time_guide", "refine_trajectory"):
+            if not isinstance(getattr(self, name), bool | np.bool_):
+                raise ValueError(
+                    f"PlannerConfig.{name}={getattr(self, name)!r} must be True or False"
+                )
         steps = np.asarray(self.polish_steps, float)
         if steps.ndim != 1 or steps.size == 0 or not np.all((steps > 0) & (steps <= 1)):
             raise ValueError(
@@ -247,7 +258,10 @@ def _check_limits(cfg: PlannerConfig) -> None:
 
 # The paper's planner: it replans every step and executes the optimizer's best as it is (no
 # kept plans, no polish, no safe-interval guide), so Table 6 measures the optimizers alone.
-_AS_PUBLISHED = {"hold_straight": False, "hold_gap": 0.0, "polish_rounds": 0, "time_guide": False}
+_AS_PUBLISHED = {
+    "hold_straight": False, "hold_gap": 0.0, "polish_rounds": 0, "time_guide": False,
+    "refine_trajectory": False,
+}  # fmt: skip
 
 # Named settings: the paper's study size, and a real-time setting that meets 20 Hz replanning.
 PRESETS = {

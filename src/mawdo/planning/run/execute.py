@@ -132,6 +132,7 @@ class Run(DecidingRun, TimedRun, SafeRun, LimitedRun):
         timed = cfg.time_guide and dynamic and bool(sc.moving_indices)
         args = (sc, cfg.clearance, cfg.time_routes, self.routes, limits)  # limits: as driven
         self.timer = TimeGuide(*args) if timed else None
+        self.refiner = self._make_refiner()
         self.following = None
         self.timed_follows = 0  # replans at which the guard chose a timed route
         self._timed = (-1, [])
@@ -143,6 +144,19 @@ class Run(DecidingRun, TimedRun, SafeRun, LimitedRun):
 
     def _make_optimizers(self) -> dict:
         return _optimizers(self.algorithm, self.cfg)
+
+    def _make_refiner(self):
+        """The swarm's refiner of limited timed routes (``cfg.refine_trajectory``), or None: off,
+        or no route timed within acceleration or turn-rate limits to refine."""
+        if not (self.cfg.refine_trajectory and self.timer is not None and self._profiled()):
+            return None
+        from mawdo.optimizers import make_optimizer
+        from mawdo.planning.refine.trajectory_search import POP, TrajectoryRefiner
+
+        opts = {**PLANNING_OPTIONS.get(self.algorithm, {}), **self.cfg.options}
+        opt = make_optimizer(self.algorithm, pop_size=POP, **opts)
+        return TrajectoryRefiner(self.sc, self.cfg.clearance, self.limits, opt, self.guard,
+                                 self.ics)  # fmt: skip
 
     # -- seeds ---------------------------------------------------------------------------------
 

@@ -38,6 +38,9 @@ class GuideOnlyRun(Run):
     def _make_optimizers(self) -> dict:
         return {}  # none: the seeds are the candidates
 
+    def _make_refiner(self):
+        return None  # the guides alone: their timed routes are driven as they are
+
     def _plain_seeds(self, pos, step: int, remainder) -> np.ndarray:
         m = self.m
         rows = [densify(r, m).reshape(-1) for r in (self.guide.routes(pos) if self.guide else [])]

@@ -35,7 +35,10 @@ With an acceleration or turn-rate limit the safe-interval guide times its routes
 robot drives them (:mod:`mawdo.planning.guide.sipp.profile`: each edge from rest to rest in whole
 steps, turns in place at its vertices), the run follows such a route step for step, and the
 rule takes the route's own rest as a continuation when the robot is on it; the refinement's
-turn penalty only steers candidates away from sharp corners.
+turn penalty only steers candidates away from sharp corners. With ``refine_trajectory`` (on by
+default) the swarm first searches a faster drive of that route, corners rounded and speed
+carried through them (:mod:`mawdo.planning.refine.trajectory_search`), which the run follows
+instead when it is strictly earlier and every step passes this projection unchanged.
 """
 
 from __future__ import annotations

@@ -1,0 +1,133 @@
+"""Timed families under kinematic limits: does the limited run carry speed through corners?
+
+``python -m benchmarks limits`` (or ``python benchmarks/bench_limits.py [--scenes N]
+[--families a,b] [--workers W] [--save PATH] [--load PATH]``). For each timed family, scenes
+``0 .. N-1`` of seed 0 (``realtime`` preset, planner seed 0), with ``v`` the scene's robot speed
+(px per step):
+
+* (a) the speed cap alone: ``max_speed = 0.75 v``;
+* (b) the three limits: ``max_speed = 0.75 v``, ``max_accel = 0.25 v``, ``max_turn = 0.6`` rad;
+
+each with ``mawdo`` and ``guide_only``. Per family and overall: success share, the median
+arrival step of the successful runs, the paired ratios ``mawdo(b) / mawdo(a)`` (target
+<= 1.05) and ``mawdo(b) / guide_only(b)`` (target <= 0.87) over the scenes both runs of a pair
+solved (median), the kinematic violations of every run (the independent
+:func:`~mawdo.planning.judge.kincheck.check_kinematics`, target 0) and its active collisions
+(:func:`~mawdo.planning.judge.check.check_trajectory`, target 0). ``--save`` writes the rows as
+JSON, ``--load`` prints a saved table (e.g. the code before a change) without running.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import replace
+
+import numpy as np
+
+FAMILIES = ("corridor", "doorway", "chaser", "crowd", "parked", "slalom")
+PLANNERS = ("mawdo", "guide_only")
+CASES = {"a": (0.75, None, None), "b": (0.75, 0.25, 0.6)}  # (speed, accel) x v; turn in rad
+TARGETS = {"b/a": 1.05, "b/guide": 0.87}
+
+
+def _one(args):
+    family, index, planner, case = args
+    from mawdo.planning.judge.check import check_trajectory
+    from mawdo.planning.judge.kincheck import check_kinematics
+    from mawdo.planning.run.config import PRESETS
+    from mawdo.planning.run.planners import run_planner
+    from mawdo.planning.scenes import generate_scene
+
+    scene = generate_scene(family, index, seed=0)
+    v = scene.scenario.robot_speed
+    s, a, turn = CASES[case]
+    cfg = replace(
+        PRESETS["realtime"], max_speed=s * v, max_accel=None if a is None else a * v, max_turn=turn
+    )
+    res = run_planner(planner, scene.scenario, seed=0, config=cfg)
+    kin = check_kinematics(res.trajectory, cfg.max_speed, cfg.max_accel, cfg.max_turn)
+    rep = check_trajectory(res.route, res.scenario, times=res.route_times)
+    return {
+        "family": family, "index": index, "planner": planner, "case": case,
+        "success": bool(res.success), "steps": int(res.steps),
+        "kin": int(kin.count), "active": len(rep.active),
+    }  # fmt: skip
+
+
+def run(families, scenes: int, workers: int) -> list[dict]:
+    """Every (family, scene, planner, case) run's row."""
+    jobs = [(f, i, p, c) for f in families for i in range(scenes) for p in PLANNERS for c in CASES]
+    if workers <= 1:
+        return [_one(j) for j in jobs]
+    with ProcessPoolExecutor(workers) as pool:
+        return list(pool.map(_one, jobs))
+
+
+def _ratio(rows, num, den) -> list[float]:
+    """Paired ratios of arrival steps (both runs successful) over the scenes."""
+    by = {(r["family"], r["index"], r["planner"], r["case"]): r for r in rows}
+    out = []
+    for (f, i, p, c), r in by.items():
+        if (p, c) != num:
+            continue
+        o = by.get((f, i, *den))
+        if o is not None and r["success"] and o["success"]:
+            out.append(r["steps"] / o["steps"])
+    return out
+
+
+def _line(name: str, rows: list[dict]) -> str:
+    cells = []
+    for p in PLANNERS:
+        for c in CASES:
+            sel = [r for r in rows if r["planner"] == p and r["case"] == c]
+            ok = [r["steps"] for r in sel if r["success"]]
+            med = f"{np.median(ok):6.1f}" if ok else "     -"
+            cells.append(f"{sum(r['success'] for r in sel)}/{len(sel)} {med}")
+    ba = _ratio(rows, ("mawdo", "b"), ("mawdo", "a"))
+    bg = _ratio(rows, ("mawdo", "b"), ("guide_only", "b"))
+    fmt = lambda x: f"{np.median(x):.3f}" if x else "    -"  # noqa: E731
+    kin = sum(r["kin"] for r in rows)
+    act = sum(r["active"] for r in rows)
+    return f"{name:9s} " + "  ".join(cells) + f"  {fmt(ba):>6s} {fmt(bg):>8s} {kin:4d} {act:4d}"
+
+
+def report(rows: list[dict]) -> None:
+    """The table (per family, then overall), targets beside the figures."""
+    head = "  ".join(f"{p[:6]}({c}) ok  T" for p in PLANNERS for c in CASES)
+    print(f"{'family':9s} {head}   b/a   b/guide  kin  act")
+    for f in dict.fromkeys(r["family"] for r in rows):
+        print(_line(f, [r for r in rows if r["family"] == f]))
+    print(_line("overall", rows))
+    print(
+        f"targets: mawdo(b)/mawdo(a) <= {TARGETS['b/a']}, mawdo(b)/guide_only(b) <= "
+        f"{TARGETS['b/guide']}, kinematic violations 0, active collisions 0 (ratios: medians "
+        "of paired arrival steps)"
+    )
+
+
+def main(argv=None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--scenes", type=int, default=8)
+    ap.add_argument("--families", default=",".join(FAMILIES))
+    ap.add_argument("--workers", type=int, default=1)
+    ap.add_argument("--save", default=None)
+    ap.add_argument("--load", default=None)
+    args = ap.parse_args([] if argv is None else argv)
+    if args.load:
+        with open(args.load) as fh:
+            rows = json.load(fh)
+    else:
+        rows = run(args.families.split(","), args.scenes, args.workers)
+    if args.save:
+        with open(args.save, "w") as fh:
+            json.dump(rows, fh, indent=1)
+    report(rows)
+
+
+if __name__ == "__main__":
+    import sys
+
+    main(sys.argv[1:])
