@@ -161,3 +161,24 @@ def test_the_switch_is_validated_and_off_in_the_paper_preset():
     with pytest.raises(ValueError, match="refine_trajectory"):
         PlannerConfig(refine_trajectory="yes")
     assert not PRESETS["paper"].refine_trajectory and PRESETS["realtime"].refine_trajectory
+
+
+def test_a_wait_on_a_straight_line_is_driven_through_when_not_held():
+    """A route that waits mid-way on a straight line (the vertex turns by 0): rounding that
+    "corner" would need an infinite radius; passing it, the drive goes straight through it,
+    within the limits, and earlier than the route that waits."""
+    ys = [60.0, 61.1, 63.4, 66.8, 71.3, 84.8, 89.3, 92.6, 94.9, 96.0, 96.0, 97.2, 99.7, 103.4,
+          108.4, 207.6, 212.6, 216.3, 218.8, 220.0]  # fmt: skip
+    times = [0, 1, 2, 3, 4, 7, 8, 9, 10, 11, 21, 22, 23, 24, 25, 45, 46, 47, 48, 49]
+    route = TimedRoute(np.array([[140.0, y] for y in ys]), np.array(times, float), ())
+    lim = Limits(5.0, 1.25, 0.6)
+    state = (np.zeros(2), None, 2)
+    rp = RoutePlan(route, np.array([140.0, 60.0]), 0, state, lim, 5.0)
+    assert len(rp.V) == 3 and rp.waits.size == 1  # start, the wait, the goal
+    x = np.ones(rp.dim)
+    x[2 * len(rp.corners)] = 0.0  # the wait not held; "corners" rounded as wide as allowed
+    traj = rp.trajectory(x)
+    assert traj is not None and np.all(np.isfinite(traj))
+    assert np.allclose(traj[:, 0], 140.0) and np.allclose(traj[-1], [140.0, 220.0])
+    assert len(traj) - 1 < times[-1]
+    assert check_kinematics(traj, 5.0, 1.25, 0.6).ok

@@ -55,6 +55,14 @@ ARC_TURN = 0.9
 END_BRAKE = 0.95
 #: Turn angle (radians) above which a corner is always a stop (no useful arc fits).
 MAX_ROUND_TURN = 2.6
+#: Turn angle (radians) at or below which a vertex is no corner: it is driven straight through.
+STRAIGHT = 1e-9
+
+
+def _turn(din, dout) -> float:
+    """Angle (radians, in [0, pi]) between two unit headings."""
+    cross, dot = din[0] * dout[1] - din[1] * dout[0], float(din @ dout)
+    return abs(math.atan2(cross, dot))
 
 
 @njit(cache=True)
@@ -116,6 +124,8 @@ class SmoothPath:
         self.regions, self.leg = [], []
         for i in range(len(V) - 1):
             e_out = e[i] if i + 1 < len(V) - 1 else 0.0
+            if e_out > 0.0 and _turn(u[i], u[i + 1]) <= STRAIGHT:  # no corner to round (a
+                e_out = 0.0  # wait on a straight line): an arc would have an infinite radius
             end = V[i + 1] - u[i] * e_out
             self._add(("line", at, end), starts, s)
             n = float(np.hypot(*(end - at)))
