@@ -227,3 +227,15 @@ def test_current_code_reruns_stored_runs_bit_for_bit(store):
             assert r.error_text is None and r.fun == o.fun and r.nfev == o.nfev, (algo, problem)
             assert np.array_equal(r.evals, o.evals) and np.array_equal(r.best_so_far, o.best_so_far)
             assert np.array_equal(r.best_x, o.best_x)
+
+
+def test_the_readme_says_where_the_changes_hold_wdo_plus_back_as_the_findings_do(lines):
+    readme = " ".join((ROOT / "README.md").read_text(encoding="utf-8").split())
+    assert "its own changes hold it back only on the unimodal functions" in readme
+    verdict = {  # each group's last line: its verdict (the first one is its standing)
+        g: [x for x in lines if x.startswith(f"{g} (F")][-1] for g in list(GROUPS)[1:]
+    }
+    assert "held back by" in verdict["unimodal"]
+    for group in ("simple multimodal", "hybrid"):
+        assert "none of its five changes holds it back" in verdict[group]
+    assert "does not lose to jSO" in verdict["composition"]

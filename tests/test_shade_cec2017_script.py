@@ -45,7 +45,9 @@ def _stored_rows(others: bool = False):
     from pathlib import Path
 
     folder = Path(__file__).parents[1] / "docs/results/shade-cec2017"
-    names = ["d10-runs51-seed2017.jsonl"] + (["d10-runs51-seed2017-others.jsonl"] if others else [])
+    names = ["d10-runs51-seed2017.jsonl"]
+    if others:
+        names += ["d10-runs51-seed2017-others.jsonl", "d10-runs51-seed2017-more.jsonl"]
     return [
         json.loads(line)
         for name in names
@@ -98,17 +100,24 @@ def test_wdo_plus_among_the_winners_as_the_docs_and_readme_say():
     doc = (root / "docs/algorithms.md").read_text(encoding="utf-8")
     assert rank_table(rows) in doc and table(rows) in doc
     order = list(friedman_ranks(rows))
-    assert order.index("wdo_plus") == 3 and len(order) == 7
-    assert set(order[:3]) == {"jso", "nlshade_rsp", "lshade"}
+    assert order.index("wdo_plus") == 4 and len(order) == 12
+    assert order[:4] == ["nlshade_rsp", "jso", "lshade", "cmaes"]
     readme = " ".join((root / "README.md").read_text(encoding="utf-8").split())
-    assert "WDO+ ranks 4th of 7, behind jSO, NL-SHADE-RSP and L-SHADE" in readme
+    assert "WDO+ ranks 5th of 12, behind NL-SHADE-RSP, jSO, L-SHADE and CMA-ES" in readme
+    assert "fifth of these twelve, behind NL-SHADE-RSP, jSO, L-SHADE and CMA-ES" in doc
+    assert order[5:] == ["mewdo", "gwo", "wdo", "woa", "mawdo", "random", "awdo"]
+    assert "MEWDO sixth, WDO eighth, MAWDO tenth and\nAWDO last, behind random search" in doc
     by = {(r["algorithm"], r["official"]): r["mean"] for r in rows}
     better = sum(by["wdo_plus", f] < by["jso", f] for f in range(1, 31))
     worse = sum(by["wdo_plus", f] > by["jso", f] for f in range(1, 31))
     assert (better, worse) == (7, 22)
     assert "better than jSO on 7 of\nthe 30 functions and worse on 22" in doc
+    vs_cmaes = [sum(cmp(by["wdo_plus", f], by["cmaes", f]) for f in range(1, 31)) for cmp in
+                (float.__lt__, float.__gt__)]  # fmt: skip
+    assert vs_cmaes == [7, 22] and "(against CMA-ES: 7 and 22 as well)" in doc
     groups = {"compositions": range(21, 31), "rest": range(1, 21)}
     comp = list(friedman_ranks([r for r in rows if r["official"] in groups["compositions"]]))
     assert comp[:2] == ["nlshade_rsp", "wdo_plus"]
     for fs in (range(1, 4), range(4, 11), range(11, 21)):
-        assert list(friedman_ranks([r for r in rows if r["official"] in fs])).index("wdo_plus") == 3
+        ranked = list(friedman_ranks([r for r in rows if r["official"] in fs]))
+        assert ranked.index("wdo_plus") == 4 and "cmaes" in ranked[:4]
