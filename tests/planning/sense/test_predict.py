@@ -223,3 +223,15 @@ def test_the_held_tube_covers_up_to_tube_horizon_and_not_far_beyond():
     assert share[:5].mean() < 0.02  # measured 0.005
     assert share[4] < 0.05  # at tube_horizon itself: 0.025 (2 s.d.s of the sum bound)
     assert share[5] > 0.3  # 20 steps ahead the held radius is too small: 0.86
+
+
+def test_a_disc_a_hair_from_its_stop_gives_increasing_knot_times():
+    # the stop comes 2e-14 steps ahead: added to step 1000 it does not move the time, and a
+    # repeated knot time would be a track the planner refuses
+    r = 6.0
+    trk = Tracks(np.array([1]), np.array([[100.0 - r - 1e-13, 50.0]]),
+                 np.array([[5.0, 0.0]]), np.array([r]), np.zeros(1), np.zeros(1))  # fmt: skip
+    (pred,) = PREDICTORS["constant_velocity"].predict(trk, 1000.0, 50.0, BOX)
+    times = pred.motion.times
+    assert np.all(np.diff(times) > 0) and times[0] == 1000.0 and times[-1] == 1050.0
+    assert np.allclose(pred.motion.offset(np.array([1000.0, 1050.0])), 0.0, atol=1e-12)

@@ -114,11 +114,13 @@ def _check_window(now, horizon, bounds) -> tuple[float, float, np.ndarray]:
 
 
 def _knot_times(now: float, horizon: float, inner=()) -> np.ndarray:
-    """``now``, the inner look-aheads strictly inside ``(0, horizon)``, ``now + horizon``."""
+    """``now``, the inner look-aheads strictly inside ``(0, horizon)``, ``now + horizon``;
+    strictly increasing: a look-ahead too small to move ``now`` in floating point (a disc a
+    hair from where it stops) is dropped, not repeated."""
     inner = np.asarray(inner, dtype=float).reshape(-1)
     inner = inner[(inner > 0.0) & (inner < horizon)]
-    ahead = np.unique(np.concatenate(([0.0], inner, [horizon])))
-    return now + ahead
+    times = now + np.unique(np.concatenate(([0.0], inner, [horizon])))
+    return times[np.concatenate(([True], np.diff(times) > 0.0))]
 
 
 def tube_radius(
