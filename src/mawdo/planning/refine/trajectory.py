@@ -42,7 +42,7 @@ import math
 import numpy as np
 from numba import njit
 
-__all__ = ["SmoothPath", "brake_bound", "route_stops", "speed_pass"]
+__all__ = ["SmoothPath", "brake_bound", "route_stops", "speed_pass", "turn_angle"]
 
 #: Share of the acceleration limit a step touching an arc may use for its change of speed.
 ARC_ACCEL = 0.8
@@ -59,10 +59,9 @@ MAX_ROUND_TURN = 2.6
 STRAIGHT = 1e-9
 
 
-def _turn(din, dout) -> float:
-    """Angle (radians, in [0, pi]) between two unit headings."""
-    cross, dot = din[0] * dout[1] - din[1] * dout[0], float(din @ dout)
-    return abs(math.atan2(cross, dot))
+def turn_angle(a, b) -> float:
+    """Angle (radians, in [0, pi]) between two directions ``a`` and ``b`` (any lengths > 0)."""
+    return abs(math.atan2(a[0] * b[1] - a[1] * b[0], float(a @ b)))
 
 
 @njit(cache=True)
@@ -100,8 +99,7 @@ def route_stops(points, times, eps: float = 1e-9):
     keep = [groups[0]]
     for g, nxt in zip(groups[1:-1], groups[2:], strict=True):
         a, b = g[0] - keep[-1][0], nxt[0] - g[0]
-        ang = abs(math.atan2(a[0] * b[1] - a[1] * b[0], float(a @ b)))
-        if ang > 1e-6 or g[2] - g[1] > eps:
+        if turn_angle(a, b) > 1e-6 or g[2] - g[1] > eps:
             keep.append(g)
     if len(groups) > 1:
         keep.append(groups[-1])
@@ -124,7 +122,7 @@ class SmoothPath:
         self.regions, self.leg = [], []
         for i in range(len(V) - 1):
             e_out = e[i] if i + 1 < len(V) - 1 else 0.0
-            if e_out > 0.0 and _turn(u[i], u[i + 1]) <= STRAIGHT:  # no corner to round (a
+            if e_out > 0.0 and turn_angle(u[i], u[i + 1]) <= STRAIGHT:  # no corner to round (a
                 e_out = 0.0  # wait on a straight line): an arc would have an infinite radius
             end = V[i + 1] - u[i] * e_out
             self._add(("line", at, end), starts, s)
@@ -134,8 +132,8 @@ class SmoothPath:
             s += n
             if e_out > 0.0:
                 din, dout = u[i], u[i + 1]
-                cross, dot = din[0] * dout[1] - din[1] * dout[0], float(din @ dout)
-                theta = abs(math.atan2(cross, dot))
+                cross = din[0] * dout[1] - din[1] * dout[0]
+                theta = turn_angle(din, dout)
                 R = e_out / math.tan(0.5 * theta)
                 sign = 1.0 if cross > 0 else -1.0
                 centre = end + R * sign * np.array([-din[1], din[0]])

@@ -48,6 +48,7 @@ from mawdo.planning.refine.trajectory import (
     SmoothPath,
     route_stops,
     speed_pass,
+    turn_angle,
 )
 from mawdo.planning.safety.kinematics import SLACK, project, turned, wanted_step
 
@@ -72,10 +73,6 @@ REPAIRS = 4
 SLOWER = 0.85
 #: Tolerance (px) of :func:`replay`: the run's step must give back the planned position.
 REPLAY_TOL = 1e-9
-
-
-def _angle(a, b) -> float:
-    return abs(math.atan2(a[0] * b[1] - a[1] * b[0], float(a @ b)))
 
 
 class RoutePlan:
@@ -108,7 +105,7 @@ class RoutePlan:
         n = len(V)
         d = np.diff(V, axis=0)
         self.u = d / np.hypot(d[:, 0], d[:, 1])[:, None]
-        self.theta = np.array([_angle(self.u[i - 1], self.u[i]) for i in range(1, n - 1)])
+        self.theta = np.array([turn_angle(self.u[i - 1], self.u[i]) for i in range(1, n - 1)])
         accel_on, free = limits.accel is not None, limits.turn is None
         # each leg's mean speed on the route, as a share of the speed cap
         self.leg_share = np.hypot(d[:, 0], d[:, 1]) / np.maximum(arrive[1:] - depart[:-1], 1e-9)
@@ -154,7 +151,7 @@ class RoutePlan:
         w0 = float(np.hypot(*self.vel))
         for a, b in zip(stops[:-1], stops[1:], strict=True):
             if w0 > 0.0:  # a moving start: the route's first leg goes on along the velocity
-                if _angle(self.vel, self.u[a]) > 1e-6:
+                if turn_angle(self.vel, self.u[a]) > 1e-6:
                     return None
             else:
                 k = self._stand(a, len(pts) - 1, heading, still)
@@ -173,7 +170,7 @@ class RoutePlan:
         """Steps to stand at stop ``i`` (reached at step ``t`` after ``t0``) before leaving."""
         k = 0
         if heading is not None and math.isfinite(self.turn):
-            k = math.ceil(_angle(heading, self.u[i]) / self.turn - 1e-12) - 1 - still
+            k = math.ceil(turn_angle(heading, self.u[i]) / self.turn - 1e-12) - 1 - still
         if math.isfinite(self.a) and i > 0:
             k = max(k, 1 - still)  # a step at rest between the last move in and the first out
         if i in self._held:

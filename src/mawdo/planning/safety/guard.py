@@ -183,20 +183,29 @@ class Guard:
     def step_clearances(self, pos, to, t: float, dt: float) -> tuple[float, float]:
         """:meth:`step_clearance`, and the same to the static obstacles and the border only
         (px): the part of it that only the robot's own motion can make negative."""
-        rep = check_trajectory(np.vstack([pos, to]), self.scenario, times=np.array([t, t + dt]))
-        border = -rep.border_excess
-        static = self.scenario.static_indices
-        walls = float(rep.clearance[:, static].min()) if static and rep.clearance.size else np.inf
-        return min(float(rep.min_clearance), border), min(walls, border)
+        return self._clearances(self._step_check(pos, to, t, dt)[2])
 
     def causes_contact(self, pos, to, t: float, dt: float) -> bool:
         """The straight move ``pos -> to`` over ``dt`` steps touches an obstacle (at its
         modelled size) while moving toward it: a contact the judge would put down to the robot
         (:func:`~mawdo.planning.judge.fault.blame`); a wait never does."""
+        return self._own_contact(*self._step_check(pos, to, t, dt))
+
+    def _step_check(self, pos, to, t: float, dt: float):
+        """The checker's report on the straight move ``pos -> to`` over ``dt`` steps from
+        ``t``: ``(points, times, report)``."""
+        pts, times = np.vstack([pos, to]), np.array([t, t + dt])
+        return pts, times, check_trajectory(pts, self.scenario, times=times)
+
+    def _clearances(self, rep) -> tuple[float, float]:
+        border = -rep.border_excess
+        static = self.scenario.static_indices
+        walls = float(rep.clearance[:, static].min()) if static and rep.clearance.size else np.inf
+        return min(float(rep.min_clearance), border), min(walls, border)
+
+    def _own_contact(self, pts, times, rep) -> bool:
         from mawdo.planning.judge.fault import blame
 
-        pts, times = np.vstack([pos, to]), np.array([t, t + dt])
-        rep = check_trajectory(pts, self.scenario, times=times)
         return bool(rep.collisions) and bool(blame(pts, times, self.scenario, rep.collisions)[0])
 
     def ahead_clearance(self, pos, to, t: float, dt: float) -> float:
@@ -218,7 +227,8 @@ class Guard:
         v = self.scenario.robot_speed * dt
         dirs = unit_headings(16)
         moves = np.vstack([pos, pos + v * dirs, pos + 0.5 * v * dirs])
-        clear, walls = np.array([self.step_clearances(pos, m, t, dt) for m in moves]).T
+        checks = [self._step_check(pos, m, t, dt) for m in moves]  # each move checked once
+        clear, walls = np.array([self._clearances(c[2]) for c in checks]).T
         safe = clear >= self.clearance
         if safe.any():
             idx = np.nonzero(safe)[0]
@@ -232,7 +242,7 @@ class Guard:
         else:  # none keeps the margin: never into a wall or off the map if any move stays out
             out = walls >= 0.0
             # nor into a contact of its own making, if any move is free of one (waiting is)
-            free = out & ~np.array([self.causes_contact(pos, m, t, dt) for m in moves])
+            free = out & ~np.array([self._own_contact(*c) for c in checks])
             out = free if free.any() else out
             ahead = np.array([self.ahead_clearance(pos, m, t, dt) for m in moves])
             key = np.where(out, ahead, -np.inf) if out.any() else ahead
