@@ -3,14 +3,16 @@
 Worlds are drawn by :func:`world` (seeded): constant-velocity discs (bouncing at the border),
 static polygons sized to the map and their count, start and goal in opposite corners; a draw
 whose static map cuts the start off from the goal (the exact oracle, :mod:`mawdo.planning.guide
-.oracle`) or that the scenario validation refuses is drawn again. Per size one realtime
-``mawdo`` run of ``--steps`` steps: the first plan (from the call to the first step: roadmap,
+.oracle`) or that the scenario validation refuses is drawn again. Per size one ``mawdo`` run of
+``--steps`` steps under the planner preset ``--preset`` (default ``large``: the safe-interval
+guide trusts the predictions 120 steps ahead; the reference world also under ``realtime``, which
+looks as far as the guide's horizon): the first plan (from the call to the first step: roadmap,
 guides, first optimisation) and the replans after it (p50, p95), CPU seconds
-(``time.process_time``: the machine is shared), and the CPU per stage (:class:`StageClock`:
-each stage's own time, the stages it calls taken out); then the same run again for the peak of
-traced Python memory (:mod:`tracemalloc`; Numba's arrays are NumPy arrays and count). Traced
-apart: tracemalloc records a traceback at every allocation, Numba's arrays inside the compiled
-kernels included, which doubled the safe-interval search's CPU on the reference world.
+(``time.process_time``: the machine is shared), and the CPU per stage (:class:`StageClock`: each
+stage's own time, the stages it calls taken out); then the same run again for the peak of traced
+Python memory (:mod:`tracemalloc`; Numba's arrays are NumPy arrays and count). Traced apart:
+tracemalloc records a traceback at every allocation, Numba's arrays inside the compiled kernels
+included, which doubled the safe-interval search's CPU on the reference world.
 
 Three sweeps, each from the reference world (1000 x 1000 px, 200 movers, 40 polygons): movers
 10 -> 100 -> 1000, static polygons 10 -> 100 -> 300, map 366 -> 1000 -> 2000 px (movers and
@@ -152,11 +154,11 @@ class StageClock:
         self._saved.clear()
 
 
-def run_world(sc, steps: int, seed: int = 0) -> dict:
-    """One realtime ``mawdo`` run of at most ``steps`` steps: first-plan and replan CPU (s),
-    traced peak memory (MiB; from a second, untimed run), CPU per stage (s; ``other``: the rest
-    of the run: the static guide, the waiting spots, the optimiser's Python), success of the
-    steps driven."""
+def run_world(sc, steps: int, seed: int = 0, preset: str = "large") -> dict:
+    """One ``mawdo`` run (planner preset ``preset``) of at most ``steps`` steps: first-plan and
+    replan CPU (s), traced peak memory (MiB; from a second, untimed run), CPU per stage (s;
+    ``other``: the rest of the run: the static guide, the waiting spots, the optimiser's
+    Python), success of the steps driven."""
     from mawdo.planning.run.planner import plan
 
     marks = []
@@ -166,12 +168,12 @@ def run_world(sc, steps: int, seed: int = 0) -> dict:
 
     t0 = time.process_time()
     with StageClock() as clock:
-        res = plan(sc, "mawdo", seed=seed, max_steps=steps, progress=mark)
+        res = plan(sc, "mawdo", seed=seed, config=preset, max_steps=steps, progress=mark)
     total = time.process_time() - t0
     # the memory from a run of its own, untimed: the same run (same seed) of a copy of the world,
     # which finds nothing the first built in the caches kept per world (roadmap, guides)
     tracemalloc.start()
-    plan(copy.deepcopy(sc), "mawdo", seed=seed, max_steps=steps)
+    plan(copy.deepcopy(sc), "mawdo", seed=seed, config=preset, max_steps=steps)
     peak = tracemalloc.get_traced_memory()[1] / 2**20
     tracemalloc.stop()
     first = marks[1][0] - t0 if len(marks) > 1 else total
@@ -257,16 +259,20 @@ def main(argv=None) -> None:
     ap.add_argument("--steps", type=int, default=4, help="steps driven per run")
     ap.add_argument("--figure", default="out/bench/scaling.png")
     ap.add_argument("--only", default="", help="reference world only ('ref')")
+    ap.add_argument("--preset", default="large",
+                    help="planner preset of the sweeps (default large; the reference world "
+                         "is also run under realtime)")  # fmt: skip
     a = ap.parse_args([] if argv is None else argv)
     run_world(world(366.0, 5, 5, seed=99), steps=2)  # compile / load the kernels
     sc = world(REF["size"], REF["movers"], REF["polygons"])
-    r = run_world(sc, a.steps)
-    p95 = np.percentile(r["replans"], 95) if r["replans"].size else np.nan
-    print(f"reference {REF['size']:g} px, {REF['movers']} movers, {REF['polygons']} polygons, "
-          f"{a.steps} steps (CPU):\n  {_fmt(r)}\n  first plan {r['first']:.2f} s (<= "
-          f"{TARGET_FIRST:g} {_flag(r['first'] <= TARGET_FIRST)}), replan p95 "
-          f"{1e3 * p95:.1f} ms (<= {1e3 * TARGET_REPLAN:g} {_flag(p95 <= TARGET_REPLAN)})",
-          flush=True)  # fmt: skip
+    for preset in dict.fromkeys(("realtime", a.preset)):
+        r = run_world(sc, a.steps, preset=preset)
+        p95 = np.percentile(r["replans"], 95) if r["replans"].size else np.nan
+        print(f"reference {REF['size']:g} px, {REF['movers']} movers, {REF['polygons']} "
+              f"polygons, preset {preset}, {a.steps} steps (CPU):\n  {_fmt(r)}\n  first plan "
+              f"{r['first']:.2f} s (<= {TARGET_FIRST:g} {_flag(r['first'] <= TARGET_FIRST)}), "
+              f"replan p95 {1e3 * p95:.1f} ms (<= {1e3 * TARGET_REPLAN:g} "
+              f"{_flag(p95 <= TARGET_REPLAN)})", flush=True)  # fmt: skip
     if a.only == "ref":
         return
     results = {}
@@ -274,7 +280,7 @@ def main(argv=None) -> None:
         rows = []
         for k, (L, m, p) in sizes:
             try:
-                rr = run_world(world(L, m, p), a.steps)
+                rr = run_world(world(L, m, p), a.steps, preset=a.preset)
             except (ValueError, RuntimeError) as exc:  # a size the planner refuses
                 print(f"  {name} {k:>6g}: refused: {exc}", flush=True)
                 continue

@@ -91,7 +91,7 @@ def run_case(scene: str, seed: int, overrides: dict):
 ADDED_DEFAULTS = {
     "robot_caused": None, "other_collisions": None, "units": "px", "dt": None, "resolution": None,
     "file_spec": None, "derived_units": None, "crowd": None, "check": None, "comfort": 0.0,
-    "comfort_weight": 8.0, "refine_trajectory": True,
+    "comfort_weight": 8.0, "refine_trajectory": True, "guide_lookahead": None,
 }  # fmt: skip
 
 

@@ -200,7 +200,10 @@ def run_cmd(
     ),
     algorithm: str = typer.Option("mawdo", "--algorithm", "-a", help="registered optimizer"),
     seed: int = typer.Option(0, min=0, help="seed of the run (an integer >= 0)"),
-    preset: str = typer.Option("realtime", help="planner preset: realtime, paper or quick"),
+    preset: str = typer.Option(
+        "realtime",
+        help="planner preset: realtime, large (worlds far larger than the paper's), paper or quick",
+    ),
     static: bool = typer.Option(False, "--static", help="plan once on the map frozen at t=0"),
     out: Path = typer.Option(Path("out/plan"), help="output folder (metrics.json, figures)"),
     figures: bool = typer.Option(True, help="write the snapshot grid and the GIF"),

@@ -62,15 +62,26 @@ class TimeGuide:
         edge from rest to rest in whole steps, turns in place, and a moving robot first
         brakes (``profile``; :mod:`mawdo.planning.guide.sipp.profiled`). Else (None, or a speed
         limit alone) instant starts, stops and turns at the scenario's speed.
+    lookahead : float, optional
+        Time steps (> 0) over which each query trusts the movers' predicted motion (the
+        :class:`~mawdo.planning.guide.sipp.guide.SafeIntervalGuide`'s ``lookahead``); None: the
+        whole horizon.
     """
 
     def __init__(
-        self, scenario: Scenario, clearance: float, k: int, static_routes=(), limits=None
+        self,
+        scenario: Scenario,
+        clearance: float,
+        k: int,
+        static_routes=(),
+        limits=None,
+        lookahead: float | None = None,
     ) -> None:
         from mawdo.planning.guide.sipp.optimum import dodge_spots
         from mawdo.planning.guide.sipp.roadmap import usable_spots
 
         self.scenario, self.clearance, self.k = scenario, float(clearance), int(k)
+        self.lookahead = lookahead
         spots = np.vstack([scenario.spots] + [dodge_spots(r, scenario) for r in static_routes])
         self.spots = usable_spots(scenario, self.clearance, np.unique(spots, axis=0))
         self.limits, self.profile = limits, None
@@ -94,7 +105,7 @@ class TimeGuide:
         try:
             guide = SafeIntervalGuide(
                 self.scenario, start=pos, t0=float(t), clearance=self.clearance,
-                spots=self.spots, profile=self.profile, lead=lead,
+                spots=self.spots, profile=self.profile, lead=lead, lookahead=self.lookahead,
             )  # fmt: skip
             self.last = guide
             return guide.routes(self.k)
@@ -181,9 +192,22 @@ class TimedRun:
         return self.timer is not None and self.timer.profile is not None
 
     def _on_route(self, pos, t: float) -> bool:
-        """``pos`` is where the followed timed route is at time ``t``."""
+        """``pos`` is where the followed timed route is at time ``t``, and the route was
+        checked against the movers' predicted motion far enough past ``t``
+        (:meth:`_checked_past`)."""
         route = self.following
-        return route is not None and bool(np.max(np.abs(pos - position_at(route, t))) <= 1e-9)
+        if route is None or not self._checked_past(route, t):
+            return False
+        return bool(np.max(np.abs(pos - position_at(route, t))) <= 1e-9)
+
+    def _checked_past(self, route, t: float) -> bool:
+        """A route checked until its ``checked_until`` (a query's lookahead) is kept from time
+        ``t`` only while that covers the next replan and the rule's horizon: after it the
+        guide is asked again (the rule checks every step in any case)."""
+        if route.checked_until == np.inf:
+            return True
+        ahead = max(self.cfg.replan_every, self.ics.horizon if self.ics is not None else 0)
+        return route.checked_until >= t + ahead
 
     def _timed_keeps(self, to, step: int) -> bool:
         """With a profile: the step to ``to`` is the followed route's, and the route's rest
@@ -257,7 +281,8 @@ class TimedRun:
         route, t = self.following, float(step)
         ahead = route.times > t
         pts = np.vstack([position_at(route, t), route.points[ahead]])
-        return TimedRoute(pts, np.concatenate([[t], route.times[ahead]]), route.states)
+        times = np.concatenate([[t], route.times[ahead]])
+        return TimedRoute(pts, times, route.states, route.checked_until)
 
     def _kept_route(self, pos, step: int):
         """With a profile, the followed route's rest (a path from ``pos``) while the robot is

@@ -387,7 +387,9 @@ class TrajectoryRefiner:
         from mawdo.planning.guide.sipp.guide import TimedRoute
 
         self.refined += 1
-        return TimedRoute(P, plan.t0 + np.arange(len(P), dtype=float), route.states)
+        return TimedRoute(
+            P, plan.t0 + np.arange(len(P), dtype=float), route.states, route.checked_until
+        )
 
     def _verified(self, P, plan: RoutePlan, mv) -> bool:
         """Strictly earlier than the route, free of every break, driven as planned by the run

@@ -95,7 +95,7 @@ class CarriedMotion:
         route = self.route
         if route is None or route.times[-1] <= 1.0:
             return None
-        moved = TimedRoute(route.points, route.times - 1.0, route.states)
+        moved = TimedRoute(route.points, route.times - 1.0, route.states, route.checked_until - 1.0)
         if np.max(np.abs(position_at(moved, 0.0) - np.asarray(position, float))) > 1e-9:
             return None
         return moved

@@ -123,6 +123,15 @@ class PlannerConfig:
     time_routes : int
         Timed routes per query of that guide (>= 1): the earliest arrival and up to
         ``time_routes - 1`` time-diverse alternatives, all seeds.
+    guide_lookahead : float or None
+        Time steps (> ``ics_horizon`` and >= ``replan_every``) over which the safe-interval
+        guide trusts the movers' predicted motion at each query; beyond it its routes are
+        timed on the static map, and a followed route is asked again before the robot comes
+        within ``ics_horizon`` steps of that end. None (default): the guide's whole horizon.
+        Large worlds plan far faster with it (a search's work grows with the time it looks
+        ahead, not with the route), at the price of routes that may meet a conflict the guide
+        did not yet look at; every step is still checked by the guard and the rule with the
+        whole prediction.
     ics_horizon : int
         Receding horizon: prediction horizon (time steps, >= 0; 0 turns the rule off) of the
         rule that never drives into an inevitable collision (:mod:`mawdo.planning.safety.ics`): a
@@ -179,6 +188,7 @@ class PlannerConfig:
     threads: int = 1
     time_guide: bool = True
     time_routes: int = 2
+    guide_lookahead: float | None = None
     ics_horizon: int = 30
     refine_trajectory: bool = True
     max_speed: float | None = None
@@ -220,6 +230,7 @@ class PlannerConfig:
         check_int("PlannerConfig.threads", self.threads, 1)
         check_int("PlannerConfig.time_routes", self.time_routes, 1)
         check_int("PlannerConfig.ics_horizon", self.ics_horizon, 0)
+        _check_lookahead(self)
         _check_limits(self)
         for name in ("time_guide", "refine_trajectory"):
             if not isinstance(getattr(self, name), bool | np.bool_):
@@ -236,6 +247,21 @@ class PlannerConfig:
         for name in ("guide_routes", "guide_copies"):
             if getattr(self, name) < 0:
                 raise ValueError(f"PlannerConfig.{name}={getattr(self, name)!r} must be >= 0")
+
+
+def _check_lookahead(cfg: PlannerConfig) -> None:
+    """``guide_lookahead``: None, or a number past the rule's horizon and a replan's period
+    (a followed route must be checked for every step driven before the guide is asked again)."""
+    v = cfg.guide_lookahead
+    if v is None:
+        return
+    least = max(cfg.ics_horizon, cfg.replan_every - 1)
+    ok = isinstance(v, int | float | np.integer | np.floating) and not isinstance(v, bool)
+    if not (ok and v > least):
+        raise ValueError(
+            f"PlannerConfig.guide_lookahead={v!r} must be None or a number of time steps > "
+            f"{least} (more than ics_horizon and at least replan_every); e.g. 120"
+        )
 
 
 def _check_limits(cfg: PlannerConfig) -> None:
@@ -272,6 +298,9 @@ PRESETS = {
         pop_size=240, first_pop_size=1360, first_iters=300, replan_iters=15, **_AS_PUBLISHED
     ),
     "quick": PlannerConfig(pop_size=80, first_iters=60, replan_iters=5),
+    # real time on large worlds: the safe-interval guide trusts the predictions 120 steps
+    # ahead (its search then grows with that time, not with the route's)
+    "large": PlannerConfig(pop_size=240, first_iters=300, replan_iters=15, guide_lookahead=120.0),
     # single-shot queries in tens of milliseconds: the guide's routes do the topology, a short
     # refinement smooths them
     "fast": PlannerConfig(pop_size=40, first_iters=25, replan_iters=5, warm_copies=15),

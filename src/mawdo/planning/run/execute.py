@@ -131,7 +131,7 @@ class Run(DecidingRun, TimedRun, SafeRun, LimitedRun):
         # earliest arrival is the static guide's shortest route at full speed, already a seed
         timed = cfg.time_guide and dynamic and bool(sc.moving_indices)
         args = (sc, cfg.clearance, cfg.time_routes, self.routes, limits)  # limits: as driven
-        self.timer = TimeGuide(*args) if timed else None
+        self.timer = TimeGuide(*args, cfg.guide_lookahead) if timed else None
         self.refiner = self._make_refiner()
         self.following = None
         self.timed_follows = 0  # replans at which the guard chose a timed route

@@ -57,7 +57,7 @@ def plan(
     seed : int or numpy.random.SeedSequence
         Seed of the run; replan ``k`` uses the ``k``-th child of ``SeedSequence(seed)``.
     config : PlannerConfig or str, optional
-        Settings or a preset name (``"realtime"`` default, ``"paper"``, ``"quick"``).
+        Settings or a preset name (``"realtime"`` default, ``"large"``, ``"paper"``, ``"quick"``).
     dynamic : bool
         True: receding horizon, the robot moves and replans. False: one plan on the map frozen
         at t = 0 (single-shot static mode), executed without replanning.

@@ -23,7 +23,7 @@ from mawdo.planning.guide.sipp.intervals import safe_intervals
 from mawdo.planning.guide.sipp.profile import profile_table
 from mawdo.planning.guide.sipp.profiled import lead_clear, profile_points, profiled_search
 from mawdo.planning.guide.sipp.roadmap import Roadmap
-from mawdo.planning.guide.sipp.search import search
+from mawdo.planning.guide.sipp.search import timed_search
 from mawdo.planning.world.scenario import Scenario
 
 __all__ = ["SafeIntervalGuide", "TimedRoute"]
@@ -41,11 +41,15 @@ class TimedRoute:
         Time at each position (time steps), non-decreasing.
     states : tuple of int
         The (vertex, safe interval) states passed, as interval indices of the guide.
+    checked_until : float
+        Time (time steps) up to which the route was checked against the movers' predicted
+        motion: the query's ``t0 + lookahead`` (``inf``: to its end).
     """
 
     points: np.ndarray
     times: np.ndarray
     states: tuple[int, ...]
+    checked_until: float = math.inf
 
     @property
     def arrival(self) -> float:
@@ -95,6 +99,13 @@ class SafeIntervalGuide:
         rest (braking from its velocity at ``t0``); the search starts at the last one,
         ``j - 1`` steps after ``t0``, heading as the last move. Each step is checked like an
         edge; ``start`` is then ignored.
+    lookahead : float, optional
+        Time steps (> 0) over which the movers' predicted motion is trusted: the movers of
+        known motion are tested until ``t0 + lookahead`` and not after (the routes beyond it
+        are timed on the static map; random walkers taken as reachable sets grow without
+        end as before). None (default): the whole horizon. A route is then collision-free
+        (under the predictions) only until ``t0 + lookahead``
+        (:attr:`checked_until`); the run asks again well before then.
 
     Raises
     ------
@@ -114,6 +125,7 @@ class SafeIntervalGuide:
         segments: int = GUIDE_SEGMENTS,
         profile=None,
         lead=None,
+        lookahead: float | None = None,
     ) -> None:
         if not math.isfinite(t0) or t0 < 0:
             raise ValueError(f"t0 must be finite and >= 0 time steps, got {t0!r}")
@@ -136,9 +148,13 @@ class SafeIntervalGuide:
         if not math.isfinite(horizon) or horizon <= 0:
             raise ValueError(f"horizon must be finite and > 0 time steps, got {horizon!r}")
         self.t_end = self.t0 + float(horizon)
-        self.movers = self.roadmap.movers(self.t0, self.t_end, walkers)
+        if lookahead is not None and not lookahead > 0:
+            raise ValueError(f"lookahead must be > 0 time steps or None, got {lookahead!r}")
+        self.checked_until = self.t_end if lookahead is None else min(self.t_end, t0 + lookahead)
+        self.movers = self.roadmap.movers(self.t0, self.checked_until, walkers)
         self._mv = self.movers.arrays()
         self.ptr, self.lo, self.hi = safe_intervals(self.nodes, self.t0, self.t_end, self._mv)
+        self._v = float(scenario.robot_speed)
         if profile is not None:
             accel, turn = (float(x) for x in profile)
             v = float(scenario.robot_speed)
@@ -159,10 +175,11 @@ class SafeIntervalGuide:
     def _search(self, banned: np.ndarray):
         if self.profile is not None:
             return profiled_search(self, banned)
-        return search(
-            self.nodes, self.indptr, self.indices, self.weights, self.to_goal,
-            float(self.scenario.robot_speed), self.start, 0, self.t0, self.t_end, self.ptr,
-            self.lo, self.hi, banned, self._mv,
+        graph, v = (self.nodes, self.indptr, self.indices, self.weights, self.to_goal), self._v
+        return timed_search(
+            graph, self.roadmap.straight_moves(graph, v), (v, False, math.inf, False),
+            self.start, 0, self.t0, np.zeros(2), self.t_end, self.ptr, self.lo, self.hi, banned,
+            self._mv,
         )  # fmt: skip
 
     def _route(self, goal_state, arrival, parent, depart) -> TimedRoute:
@@ -188,7 +205,9 @@ class SafeIntervalGuide:
                 pts, times = pts + inner, times + at
             pts.append(self.nodes[v])
             times.append(float(arrival[chain[j]]))
-        return TimedRoute(np.array(pts, dtype=float), np.array(times, dtype=float), tuple(chain))
+        until = self.checked_until if self.checked_until < self.t_end else math.inf
+        pts, times = np.array(pts, dtype=float), np.array(times, dtype=float)
+        return TimedRoute(pts, times, tuple(chain), until)
 
     def routes(self, k: int = 1) -> list[TimedRoute]:
         """The earliest-arrival route and up to ``k - 1`` time-diverse alternatives.

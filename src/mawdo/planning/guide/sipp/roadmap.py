@@ -142,6 +142,7 @@ class Roadmap:
         self.flat = FlatObstacles.from_obstacles(moving, scenario.robot_radius + clearance)
         self._moving = moving
         self._knots: dict[int, tuple[float, np.ndarray, np.ndarray]] = {}
+        self._moves: dict[float, tuple] = {}  # straight_moves per speed (and room for a start)
         # pieces over a window that holds a usual query (twice the default horizon of a
         # route across the map), so that queries only slice them
         diag = math.hypot(scenario.width, scenario.height)
@@ -211,6 +212,27 @@ class Roadmap:
         i0 = max(int(np.searchsorted(t, t0, side="right")) - 1, 0)
         i1 = int(np.searchsorted(t, t_end, side="left"))
         return t[i0 : i1 + 1], off[i0 : i1 + 1]
+
+    def straight_moves(self, graph, speed: float) -> tuple:
+        """:func:`~mawdo.planning.guide.sipp.search.straight_moves` of ``graph`` (a
+        :meth:`with_start` of this roadmap) at ``speed`` (px per step): the roadmap's own
+        edges' rows are made once per speed and kept, the start's written at each call (into
+        room kept after them). The rows are views of the kept tables, valid until the next
+        call: hand them to one search, then drop them."""
+        from mawdo.planning.guide.sipp.search import straight_rows
+
+        nodes, indptr, indices, weights, _ = graph
+        E, n = len(self.weights), len(self.nodes)
+        kept = self._moves.get(float(speed))
+        if kept is None:
+            edge, piece = np.zeros((E + n, 3)), np.zeros((E + n, 8))
+            straight_rows(edge, piece, self.nodes, self.indptr, self.indices, self.weights,
+                          float(speed), 0)  # fmt: skip
+            kept = self._moves[float(speed)] = (np.arange(E + n + 1), edge, piece)
+        eptr, edge, piece = kept
+        top = len(weights)
+        straight_rows(edge, piece, nodes, indptr, indices, weights, float(speed), n)
+        return eptr[: top + 1], edge[:top], piece[:top]
 
     def movers(self, t0: float, t_end: float, walkers: str) -> Movers:
         """The moving obstacles over ``[t0, t_end]`` (see :class:`Movers`)."""

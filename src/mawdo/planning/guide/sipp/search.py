@@ -76,6 +76,7 @@ __all__ = [
     "search_limited",
     "start_state",
     "straight_moves",
+    "straight_rows",
     "timed_search",
 ]
 
@@ -99,17 +100,27 @@ def straight_moves(nodes, indptr, indices, weights, speed):
     """
     E = len(weights)
     edge, piece = np.zeros((E, 3)), np.zeros((E, 8))
-    for u in range(len(indptr) - 1):
+    straight_rows(edge, piece, nodes, indptr, indices, weights, speed, 0)
+    return np.arange(E + 1), edge, piece
+
+
+@njit(cache=True)
+def straight_rows(edge, piece, nodes, indptr, indices, weights, speed, first):
+    """Write :func:`straight_moves`'s rows of the edges out of the vertices ``first ..
+    len(indptr) - 2`` into ``edge`` and ``piece`` (rows of other edges untouched): a roadmap
+    keeps its own edges' rows and writes each query's start's (the last vertex) only."""
+    for u in range(first, len(indptr) - 1):
         for e in range(indptr[u], indptr[u + 1]):
             v, T, L = indices[e], weights[e] / speed, weights[e]
             ux, uy, vx, vy = nodes[u, 0], nodes[u, 1], nodes[v, 0], nodes[v, 1]
             edge[e, 0] = piece[e, 5] = T
+            piece[e, 0] = 0.0
             piece[e, 1], piece[e, 2], piece[e, 6], piece[e, 7] = ux, uy, vx, vy
+            piece[e, 3] = piece[e, 4] = edge[e, 1] = edge[e, 2] = 0.0
             if T > 0.0:  # a zero-length edge (the start on a vertex): a move of no duration
                 piece[e, 3], piece[e, 4] = (vx - ux) / T, (vy - uy) / T
             if L > 0.0:
                 edge[e, 1], edge[e, 2] = (vx - ux) / L, (vy - uy) / L
-    return np.arange(E + 1), edge, piece
 
 
 @njit(cache=True)
@@ -304,6 +315,9 @@ def timed_search(graph, moves, kin, start, goal, t_start, h0, t_end, ptr, lo, hi
     lsrc, ledge, made = np.empty(16, np.int64), np.empty(16, np.int64), 0
     # per state: its rank among the expanded ones, and the edge its arrival came by
     rank, via, expanded = np.full(S, -1, np.int64), np.full(S, -1, np.int64), 0
+    # no mover is tested after t_free (its pieces end there; reachable sets never end): a
+    # move from a vertex reached after it is free at its first departure, as _depart finds
+    t_free = _movers_end(mv)
     most = 0  # most safe intervals of a vertex: the most entries one edge makes
     for q in range(len(ptr) - 1):
         most = max(most, ptr[q + 1] - ptr[q])
@@ -326,7 +340,10 @@ def timed_search(graph, moves, kin, start, goal, t_start, h0, t_end, ptr, lo, hi
             # (as when it was made; the arrival and the bound may have fallen since)
             if x + T + hv > bound or not _may_win(x + T, J, sid, e, arrival, parent, rank, via):
                 continue
-            tau = _depart(moves, e, nodes[u, 0], nodes[u, 1], a, T, x, top, hi[J], whole, mv)
+            if a >= t_free and x <= top and x + T < hi[J]:  # no mover left: x is free
+                tau = x
+            else:
+                tau = _depart(moves, e, nodes[u, 0], nodes[u, 1], a, T, x, top, hi[J], whole, mv)
             if not _may_win(tau + T, J, sid, e, arrival, parent, rank, via):
                 continue
             if tau + T < arrival[J]:
@@ -382,6 +399,20 @@ def timed_search(graph, moves, kin, start, goal, t_start, h0, t_end, ptr, lo, hi
                 ln = heap_put(lkeys, lids, ln, key, x + T, (J << _SHIFT) | made)
                 made += 1
     return -1, arrival, parent, depart
+
+
+@njit(cache=True)
+def _movers_end(mv):
+    """The time (time steps) after which no mover of ``mv`` is tested: the end of its last
+    piece; ``inf`` with a reachable set (it grows without end)."""
+    kind, pt1 = mv[0], mv[12]
+    for m in range(len(kind)):
+        if kind[m] == 1:
+            return math.inf
+    end = -math.inf
+    for k in range(len(pt1)):
+        end = max(end, pt1[k])
+    return end
 
 
 @njit(cache=True, inline="always")
