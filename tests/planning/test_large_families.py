@@ -261,7 +261,9 @@ def test_crowd_discs_cross_the_robots_line_in_their_shares():
         for o in patrols:
             a, b = (np.asarray(o["center"]) + w for w in o["motion"]["waypoints"])
             assert o["motion"]["cycle"] == "back_and_forth"
-            assert shapely.LineString([a, b]).intersects(line)
+            assert line.distance(shapely.Point(0.5 * (a + b))) < 1e-6  # centred on the line
+            u = (b - a) / np.hypot(*(b - a))
+            assert abs(u @ (goal - start)) / math.dist(start, goal) <= 0.5 + 1e-9  # <= 30 deg off
         r = sc.robot_radius
         assert all(0.75 * r - 1e-9 <= o["radius"] <= 2.0 * r + 1e-9 for o in movers)
         assert 6 <= len(_statics(data)) <= 12  # statics = 12: at least half as many

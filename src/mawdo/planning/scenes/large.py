@@ -99,19 +99,27 @@ def _mover_counts(p: dict, shares: tuple[str, ...]) -> list[int]:
 # --- crowd-large: an open world whose traffic crosses the robot's corridor ------------------
 
 
+def _reach(c: np.ndarray, u: np.ndarray, lo: float, hi: float) -> float:
+    """The largest ``t`` with both ``c + t u`` and ``c - t u`` in ``[lo, hi]^2`` (pixels;
+    negative when ``c`` itself is outside)."""
+    room = np.minimum(hi - c, c - lo)
+    return float(np.min(np.where(u != 0.0, room / np.where(u != 0.0, np.abs(u), 1.0), np.inf)))
+
+
 def _cross_patrol(rng, p: dict, start, goal, rad: float) -> dict:
     """A disc patrolling across the straight start-goal line: through a point 10-90 % of the
     way, up to 30 degrees off perpendicular, 3-12 (radius + robot radius) to either side
-    (clipped to the map)."""
+    (less where the map ends: the patrol stays symmetric about the line's point)."""
     s, r = p["size"], p["robot_radius"]
     d = (goal - start) / math.dist(start, goal)
     for _ in range(40):
         mid = start + rng.uniform(0.1, 0.9) * (goal - start)
         ang = rng.uniform(-math.pi / 6, math.pi / 6)
         u = math.cos(ang) * np.array([-d[1], d[0]]) + math.sin(ang) * d
-        half = rng.uniform(3.0, 12.0) * (rad + r)
-        a, b = (np.clip(mid + k * half * u, rad, s - rad) for k in (-1.0, 1.0))
-        ob = patrol_disc(rng, p, a, b, rad)
+        half = min(rng.uniform(3.0, 12.0) * (rad + r), _reach(mid, u, rad, s - rad))
+        if half <= 0.0:
+            continue
+        ob = patrol_disc(rng, p, mid - half * u, mid + half * u, rad)
         if _keep_clear(ob, start, goal, p):
             return ob
     raise Redraw("no room for a patrol across the robot's line away from start and goal")
