@@ -55,7 +55,8 @@ def _plan(suite, n, algorithms, baselines, seed, planner, params, batch_size, op
 def run_cmd(
     suite: str = typer.Option(
         "arena-default",
-        help="comma-separated scene families, or a preset (arena-default, arena-quick)",
+        help="comma-separated scene families, or a preset (arena-default, arena-quick, "
+        "arena-large: 1000 px worlds with 200 movers, minutes a scene)",
     ),
     n: int = typer.Option(None, "--n", help="scenes per family (override)"),
     algorithms: str = typer.Option(None, help="comma-separated optimizers, e.g. mawdo,woa,gwo"),

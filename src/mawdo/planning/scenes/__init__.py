@@ -7,7 +7,8 @@
 Families (:data:`FAMILIES`): ``open``, ``forest``, ``rooms``, ``maze``, ``u_trap``, ``narrow``
 (static), ``crossing``, ``dense``, ``movingai`` (with moving obstacles), and the families
 where time decides (each scene has its earliest arrival ``T*``): ``corridor``,
-``doorway``, ``chaser``, ``crowd``, ``parked``, ``slalom``. ``describe_family``
+``doorway``, ``chaser``, ``crowd``, ``parked``, ``slalom``, and at scale (1000-2000 px,
+100-500 movers) ``crowd-large`` and ``warehouse-large``. ``describe_family``
 lists a family's parameters with their ranges. A scene is a pure function of
 ``(family, params, seed, index)`` (see :mod:`mawdo.planning.scenes.base`).
 """
@@ -26,6 +27,7 @@ from mawdo.planning.scenes.base import (
     build_scene,
 )
 from mawdo.planning.scenes.lanes import CORRIDOR, DOORWAY, PARKED, SLALOM
+from mawdo.planning.scenes.large import CROWD_LARGE, WAREHOUSE_LARGE
 from mawdo.planning.scenes.movingai import MOVINGAI
 from mawdo.planning.scenes.pursuit import CHASER, CROWD
 from mawdo.planning.scenes.static import FOREST, MAZE, OPEN, ROOMS
@@ -52,10 +54,13 @@ __all__ = [
 #: Registered scene families by name.
 FAMILIES: Registry[Family] = Registry("scene family")
 #: Families where time decides: each scene stores its earliest arrival ``T*``.
-TIMED_FAMILIES = ("corridor", "doorway", "chaser", "crowd", "parked", "slalom")
+TIMED_FAMILIES = (
+    *("corridor", "doorway", "chaser", "crowd", "parked", "slalom"),
+    *("crowd-large", "warehouse-large"),
+)
 for _f in (
     *(OPEN, FOREST, ROOMS, MAZE, U_TRAP, NARROW, CROSSING, DENSE, MOVINGAI),
-    *(CORRIDOR, DOORWAY, CHASER, CROWD, PARKED, SLALOM),
+    *(CORRIDOR, DOORWAY, CHASER, CROWD, PARKED, SLALOM, CROWD_LARGE, WAREHOUSE_LARGE),
 ):
     FAMILIES.register(_f.name, _f)
 

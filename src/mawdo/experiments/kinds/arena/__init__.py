@@ -1,9 +1,10 @@
 """The planning arena: seeded scene families x planners, as a study kind.
 
-Plan (:class:`ArenaPlan`, presets ``arena-default`` and ``arena-quick``), one task on a worker
-(:func:`execute_arena_task`, rows :class:`ArenaRow`: the scene's TOML and hash beside each run's
-metrics) and the report (:func:`write_arena_report`: per family and planner tables, runtime and
-gap ECDFs, a failure gallery). Importing this package registers the ``arena`` study kind.
+Plan (:class:`ArenaPlan`, presets ``arena-default``, ``arena-quick`` and ``arena-large``), one
+task on a worker (:func:`execute_arena_task`, rows :class:`ArenaRow`: the scene's TOML and hash
+beside each run's metrics) and the report (:func:`write_arena_report`: per family and planner
+tables, runtime and gap ECDFs, a failure gallery). Importing this package registers the
+``arena`` study kind.
 """
 
 from mawdo.experiments.kinds.arena.execute import ArenaRow, execute_arena_task

@@ -223,6 +223,8 @@ class ArenaPlan(StudyPlanBase):
 STATIC_FAMILIES = ("forest", "rooms", "maze", "u_trap", "crossing", "dense")
 TIMED_FAMILIES = ("corridor", "doorway", "chaser", "crowd", "parked", "slalom")
 DEFAULT_FAMILIES = STATIC_FAMILIES + TIMED_FAMILIES
+# worlds at scale (1000 px, 200 movers by default; T* stored): an open crowd and a warehouse
+LARGE_FAMILIES = ("crowd-large", "warehouse-large")
 
 ARENA_PRESETS: dict[str, dict[str, Any]] = {
     "arena-default": {
@@ -242,6 +244,18 @@ ARENA_PRESETS: dict[str, dict[str, Any]] = {
         "baselines": [ORACLE, "straight"],
         "planner": "quick",
         "overrides": {"max_steps": 150},
+        "batch_size": 1,
+    },
+    # the realtime planner needs about 2 s for its first plan and 0.8 s per replan at this
+    # size (some 300 steps a scene): a few scenes, the swarm (mawdo) against the same planner
+    # with its optimizer off (guide_only), and the straight line as the floor
+    "arena-large": {
+        "name": "arena-large",
+        "families": list(LARGE_FAMILIES),
+        "n": 3,
+        "algorithms": ["mawdo"],
+        "baselines": ["guide_only", "straight"],
+        "planner": "realtime",
         "batch_size": 1,
     },
 }
