@@ -102,7 +102,7 @@ class ArenaPlan(StudyPlanBase):
         Family parameters overriding the defaults (checked against their ranges).
     seed : int
         Master seed (scenes and planner seeds), >= 0.
-    planner : {"realtime", "study", "paper", "quick"}
+    planner : {"realtime", "large", "study", "paper", "quick"}
         Planner preset (:data:`mawdo.planning.run.config.PRESETS`).
     overrides : dict
         Fields of :class:`~mawdo.planning.run.config.PlannerConfig` to change.
@@ -123,7 +123,7 @@ class ArenaPlan(StudyPlanBase):
     baselines: tuple[str, ...] = (ORACLE, "straight")
     params: dict[str, dict[str, Any]] = Field(default_factory=dict)
     seed: Annotated[int, Field(strict=True, ge=0)] = 0
-    planner: Literal["realtime", "study", "paper", "quick"] = "realtime"
+    planner: Literal["realtime", "large", "study", "paper", "quick"] = "realtime"
     overrides: dict[str, Any] = Field(default_factory=dict)
     ompl_time: Annotated[float, Field(gt=0, le=60)] = 0.5
     ompl_resolution: Annotated[float, Field(gt=0, le=10)] = 0.5
@@ -246,16 +246,16 @@ ARENA_PRESETS: dict[str, dict[str, Any]] = {
         "overrides": {"max_steps": 150},
         "batch_size": 1,
     },
-    # the realtime planner needs about 2 s for its first plan and 0.8 s per replan at this
-    # size (some 300 steps a scene): a few scenes, the swarm (mawdo) against the same planner
-    # with its optimizer off (guide_only), and the straight line as the floor
+    # the planner for large worlds (its guide trusts the predictions 120 steps ahead): a few
+    # scenes, the swarm (mawdo) against the same planner with its optimizer off (guide_only),
+    # and the straight line as the floor
     "arena-large": {
         "name": "arena-large",
         "families": list(LARGE_FAMILIES),
         "n": 3,
         "algorithms": ["mawdo"],
         "baselines": ["guide_only", "straight"],
-        "planner": "realtime",
+        "planner": "large",
         "batch_size": 1,
     },
 }
