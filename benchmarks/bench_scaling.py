@@ -266,7 +266,8 @@ def main(argv=None) -> None:
     run_world(world(366.0, 5, 5, seed=99), steps=2)  # compile / load the kernels
     sc = world(REF["size"], REF["movers"], REF["polygons"])
     for preset in dict.fromkeys(("realtime", a.preset)):
-        r = run_world(sc, a.steps, preset=preset)
+        # a fresh copy: the roadmap and guides are kept per world, and each run builds its own
+        r = run_world(copy.deepcopy(sc), a.steps, preset=preset)
         p95 = np.percentile(r["replans"], 95) if r["replans"].size else np.nan
         print(f"reference {REF['size']:g} px, {REF['movers']} movers, {REF['polygons']} "
               f"polygons, preset {preset}, {a.steps} steps (CPU):\n  {_fmt(r)}\n  first plan "

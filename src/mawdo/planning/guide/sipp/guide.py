@@ -151,7 +151,8 @@ class SafeIntervalGuide:
         if lookahead is not None and not lookahead > 0:
             raise ValueError(f"lookahead must be > 0 time steps or None, got {lookahead!r}")
         self.checked_until = self.t_end if lookahead is None else min(self.t_end, t0 + lookahead)
-        self.movers = self.roadmap.movers(self.t0, self.checked_until, walkers)
+        cut = self.checked_until < self.t_end  # a lookahead: no mover is tested after it
+        self.movers = self.roadmap.movers(self.t0, self.checked_until, walkers, cut)
         self._mv = self.movers.arrays()
         self.ptr, self.lo, self.hi = safe_intervals(self.nodes, self.t0, self.t_end, self._mv)
         self._v = float(scenario.robot_speed)

@@ -234,8 +234,22 @@ class Roadmap:
         straight_rows(edge, piece, nodes, indptr, indices, weights, float(speed), n)
         return eptr[: top + 1], edge[:top], piece[:top]
 
-    def movers(self, t0: float, t_end: float, walkers: str) -> Movers:
-        """The moving obstacles over ``[t0, t_end]`` (see :class:`Movers`)."""
+    def movers(self, t0: float, t_end: float, walkers: str, cut: bool = False) -> Movers:
+        """The moving obstacles over ``[t0, t_end]`` (see :class:`Movers`). ``cut``: their
+        pieces end at ``t_end`` (a lookahead: nothing is tested after it), else the last piece
+        runs to its own end (a knot at or after ``t_end``)."""
+        knots = self._pieces if not cut else self._cut_pieces
         return Movers.from_scenario(
-            self.scenario, self.clearance, t0, t_end, walkers, knots=self._pieces, flat=self.flat
+            self.scenario, self.clearance, t0, t_end, walkers, knots=knots, flat=self.flat
         )
+
+    def _cut_pieces(self, m: int, t0: float, t_end: float):
+        """:meth:`_pieces` with the last piece ending at ``t_end`` (its offset there
+        interpolated on the piece)."""
+        t, off = self._pieces(m, t0, t_end)
+        if len(t) < 2 or t[-1] <= t_end:
+            return t, off
+        w = (t_end - t[-2]) / (t[-1] - t[-2])
+        t, off = t.copy(), off.copy()
+        t[-1], off[-1] = t_end, off[-2] + w * (off[-1] - off[-2])
+        return t, off
