@@ -9,6 +9,7 @@ import pytest
 
 from mawdo.planning import PathCost, scenario_from_dict
 from mawdo.planning.refine.kernel.population import (
+    indexed_population_cost,
     population_cost,
     reference_population_cost,
     scratch_size,
@@ -110,11 +111,13 @@ def _run(fn, args):
 
 
 def _assert_same(args):
-    got = _run(population_cost, args)
     want = _run(reference_population_cost, args)
-    for a, b in zip(got, want, strict=True):
-        assert a.dtype == b.dtype
-        assert a.tobytes() == b.tobytes()
+    # the index forced on, and the entry point (which uses it from INDEX_MOVERS movers on)
+    for fn in (indexed_population_cost, population_cost):
+        got = _run(fn, args)
+        for a, b in zip(got, want, strict=True):
+            assert a.dtype == b.dtype
+            assert a.tobytes() == b.tobytes()
     return want
 
 

@@ -40,3 +40,8 @@ INDEX_CELL = 64.0
 INDEX_SPAN = 2.0
 INDEX_CELLS = 32768
 INDEX_SLICES = 128
+# The moving pass uses the index from this many moving obstacles on (with fewer, building it
+# cost more than it saved: measured on the planner's calls, benchmarks/log/scaling.md).
+INDEX_MOVERS = 500
+# The indexed moving pass walks an obstacle's table of at most this many knots (else its grid).
+WALK_KNOTS = 64

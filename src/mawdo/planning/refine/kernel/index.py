@@ -1,22 +1,32 @@
 """A space-time index of a block's segments, so that the pass over a moving obstacle
-(:func:`mawdo.planning.refine.kernel.moving.moving_pass`) runs on the segments that can come near
-it, not on all of them.
+(:func:`mawdo.planning.refine.kernel.moving.moving_pass`) runs on the segments that can come
+near it, not on all of them.
 
 Per block (:func:`block_index`): time in slices of ``w`` time steps from ``t0``, space in square
 cells of ``G`` pixels over the box of the block's points; each real segment is listed in every
-(slice, cell) its time span and its bounding box meet. Per moving obstacle
-(:func:`obstacle_segments`): the box of its centre's positions over each slice (its pieces
-clipped to the slice, the formula the exact tests use), grown by the bounding radius and room for
-rounding; the segments listed in the cells that box meets, whose own box meets it, are the ones
-kept. A segment left out is, at every moment it is travelled, farther than the bounding radius
-(plus the room) from the obstacle's centre: the exact tests would count no hit for it, and no
-filter of the pass would call it a sure hit (each sure hit is one the exact tests find).
+(slice, cell) that the box of the part of it travelled in the slice meets, with that box. Per
+moving obstacle (:func:`obstacle_segments`): the box of its centre's positions over each slice
+(its pieces clipped to the slice, the formula the exact tests use), grown by the bounding radius
+and room for rounding; the segments listed in the cells that box meets, whose own box meets it,
+are the ones kept. A segment left out is, at every moment it is travelled, farther than the
+bounding radius (plus the room) from the obstacle's centre: the exact tests would count no hit
+for it, and no filter of the pass would call it a sure hit (each sure hit is one the exact tests
+find).
 
-The kept segments are laid out as pairs of points (:func:`compact_pairs`: point ``2 q`` and
-``2 q + 1`` are segment ``q``'s ends, the "segment" between pairs is not a real one) and the
-pass runs on them with the block's own scalars (latest time, largest coordinate), so each kept
+The kept segments are laid out as pairs of points (:func:`compact_pairs`: point ``2q`` and
+``2q + 1`` are segment ``q``'s ends, the "segment" between pairs is not a real one) and the pass
+runs on them with the block's own scalars (latest time, largest coordinate), so each kept
 segment gets the very numbers it gets in the pass over the whole block: centres, filters and
-exact tests are per segment (the centre walk per pair, from the obstacle's first piece).
+exact tests are per segment (the centre walk per pair, from the obstacle's first piece). The one
+departure: an obstacle with a short table (``constants.WALK_KNOTS`` knots at most) has its
+centres placed by the walk (exact) where the whole-block pass would interpolate them in its
+grid; only the filters see the difference (they keep room for the grid's error, none is needed
+for the walk's), the exact tests decide the same.
+
+Measured on the planner's calls (``benchmarks/log/scaling.md``): with 200 movers on 1000 x 1000
+px the index costs about what it saves (the populations' blocks spread over the map, and the
+brute-force pass is a vectorised 2 ns per path point and obstacle); with 1000 it saves about
+12 % of the kernel; with 20 (crowds) it costs 30 %. Hence ``constants.INDEX_MOVERS``.
 """
 
 from __future__ import annotations
@@ -71,7 +81,7 @@ def _part_box(px, py, tt, p, t0, w, s, ns):
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
-def block_index(bn, npts, t0, speed, tmax, cell, span, path, real, head, ents, ebox):
+def block_index(bn, npts, t0, speed, tmax, cell, span, path, real, head, ents, ebox, items, ibox):
     """Space-time buckets of the block's real segments (the block must be sane).
 
     Cells of ``cell`` pixels (more where the buckets would not fit in ``head``), slices of the
@@ -81,7 +91,8 @@ def block_index(bn, npts, t0, speed, tmax, cell, span, path, real, head, ents, e
     time steps, slices), each bucket's segments and the box of the part of the segment
     travelled in the bucket's slice (``ents``, ``ebox`` or larger ones when they are too
     short); ``head`` gets the start of each bucket's entries (bucket ``(s * ny + cy) * nx +
-    cx``).
+    cx``). ``items`` and ``ibox`` are work space (larger ones are returned where they were
+    too short).
     """
     px, py, tt = path[0], path[1], path[2]
     npt = bn * npts
@@ -113,38 +124,63 @@ def block_index(bn, npts, t0, speed, tmax, cell, span, path, real, head, ents, e
     nb = nx * ny * ns
     for c in range(nb + 1):
         head[c] = 0
-    # count, then place (a counting sort by bucket); in each slice a segment is listed in the
-    # cells of the box of the part of it travelled then
-    for pas in range(2):
-        if pas == 1:
-            for c in range(1, nb + 1):
-                head[c] += head[c - 1]  # (now the start of each bucket)
-            if head[nb] > ents.shape[0]:
-                ents = np.empty(head[nb] + head[nb] // 4, dtype=np.int64)
-                ebox = np.empty((ents.shape[0], 4))
-        for p in range(npt - 1):
-            if not real[p]:
-                continue
-            for s in range(_cell(tt[p], t0, winv, ns), _cell(tt[p + 1], t0, winv, ns) + 1):
-                x0, y0, x1, y1 = _part_box(px, py, tt, p, t0, w, s, ns)
-                for cy in range(_cell(y0, ylo, ginv, ny), _cell(y1, ylo, ginv, ny) + 1):
-                    for cx in range(_cell(x0, xlo, ginv, nx), _cell(x1, xlo, ginv, nx) + 1):
-                        c = (s * ny + cy) * nx + cx
-                        if pas == 0:
-                            head[c + 1] += 1
-                        else:
-                            e = head[c]
-                            ents[e] = p
-                            ebox[e, 0] = x0
-                            ebox[e, 1] = y0
-                            ebox[e, 2] = x1
-                            ebox[e, 3] = y1
-                            head[c] = e + 1
+    # a counting sort by bucket: the items (segment, slice) with the buckets and box of the
+    # part of the segment travelled in the slice, counted per bucket, then placed
+    ni = 0
+    for p in range(npt - 1):
+        if not real[p]:
+            continue
+        for s in range(_cell(tt[p], t0, winv, ns), _cell(tt[p + 1], t0, winv, ns) + 1):
+            x0, y0, x1, y1 = _part_box(px, py, tt, p, t0, w, s, ns)
+            cx0 = _cell(x0, xlo, ginv, nx)
+            cx1 = _cell(x1, xlo, ginv, nx)
+            cy0 = _cell(y0, ylo, ginv, ny)
+            cy1 = _cell(y1, ylo, ginv, ny)
+            if ni == items.shape[0]:  # (more than room for: a larger list)
+                grown = np.empty((2 * ni, 6), dtype=np.int64)
+                grown[:ni] = items
+                items = grown
+                gbox = np.empty((2 * ni, 4))
+                gbox[:ni] = ibox
+                ibox = gbox
+            items[ni, 0] = p
+            items[ni, 1] = s
+            items[ni, 2] = cx0
+            items[ni, 3] = cx1
+            items[ni, 4] = cy0
+            items[ni, 5] = cy1
+            ibox[ni, 0] = x0
+            ibox[ni, 1] = y0
+            ibox[ni, 2] = x1
+            ibox[ni, 3] = y1
+            ni += 1
+            for cy in range(cy0, cy1 + 1):
+                c = (s * ny + cy) * nx
+                for cx in range(cx0, cx1 + 1):
+                    head[c + cx + 1] += 1
+    for c in range(1, nb + 1):
+        head[c] += head[c - 1]  # (now the start of each bucket)
+    if head[nb] > ents.shape[0]:
+        ents = np.empty(head[nb] + head[nb] // 4, dtype=np.int64)
+        ebox = np.empty((ents.shape[0], 4))
+    for k in range(ni):
+        p = items[k, 0]
+        s = items[k, 1]
+        for cy in range(items[k, 4], items[k, 5] + 1):
+            c = (s * ny + cy) * nx
+            for cx in range(items[k, 2], items[k, 3] + 1):
+                e = head[c + cx]
+                ents[e] = p
+                ebox[e, 0] = ibox[k, 0]
+                ebox[e, 1] = ibox[k, 1]
+                ebox[e, 2] = ibox[k, 2]
+                ebox[e, 3] = ibox[k, 3]
+                head[c + cx] = e + 1
     # (placing moved each start to the next bucket's: shift back)
     for c in range(nb, 0, -1):
         head[c] = head[c - 1]
     head[0] = 0
-    return (xlo, ylo, ginv, nx, ny, winv, ns), ents, ebox
+    return (xlo, ylo, ginv, nx, ny, winv, ns), ents, ebox, items, ibox
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")

@@ -13,9 +13,11 @@ from mawdo.planning.refine.kernel.constants import (
     GRID_CELLS,
     INDEX_CELL,
     INDEX_CELLS,
+    INDEX_MOVERS,
     INDEX_SLICES,
     INDEX_SPAN,
     MARGIN,
+    WALK_KNOTS,
 )
 from mawdo.planning.refine.kernel.index import block_index, indexed_moving_pass
 from mawdo.planning.refine.kernel.moving import moving_pass
@@ -50,7 +52,10 @@ def _layout(n, npts, nk, spacetime):
 @njit(cache=True, fastmath=False, error_model="numpy")
 def _index_floats(size, cells):
     """Floats of :func:`_index_scratch`'s work space."""
-    return 12 * stride(2 * size) + stride(size) + stride(cells + 1) + 5 * stride(8 * size)
+    return (
+        12 * stride(2 * size) + stride(size) + stride(cells + 1) + 5 * stride(8 * size)
+        + stride(12 * size) + stride(8 * size)
+    )  # fmt: skip
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
@@ -110,13 +115,27 @@ def population_cost(
         Work space, kept by the caller from call to call: :func:`scratch_size` floats or more
         (a shorter one makes the kernel allocate its own).
 
-    Each moving obstacle is tested only against the segments of a block that come near it
-    in space and time (:mod:`mawdo.planning.refine.kernel.index`), which gives the counts of
-    testing all of them (:func:`reference_population_cost`) bit for bit.
+    With :data:`~mawdo.planning.refine.kernel.constants.INDEX_MOVERS` moving obstacles or more,
+    each is tested only against the segments of a block that come near it in space and time
+    (:mod:`mawdo.planning.refine.kernel.index`; with fewer, building the index costs more than
+    it saves); the counts are those of testing all of them (:func:`reference_population_cost`),
+    bit for bit.
     """
     _population(
         X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, box, out, scratch,
-        True,
+        INDEX_MOVERS,
+    )  # fmt: skip
+
+
+@njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
+def indexed_population_cost(
+    X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, box, out, scratch
+):
+    """:func:`population_cost` with the space-time index whatever the number of moving
+    obstacles."""
+    _population(
+        X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, box, out, scratch,
+        1,
     )  # fmt: skip
 
 
@@ -128,7 +147,7 @@ def reference_population_cost(
     block (no space-time index): the reference the indexed kernel is tested against."""
     _population(
         X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, box, out, scratch,
-        False,
+        1 << 62,
     )  # fmt: skip
 
 
@@ -147,20 +166,25 @@ def _index_scratch(buf, o, size, cells):
     ents = buf[o : o + 8 * size].view(np.int64)
     o += stride(8 * size)
     ebox = buf[o : o + 32 * size].reshape((8 * size, 4))
+    o += 4 * stride(8 * size)
+    items = buf[o : o + 12 * size].view(np.int64).reshape((2 * size, 6))
+    o += stride(12 * size)
+    ibox = buf[o : o + 8 * size].reshape((2 * size, 4))
     n2 = 2 * size
     pairs = (cf[0:n2], cf[cs : cs + n2], cf[2 * cs : 2 * cs + n2], cf[3 * cs : 3 * cs + n2],
              cf[4 * cs : 4 * cs + n2], cf[5 * cs : 5 * cs + n2], cf[6 * cs : 6 * cs + n2],
              cf[7 * cs : 7 * cs + n2], ci[0:n2], ci[cs : cs + n2], ci[2 * cs : 2 * cs + n2],
              ci[3 * cs : 3 * cs + n2])  # fmt: skip
-    return pairs, kept, head, ents, ebox
+    return pairs, kept, head, ents, ebox, items, ibox
 
 
 @njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
 def _population(
     X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, box, out, scratch,
-    indexed,
+    min_movers,
 ):  # fmt: skip
-    """:func:`population_cost`, indexed or not (the moving pass on all of a block's segments).
+    """:func:`population_cost`, with the space-time index where there are ``min_movers``
+    moving obstacles or more (else the moving pass runs on all of a block's segments).
 
     Long by design: one fused Numba pass; splitting it adds calls and array round trips.
     """
@@ -240,6 +264,12 @@ def _population(
         buf[o + 3 * gs : o + 3 * gs + ng].view(np.int64).reshape((nmov, GRID_CELLS)),
     )
     o += 4 * gs
+    # The indexed pass places the centres of the few segments near an obstacle by the walk
+    # (exact) where its table is short, sparing the grid's filling (cell size 0: no grid)
+    cgdt = np.zeros(n_obs)
+    for i in range(n_obs):
+        cgdt[i] = gdt[i] if nk[i] > WALK_KNOTS else 0.0
+    cgrid = (cgdt, ggap, grow, grid[3], grid[4], grid[5], grid[6], grid[7], grid[8])
     nbox = 4 * nrow
     pre = (vmax, omax, buf[o : o + nbox].reshape((nrow, 4)), bbase, lg, boxed)
     o += nbox
@@ -304,11 +334,13 @@ def _population(
     # the index of the moving pass: kept segments as pairs of points (path and work arrays
     # of their own; the rest shared), bucket heads and entries, per-slice boxes
     # (without the index, a few pages of their own: one set of types either way)
-    indexed = indexed and nmov > 0
+    indexed = nmov > 0 and nmov >= min_movers
     isize = size if indexed else 0
     icells = INDEX_CELLS if indexed else 0
     ibase = buf if indexed else np.empty(_index_floats(0, 0))
-    pairs, kept, head, ents, ebox = _index_scratch(ibase, o if indexed else 0, isize, icells)
+    pairs, kept, head, ents, ebox, items, ibox = _index_scratch(
+        ibase, o if indexed else 0, isize, icells
+    )
     cpx, cpy, ctt, crvx, crvy, ccxp, ccyp, ccep, cflag, ccand, ckpt, chits = pairs
     cpath = (cpx, cpy, ctt, path[3], path[4], path[5], crvx, crvy, path[8], path[9],
              path[10], path[11])  # fmt: skip
@@ -330,9 +362,10 @@ def _population(
         ncol[:] = 0
         use_index = indexed and sane
         if use_index:
-            geo, ents, ebox = block_index(
-                bn, npts, t0, speed, tmax, INDEX_CELL, INDEX_SPAN, path, real, head, ents, ebox
-            )
+            geo, ents, ebox, items, ibox = block_index(
+                bn, npts, t0, speed, tmax, INDEX_CELL, INDEX_SPAN, path, real, head, ents, ebox,
+                items, ibox,
+            )  # fmt: skip
             index = (geo, head, ents, ebox, sbox, mark, kept)
         # n_collision (Eq. 20): (segment, obstacle) pairs that hit
         for i in range(n_obs):
@@ -341,7 +374,7 @@ def _population(
                 blk = (t0, speed, bn, npts, sane, cmax, tmax)
                 if use_index:
                     indexed_moving_pass(
-                        i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, grid,
+                        i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, cgrid,
                         ncol, index, compact,
                     )  # fmt: skip
                 else:
