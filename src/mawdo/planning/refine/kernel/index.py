@@ -25,8 +25,9 @@ for the walk's), the exact tests decide the same.
 
 Measured on the planner's calls (``benchmarks/log/scaling.md``): with 200 movers on 1000 x 1000
 px the index costs about what it saves (the populations' blocks spread over the map, and the
-brute-force pass is a vectorised 2 ns per path point and obstacle); with 1000 it saves about
-12 % of the kernel; with 20 (crowds) it costs 30 %. Hence ``constants.INDEX_MOVERS``.
+brute-force pass is a vectorised 2 ns per path point and obstacle); with 1000 it saves 12 % of
+the replayed calls' kernel CPU, 20 % in a planning run; with 20 (crowds) it costs 30 %. Hence
+``constants.INDEX_MOVERS``.
 """
 
 from __future__ import annotations
