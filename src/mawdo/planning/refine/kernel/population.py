@@ -25,8 +25,9 @@ from mawdo.planning.refine.kernel.passes import block_paths, box_tables, static_
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _layout(n, npts, nk, spacetime):
-    """Scratch layout for a call: ``(nb, size, cap, fs, fc, gs, nmov, rows, total)``."""
+def _layout(n, npts, nk, spacetime, min_movers):
+    """Scratch layout for a call: ``(nb, size, cap, fs, fc, gs, nmov, rows, total)`` (the
+    index's work space counted where it is used: ``min_movers`` moving obstacles or more)."""
     nb = max(min(BLOCK, n), 1)  # candidates per block
     size = nb * npts  # points per block
     cap = size * 2  # relative segments on pieces, per batch
@@ -44,7 +45,7 @@ def _layout(n, npts, nk, spacetime):
     fc = stride(cap)
     gs = stride(nmov * GRID_CELLS)
     total = 18 * fs + 20 * fc + 4 * gs + 4 * rows
-    if nmov > 0:  # the index of the moving pass
+    if nmov > 0 and nmov >= min_movers:  # the index of the moving pass
         total += _index_floats(size, INDEX_CELLS)
     return nb, size, cap, fs, fc, gs, nmov, rows, total
 
@@ -61,8 +62,10 @@ def _index_floats(size, cells):
 @njit(cache=True, fastmath=False, error_model="numpy")
 def scratch_size(n, npts, nk, spacetime):
     """Floats of scratch space :func:`population_cost` needs for ``n`` candidates of ``npts``
-    path points (pass it a buffer at least this long to spare it allocating one)."""
-    return _layout(n, npts, nk, spacetime)[8]
+    path points (pass it a buffer at least this long to spare it allocating one;
+    :func:`indexed_population_cost` with fewer than ``INDEX_MOVERS`` moving obstacles needs
+    more, and allocates it)."""
+    return _layout(n, npts, nk, spacetime, INDEX_MOVERS)[8]
 
 
 @njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
@@ -239,7 +242,7 @@ def _population(
     # block is point p % npts of candidate p // npts; "segment" p joins points p and p + 1 and
     # is a real segment unless p % npts == nseg), so that the loops over segments are long
     # enough to vectorise.
-    nb, size, cap, fs, fc, gs, nmov, nrow, total = _layout(n, npts, nk, spacetime)
+    nb, size, cap, fs, fc, gs, nmov, nrow, total = _layout(n, npts, nk, spacetime, min_movers)
     # All scratch space is one buffer the caller keeps (allocating it on every call would cost
     # page faults). The arrays of the loops start at different multiples of 64 bytes into a
     # 4 KiB page, so that their streams never share cache sets (nor trip the store-to-load
