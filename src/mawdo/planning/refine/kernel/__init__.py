@@ -60,8 +60,10 @@ Modules (a package so that each job has its own file; names shared between them 
 the package itself exports only the entry point): :mod:`.constants`, :mod:`.primitives`
 (exact geometry tests), :mod:`.classify` (vectorised polygon verdicts, obstacle tables),
 :mod:`.passes` (block layout, standing obstacles), :mod:`.moving` (moving obstacles, three
-steps), :mod:`.population` (the entry point), :mod:`.threads` (the entry point on chunks of
-rows at once, for ``PathCost(threads=k)``).
+steps), :mod:`.index` (a space-time index of a block's segments, so that the moving pass runs on
+those near each obstacle; used from :data:`.constants.INDEX_MOVERS` moving obstacles on),
+:mod:`.population` (the entry point), :mod:`.threads` (the entry point on chunks of rows at
+once, for ``PathCost(threads=k)``).
 """
 
 from mawdo.planning.refine.kernel.constants import ZERO_LENGTH

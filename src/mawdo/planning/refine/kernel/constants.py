@@ -34,3 +34,14 @@ Q3 = 4.853903996359136964868e2
 Q4 = 1.945506571482613964425e2
 MOREBITS = 6.123233995736765886130e-17
 T3P8 = 2.41421356237309504880  # tan(3 pi / 8)
+# Index of the moving pass: cell side (pixels), time slices of the robot's time to cross
+# INDEX_SPAN cells, buckets at most (cells x slices), slices at most.
+INDEX_CELL = 64.0
+INDEX_SPAN = 2.0
+INDEX_CELLS = 32768
+INDEX_SLICES = 128
+# The moving pass uses the index from this many moving obstacles on (with fewer, building it
+# cost more than it saved: measured on the planner's calls, benchmarks/log/scaling.md).
+INDEX_MOVERS = 500
+# The indexed moving pass walks an obstacle's table of at most this many knots (else its grid).
+WALK_KNOTS = 64

@@ -8,14 +8,26 @@ import numpy as np
 from numba import njit
 
 from mawdo.planning.refine.kernel.classify import prepare_obstacles
-from mawdo.planning.refine.kernel.constants import BLOCK, GRID_CELLS, MARGIN
+from mawdo.planning.refine.kernel.constants import (
+    BLOCK,
+    GRID_CELLS,
+    INDEX_CELL,
+    INDEX_CELLS,
+    INDEX_MOVERS,
+    INDEX_SLICES,
+    INDEX_SPAN,
+    MARGIN,
+    WALK_KNOTS,
+)
+from mawdo.planning.refine.kernel.index import block_index, indexed_moving_pass
 from mawdo.planning.refine.kernel.moving import moving_pass
 from mawdo.planning.refine.kernel.passes import block_paths, box_tables, static_pass, stride
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _layout(n, npts, nk, spacetime):
-    """Scratch layout for a call: ``(nb, size, cap, fs, fc, gs, nmov, rows, total)``."""
+def _layout(n, npts, nk, spacetime, min_movers):
+    """Scratch layout for a call: ``(nb, size, cap, fs, fc, gs, nmov, rows, total)`` (the
+    index's work space counted where it is used: ``min_movers`` moving obstacles or more)."""
     nb = max(min(BLOCK, n), 1)  # candidates per block
     size = nb * npts  # points per block
     cap = size * 2  # relative segments on pieces, per batch
@@ -32,14 +44,28 @@ def _layout(n, npts, nk, spacetime):
     fs = stride(size)
     fc = stride(cap)
     gs = stride(nmov * GRID_CELLS)
-    return nb, size, cap, fs, fc, gs, nmov, rows, 18 * fs + 20 * fc + 4 * gs + 4 * rows
+    total = 18 * fs + 20 * fc + 4 * gs + 4 * rows
+    if nmov > 0 and nmov >= min_movers:  # the index of the moving pass
+        total += _index_floats(size, INDEX_CELLS)
+    return nb, size, cap, fs, fc, gs, nmov, rows, total
+
+
+@njit(cache=True, fastmath=False, error_model="numpy")
+def _index_floats(size, cells):
+    """Floats of :func:`_index_scratch`'s work space."""
+    return (
+        12 * stride(2 * size) + stride(size) + stride(cells + 1) + 5 * stride(8 * size)
+        + stride(12 * size) + stride(8 * size)
+    )  # fmt: skip
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
 def scratch_size(n, npts, nk, spacetime):
     """Floats of scratch space :func:`population_cost` needs for ``n`` candidates of ``npts``
-    path points (pass it a buffer at least this long to spare it allocating one)."""
-    return _layout(n, npts, nk, spacetime)[8]
+    path points (pass it a buffer at least this long to spare it allocating one;
+    :func:`indexed_population_cost` with fewer than ``INDEX_MOVERS`` moving obstacles needs
+    more, and allocates it)."""
+    return _layout(n, npts, nk, spacetime, INDEX_MOVERS)[8]
 
 
 @njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
@@ -91,6 +117,79 @@ def population_cost(
     scratch : float64[:]
         Work space, kept by the caller from call to call: :func:`scratch_size` floats or more
         (a shorter one makes the kernel allocate its own).
+
+    With :data:`~mawdo.planning.refine.kernel.constants.INDEX_MOVERS` moving obstacles or more,
+    each is tested only against the segments of a block that come near it in space and time
+    (:mod:`mawdo.planning.refine.kernel.index`; with fewer, building the index costs more than
+    it saves); the counts are those of testing all of them (:func:`reference_population_cost`),
+    bit for bit.
+    """
+    _population(
+        X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, box, out, scratch,
+        INDEX_MOVERS,
+    )  # fmt: skip
+
+
+@njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
+def indexed_population_cost(
+    X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, box, out, scratch
+):
+    """:func:`population_cost` with the space-time index whatever the number of moving
+    obstacles."""
+    _population(
+        X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, box, out, scratch,
+        1,
+    )  # fmt: skip
+
+
+@njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
+def reference_population_cost(
+    X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, box, out, scratch
+):
+    """:func:`population_cost` with every moving obstacle tested against every segment of a
+    block (no space-time index): the reference the indexed kernel is tested against."""
+    _population(
+        X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, box, out, scratch,
+        1 << 62,
+    )  # fmt: skip
+
+
+@njit(cache=True, fastmath=False, error_model="numpy")
+def _index_scratch(buf, o, size, cells):
+    """The index's work space from ``buf[o:]`` (:func:`_index_floats` floats): the pairs' path
+    and work arrays, the list of kept segments, bucket heads and entries."""
+    cs = stride(2 * size)
+    cf = buf[o : o + 8 * cs]
+    ci = buf[o + 8 * cs : o + 12 * cs].view(np.int64)
+    o += 12 * cs
+    kept = buf[o : o + size].view(np.int64)
+    o += stride(size)
+    head = buf[o : o + cells + 1].view(np.int64)
+    o += stride(cells + 1)
+    ents = buf[o : o + 8 * size].view(np.int64)
+    o += stride(8 * size)
+    ebox = buf[o : o + 32 * size].reshape((8 * size, 4))
+    o += 4 * stride(8 * size)
+    items = buf[o : o + 12 * size].view(np.int64).reshape((2 * size, 6))
+    o += stride(12 * size)
+    ibox = buf[o : o + 8 * size].reshape((2 * size, 4))
+    n2 = 2 * size
+    pairs = (cf[0:n2], cf[cs : cs + n2], cf[2 * cs : 2 * cs + n2], cf[3 * cs : 3 * cs + n2],
+             cf[4 * cs : 4 * cs + n2], cf[5 * cs : 5 * cs + n2], cf[6 * cs : 6 * cs + n2],
+             cf[7 * cs : 7 * cs + n2], ci[0:n2], ci[cs : cs + n2], ci[2 * cs : 2 * cs + n2],
+             ci[3 * cs : 3 * cs + n2])  # fmt: skip
+    return pairs, kept, head, ents, ebox, items, ibox
+
+
+@njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
+def _population(
+    X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, box, out, scratch,
+    min_movers,
+):  # fmt: skip
+    """:func:`population_cost`, with the space-time index where there are ``min_movers``
+    moving obstacles or more (else the moving pass runs on all of a block's segments).
+
+    Long by design: one fused Numba pass; splitting it adds calls and array round trips.
     """
     is_circle, thresh, verts, nverts, bound, hull, nhull = obs
     kt, ko, kv, nk, k_start = motion
@@ -143,7 +242,7 @@ def population_cost(
     # block is point p % npts of candidate p // npts; "segment" p joins points p and p + 1 and
     # is a real segment unless p % npts == nseg), so that the loops over segments are long
     # enough to vectorise.
-    nb, size, cap, fs, fc, gs, nmov, nrow, total = _layout(n, npts, nk, spacetime)
+    nb, size, cap, fs, fc, gs, nmov, nrow, total = _layout(n, npts, nk, spacetime, min_movers)
     # All scratch space is one buffer the caller keeps (allocating it on every call would cost
     # page faults). The arrays of the loops start at different multiples of 64 bytes into a
     # 4 KiB page, so that their streams never share cache sets (nor trip the store-to-load
@@ -168,8 +267,15 @@ def population_cost(
         buf[o + 3 * gs : o + 3 * gs + ng].view(np.int64).reshape((nmov, GRID_CELLS)),
     )
     o += 4 * gs
+    # The indexed pass places the centres of the few segments near an obstacle by the walk
+    # (exact) where its table is short, sparing the grid's filling (cell size 0: no grid)
+    cgdt = np.zeros(n_obs)
+    for i in range(n_obs):
+        cgdt[i] = gdt[i] if nk[i] > WALK_KNOTS else 0.0
+    cgrid = (cgdt, ggap, grow, grid[3], grid[4], grid[5], grid[6], grid[7], grid[8])
     nbox = 4 * nrow
     pre = (vmax, omax, buf[o : o + nbox].reshape((nrow, 4)), bbase, lg, boxed)
+    o += nbox
     path = (
         fbuf[0:size],  # px
         fbuf[fs : fs + size],  # py
@@ -228,6 +334,28 @@ def population_cost(
         jbuf[3 * fc : 3 * fc + cap],
     )
     hits = ibuf[3 * fs : 3 * fs + size]  # hits found by the branch-free passes, per segment
+    # the index of the moving pass: kept segments as pairs of points (path and work arrays
+    # of their own; the rest shared), bucket heads and entries, per-slice boxes
+    # (without the index, a few pages of their own: one set of types either way)
+    indexed = nmov > 0 and nmov >= min_movers
+    isize = size if indexed else 0
+    icells = INDEX_CELLS if indexed else 0
+    ibase = buf if indexed else np.empty(_index_floats(0, 0))
+    pairs, kept, head, ents, ebox, items, ibox = _index_scratch(
+        ibase, o if indexed else 0, isize, icells
+    )
+    cpx, cpy, ctt, crvx, crvy, ccxp, ccyp, ccep, cflag, ccand, ckpt, chits = pairs
+    cpath = (cpx, cpy, ctt, path[3], path[4], path[5], crvx, crvy, path[8], path[9],
+             path[10], path[11])  # fmt: skip
+    cwork = (np.empty(2 * isize, dtype=np.bool_), cflag, np.empty(2 * isize, dtype=np.bool_),
+             ccand, ckpt, ccxp, ccyp, ccep, work[8], work[9], work[10], work[11], work[12],
+             work[13], np.zeros(2 * isize, dtype=np.bool_))  # fmt: skip
+    compact = (cpath, cwork, chits)
+    sbox = np.empty((INDEX_SLICES, 4))
+    mark = np.zeros(isize, dtype=np.bool_)
+    one = np.int64(1)
+    geo = (0.0, 0.0, 1.0, one, one, 1.0, one)
+    index = (geo, head, ents, ebox, sbox, mark, kept)
     ncol = np.empty(nb, dtype=np.int64)  # and by the exact tests, per candidate
     for c0 in range(0, n, nb):
         bn = min(nb, n - c0)
@@ -235,14 +363,28 @@ def population_cost(
         margin = MARGIN if sane else np.inf
         hits[:] = 0
         ncol[:] = 0
+        use_index = indexed and sane
+        if use_index:
+            geo, ents, ebox, items, ibox = block_index(
+                bn, npts, t0, speed, tmax, INDEX_CELL, INDEX_SPAN, path, real, head, ents, ebox,
+                items, ibox,
+            )  # fmt: skip
+            index = (geo, head, ents, ebox, sbox, mark, kept)
         # n_collision (Eq. 20): (segment, obstacle) pairs that hit
         for i in range(n_obs):
             a2 = acc2[i] if sane or is_circle[i] else -1.0
             if moving[i]:
                 blk = (t0, speed, bn, npts, sane, cmax, tmax)
-                moving_pass(
-                    i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, grid, hits, ncol
-                )
+                if use_index:
+                    indexed_moving_pass(
+                        i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, cgrid,
+                        ncol, index, compact,
+                    )  # fmt: skip
+                else:
+                    moving_pass(
+                        i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, grid,
+                        hits, ncol,
+                    )  # fmt: skip
             else:
                 ox = ko[i, 0, 0] if spacetime else snap_off[i, 0]
                 oy = ko[i, 0, 1] if spacetime else snap_off[i, 1]

@@ -1,0 +1,149 @@
+"""The moving pass's space-time index: the kernel that tests each moving obstacle only against
+the segments that can come near it must give every output of the kernel that tests all of them
+(``reference_population_cost``), bit for bit, on worlds with every kind of motion."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mawdo.planning import PathCost, scenario_from_dict
+from mawdo.planning.refine.kernel.population import (
+    indexed_population_cost,
+    population_cost,
+    reference_population_cost,
+    scratch_size,
+)
+
+SIZE = 400.0
+
+
+def _motion(rng, kind):
+    if kind == "constant_velocity":
+        return {"model": kind, "velocity": rng.uniform(-2.5, 2.5, 2).round(3).tolist()}
+    if kind == "patrol":
+        k = int(rng.integers(1, 4))
+        m = {
+            "model": kind,
+            "waypoints": rng.uniform(-45, 45, (k, 2)).round(2).tolist(),
+            "speed": float(rng.uniform(0.5, 3.0)),
+            "cycle": ["loop", "back_and_forth"][int(rng.integers(2))],
+        }
+        if rng.random() < 0.5:
+            m["waits"] = rng.uniform(0, 6, k + 1).round(1).tolist()
+        return m
+    return {"model": kind, "step": float(rng.uniform(0.5, 2.5)), "hold": int(rng.integers(1, 6))}
+
+
+def _polygon(rng, c, r):
+    """A star-shaped polygon about ``c`` (its convex hull where rounding made it invalid)."""
+    import shapely
+
+    ang = np.sort(rng.uniform(0, 2 * np.pi, int(rng.integers(3, 7))))
+    rad = rng.uniform(0.4 * r, r, ang.size)
+    p = shapely.Polygon((c + np.c_[rad * np.cos(ang), rad * np.sin(ang)]).round(3))
+    p = p if p.is_valid and p.area > 1.0 else p.convex_hull
+    return np.asarray(p.exterior.coords)[:-1].tolist()
+
+
+def _world(seed, movers=24, standing=5):
+    """Movers of every kind (circles and polygons) and a few standing shapes."""
+    rng = np.random.default_rng([7, seed])
+    kinds = ("constant_velocity", "patrol", "bounded_random_walk")
+    obstacles = []
+    for j in range(movers):
+        c = rng.uniform(70, SIZE - 70, 2)
+        shape = (
+            {"shape": "circle", "center": c.round(3).tolist(), "radius": float(rng.uniform(4, 14))}
+            if j % 3
+            else {"shape": "polygon", "vertices": _polygon(rng, c, float(rng.uniform(8, 20)))}
+        )
+        obstacles.append(shape | {"motion": _motion(rng, kinds[j % 3])})
+    for _ in range(standing):
+        c = rng.uniform(60, SIZE - 60, 2)
+        obstacles.append({"shape": "polygon", "vertices": _polygon(rng, c, 25.0)})
+    spec = {"schema_version": 1, "seed": seed, "width": SIZE, "height": SIZE,
+            "start": [10.0, 10.0], "goal": [SIZE - 10.0, SIZE - 10.0],
+            "obstacles": obstacles}  # fmt: skip
+    return scenario_from_dict(spec)
+
+
+def _population(rng, n, m=20):
+    """Candidates of every sort: spread over the map, near the diagonal (many hits), repeated
+    and zero-length waypoints, points outside the map, a few out of the sane range or NaN."""
+    X = rng.uniform(-20, SIZE + 20, (n, 2 * m))
+    diag = np.linspace(10, SIZE - 10, m + 2)[1:-1]
+    near = np.repeat(diag, 2)[None, :] + rng.normal(0, 15, (n, 2 * m))
+    X[: n // 2] = near[: n // 2]
+    if n < 10:
+        return X
+    X[n // 2 : n // 2 + 3] = 10.0  # every waypoint at the start: zero-length segments
+    X[n // 2 + 3, 2:4] = X[n // 2 + 3, 0:2]  # a repeated waypoint
+    X[n // 2 + 4, 4:] = X[n // 2 + 4, 2:4].tolist() * (m - 2)  # stops half-way
+    return X
+
+
+def _calls(sc, rows, t0s, seed):
+    """The kernel's arguments for populations at several start times (as PathCost passes them)."""
+    cost = PathCost(sc, mode="spacetime", clearance=0.5)
+    got = []
+    kernel = cost._kernel
+
+    def keep(*args):
+        got.append(args)
+        kernel(*args)
+
+    cost._kernel = keep
+    rng = np.random.default_rng([seed, 1])
+    for t0 in t0s:
+        for n in rows:
+            cost.parts(_population(rng, n), start=np.array([10.0, 10.0]) + t0 % 7, t0=t0)
+    return got
+
+
+def _run(fn, args):
+    X = args[0]
+    n = X.shape[0]
+    out = (np.empty(n), np.empty(n), np.empty(n, dtype=np.int64), np.empty(n))
+    buf = np.empty(scratch_size(n, X.shape[1] // 2 + 2, args[8][3], args[5]))
+    fn(*args[:11], out, buf)
+    return out
+
+
+def _assert_same(args):
+    want = _run(reference_population_cost, args)
+    # the index forced on, and the entry point (which uses it from INDEX_MOVERS movers on)
+    for fn in (indexed_population_cost, population_cost):
+        got = _run(fn, args)
+        for a, b in zip(got, want, strict=True):
+            assert a.dtype == b.dtype
+            assert a.tobytes() == b.tobytes()
+    return want
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2, 3])
+def test_indexed_kernel_equals_the_unindexed_one_bit_for_bit(seed):
+    sc = _world(seed)
+    hits = 0
+    for args in _calls(sc, rows=(1, 40, 300), t0s=(0.0, 13.25, 71.0), seed=seed):
+        hits += int(_assert_same(args)[2].sum())
+    assert hits > 100  # the worlds are crowded enough that the index has hits to keep
+
+
+def test_blocks_out_of_the_sane_range_or_with_nan_give_the_same_numbers():
+    # Such blocks take the unindexed pass; the other blocks of the call keep the index.
+    sc = _world(5)
+    for args in _calls(sc, rows=(200,), t0s=(0.0, 4.5), seed=5):
+        X = args[0].copy()
+        X[3, 5] = np.nan
+        X[150, 0] = 3e7  # beyond the sane range (1e7 px)
+        X[151, 1] = np.inf
+        _assert_same((X, *args[1:]))
+
+
+def test_a_crowd_of_movers_around_a_short_population():
+    # Many movers, most of them far from the paths: the index leaves those out.
+    sc = _world(9, movers=150, standing=0)
+    for args in _calls(sc, rows=(130,), t0s=(2.0,), seed=9):
+        X = args[0] * 0.3  # paths in the lower-left part of the map
+        _assert_same((X, *args[1:]))
