@@ -220,7 +220,7 @@ def sweeps(size: str) -> dict:
     }
 
 
-def figure(results: dict, path: str) -> None:
+def figure(results: dict, path: str, preset: str = "large") -> None:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -242,8 +242,8 @@ def figure(results: dict, path: str) -> None:
         ax.set_title(f"{name}: first plan ~ n^{slope(x, [r['first'] for _, r in rows]):.2f}")
     handles, labels = np.atleast_1d(axes)[0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", ncol=len(labels), fontsize=7, frameon=False)
-    fig.suptitle("mawdo at scale, CPU seconds (stages: over the whole run; targets dashed: "
-                 "first plan 1 s, replan p95 50 ms)", fontsize=9)  # fmt: skip
+    fig.suptitle(f"mawdo at scale, preset {preset}, CPU seconds (stages: over the whole run; "
+                 "targets dashed: first plan 1 s, replan p95 50 ms)", fontsize=9)  # fmt: skip
     fig.tight_layout(rect=(0, 0.07, 1, 1))
     os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
     fig.savefig(path, dpi=110)
@@ -296,7 +296,7 @@ def main(argv=None) -> None:
               + ", ".join(f"{st} {v:.2f}" for st, v in fits.items()), flush=True)  # fmt: skip
         results[name] = rows
         if a.figure:  # after each sweep: a long run leaves its curves so far
-            figure(results, a.figure)
+            figure(results, a.figure, a.preset)
     if a.figure:
         print(f"figure: {a.figure}")
 
