@@ -132,3 +132,20 @@ def test_a_run_with_a_short_lookahead_drives_only_checked_steps(lookahead, limit
     assert driven, "the run followed timed routes"
     assert all(t <= until for t, until in driven)
     assert any(math.isfinite(until) for _, until in driven)
+
+
+@pytest.mark.parametrize(
+    "preset, static, hinted", [("realtime", False, True), ("large", False, False),
+                               ("realtime", True, False)]
+)  # fmt: skip
+def test_the_plan_command_suggests_the_large_preset_among_many_movers(
+    preset, static, hinted, capsys
+):
+    from mawdo.cli.plan import LARGE_MOVERS, _prepare
+
+    sc = world(400.0, LARGE_MOVERS, 8, seed=0)
+    _prepare(sc, "mawdo", 0, preset, static, 1, 5)
+    assert ("--preset large" in capsys.readouterr().err) is hinted
+    few = world(400.0, LARGE_MOVERS - 1, 8, seed=0)
+    _prepare(few, "mawdo", 0, preset, static, 1, 5)
+    assert "--preset large" not in capsys.readouterr().err

@@ -66,6 +66,10 @@ def check_threads(threads: int) -> None:
         )
 
 
+#: From this many moving obstacles a run under the default preset suggests ``large``.
+LARGE_MOVERS = 100
+
+
 def _prepare(sc, algorithm, seed, preset, static, threads, max_steps, sense=None):
     """The run, set up and checked; a run that may take minutes says so (stderr) first.
     ``sense``: ``(knowledge, sensor)`` for a stepped run (a scenario with people, or
@@ -89,6 +93,13 @@ def _prepare(sc, algorithm, seed, preset, static, threads, max_steps, sense=None
         if seconds > 60:
             note += f"; this run may take up to about {seconds / 60:.0f} min"
         typer.echo(note, err=True)
+    if preset == "realtime" and not static and len(sc.moving_indices) >= LARGE_MOVERS:
+        typer.echo(
+            f"{len(sc.moving_indices)} moving obstacles: --preset large plans a world this size "
+            "several times faster (its guide trusts their predicted motion 120 steps ahead; "
+            "every step is still checked against the whole prediction)",
+            err=True,
+        )
     return run
 
 
