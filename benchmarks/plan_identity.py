@@ -35,6 +35,7 @@ def cases(quick: bool = False) -> list[tuple[str, str, int, dict]]:
     """``(label, scene, seed, overrides)`` per run; ``scene`` is ``"paper"`` or
     ``"family:index"`` (scene seed 0)."""
     from mawdo.experiments.kinds.arena.plan import LARGE_FAMILIES
+    from mawdo.planning.run.config import PRESETS
     from mawdo.planning.scenes import FAMILIES
 
     out = []
@@ -44,7 +45,8 @@ def cases(quick: bool = False) -> list[tuple[str, str, int, dict]]:
         out.append((f"paper-s{s}-noguide", "paper", s, {"time_guide": False}))
     for fam in FAMILIES:
         if fam in LARGE_FAMILIES:  # minutes a run: one scene, as the preset 'large' plans it
-            out.append((f"{fam}-0", f"{fam}:0", 0, {"guide_lookahead": 120.0}))
+            ahead = PRESETS["large"].guide_lookahead
+            out.append((f"{fam}-0", f"{fam}:0", 0, {"guide_lookahead": ahead}))
             continue
         for i in range(1 if quick else 3):
             for guide in (True,) if quick else (True, False):

@@ -45,6 +45,7 @@ def test_seed_sequences_compare_by_state():
 
 def test_cases_cover_every_family_both_ways_and_the_limits():
     from mawdo.experiments.kinds.arena.plan import LARGE_FAMILIES
+    from mawdo.planning.run.config import PRESETS
     from mawdo.planning.scenes import FAMILIES
 
     full, quick = cases(), cases(quick=True)
@@ -52,7 +53,8 @@ def test_cases_cover_every_family_both_ways_and_the_limits():
     for fam in FAMILIES:
         assert f"{fam}-0" in {c[0] for c in quick}
         if fam in LARGE_FAMILIES:  # one scene, under the lookahead of the preset 'large'
-            assert [c[3] for c in full if c[0] == f"{fam}-0"] == [{"guide_lookahead": 120.0}]
+            ahead = {"guide_lookahead": PRESETS["large"].guide_lookahead}
+            assert [c[3] for c in full if c[0] == f"{fam}-0"] == [ahead]
             continue
         assert {f"{fam}-{i}{t}" for i in range(3) for t in ("", "-noguide")} <= {c[0] for c in full}
     assert sum("max_accel" in c[3] for c in full) == 3

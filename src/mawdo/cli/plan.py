@@ -94,10 +94,13 @@ def _prepare(sc, algorithm, seed, preset, static, threads, max_steps, sense=None
             note += f"; this run may take up to about {seconds / 60:.0f} min"
         typer.echo(note, err=True)
     if preset == "realtime" and not static and len(sc.moving_indices) >= LARGE_MOVERS:
+        from mawdo.planning.run.config import PRESETS
+
+        ahead = PRESETS["large"].guide_lookahead
         typer.echo(
             f"{len(sc.moving_indices)} moving obstacles: --preset large plans a world this size "
-            "several times faster (its guide trusts their predicted motion 120 steps ahead; "
-            "every step is still checked against the whole prediction)",
+            f"several times faster (its guide trusts their predicted motion {ahead:g} steps "
+            "ahead; every step is still checked against the whole prediction)",
             err=True,
         )
     return run

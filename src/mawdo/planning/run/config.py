@@ -298,9 +298,10 @@ PRESETS = {
         pop_size=240, first_pop_size=1360, first_iters=300, replan_iters=15, **_AS_PUBLISHED
     ),
     "quick": PlannerConfig(pop_size=80, first_iters=60, replan_iters=5),
-    # real time on large worlds: the safe-interval guide trusts the predictions 120 steps
-    # ahead (its search then grows with that time, not with the route's)
-    "large": PlannerConfig(pop_size=240, first_iters=300, replan_iters=15, guide_lookahead=120.0),
+    # real time on large worlds: the safe-interval guide trusts the predictions 180 steps
+    # ahead (its search then grows with that time, not with the route's; 120 and 60 steps
+    # saw a warehouse's conflict too late: benchmarks/log/scaling.md)
+    "large": PlannerConfig(pop_size=240, first_iters=300, replan_iters=15, guide_lookahead=180.0),
     # single-shot queries in tens of milliseconds: the guide's routes do the topology, a short
     # refinement smooths them
     "fast": PlannerConfig(pop_size=40, first_iters=25, replan_iters=5, warm_copies=15),
