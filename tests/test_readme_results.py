@@ -237,16 +237,31 @@ def test_the_committed_stores_report_through_the_command(bbob_stores, tmp_path):
     assert written == set(pairs)
 
 
-def test_arena_sentences_are_those_of_the_committed_store(tmp_path):
-    """The committed arena store (xz) gives exactly the committed headline sentences."""
+@pytest.mark.parametrize("folder", ["arena-default", "arena-large"])
+def test_arena_sentences_are_those_of_the_committed_store(tmp_path, folder):
+    """The committed arena store (xz) gives exactly the committed headline sentences, and each
+    planner's T/T* median on the timed families, recomputed from the raw rows with sqlite3
+    and numpy, is the one its sentence states."""
     from mawdo.experiments import Store
     from mawdo.experiments.kinds.arena.summary import headline
 
-    db = unpack(ROOT / "docs" / "results" / "arena-default" / "store.db.xz", tmp_path)
+    db = unpack(ROOT / "docs" / "results" / folder / "store.db.xz", tmp_path)
     with Store.read(db) as store:
         lines = headline(store)
-    summary = (ROOT / "docs" / "results" / "arena-default" / "summary.md").read_text("utf-8")
+    summary = (ROOT / "docs" / "results" / folder / "summary.md").read_text("utf-8")
     assert lines == summary.splitlines()
+    conn = sqlite3.connect(db)
+    rows = conn.execute(
+        "SELECT algorithm, time_gap FROM runs WHERE t_star IS NOT NULL AND success = 1 "
+        "AND error_text IS NULL"
+    ).fetchall()
+    conn.close()
+    timed = [s for s in lines if "T/T* median" in s]
+    assert timed
+    for line in timed:
+        planner = line.removeprefix("- ").split(" ")[0]
+        gaps = np.array([g for a, g in rows if a == planner])
+        assert f"T/T* median {np.median(gaps):.3f}" in line, (planner, line)
 
 
 def holm_by_hand(p: list[float]) -> list[float]:
