@@ -250,16 +250,19 @@ class TimedRun:
 
         The run drives the route's own pieces at their own times (:func:`position_at`, the
         vertices passed at their fractions of the step), so every driven piece is part of a
-        checked move or wait. The route is asked again at every replan, from where the robot
-        is (with acceleration or turn limits: kept while the robot is on it). A speed limit
-        alone never changes a route's step (the route is timed at it); with acceleration or
-        turn limits the route is timed as driven (a rest-to-rest profile per edge, whole
-        steps), so its steps are within the limits, and a step leaves the route only when the
-        guard or the rule refuses it: it is then the guard-checked projection
-        (:class:`~mawdo.planning.safety.kinematics.LimitedRun`). A route the swarm refined
-        (``refine_trajectory``) has one point per step; before it replaced the guide's, each of
-        its steps passed the guard's step test, the guide's mover test, the rule's route test
-        and the run's own projection unchanged. Tested on corridor,
+        checked move or wait. With a lookahead (``guide_lookahead``) the movers were tested
+        only until the route's ``checked_until``; the route is asked again before a step
+        could pass it (:meth:`_checked_past`; the configuration keeps the lookahead beyond a
+        replan's period and the rule's horizon). The route is asked again at every replan,
+        from where the robot is (with acceleration or turn limits: kept while the robot is
+        on it). A speed limit alone never changes a route's step (the route is timed at it);
+        with acceleration or turn limits the route is timed as driven (a rest-to-rest
+        profile per edge, whole steps), so its steps are within the limits, and a step
+        leaves the route only when the guard or the rule refuses it: it is then the
+        guard-checked projection (:class:`~mawdo.planning.safety.kinematics.LimitedRun`). A route
+        the swarm refined (``refine_trajectory``) has one point per step; before it replaced
+        the guide's, each of its steps passed the guard's step test, the guide's mover test,
+        the rule's route test and the run's own projection unchanged. Tested on corridor,
         doorway, parked and crowd scenes with the independent checker
         (``tests/planning/test_timed_follow.py``)."""
         if self.following is None:
