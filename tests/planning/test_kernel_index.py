@@ -15,6 +15,10 @@ from mawdo.planning.refine.kernel.population import (
     scratch_size,
 )
 
+# The index is used from 500 movers on (no world of the fast tier has as many) and its kernel
+# compiles for about a minute: these run in `make test-all`, not in the fast tier.
+pytestmark = pytest.mark.slow
+
 SIZE = 400.0
 
 

@@ -296,6 +296,6 @@ def test_warehouse_layout_by_hand_and_movers_stay_in_the_aisles():
 
 def test_arena_large_preset():
     plan = arena_preset("arena-large")
-    assert plan.families == LARGE and plan.planner == "realtime"
+    assert plan.families == LARGE and plan.planner == "large"
     assert "mawdo" in plan.algorithms and "guide_only" in plan.baselines
     assert plan.total_runs == len(plan.planners) * 2 * plan.n

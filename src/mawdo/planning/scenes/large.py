@@ -29,9 +29,7 @@ from mawdo.planning.scenes.timing import (
     speed_params,
     timing_margin,
 )
-
-# _crosser: the crossing family's disc that meets the robot on its straight line, reused as is
-from mawdo.planning.scenes.traffic import _crosser, moving_disc, range_check, static_polygons
+from mawdo.planning.scenes.traffic import crosser, moving_disc, range_check, static_polygons
 
 __all__ = ["CROWD_LARGE", "LARGE_SIZE", "WAREHOUSE_LARGE", "LargeFamily", "patrol_disc"]
 
@@ -133,7 +131,7 @@ def _draw_crowd_large(rng: np.random.Generator, p: dict) -> dict:
     r, dist = p["robot_radius"], math.dist(start, goal)
     q = {**p, "rmin": r * p["rmin"], "rmax": r * p["rmax"], "walkers": 0.0}
     aimed, patrols, free = _mover_counts(p, ("aimed", "patrols"))
-    obs += [_crosser(rng, q, start, (goal - start) / dist, dist) for _ in range(aimed)]
+    obs += [crosser(rng, q, start, (goal - start) / dist, dist) for _ in range(aimed)]
     for _ in range(patrols):
         obs.append(_cross_patrol(rng, p, start, goal, float(rng.uniform(q["rmin"], q["rmax"]))))
     obs += [moving_disc(rng, q, start, goal) for _ in range(free)]

@@ -15,7 +15,7 @@ import shapely
 from mawdo.planning.scenes.base import Family, Param, Redraw, draft
 from mawdo.planning.scenes.shapes import circle, convex_polygon, diagonal_endpoints, place, polygon
 
-__all__ = ["CROSSING", "DENSE", "moving_disc", "range_check", "static_polygons"]
+__all__ = ["CROSSING", "DENSE", "crosser", "moving_disc", "range_check", "static_polygons"]
 
 
 def _margin(p: dict) -> float:
@@ -50,7 +50,7 @@ def _inside(c, rad: float, s: float) -> bool:
     return bool(np.all(c - rad >= 0.0) and np.all(c + rad <= s))
 
 
-def _crosser(rng, p: dict, start, d, dist: float) -> dict:
+def crosser(rng, p: dict, start, d, dist: float) -> dict:
     """A disc that reaches the straight start-goal line exactly when the robot does there.
 
     Along the line the robot is at ``start + v t d``; the disc aims at the point at fraction
@@ -85,7 +85,7 @@ def _draw_crossing(rng: np.random.Generator, p: dict) -> dict:
     d = goal - start
     dist = float(np.hypot(*d))
     d /= dist
-    obs = [_crosser(rng, p, start, d, dist) for _ in range(p["n"])]
+    obs = [crosser(rng, p, start, d, dist) for _ in range(p["n"])]
     obs += static_polygons(rng, p, p["statics"], start, goal)
     return draft(p, start, goal, obs)
 
