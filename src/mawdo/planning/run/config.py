@@ -260,7 +260,7 @@ def _check_lookahead(cfg: PlannerConfig) -> None:
     if not (ok and v > least):
         raise ValueError(
             f"PlannerConfig.guide_lookahead={v!r} must be None or a number of time steps > "
-            f"{least} (more than ics_horizon and at least replan_every); e.g. 120"
+            f"{least} (more than ics_horizon and at least replan_every); e.g. 180"
         )
 
 

@@ -158,9 +158,8 @@ class SafeIntervalGuide:
         self._v = float(scenario.robot_speed)
         if profile is not None:
             accel, turn = (float(x) for x in profile)
-            v = float(scenario.robot_speed)
-            self._lim = (v, bool(accel < math.inf), turn)
-            self._table = profile_table(self.weights, v, accel)
+            self._lim = (self._v, bool(accel < math.inf), turn)
+            self._table = profile_table(self.weights, self._v, accel)
 
     @property
     def graph(self):

@@ -47,6 +47,9 @@ bound at most that key, so it has been settled before; the state keeps the earli
 among equal ones, the move the eager order settles first (its source expanded first, then the
 lower edge), as the eager search's strict ``<`` kept the first. Moves to the goal are settled
 first (the order of settling changes none of this): their arrival bounds the others early.
+A move from a state reached after the movers' last piece ends (a guide's lookahead cuts them
+there) leaves at its first departure ``x``, which is what the exact search would return: no
+forbidden set can start after that time.
 """
 
 from __future__ import annotations
