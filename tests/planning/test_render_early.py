@@ -193,8 +193,9 @@ def test_warm_runs_in_the_child_before_begin_and_prepare_takes_what_begin_gives(
     prepare.warm = lambda: warmed.write_text(str(os.getpid()))
     with EarlyFigures(prepare) as job:
         if job.early:  # warmed at once, in the child, while the parent has not begun
+            # wait for the content, not the file: write_text creates it empty first
             end = time.monotonic() + 60
-            while not warmed.exists() and time.monotonic() < end:
+            while time.monotonic() < end and not (warmed.exists() and warmed.read_text()):
                 time.sleep(0.01)
             assert warmed.read_text() == str(job.proc.pid)
         job.begin("given")
