@@ -37,7 +37,10 @@ readme-img: demo
 	print('README caption:', t('docs/img/snapshots_mawdo.png')['Description'])"
 
 # CI (CI=true) runs the fast tier; `make test-all` adds the slow convergence and study tests.
+# The planner's kernels are compiled first, in 2 processes at once (the tests would compile
+# them one after the other, on a fresh clone about a minute of waiting).
 test: $(DEVSTAMP)
+	$(PY) -m mawdo.jit --jobs 2
 	$(PY) -m pytest -q -m "not slow and not rl" --timeout=600
 
 test-all: $(DEVSTAMP)

@@ -91,7 +91,7 @@ def replay(got: list[tuple], repeat: int) -> tuple[float, float, str]:
         sweeps.append(time.process_time() - t)
         if r == 0:
             for a in got:
-                for arr in a[11]:
+                for arr in a[12]:
                     h.update(np.ascontiguousarray(arr).tobytes())
     s = np.array(sweeps[1:]) / len(got)
     return float(s.min()), float(np.median(s)), h.hexdigest()

@@ -45,8 +45,8 @@ def cases(quick: bool = False) -> list[tuple[str, str, int, dict]]:
         out.append((f"paper-s{s}-noguide", "paper", s, {"time_guide": False}))
     for fam in FAMILIES:
         if fam in LARGE_FAMILIES:  # minutes a run: one scene, as the preset 'large' plans it
-            ahead = PRESETS["large"].guide_lookahead
-            out.append((f"{fam}-0", f"{fam}:0", 0, {"guide_lookahead": ahead}))
+            ahead = PRESETS["large"].lookahead
+            out.append((f"{fam}-0", f"{fam}:0", 0, {"lookahead": ahead}))
             continue
         for i in range(1 if quick else 3):
             for guide in (True,) if quick else (True, False):
@@ -97,7 +97,7 @@ def run_case(scene: str, seed: int, overrides: dict):
 ADDED_DEFAULTS = {
     "robot_caused": None, "other_collisions": None, "units": "px", "dt": None, "resolution": None,
     "file_spec": None, "derived_units": None, "crowd": None, "check": None, "comfort": 0.0,
-    "comfort_weight": 8.0, "refine_trajectory": True, "guide_lookahead": None,
+    "comfort_weight": 8.0, "refine_trajectory": True, "guide_lookahead": None, "lookahead": None,
 }  # fmt: skip
 
 

@@ -45,17 +45,15 @@ for name, sig in seen:
 @pytest.mark.slow
 def test_kernels_that_pass_a_counter_compile_their_callees_once(tmp_path):
     env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path), "PYTHONPATH": SRC}
-    # static_pass calls classify_segments; forbidden calls _mover_forbidden, which calls
-    # _polygon_piece, which calls _push (the callers, as `plan paper` compiles them; the
-    # middle two inlined into forbidden)
+    # static_pass calls classify_segments with a counter; forbidden calls forbidden_among,
+    # which calls _polygon_piece with one (the callers, as `plan paper` compiles them)
     args = [sys.executable, "-c", COUNT, "static_pass", "forbidden"]
     proc = subprocess.run(args, env=env, capture_output=True, text=True, timeout=600)
     assert proc.returncode == 0, proc.stderr
     rows = [line.split() for line in proc.stdout.splitlines()]
     names = [name for name, _ in rows]
-    for callee in ("classify_segments", "forbidden", "_push"):
+    for callee in ("classify_segments", "forbidden", "forbidden_among", "_polygon_piece"):
         assert names.count(callee) == 1, (callee, rows)
-    for inlined in ("_mover_forbidden", "_polygon_piece"):
-        assert names.count(inlined) == 0, (inlined, rows)
+    assert names.count("_mover_forbidden") == 0, rows  # (inlined into forbidden)
     assert not [r for r in rows if r[1] == "LITERAL"], rows
     assert len(names) == len(set(names)), rows  # every mawdo kernel once

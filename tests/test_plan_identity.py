@@ -53,7 +53,7 @@ def test_cases_cover_every_family_both_ways_and_the_limits():
     for fam in FAMILIES:
         assert f"{fam}-0" in {c[0] for c in quick}
         if fam in LARGE_FAMILIES:  # one scene, under the lookahead of the preset 'large'
-            ahead = {"guide_lookahead": PRESETS["large"].guide_lookahead}
+            ahead = {"lookahead": PRESETS["large"].lookahead}
             assert [c[3] for c in full if c[0] == f"{fam}-0"] == [ahead]
             continue
         assert {f"{fam}-{i}{t}" for i in range(3) for t in ("", "-noguide")} <= {c[0] for c in full}

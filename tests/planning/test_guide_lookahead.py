@@ -95,8 +95,8 @@ def test_kept_moves_equal_the_whole_graphs_for_each_start():
 
 @pytest.mark.parametrize("bad", [0.0, -5.0, 30, True, "far"])
 def test_config_refuses_a_lookahead_within_the_rules_horizon(bad):
-    with pytest.raises(ValueError, match="guide_lookahead"):
-        PlannerConfig(guide_lookahead=bad)
+    with pytest.raises(ValueError, match="lookahead"):
+        PlannerConfig(lookahead=bad)
 
 
 def test_guide_refuses_a_non_positive_lookahead():
@@ -124,9 +124,7 @@ def test_a_run_with_a_short_lookahead_drives_only_checked_steps(lookahead, limit
 
     monkeypatch.setattr(TimedRun, "_drive", watched)
     sc = world(400.0, 60, 8, seed=0)  # constant-velocity discs: no reachable set blocks it
-    cfg = replace(
-        PRESETS["realtime"], guide_lookahead=lookahead, pop_size=40, first_iters=30, **limits
-    )
+    cfg = replace(PRESETS["realtime"], lookahead=lookahead, pop_size=40, first_iters=30, **limits)
     res = plan(sc, "mawdo", seed=0, config=cfg, max_steps=80)
     assert res.collision_free
     assert driven, "the run followed timed routes"

@@ -87,9 +87,9 @@ def _population(rng, n, m=20):
     return X
 
 
-def _calls(sc, rows, t0s, seed):
+def _calls(sc, rows, t0s, seed, horizon=None):
     """The kernel's arguments for populations at several start times (as PathCost passes them)."""
-    cost = PathCost(sc, mode="spacetime", clearance=0.5)
+    cost = PathCost(sc, mode="spacetime", clearance=0.5, horizon=horizon)
     got = []
     kernel = cost._kernel
 
@@ -110,7 +110,7 @@ def _run(fn, args):
     n = X.shape[0]
     out = (np.empty(n), np.empty(n), np.empty(n, dtype=np.int64), np.empty(n))
     buf = np.empty(scratch_size(n, X.shape[1] // 2 + 2, args[8][3], args[5]))
-    fn(*args[:11], out, buf)
+    fn(*args[:12], out, buf)
     return out
 
 
@@ -132,6 +132,16 @@ def test_indexed_kernel_equals_the_unindexed_one_bit_for_bit(seed):
     for args in _calls(sc, rows=(1, 40, 300), t0s=(0.0, 13.25, 71.0), seed=seed):
         hits += int(_assert_same(args)[2].sum())
     assert hits > 100  # the worlds are crowded enough that the index has hits to keep
+
+
+@pytest.mark.parametrize("horizon", [2.5, 40.0])
+def test_under_a_horizon_the_indexed_kernel_equals_the_unindexed_one(horizon):
+    # the index is built on the part of the block before the horizon (kernel.horizon)
+    sc = _world(4)
+    hits = 0
+    for args in _calls(sc, rows=(40, 300), t0s=(0.0, 13.25), seed=4, horizon=horizon):
+        hits += int(_assert_same(args)[2].sum())
+    assert hits > 100
 
 
 def test_blocks_out_of_the_sane_range_or_with_nan_give_the_same_numbers():

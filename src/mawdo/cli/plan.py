@@ -96,7 +96,7 @@ def _prepare(sc, algorithm, seed, preset, static, threads, max_steps, sense=None
     if preset == "realtime" and not static and len(sc.moving_indices) >= LARGE_MOVERS:
         from mawdo.planning.run.config import PRESETS
 
-        ahead = PRESETS["large"].guide_lookahead
+        ahead = PRESETS["large"].lookahead
         typer.echo(
             f"{len(sc.moving_indices)} moving obstacles: --preset large plans a world this size "
             f"several times faster (its guide trusts their predicted motion {ahead:g} steps "

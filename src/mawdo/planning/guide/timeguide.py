@@ -250,7 +250,7 @@ class TimedRun:
 
         The run drives the route's own pieces at their own times (:func:`position_at`, the
         vertices passed at their fractions of the step), so every driven piece is part of a
-        checked move or wait. With a lookahead (``guide_lookahead``) the movers were tested
+        checked move or wait. With a lookahead (``lookahead``) the movers were tested
         only until the route's ``checked_until``; the route is asked again before a step
         could pass it (:meth:`_checked_past`; the configuration keeps the lookahead beyond a
         replan's period and the rule's horizon). The route is asked again at every replan,

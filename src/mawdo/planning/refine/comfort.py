@@ -35,8 +35,9 @@ class ComfortPathCost(PathCost):
 
     Parameters
     ----------
-    scenario, mode, weights, n_waypoints, clearance, threads
-        As for :class:`~mawdo.planning.refine.cost.PathCost`.
+    scenario, mode, weights, n_waypoints, clearance, threads, horizon
+        As for :class:`~mawdo.planning.refine.cost.PathCost` (the horizon bounds the near
+        passes too).
     comfort : float
         Room (px, > 0) beyond the robot radius and the clearance that a passing robot should
         leave a moving agent.
@@ -52,8 +53,9 @@ class ComfortPathCost(PathCost):
     def __init__(
         self, scenario, mode: str = "spacetime", weights=None, n_waypoints: int = 20,
         clearance: float = 0.0, threads: int = 1, *, comfort: float, comfort_weight: float,
+        horizon: float | None = None,
     ) -> None:  # fmt: skip
-        super().__init__(scenario, mode, weights, n_waypoints, clearance, threads)
+        super().__init__(scenario, mode, weights, n_waypoints, clearance, threads, horizon=horizon)
         if not (math.isfinite(comfort) and comfort > 0):
             raise ValueError(f"comfort must be finite and > 0 px, got {comfort!r}")
         if not (math.isfinite(comfort_weight) and comfort_weight >= 0):
@@ -64,7 +66,7 @@ class ComfortPathCost(PathCost):
         if movers:
             self._near = PathCost(
                 scenario, mode, weights, n_waypoints, clearance + self.comfort, threads,
-                obstacles=movers, border=False,
+                obstacles=movers, border=False, horizon=horizon,
             )  # fmt: skip
         self._per_pair = float(self.weights.alpha) * self.comfort_weight
 

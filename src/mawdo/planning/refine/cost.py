@@ -175,6 +175,12 @@ class PathCost:
         The obstacles ``n`` counts (default all of the scenario's), e.g. its movers only.
     border : bool
         Whether the map's border counts in ``n`` (default True).
+    horizon : float, optional
+        Lookahead (time steps, > 0) of the spacetime mode: moving obstacles count only on the
+        segments the robot begins before ``t0 + horizon`` (the one that straddles that time
+        whole); standing obstacles and the border on all of them. None (default): the whole
+        path. For a planner that trusts its predictions only so far ahead; its safety check
+        must not use it.
 
     Examples
     --------
@@ -192,6 +198,7 @@ class PathCost:
         threads: int = 1,
         obstacles=None,
         border: bool = True,
+        horizon: float | None = None,
     ) -> None:
         if mode not in MODES:
             raise ValueError(f"mode must be one of {MODES}, got {mode!r}")
@@ -208,6 +215,13 @@ class PathCost:
         if not np.isfinite(clearance) or clearance < 0:
             raise ValueError(f"clearance must be finite and >= 0 px, got {clearance!r}")
         self.clearance = float(clearance)
+        if horizon is not None and not (math.isfinite(horizon) and horizon > 0):
+            raise ValueError(
+                f"horizon must be None (the whole path) or a finite number of time steps > 0, "
+                f"got {horizon!r}"
+            )
+        self.horizon = None if horizon is None else float(horizon)
+        self._horizon = math.inf if horizon is None else float(horizon)
         # the margin widens the hit distance: touching the inflated-plus-margin shape is a hit
         self._obstacles = tuple(scenario.obstacles if obstacles is None else obstacles)
         self._rows = None if obstacles is None else [o.index for o in self._obstacles]
@@ -391,6 +405,7 @@ class PathCost:
             self._obs,
             snap,
             motion,
+            self._horizon,
             self._weights,
             self._box,
             (out_cost, out_len, out_ncol, out_turn),

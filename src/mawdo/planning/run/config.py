@@ -123,15 +123,16 @@ class PlannerConfig:
     time_routes : int
         Timed routes per query of that guide (>= 1): the earliest arrival and up to
         ``time_routes - 1`` time-diverse alternatives, all seeds.
-    guide_lookahead : float or None
-        Time steps (> ``ics_horizon`` and >= ``replan_every``) over which the safe-interval
-        guide trusts the movers' predicted motion at each query; beyond it its routes are
-        timed on the static map, and a followed route is asked again before the robot comes
-        within ``ics_horizon`` steps of that end. None (default): the guide's whole horizon.
-        Large worlds plan far faster with it (a search's work grows with the time it looks
-        ahead, not with the route), at the price of routes that may meet a conflict the guide
-        did not yet look at; every step is still checked by the guard and the rule with the
-        whole prediction.
+    lookahead : float or None
+        Time steps (> ``ics_horizon`` and >= ``replan_every``) over which the planner trusts
+        the movers' predicted motion at each replan. The safe-interval guide tests them only
+        that far (beyond, its routes are timed on the static map, and a followed route is asked
+        again before the robot comes within ``ics_horizon`` steps of that end), and so does
+        the refinement's cost (a segment the robot begins later is tested against the static
+        map only). None (default): the whole prediction. Large worlds plan far faster with it
+        (the search's and the cost's work grow with the time they look ahead, not with the
+        route), at the price of routes that may meet a conflict not yet looked at; every step
+        is still checked by the guard and the rule with the whole prediction.
     ics_horizon : int
         Receding horizon: prediction horizon (time steps, >= 0; 0 turns the rule off) of the
         rule that never drives into an inevitable collision (:mod:`mawdo.planning.safety.ics`): a
@@ -188,7 +189,7 @@ class PlannerConfig:
     threads: int = 1
     time_guide: bool = True
     time_routes: int = 2
-    guide_lookahead: float | None = None
+    lookahead: float | None = None
     ics_horizon: int = 30
     refine_trajectory: bool = True
     max_speed: float | None = None
@@ -250,16 +251,16 @@ class PlannerConfig:
 
 
 def _check_lookahead(cfg: PlannerConfig) -> None:
-    """``guide_lookahead``: None, or a number past the rule's horizon and a replan's period
+    """``lookahead``: None, or a number past the rule's horizon and a replan's period
     (a followed route must be checked for every step driven before the guide is asked again)."""
-    v = cfg.guide_lookahead
+    v = cfg.lookahead
     if v is None:
         return
     least = max(cfg.ics_horizon, cfg.replan_every - 1)
     ok = isinstance(v, int | float | np.integer | np.floating) and not isinstance(v, bool)
     if not (ok and v > least):
         raise ValueError(
-            f"PlannerConfig.guide_lookahead={v!r} must be None or a number of time steps > "
+            f"PlannerConfig.lookahead={v!r} must be None or a number of time steps > "
             f"{least} (more than ics_horizon and at least replan_every); e.g. 180"
         )
 
@@ -298,10 +299,10 @@ PRESETS = {
         pop_size=240, first_pop_size=1360, first_iters=300, replan_iters=15, **_AS_PUBLISHED
     ),
     "quick": PlannerConfig(pop_size=80, first_iters=60, replan_iters=5),
-    # real time on large worlds: the safe-interval guide trusts the predictions 180 steps
-    # ahead (its search then grows with that time, not with the route's; 120 and 60 steps
+    # real time on large worlds: the safe-interval guide and the cost trust the predictions
+    # 180 steps ahead (its search then grows with that time, not with the route's; 120 and 60 steps
     # saw a warehouse's conflict too late: benchmarks/log/scaling.md)
-    "large": PlannerConfig(pop_size=240, first_iters=300, replan_iters=15, guide_lookahead=180.0),
+    "large": PlannerConfig(pop_size=240, first_iters=300, replan_iters=15, lookahead=180.0),
     # single-shot queries in tens of milliseconds: the guide's routes do the topology, a short
     # refinement smooths them
     "fast": PlannerConfig(pop_size=40, first_iters=25, replan_iters=5, warm_copies=15),

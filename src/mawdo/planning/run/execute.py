@@ -58,14 +58,18 @@ def share_guide(source: Scenario, target: Scenario) -> None:
 
 def _path_cost(sc: Scenario, cfg: PlannerConfig, m: int, dynamic: bool) -> PathCost:
     """The refinement's cost: the paper's, plus the comfort term where ``cfg.comfort`` asks
-    for it and the run sees time (near passes are judged along the robot's motion)."""
+    for it and the run sees time (near passes are judged along the robot's motion); movers
+    tested over ``cfg.lookahead`` where it is set."""
     mode = cfg.mode if dynamic else "snapshot"
     args = (sc, mode, cfg.weights, m, cfg.clearance, cfg.threads)
+    ahead = cfg.lookahead if mode == "spacetime" else None
     if cfg.comfort > 0 and mode == "spacetime":
         from mawdo.planning.refine.comfort import ComfortPathCost
 
-        return ComfortPathCost(*args, comfort=cfg.comfort, comfort_weight=cfg.comfort_weight)
-    return PathCost(*args)
+        return ComfortPathCost(
+            *args, comfort=cfg.comfort, comfort_weight=cfg.comfort_weight, horizon=ahead
+        )
+    return PathCost(*args, horizon=ahead)
 
 
 def _waypoints_needed(routes, cfg: PlannerConfig) -> int:
@@ -131,7 +135,7 @@ class Run(DecidingRun, TimedRun, SafeRun, LimitedRun):
         # earliest arrival is the static guide's shortest route at full speed, already a seed
         timed = cfg.time_guide and dynamic and bool(sc.moving_indices)
         args = (sc, cfg.clearance, cfg.time_routes, self.routes, limits)  # limits: as driven
-        self.timer = TimeGuide(*args, cfg.guide_lookahead) if timed else None
+        self.timer = TimeGuide(*args, cfg.lookahead) if timed else None
         self.refiner = self._make_refiner()
         self.following = None
         self.timed_follows = 0  # replans at which the guard chose a timed route

@@ -62,8 +62,9 @@ the package itself exports only the entry point): :mod:`.constants`, :mod:`.prim
 :mod:`.passes` (block layout, standing obstacles), :mod:`.moving` (moving obstacles, three
 steps), :mod:`.index` (a space-time index of a block's segments, so that the moving pass runs on
 those near each obstacle; used from :data:`.constants.INDEX_MOVERS` moving obstacles on),
-:mod:`.population` (the entry point), :mod:`.threads` (the entry point on chunks of rows at
-once, for ``PathCost(threads=k)``).
+:mod:`.horizon` (the part of a block before a lookahead, which the moving obstacles are tested
+against when one is given), :mod:`.population` (the entry point), :mod:`.threads` (the entry
+point on chunks of rows at once, for ``PathCost(threads=k)``).
 """
 
 from mawdo.planning.refine.kernel.constants import ZERO_LENGTH

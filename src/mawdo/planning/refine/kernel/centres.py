@@ -79,11 +79,17 @@ def centres(i, blk, path, work, obs, motion, grid):
             kpt[p] = gkr[g]  # the piece at the cell's start: at most one before (a hint)
         return ggap[i]  # (each cell's is ggap or 0)
     else:
-        # (times beyond the grid) walk
+        # (times beyond the grid) walk, from piece ks again wherever time goes back (a
+        # horizon's layout is one path of many candidates' starts: kernel.horizon)
         for b in range(bn):
             k = ks
+            prev = -np.inf
             for p in range(b * npts, b * npts + npts):
                 t = tt[p]
+                if t < prev:
+                    k = ks
+                if t == t:  # (a NaN time leaves the last one)
+                    prev = t
                 while k < last and kt[i, k + 1] <= t:
                     k += 1
                 kpt[p] = k

@@ -19,6 +19,7 @@ from mawdo.planning.refine.kernel.constants import (
     MARGIN,
     WALK_KNOTS,
 )
+from mawdo.planning.refine.kernel.horizon import horizon_path
 from mawdo.planning.refine.kernel.index import block_index, indexed_moving_pass
 from mawdo.planning.refine.kernel.moving import moving_pass
 from mawdo.planning.refine.kernel.passes import block_paths, box_tables, static_pass, stride
@@ -70,8 +71,9 @@ def scratch_size(n, npts, nk, spacetime):
 
 @njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
 def population_cost(
-    X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, box, out, scratch
-):
+    X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
+    scratch,
+):  # fmt: skip
     """Cost of every candidate path; writes the arrays of ``out`` in place.
 
     Long by design: one fused Numba pass; splitting it adds calls and array round trips.
@@ -103,6 +105,10 @@ def population_cost(
         ``(times, offsets, velocity, nknots, k_start)``: the knot table of
         :class:`mawdo.planning.world.geometry.MotionTable` (starting at or before ``t0``) and per
         obstacle the piece that contains ``t0``. Used in spacetime mode.
+    horizon : float
+        Lookahead (time steps, > 0; ``inf``: none): in spacetime mode, moving obstacles are
+        tested only against the segments the robot begins before ``t0 + horizon``
+        (:mod:`mawdo.planning.refine.kernel.horizon`); standing ones and the border against all.
     weights : tuple of float
         ``(alpha, beta, lam, k)`` of Eqs. 17 and 20.
     box : tuple of float
@@ -125,31 +131,36 @@ def population_cost(
     bit for bit.
     """
     _population(
-        X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, box, out, scratch,
+        X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
+        scratch,
         INDEX_MOVERS,
     )  # fmt: skip
 
 
 @njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
 def indexed_population_cost(
-    X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, box, out, scratch
-):
+    X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
+    scratch,
+):  # fmt: skip
     """:func:`population_cost` with the space-time index whatever the number of moving
     obstacles."""
     _population(
-        X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, box, out, scratch,
+        X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
+        scratch,
         1,
     )  # fmt: skip
 
 
 @njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
 def reference_population_cost(
-    X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, box, out, scratch
-):
+    X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
+    scratch,
+):  # fmt: skip
     """:func:`population_cost` with every moving obstacle tested against every segment of a
     block (no space-time index): the reference the indexed kernel is tested against."""
     _population(
-        X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, box, out, scratch,
+        X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
+        scratch,
         1 << 62,
     )  # fmt: skip
 
@@ -183,8 +194,8 @@ def _index_scratch(buf, o, size, cells):
 
 @njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
 def _population(
-    X, start, goal, t0, speed, spacetime, obs, snap_off, motion, weights, box, out, scratch,
-    min_movers,
+    X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
+    scratch, min_movers,
 ):  # fmt: skip
     """:func:`population_cost`, with the space-time index where there are ``min_movers``
     moving obstacles or more (else the moving pass runs on all of a block's segments).
@@ -356,6 +367,17 @@ def _population(
     one = np.int64(1)
     geo = (0.0, 0.0, 1.0, one, one, 1.0, one)
     index = (geo, head, ents, ebox, sbox, mark, kept)
+    # the horizon's layout (kernel.horizon): its own points, flags and hits, the rest shared
+    t_cut = t0 + horizon
+    hsize = size if spacetime and nmov > 0 and t_cut < np.inf else 0
+    hpath = (np.empty(hsize), np.empty(hsize), np.empty(hsize), path[3], path[4], path[5],
+             np.empty(hsize), np.empty(hsize), path[8], path[9], path[10], path[11])  # fmt: skip
+    hreal = np.empty(hsize, dtype=np.bool_)
+    hcand = np.empty(hsize, dtype=np.int64)
+    hhits = np.zeros(hsize, dtype=np.int64)
+    hwork = (work[0], work[1], hreal, hcand, work[4], work[5], work[6], work[7], work[8],
+             work[9], work[10], work[11], work[12], work[13], work[14])  # fmt: skip
+    hnpt = np.int64(0)
     ncol = np.empty(nb, dtype=np.int64)  # and by the exact tests, per candidate
     for c0 in range(0, n, nb):
         bn = min(nb, n - c0)
@@ -363,27 +385,35 @@ def _population(
         margin = MARGIN if sane else np.inf
         hits[:] = 0
         ncol[:] = 0
+        # what the moving pass sees: the whole block, or its part before the horizon
+        cut = hsize > 0 and t_cut < tmax
+        if cut:
+            hnpt, htmax = horizon_path(bn, npts, t_cut, path, hpath, hreal, hcand, hhits)
+            blk = (t0, speed, np.int64(1), hnpt, sane, cmax, htmax)
+            mpath, mwork, mhits = hpath, hwork, hhits
+        else:
+            blk = (t0, speed, bn, npts, sane, cmax, tmax)
+            mpath, mwork, mhits = path, work, hits
         use_index = indexed and sane
         if use_index:
             geo, ents, ebox, items, ibox = block_index(
-                bn, npts, t0, speed, tmax, INDEX_CELL, INDEX_SPAN, path, real, head, ents, ebox,
-                items, ibox,
+                blk[2], blk[3], t0, speed, blk[6], INDEX_CELL, INDEX_SPAN, mpath, mwork[2], head,
+                ents, ebox, items, ibox,
             )  # fmt: skip
             index = (geo, head, ents, ebox, sbox, mark, kept)
         # n_collision (Eq. 20): (segment, obstacle) pairs that hit
         for i in range(n_obs):
             a2 = acc2[i] if sane or is_circle[i] else -1.0
             if moving[i]:
-                blk = (t0, speed, bn, npts, sane, cmax, tmax)
                 if use_index:
                     indexed_moving_pass(
-                        i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, cgrid,
+                        i, blk, a2, margin, mpath, mwork, cls, obs, extra, motion, pre, cgrid,
                         ncol, index, compact,
                     )  # fmt: skip
                 else:
                     moving_pass(
-                        i, blk, a2, margin, path, work, cls, obs, extra, motion, pre, grid,
-                        hits, ncol,
+                        i, blk, a2, margin, mpath, mwork, cls, obs, extra, motion, pre, grid,
+                        mhits, ncol,
                     )  # fmt: skip
             else:
                 ox = ko[i, 0, 0] if spacetime else snap_off[i, 0]
@@ -391,6 +421,9 @@ def _population(
                 static_pass(
                     i, ox, oy, bn, npts, path, work, cls, obs, extra, a2, margin, hits, ncol
                 )
+        if cut:  # (the horizon's sure hits, per candidate)
+            for p in range(hnpt):
+                ncol[hcand[p]] += hhits[p]
         px, py = path[0], path[1]
         for b in range(bn):
             nc = ncol[b]

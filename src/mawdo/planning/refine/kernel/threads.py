@@ -67,8 +67,9 @@ passive_wait()
 
 @njit(cache=True, parallel=True, nogil=True)
 def _chunked(
-    bounds, X, start, goal, t0, speed, spacetime, obs, snap, motion, weights, box, out, buf
-):
+    bounds, X, start, goal, t0, speed, spacetime, obs, snap, motion, horizon, weights, box, out,
+    buf,
+):  # fmt: skip
     """:func:`population_cost` on rows ``bounds[j]:bounds[j + 1]`` for every ``j`` at once,
     chunk ``j`` working in row ``j`` of ``buf``."""
     cost, length, ncol, turn = out
@@ -77,8 +78,8 @@ def _chunked(
         hi = bounds[j + 1]
         part = (cost[lo:hi], length[lo:hi], ncol[lo:hi], turn[lo:hi])
         population_cost(
-            X[lo:hi], start, goal, t0, speed, spacetime, obs, snap, motion, weights, box, part,
-            buf[j],
+            X[lo:hi], start, goal, t0, speed, spacetime, obs, snap, motion, horizon, weights, box,
+            part, buf[j],
         )  # fmt: skip
 
 
@@ -118,7 +119,9 @@ class ThreadedKernel:
             self._buf = np.empty((rows, cols))
         return self._buf
 
-    def __call__(self, X, start, goal, t0, speed, spacetime, obs, snap, motion, weights, box, out):
+    def __call__(
+        self, X, start, goal, t0, speed, spacetime, obs, snap, motion, horizon, weights, box, out
+    ):
         """Fill ``out = (cost, length, n_collisions, turning)`` for the rows of ``X``; the
         arguments are those of :func:`population_cost` without the scratch buffer."""
         n, npts = X.shape[0], X.shape[1] // 2 + 2
@@ -137,7 +140,7 @@ class ThreadedKernel:
         bounds = plan[1]
         k = bounds.size - 1
         buf = self._scratch(k, plan[2])
-        args = (X, start, goal, t0, speed, spacetime, obs, snap, motion, weights, box, out)
+        args = (X, start, goal, t0, speed, spacetime, obs, snap, motion, horizon, weights, box, out)
         if k == 1:
             population_cost(*args, buf[0])
             return
