@@ -104,13 +104,18 @@ def test_guide_refuses_a_non_positive_lookahead():
         _guide(0, 0.0)
 
 
-# under limits a kept route is asked again 20 steps before its checked end (the rule's
-# horizon is 30), without the trajectory refiner (it would refine each route asked again)
+# guide_only follows the guide's timed routes throughout (mawdo without limits keeps its
+# own candidates, which need only be free within the lookahead); under limits a kept route is
+# asked again 20 steps before its checked end (the rule's horizon is 30), without the
+# trajectory refiner (it would refine each route asked again)
 @pytest.mark.parametrize(
-    "lookahead, limits",
-    [(31, {}), (50, {"max_accel": 0.5, "max_turn": 0.8, "refine_trajectory": False})],
-)
-def test_a_run_with_a_short_lookahead_drives_only_checked_steps(lookahead, limits, monkeypatch):
+    "lookahead, limits, planner",
+    [(31, {}, "guide_only"),
+     (50, {"max_accel": 0.5, "max_turn": 0.8, "refine_trajectory": False}, "mawdo")],
+)  # fmt: skip
+def test_a_run_with_a_short_lookahead_drives_only_checked_steps(
+    lookahead, limits, planner, monkeypatch
+):
     # every step along a followed route lies before its checked_until; the run is judged by
     # the independent checker (whole prediction)
     from mawdo.planning.guide.timeguide import TimedRun
@@ -125,7 +130,12 @@ def test_a_run_with_a_short_lookahead_drives_only_checked_steps(lookahead, limit
     monkeypatch.setattr(TimedRun, "_drive", watched)
     sc = world(400.0, 60, 8, seed=0)  # constant-velocity discs: no reachable set blocks it
     cfg = replace(PRESETS["realtime"], lookahead=lookahead, pop_size=40, first_iters=30, **limits)
-    res = plan(sc, "mawdo", seed=0, config=cfg, max_steps=80)
+    if planner == "guide_only":
+        from mawdo.planning.run.timed_planners import guide_only_run
+
+        res = guide_only_run(sc, 0, replace(cfg, max_steps=80))
+    else:
+        res = plan(sc, "mawdo", seed=0, config=cfg, max_steps=80)
     assert res.collision_free
     assert driven, "the run followed timed routes"
     assert all(t <= until for t, until in driven)
@@ -147,3 +157,29 @@ def test_the_plan_command_suggests_the_large_preset_among_many_movers(
     few = world(400.0, LARGE_MOVERS - 1, 8, seed=0)
     _prepare(few, "mawdo", 0, preset, static, 1, 5)
     assert "--preset large" not in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("lookahead", [None, 40.0])
+def test_a_candidate_free_within_the_lookahead_is_kept_one_that_meets_a_mover_is_not(lookahead):
+    # a disc crosses the straight route where the robot is about 70 steps from now: with a
+    # 40-step lookahead the straight candidate is kept (its cost did not test that far), with
+    # the whole prediction the robot follows a timed route instead
+    from mawdo.planning import scenario_from_dict
+    from mawdo.planning.run.planner import prepare
+
+    speed = 4.0
+    meet = 280.0 / speed  # the robot reaches x = 300 at this time
+    spec = {"schema_version": 1, "seed": 0, "width": 400.0, "height": 400.0,
+            "start": [20.0, 200.0], "goal": [380.0, 200.0], "robot": {"speed": speed},
+            "obstacles": [{"shape": "circle", "center": [300.0, 40.0], "radius": 12.0,
+                           "motion": {"model": "constant_velocity",
+                                      "velocity": [0.0, 160.0 / meet]}}]}  # fmt: skip
+    sc = scenario_from_dict(spec)
+    run = prepare(sc, "mawdo", 0, replace(PRESETS["realtime"], lookahead=lookahead))
+    run.begin()
+    straight = np.array([sc.start, sc.goal])
+    assert run.guard.stretch_hits(straight, 0.0, 40.0 * speed) == 0  # free over 40 steps
+    assert run.guard.stretch_hits(straight, 0.0, 360.0) > 0  # not to the goal
+    chosen = run._timed_choice(straight, sc.start.copy(), 0)
+    assert (chosen is straight) is (lookahead is not None)
+    assert (run.following is None) is (lookahead is not None)

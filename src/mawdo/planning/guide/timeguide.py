@@ -300,8 +300,10 @@ class TimedRun:
 
     def _timed_choice(self, chosen, pos, step: int):
         """The guard's use of the safe-interval guide: a candidate the guard accepted is kept
-        when it is collision-free to the goal (driven at full speed from now); else the robot
-        follows the earliest timed route, when there is one (else the old fallbacks).
+        when it is collision-free to the goal (driven at full speed from now; with a
+        ``lookahead``, as far as the robot drives within it: the refinement's cost did not test
+        the movers beyond, so neither is the candidate held to them); else the robot follows
+        the earliest timed route, when there is one (else the old fallbacks).
 
         With a profile (acceleration or turn-rate limits) a route the robot is on is kept:
         it was timed as the robot drives it, from rest to rest, and stays safe under the
@@ -314,6 +316,8 @@ class TimedRun:
         self.following = None
         if chosen is not None and not (self._profiled() and self.timed_first):
             length = polyline_length(chosen)
+            if self.cfg.lookahead is not None:
+                length = min(length, self.sc.robot_speed * self.cfg.lookahead)
             if self.guard.stretch_hits(chosen, float(step), length) == 0:
                 return chosen
         timed = self._timed_routes(pos, step)
