@@ -159,12 +159,14 @@ def test_the_plan_command_suggests_the_large_preset_among_many_movers(
     assert "--preset large" not in capsys.readouterr().err
 
 
-@pytest.mark.parametrize("lookahead", [None, 40.0])
-def test_a_candidate_free_within_the_lookahead_is_kept_one_that_meets_a_mover_is_not(lookahead):
-    # a disc crosses the straight route where the robot is about 70 steps from now: with a
-    # 40-step lookahead the straight candidate is kept (its cost did not test that far), with
-    # the whole prediction the robot follows a timed route instead
+@pytest.mark.parametrize("lookahead", [None, 60.0])
+def test_under_a_lookahead_the_followed_route_is_kept_without_asking_the_guide_again(lookahead):
+    # a disc crosses the straight route where the robot is about 70 steps from now: the straight
+    # candidate is refused (it is checked to the goal) and the robot follows a timed route; a
+    # step later, on that route, the whole prediction asks the guide again, a lookahead keeps
+    # the route (checked 60 steps ahead, more than the next replan and the rule's horizon)
     from mawdo.planning import scenario_from_dict
+    from mawdo.planning.guide.timeguide import position_at
     from mawdo.planning.run.planner import prepare
 
     speed = 4.0
@@ -177,9 +179,18 @@ def test_a_candidate_free_within_the_lookahead_is_kept_one_that_meets_a_mover_is
     sc = scenario_from_dict(spec)
     run = prepare(sc, "mawdo", 0, replace(PRESETS["realtime"], lookahead=lookahead))
     run.begin()
+    asked, routes = [], run.timer.routes
+    run.timer.routes = lambda *a, **k: asked.append(a[1]) or routes(*a, **k)
     straight = np.array([sc.start, sc.goal])
-    assert run.guard.stretch_hits(straight, 0.0, 40.0 * speed) == 0  # free over 40 steps
-    assert run.guard.stretch_hits(straight, 0.0, 360.0) > 0  # not to the goal
-    chosen = run._timed_choice(straight, sc.start.copy(), 0)
-    assert (chosen is straight) is (lookahead is not None)
-    assert (run.following is None) is (lookahead is not None)
+    assert run.guard.stretch_hits(straight, 0.0, 360.0) > 0  # not free to the goal
+    run._timed_choice(straight, sc.start.copy(), 0)
+    first = run.following
+    assert first is not None and asked == [0.0]
+    pos = position_at(first, 1.0)
+    rest = run._timed_choice(straight, pos, 1)
+    np.testing.assert_array_equal(rest[0], pos)
+    if lookahead is None:
+        assert asked == [0.0, 1.0]
+    else:
+        assert asked == [0.0] and run.following is first
+        assert first.checked_until == 60.0

@@ -174,9 +174,12 @@ class TimedRun:
         it, :meth:`_timed_choice`)."""
         if self.timer is None or not (first or self.following is not None):
             return np.empty((0, 2 * self.m))
-        # with a profile a route the robot is on is kept (_timed_choice): its rest is the seed,
-        # and no query is made (a crowd's profiled query at every step cost 4x the run's CPU)
-        on = self._profiled() and self._on_route(pos, float(step))
+        # with a profile or a lookahead a route the robot is on is kept (_timed_choice): its
+        # rest is the seed, and no query is made (a crowd's profiled query at every step cost
+        # 4x the run's CPU; a large crowd's query costs seconds)
+        on = (self._profiled() or self.cfg.lookahead is not None) and self._on_route(
+            pos, float(step)
+        )
         routes = [self._rest_of(step)] if on else self._timed_routes(pos, step)
         rows = [densify(route_geometry(r, pos), self.m).reshape(-1) for r in routes]
         return np.array(rows).reshape(-1, 2 * self.m)
@@ -254,9 +257,10 @@ class TimedRun:
         only until the route's ``checked_until``; the route is asked again before a step
         could pass it (:meth:`_checked_past`; the configuration keeps the lookahead beyond a
         replan's period and the rule's horizon). The route is asked again at every replan,
-        from where the robot is (with acceleration or turn limits: kept while the robot is
-        on it). A speed limit alone never changes a route's step (the route is timed at it);
-        with acceleration or turn limits the route is timed as driven (a rest-to-rest
+        from where the robot is (with acceleration or turn limits, or a lookahead: kept while
+        the robot is on it and it is checked far enough ahead). A speed limit alone never
+        changes a route's step (the route is timed at it); with acceleration or turn limits
+        the route is timed as driven (a rest-to-rest
         profile per edge, whole steps), so its steps are within the limits, and a step
         leaves the route only when the guard or the rule refuses it: it is then the
         guard-checked projection (:class:`~mawdo.planning.safety.kinematics.LimitedRun`). A route
@@ -300,10 +304,11 @@ class TimedRun:
 
     def _timed_choice(self, chosen, pos, step: int):
         """The guard's use of the safe-interval guide: a candidate the guard accepted is kept
-        when it is collision-free to the goal (driven at full speed from now; with a
-        ``lookahead``, as far as the robot drives within it: the refinement's cost did not test
-        the movers beyond, so neither is the candidate held to them); else the robot follows
-        the earliest timed route, when there is one (else the old fallbacks).
+        when it is collision-free to the goal (driven at full speed from now); else the robot
+        follows the earliest timed route, when there is one (else the old fallbacks). With a
+        ``lookahead`` the route the robot follows is kept while it is on it and the route is
+        checked far enough ahead (:meth:`_on_route`), without asking the guide again: on a
+        large world a query costs up to seconds, and the route's checked part holds.
 
         With a profile (acceleration or turn-rate limits) a route the robot is on is kept:
         it was timed as the robot drives it, from rest to rest, and stays safe under the
@@ -313,13 +318,17 @@ class TimedRun:
             if self.following.times[-1] > step:
                 self.timed_follows += 1
                 return route_geometry(self._rest_of(step), pos)
-        self.following = None
+        kept = self.cfg.lookahead is not None and self._on_route(pos, float(step))
+        kept = kept and self.following.times[-1] > step
+        previous, self.following = self.following, None
         if chosen is not None and not (self._profiled() and self.timed_first):
             length = polyline_length(chosen)
-            if self.cfg.lookahead is not None:
-                length = min(length, self.sc.robot_speed * self.cfg.lookahead)
             if self.guard.stretch_hits(chosen, float(step), length) == 0:
                 return chosen
+        if kept:
+            self.following = previous
+            self.timed_follows += 1
+            return route_geometry(self._rest_of(step), pos)
         timed = self._timed_routes(pos, step)
         if not timed:
             return chosen
