@@ -54,13 +54,36 @@ def test_the_kernel_plan_follows_a_new_motion_table():
     cost = PathCost(sc, mode="spacetime")
     X = _population(sc, 240, 0, spread=0.3)
     cost(X, t0=0.0)
-    first = cost._table
+    first = cost._tables[0][0]
     far = _population(sc, 240, 1)
     t0 = first.t_hi + 10.0  # beyond the first table: a new one
     cost(far, t0=t0)
-    assert cost._table is not first
-    nk = cost._motion_arrays(cost._table, t0)[3]
+    assert cost._tables[0][0] is not first
+    nk = cost._motion_arrays(cost._tables[0], t0)[3]
     assert cost._kernel._buf.shape[1] >= scratch_size(240, 22, nk, True)
+
+
+def test_tables_asked_in_turn_are_kept_and_their_numbers_are_those_of_a_fresh_cost():
+    # a guard asks short stretches and whole routes in turn: each table is built once and
+    # kept, and what a call returns is what a cost with no table kept returns
+    from mawdo.planning.refine import cost as cost_module
+
+    sc = _scenario("paper")
+    cost = PathCost(sc, mode="spacetime")
+    short, long_ = _population(sc, 40, 2, spread=0.05), _population(sc, 40, 3)
+    # (the first table, built at t = 0, reaches past 5000 steps: the long calls begin later)
+    calls = [(long_ if t0 >= 6000 else short, t0) for t0 in (0.0, 6000.0, 0.5, 6000.5, 1.0)]
+    fresh = [PathCost(sc, mode="spacetime").parts(X, t0=t0)[1] for X, t0 in calls]
+    built, build = [], cost_module.MotionTable.build
+    cost_module.MotionTable.build = lambda *a: built.append(a[1:]) or build(*a)
+    try:
+        got = [cost.parts(X, t0=t0)[1] for X, t0 in calls]
+    finally:
+        cost_module.MotionTable.build = build
+    assert len(built) == 2  # one table for the short calls, one for the long ones
+    for a, b in zip(got, fresh, strict=True):
+        np.testing.assert_array_equal(a, b)  # the hits (the tables differ only in rounding)
+    assert sum(int(b.sum()) for b in fresh) > 0
 
 
 @pytest.mark.parametrize("mode", ["snapshot", "spacetime"])

@@ -50,8 +50,12 @@ from mawdo.planning.world.scenario import Scenario
 __all__ = ["CostWeights", "PathCost", "assemble_paths"]
 
 MODES = ("snapshot", "spacetime")
-#: Start times whose kernel arrays a cost keeps at once (see ``PathCost._motion_arrays``).
+#: Start times whose kernel arrays a cost keeps at once, per motion table (see
+#: ``PathCost._motion_arrays``).
 MOTION_CACHE = 256
+#: Motion tables a cost keeps at once: a guard asks short stretches and whole routes in turn,
+#: and one table for both was built again at every other call (10 000 movers: 0.6 s each).
+MOTION_TABLES = 4
 _MIN, _MAX = np.minimum.reduce, np.maximum.reduce
 
 
@@ -228,13 +232,13 @@ class PathCost:
         self.flat = FlatObstacles.from_obstacles(
             self._obstacles, scenario.robot_radius + self.clearance
         )
-        self._table: MotionTable | None = None
+        # the motion tables, the most recently used first, each with its kernel arrays per t0
+        self._tables: list[tuple[MotionTable, dict]] = []
         # the kernel's per-t0 inputs, kept for the next call with the same t0 (an optimizer
         # calls many times per planning step; the guard checks a long stretch in pieces, each
         # from its own start time, and again at the next replan): (t0, offsets), and the
         # table's kernel arrays per t0 (a pure function of the table and t0)
         self._snap: tuple | None = None
-        self._motion: tuple = (None, {})
         self._frozen = MotionTable.frozen(len(self.flat.thresh)).kernel_arrays(0.0)
         self._kernel = ThreadedKernel(threads)  # keeps the kernel's work space between calls
         self._no_offsets = np.zeros((len(self.flat.thresh), 2))
@@ -320,7 +324,7 @@ class PathCost:
 
     # ----------------------------------------------------------------------------------------
 
-    def _motion_table(self, X, start, t0: float, goal) -> MotionTable:
+    def _motion_table(self, X, start, t0: float, goal) -> tuple:
         # Every segment is shorter than the diagonal of a box holding all points, so the robot
         # reaches the goal before t0 + (m + 1) diag / v: a table to there covers every query.
         # One min/max over all coordinates gives a (square) box cheaply; the rest is done on
@@ -341,18 +345,22 @@ class PathCost:
         hi = max(hi, ehi)
         diag = math.sqrt(2.0) * (hi - lo)
         t_need = t0 + (self.n_waypoints + 1) * diag / self._speed
-        table = self._table
-        if table is None or not table.covers(t0, t_need):
-            # a receding-horizon planner calls again with a later t0: cover twice what is needed
-            table = MotionTable.build(self._obstacles, t0, t0 + 2.0 * (t_need - t0) + 1.0)
-            self._table = table
-        return table
+        tables = self._tables
+        for i, kept in enumerate(tables):
+            if kept[0].covers(t0, t_need):
+                if i:  # (the most recently used first)
+                    tables.insert(0, tables.pop(i))
+                return kept
+        # a receding-horizon planner calls again with a later t0: cover twice what is needed
+        table = MotionTable.build(self._obstacles, t0, t0 + 2.0 * (t_need - t0) + 1.0)
+        tables.insert(0, (table, {}))
+        del tables[MOTION_TABLES:]
+        return tables[0]
 
-    def _motion_arrays(self, table: MotionTable, t0: float) -> tuple:
-        """``table.kernel_arrays(t0)``, computed once per table and ``t0``."""
-        if self._motion[0] is not table:
-            self._motion = (table, {})
-        per_t0 = self._motion[1]
+    def _motion_arrays(self, kept: tuple, t0: float) -> tuple:
+        """``table.kernel_arrays(t0)`` of a kept ``(table, per_t0)``, computed once per table
+        and ``t0``."""
+        table, per_t0 = kept
         arrays = per_t0.get(t0)
         if arrays is None:
             if len(per_t0) >= MOTION_CACHE:  # a long run asks ever later times: forget them
