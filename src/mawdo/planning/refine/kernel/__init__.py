@@ -1,4 +1,4 @@
-"""Numba kernel: the path cost (paper Eqs. 17-21) of a whole population in one call.
+"""Numba kernel: the path cost (paper Eqs. 24-28) of a whole population in one call.
 
 The public wrapper is :class:`mawdo.planning.refine.cost.PathCost`; this module holds the compiled
 geometry primitives and the population loop. All coordinates are pixels, times are time steps.

@@ -102,7 +102,7 @@ def block_paths(X, c0, bn, start, goal, t0, speed, path, out_len, out_turn):
         cmax = ax if ax > cmax else cmax
         cmax = ay if ay > cmax else cmax
     sane = bad == 0
-    # C1: polyline length (Eq. 19); C3: total turning (Eq. 21), zero-length segments skipped
+    # C1: polyline length (Eq. 26); C3: total turning (Eq. 28), zero-length segments skipped
     for p in range(last_p):
         dx = px[p + 1] - px[p]
         dy = py[p + 1] - py[p]

@@ -110,16 +110,16 @@ def population_cost(
         tested only against the segments the robot begins before ``t0 + horizon``
         (:mod:`mawdo.planning.refine.kernel.horizon`); standing ones and the border against all.
     weights : tuple of float
-        ``(alpha, beta, lam, k)`` of Eqs. 17 and 20.
+        ``(alpha, beta, lam, k)`` of Eqs. 24 and 27.
     box : tuple of float
         ``(xlo, ylo, xhi, yhi)`` (pixels): where the robot's centre may go, the map shrunk by
         the hit distance. A segment with an end strictly outside it hits the map's border
         (a segment lies in a convex box iff both its ends do); that pair counts in ``n`` like a
         (segment, obstacle) pair.
     out : tuple of arrays, each shape (n,)
-        ``(cost, length, n_collisions, turning)``: C (Eq. 17), C1 in pixels (Eq. 19), the
-        number of hitting (segment, obstacle) pairs, the border included (int64, Eq. 20), C3
-        in radians (Eq. 21).
+        ``(cost, length, n_collisions, turning)``: C (Eq. 24), C1 in pixels (Eq. 26), the
+        number of hitting (segment, obstacle) pairs, the border included (int64, Eq. 27), C3
+        in radians (Eq. 28).
     scratch : float64[:]
         Work space, kept by the caller from call to call: :func:`scratch_size` floats or more
         (a shorter one makes the kernel allocate its own).
@@ -401,7 +401,7 @@ def _population(
                 ents, ebox, items, ibox,
             )  # fmt: skip
             index = (geo, head, ents, ebox, sbox, mark, kept)
-        # n_collision (Eq. 20): (segment, obstacle) pairs that hit
+        # n_collision (Eq. 27): (segment, obstacle) pairs that hit
         for i in range(n_obs):
             a2 = acc2[i] if sane or is_circle[i] else -1.0
             if moving[i]:
