@@ -62,15 +62,16 @@ def test_a_cost_keeps_the_kernel_arrays_of_each_start_time():
     times = [0.0, 7.25, 3.0, 7.25, 0.0, 19.5]
     for t0 in times:
         cost(X, start=sc.start, t0=t0)
-    table, kept = cost._motion
+    assert len(cost._tables) == 1  # (one table covers these calls)
+    table, kept = cost._tables[0]
     assert sorted(kept) == [0.0, 3.0, 7.25, 19.5]  # one entry per start time
     for t0, arrays in kept.items():
         fresh = table.kernel_arrays(t0)
         assert all(np.array_equal(a, b) for a, b in zip(arrays, fresh, strict=True))
 
 
-def _uncached(self, table, t0):
-    return table.kernel_arrays(t0)
+def _uncached(self, kept, t0):
+    return kept[0].kernel_arrays(t0)
 
 
 def _same_run(a, b) -> None:
