@@ -47,7 +47,8 @@ def _stored_rows(others: bool = False):
     folder = Path(__file__).parents[1] / "docs/results/shade-cec2017"
     names = ["d10-runs51-seed2017.jsonl"]
     if others:
-        names += ["d10-runs51-seed2017-others.jsonl", "d10-runs51-seed2017-more.jsonl"]
+        names += ["d10-runs51-seed2017-others.jsonl", "d10-runs51-seed2017-more.jsonl",
+                  "d10-runs51-seed2017-scipy_de.jsonl"]  # fmt: skip
     return [
         json.loads(line)
         for name in names
@@ -100,24 +101,38 @@ def test_wdo_plus_among_the_winners_as_the_docs_and_readme_say():
     doc = (root / "docs/algorithms.md").read_text(encoding="utf-8")
     assert rank_table(rows) in doc and table(rows) in doc
     order = list(friedman_ranks(rows))
-    assert order.index("wdo_plus") == 4 and len(order) == 12
-    assert order[:4] == ["nlshade_rsp", "jso", "lshade", "cmaes"]
+    assert order.index("wdo_plus") == 5 and len(order) == 13
+    assert order[:5] == ["nlshade_rsp", "jso", "lshade", "cmaes", "scipy_de"]
     readme = " ".join((root / "README.md").read_text(encoding="utf-8").split())
-    assert "WDO+ ranks 5th of 12, behind NL-SHADE-RSP, jSO, L-SHADE and CMA-ES" in readme
-    assert "fifth of these twelve, behind NL-SHADE-RSP, jSO, L-SHADE and CMA-ES" in doc
-    assert order[5:] == ["mewdo", "gwo", "wdo", "woa", "mawdo", "random", "awdo"]
-    assert "MEWDO sixth, WDO eighth, MAWDO tenth and\nAWDO last, behind random search" in doc
+    assert "WDO+ ranks 6th of 13, behind NL-SHADE-RSP, jSO, L-SHADE, CMA-ES and scipy's DE" in (
+        readme
+    )
+    text = " ".join(doc.split())
+    assert "sixth of these thirteen, behind NL-SHADE-RSP, jSO, L-SHADE, CMA-ES and scipy's DE" in (
+        text
+    )
+    assert order[6:] == ["mewdo", "gwo", "wdo", "woa", "mawdo", "random", "awdo"]
+    assert "MEWDO seventh, WDO ninth, MAWDO eleventh and AWDO last, behind random search" in text
     by = {(r["algorithm"], r["official"]): r["mean"] for r in rows}
-    better = sum(by["wdo_plus", f] < by["jso", f] for f in range(1, 31))
-    worse = sum(by["wdo_plus", f] > by["jso", f] for f in range(1, 31))
-    assert (better, worse) == (7, 22)
-    assert "better than jSO on 7 of\nthe 30 functions and worse on 22" in doc
-    vs_cmaes = [sum(cmp(by["wdo_plus", f], by["cmaes", f]) for f in range(1, 31)) for cmp in
-                (float.__lt__, float.__gt__)]  # fmt: skip
-    assert vs_cmaes == [7, 22] and "(against CMA-ES: 7 and 22 as well)" in doc
-    groups = {"compositions": range(21, 31), "rest": range(1, 21)}
-    comp = list(friedman_ranks([r for r in rows if r["official"] in groups["compositions"]]))
-    assert comp[:2] == ["nlshade_rsp", "wdo_plus"]
-    for fs in (range(1, 4), range(4, 11), range(11, 21)):
-        ranked = list(friedman_ranks([r for r in rows if r["official"] in fs]))
-        assert ranked.index("wdo_plus") == 4 and "cmaes" in ranked[:4]
+
+    def against(other):
+        return [sum(cmp(by["wdo_plus", f], by[other, f]) for f in range(1, 31))
+                for cmp in (float.__lt__, float.__gt__)]  # fmt: skip
+
+    assert against("jso") == [7, 22]
+    assert "better than jSO on 7 of the 30 functions and worse on 22" in text
+    assert against("cmaes") == [7, 22] and "(against CMA-ES: 7 and 22 as well;" in text
+    assert against("scipy_de") == [8, 22] and "against scipy's DE: 8 and 22)" in text
+
+    def group(fs):
+        return list(friedman_ranks([r for r in rows if r["official"] in fs]))
+
+    assert group(range(21, 31))[:4] == ["nlshade_rsp", "scipy_de", "cmaes", "wdo_plus"]
+    assert "(F21-F30) it is fourth, behind NL-SHADE-RSP, scipy's DE and CMA-ES" in text
+    simple = group(range(4, 11))
+    shade = {"jso", "lshade", "nlshade_rsp"}
+    assert simple.index("wdo_plus") == 4 and set(simple[:4]) == shade | {"cmaes"}
+    for fs in (range(1, 4), range(11, 21)):
+        ranked = group(fs)
+        assert ranked.index("wdo_plus") == 5
+        assert set(ranked[:5]) == shade | {"cmaes", "scipy_de"}
