@@ -161,3 +161,28 @@ def test_a_crowd_of_movers_around_a_short_population():
     for args in _calls(sc, rows=(130,), t0s=(2.0,), seed=9):
         X = args[0] * 0.3  # paths in the lower-left part of the map
         _assert_same((X, *args[1:]))
+
+
+def test_the_guards_verdicts_with_the_index_are_those_without_it(monkeypatch):
+    # a world past INDEX_MOVERS: the guard's kernel uses the index; forced to the unindexed
+    # kernel, every stretch gets the same count
+    from mawdo.planning.refine.kernel import threads
+    from mawdo.planning.refine.kernel.constants import INDEX_MOVERS
+    from mawdo.planning.safety.guard import Guard
+
+    sc = _world(11, movers=INDEX_MOVERS + 20, standing=3)
+    rng = np.random.default_rng(12)
+    stretches = []
+    for _ in range(60):
+        k = int(rng.integers(2, 7))
+        route = np.vstack([rng.uniform(20, SIZE - 20, 2), rng.uniform(20, SIZE - 20, (k, 2))])
+        stretches.append((route, float(rng.uniform(0, 40)), float(rng.uniform(10, 400))))
+
+    def verdicts():
+        guard = Guard(sc, clearance=0.5)
+        return [guard.stretch_hits(route, t, d) for route, t, d in stretches]
+
+    indexed = verdicts()
+    monkeypatch.setattr(threads, "population_cost", reference_population_cost)
+    assert verdicts() == indexed
+    assert len(set(indexed)) >= 5  # (a crowded map: counts of many sizes, not one verdict)
