@@ -99,7 +99,7 @@ def _prepare(sc, algorithm, seed, preset, static, threads, max_steps, sense=None
         ahead = PRESETS["large"].lookahead
         typer.echo(
             f"{len(sc.moving_indices)} moving obstacles: --preset large plans a world this size "
-            f"several times faster (its guide trusts their predicted motion {ahead:g} steps "
+            f"several times faster (it trusts their predicted motion {ahead:g} steps "
             "ahead; every step is still checked against the whole prediction)",
             err=True,
         )
