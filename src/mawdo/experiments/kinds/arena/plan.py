@@ -246,7 +246,7 @@ ARENA_PRESETS: dict[str, dict[str, Any]] = {
         "overrides": {"max_steps": 150},
         "batch_size": 1,
     },
-    # the planner for large worlds (its guide trusts the predictions 180 steps ahead): a few
+    # the planner for large worlds (it trusts the predictions 180 steps ahead): a few
     # scenes, the swarm (mawdo) against the same planner with its optimizer off (guide_only),
     # and the straight line as the floor
     "arena-large": {
