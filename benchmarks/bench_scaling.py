@@ -4,8 +4,8 @@ Worlds are drawn by :func:`world` (seeded): constant-velocity discs (bouncing at
 static polygons sized to the map and their count, start and goal in opposite corners; a draw
 whose static map cuts the start off from the goal (the exact oracle, :mod:`mawdo.planning.guide
 .oracle`) or that the scenario validation refuses is drawn again. Per size one ``mawdo`` run of
-``--steps`` steps under the planner preset ``--preset`` (default ``large``: the safe-interval
-guide trusts the predictions 180 steps ahead; the reference world also under ``realtime``, which
+``--steps`` steps under the planner preset ``--preset`` (default ``large``: the guide and the
+cost trust the predictions 180 steps ahead; the reference world also under ``realtime``, which
 looks as far as the guide's horizon): the first plan (from the call to the first step: roadmap,
 guides, first optimisation) and the replans after it (p50, p95), CPU seconds
 (``time.process_time``: the machine is shared), and the CPU per stage (:class:`StageClock`: each

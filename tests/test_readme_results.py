@@ -7,6 +7,7 @@ result files by docs/readme_tables.py; they must be exactly its rendering, and t
 reads are recomputed here from the raw rows and tables.
 """
 
+import contextlib
 import csv
 import hashlib
 import importlib.util
@@ -135,12 +136,11 @@ def test_the_results_name_every_win_and_loss_against_random_search(bbob_stores):
     here from the raw rows with sqlite3 and numpy."""
     final: dict[tuple[str, int, int], list[float]] = {}
     for db in bbob_stores:
-        conn = sqlite3.connect(db)
-        rows = conn.execute(
+        rows = _query(
+            db,
             "SELECT algorithm, function_id, dim, f_star, best_so_far FROM runs "
-            "WHERE error_text IS NULL AND algorithm IN ('mawdo', 'random')"
-        ).fetchall()
-        conn.close()
+            "WHERE error_text IS NULL AND algorithm IN ('mawdo', 'random')",
+        )
         for algo, fid, dim, f_star, best in rows:
             error = np.frombuffer(best, "<f8")[-1] - f_star
             final.setdefault((algo, fid, dim), []).append(max(error, 1e-8))
@@ -166,12 +166,14 @@ def test_the_results_name_every_win_and_loss_against_random_search(bbob_stores):
     assert "precision is lower than" not in readme
 
 
+def _query(db: Path, sql: str) -> list[tuple]:
+    """Every row of ``sql`` on the store ``db`` (its connection closed after)."""
+    with contextlib.closing(sqlite3.connect(db)) as conn:
+        return conn.execute(sql).fetchall()
+
+
 def stored_version(db: Path) -> str:
-    conn = sqlite3.connect(db)
-    try:
-        return conn.execute("SELECT library_version FROM meta").fetchone()[0]
-    finally:
-        conn.close()
+    return _query(db, "SELECT library_version FROM meta")[0][0]
 
 
 def test_docs_say_which_mawdo_made_the_committed_stores(bbob_stores):
@@ -228,9 +230,7 @@ def test_the_committed_stores_report_through_the_command(bbob_stores, tmp_path):
     cli = [sys.executable, "-m", "mawdo.cli", "bench", "export", "--format", "ioh"]
     done = subprocess.run([*cli, str(bbob_stores[0]), str(logs)], capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
-    conn = sqlite3.connect(bbob_stores[0])
-    pairs = conn.execute("SELECT DISTINCT algorithm, function_id FROM runs").fetchall()
-    conn.close()
+    pairs = _query(bbob_stores[0], "SELECT DISTINCT algorithm, function_id FROM runs")
     written = {
         (p.parent.name, int(p.stem.split("_f")[1].split("_")[0])) for p in logs.glob("*/*.json")
     }
@@ -250,12 +250,11 @@ def test_arena_sentences_are_those_of_the_committed_store(tmp_path, folder):
         lines = headline(store)
     summary = (ROOT / "docs" / "results" / folder / "summary.md").read_text("utf-8")
     assert lines == summary.splitlines()
-    conn = sqlite3.connect(db)
-    rows = conn.execute(
+    rows = _query(
+        db,
         "SELECT algorithm, time_gap FROM runs WHERE t_star IS NOT NULL AND success = 1 "
-        "AND error_text IS NULL"
-    ).fetchall()
-    conn.close()
+        "AND error_text IS NULL",
+    )
     timed = [s for s in lines if "T/T* median" in s]
     assert timed
     for line in timed:

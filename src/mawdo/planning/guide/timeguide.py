@@ -174,12 +174,8 @@ class TimedRun:
         it, :meth:`_timed_choice`)."""
         if self.timer is None or not (first or self.following is not None):
             return np.empty((0, 2 * self.m))
-        # with a profile or a lookahead a route the robot is on is kept (_timed_choice): its
-        # rest is the seed, and no query is made (a crowd's profiled query at every step cost
-        # 4x the run's CPU; a large crowd's query costs seconds)
-        on = (self._profiled() or self.cfg.lookahead is not None) and self._on_route(
-            pos, float(step)
-        )
+        # a route kept (_keeps_route): its rest is the seed, and no query is made
+        on = self._keeps_route(pos, float(step))
         routes = [self._rest_of(step)] if on else self._timed_routes(pos, step)
         rows = [densify(route_geometry(r, pos), self.m).reshape(-1) for r in routes]
         return np.array(rows).reshape(-1, 2 * self.m)
@@ -193,6 +189,12 @@ class TimedRun:
     def _profiled(self) -> bool:
         """The timed routes are timed within acceleration or turn-rate limits."""
         return self.timer is not None and self.timer.profile is not None
+
+    def _keeps_route(self, pos, t: float) -> bool:
+        """With a profile or a lookahead, the followed route is kept while the robot is on
+        it (:meth:`_on_route`), not asked again: a crowd's profiled query at every step cost
+        4x the run's CPU, and a large world's query costs seconds."""
+        return (self._profiled() or self.cfg.lookahead is not None) and self._on_route(pos, t)
 
     def _on_route(self, pos, t: float) -> bool:
         """``pos`` is where the followed timed route is at time ``t``, and the route was
@@ -260,13 +262,13 @@ class TimedRun:
         from where the robot is (with acceleration or turn limits, or a lookahead: kept while
         the robot is on it and it is checked far enough ahead). A speed limit alone never
         changes a route's step (the route is timed at it); with acceleration or turn limits
-        the route is timed as driven (a rest-to-rest
-        profile per edge, whole steps), so its steps are within the limits, and a step
-        leaves the route only when the guard or the rule refuses it: it is then the
-        guard-checked projection (:class:`~mawdo.planning.safety.kinematics.LimitedRun`). A route
-        the swarm refined (``refine_trajectory``) has one point per step; before it replaced
-        the guide's, each of its steps passed the guard's step test, the guide's mover test,
-        the rule's route test and the run's own projection unchanged. Tested on corridor,
+        the route is timed as driven (a rest-to-rest profile per edge, whole steps), so its
+        steps are within the limits, and a step leaves the route only when the guard or the
+        rule refuses it: it is then the guard-checked projection
+        (:class:`~mawdo.planning.safety.kinematics.LimitedRun`). A route the swarm refined
+        (``refine_trajectory``) has one point per step; before it replaced the guide's, each of
+        its steps passed the guard's step test, the guide's mover test, the rule's route test
+        and the run's own projection unchanged. Tested on corridor,
         doorway, parked and crowd scenes with the independent checker
         (``tests/planning/test_timed_follow.py``)."""
         if self.following is None:
@@ -318,8 +320,8 @@ class TimedRun:
             if self.following.times[-1] > step:
                 self.timed_follows += 1
                 return route_geometry(self._rest_of(step), pos)
-        kept = self.cfg.lookahead is not None and self._on_route(pos, float(step))
-        kept = kept and self.following.times[-1] > step
+        # (a profiled route kept has been returned above: what is left is a lookahead's)
+        kept = self._keeps_route(pos, float(step)) and self.following.times[-1] > step
         previous, self.following = self.following, None
         if chosen is not None and not (self._profiled() and self.timed_first):
             length = polyline_length(chosen)
