@@ -25,6 +25,10 @@ class PlannerConfig:
         Candidates per iteration of the first plan (default ``pop_size``).
     first_iters : int
         Iterations of the first plan, made before the robot moves (not part of replan latency).
+    first_patience : int or None
+        Stop the first plan's optimisation once its best cost has not fallen for this many
+        iterations (>= 1; a stagnation stop, as ``tolfun`` in CMA-ES). The optimizer's
+        schedules stay planned over ``first_iters``. None (default): all ``first_iters``.
     replan_iters : int
         Iterations per replan.
     replan_time : float or None
@@ -162,6 +166,7 @@ class PlannerConfig:
     pop_size: int = 240
     first_pop_size: int | None = None
     first_iters: int = 300
+    first_patience: int | None = None
     replan_iters: int = 15
     replan_time: float | None = None
     replan_every: int = 1
@@ -203,6 +208,8 @@ class PlannerConfig:
             v = getattr(self, name)
             if not isinstance(v, int | np.integer) or v < 1:
                 raise ValueError(f"PlannerConfig.{name}={v!r} must be a positive integer")
+        if self.first_patience is not None:
+            check_int("PlannerConfig.first_patience", self.first_patience, 1)
         if self.first_pop_size is not None and self.first_pop_size < 2:
             raise ValueError(f"PlannerConfig.first_pop_size={self.first_pop_size!r} must be >= 2")
         if self.replan_time is not None and not self.replan_time > 0:
@@ -301,8 +308,11 @@ PRESETS = {
     "quick": PlannerConfig(pop_size=80, first_iters=60, replan_iters=5),
     # real time on large worlds: the safe-interval guide and the cost trust the predictions
     # 180 steps ahead (its search then grows with that time, not with the route's; 120 and 60 steps
-    # saw a warehouse's conflict too late: benchmarks/log/scaling.md)
-    "large": PlannerConfig(pop_size=240, first_iters=300, replan_iters=15, lookahead=180.0),
+    # saw a warehouse's conflict too late: benchmarks/log/scaling.md); the first plan stops
+    # once the swarm stagnates (on most large worlds it never improves on the guide's seeds)
+    "large": PlannerConfig(
+        pop_size=240, first_iters=300, first_patience=50, replan_iters=15, lookahead=180.0
+    ),
     # single-shot queries in tens of milliseconds: the guide's routes do the topology, a short
     # refinement smooths them
     "fast": PlannerConfig(pop_size=40, first_iters=25, replan_iters=5, warm_copies=15),

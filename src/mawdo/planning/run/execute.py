@@ -90,6 +90,17 @@ def _optimizers(algorithm: str, cfg: PlannerConfig) -> dict:
     return {p: make_optimizer(algorithm, pop_size=p, **opts) for p in sizes}
 
 
+def _stagnated(patience: int):
+    """A :func:`~mawdo.minimize.minimize` callback: stop once the best cost has not fallen
+    for ``patience`` iterations (the planner runs one run per optimisation)."""
+
+    def stop(res) -> bool:
+        h = res.history[0]
+        return len(h) > patience and not h[-1] < h[-1 - patience]
+
+    return stop
+
+
 class _Watched:
     """The cost from ``start`` at ``t0`` as the optimizer sees it (``pure``: it only reads the
     candidates, :func:`mawdo.minimize.make_problem`); the elite sees every batch it evaluates."""
@@ -215,6 +226,7 @@ class Run(DecidingRun, TimedRun, SafeRun, LimitedRun):
             seed=ss,
             max_iter=cfg.first_iters if first else cfg.replan_iters,
             max_time=None if first else cfg.replan_time,
+            callback=_stagnated(cfg.first_patience) if first and cfg.first_patience else None,
             x0=x0,
         )
         # only where it can matter: the extra cost call then changes nothing in other presets
