@@ -33,6 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
+from mawdo.planning.judge.check_index import near_steps, robot_boxes
 from mawdo.planning.world.scenario import CircleObstacle, PolygonObstacle, Scenario
 
 __all__ = ["CheckReport", "check_static_path", "check_trajectory"]
@@ -44,6 +45,13 @@ DEFAULT_TOL = 1e-9
 DEPTH_STEP = 0.25
 #: A step whose two positions are this close (pixels) is the robot at rest.
 REST_TOL = 1e-9
+#: From this many moving obstacles on, :func:`check_trajectory` measures only the pairs that
+#: come near (below it, measuring every pair costs less than sorting them out).
+INDEX_MOVERS = 1000
+#: How near (robot radii) a pair must come to be measured, by default, among many obstacles.
+INDEX_REACH = 10.0
+#: ... and from this many steps on (sorting out costs a few knot queries per obstacle).
+INDEX_STEPS = 16
 
 
 @dataclass(frozen=True)
@@ -58,9 +66,10 @@ class CheckReport:
         ``(step, obstacle index)`` for each step/segment that collides with an obstacle.
     min_clearance : float
         Smallest clearance over all steps and obstacles (pixels; negative = overlap; ``inf``
-        without obstacles).
+        without obstacles, or with none within a ``reach``).
     clearance : numpy.ndarray, shape (n_steps, n_obstacles)
-        Clearance per step (segment) and obstacle (pixels).
+        Clearance per step (segment) and obstacle (pixels); ``inf`` for the pairs a ``reach``
+        of :func:`check_trajectory` left out (they are farther apart than it).
     out_of_map : tuple of int
         Indices of positions whose centre is outside the map box (trajectories only).
     border : tuple of int
@@ -200,8 +209,30 @@ def _as_points(path, what: str) -> np.ndarray:
     return p
 
 
+def _relative_lines(o, p: np.ndarray, times: np.ndarray, steps) -> np.ndarray:
+    """Per step in ``steps``, the robot centre's polyline in moving obstacle ``o``'s frame
+    (one straight piece per constant-velocity piece of its motion), as shapely linestrings."""
+    coords, index = [], []
+    for s in steps:
+        ta, tb = times[s], times[s + 1]
+        tk, ok = o.knots(ta, tb)
+        frac = (tk - ta) / (tb - ta) if tb > ta else np.zeros_like(tk)
+        robot = p[s] + frac[:, None] * (p[s + 1] - p[s])
+        rel = robot - ok  # robot centre in the obstacle's frame, linear per piece
+        if len(rel) == 1:
+            rel = np.vstack([rel, rel])
+        coords.append(rel)
+        index.append(np.full(len(rel), len(coords) - 1))
+    return shapely.linestrings(np.concatenate(coords), indices=np.concatenate(index))
+
+
 def check_trajectory(
-    positions, scenario: Scenario, t0: float = 0.0, tol: float = DEFAULT_TOL, times=None
+    positions,
+    scenario: Scenario,
+    t0: float = 0.0,
+    tol: float = DEFAULT_TOL,
+    times=None,
+    reach: float | None = None,
 ) -> CheckReport:
     """Check an executed trajectory against the scenario's moving and static obstacles.
 
@@ -219,6 +250,14 @@ def check_trajectory(
     times : array_like, shape (k,), optional
         Explicit, non-decreasing times of the positions (time steps), e.g. the vertices of a
         path followed at constant speed; overrides ``t0``.
+    reach : float, optional
+        Measure a moving obstacle only over the steps where its swept box comes within
+        ``reach`` px of the robot's disc (:mod:`~mawdo.planning.judge.check_index`); the other
+        pairs are more than ``reach`` px apart and hold ``inf`` in ``clearance``. Collisions,
+        and every clearance up to ``reach``, are those of measuring every pair. ``inf``:
+        measure every pair. None (default): :data:`INDEX_REACH` robot radii with
+        :data:`INDEX_MOVERS` moving obstacles or more and :data:`INDEX_STEPS` steps or more,
+        else ``inf``.
 
     Returns
     -------
@@ -227,6 +266,12 @@ def check_trajectory(
         ``s + 1`` (step 0 for a single position, the robot at rest); ``active`` and ``passive``
         split them by whether the robot moves in that step; ``border`` the steps whose robot
         disc leaves the map (:meth:`CheckReport.describe` says by how much).
+
+    Raises
+    ------
+    ValueError
+        Positions or times of the wrong shape, non-finite, decreasing or negative times, or a
+        negative ``reach``.
 
     Notes
     -----
@@ -252,23 +297,20 @@ def check_trajectory(
     n_steps = len(p) - 1
     clearance = np.full((n_steps, len(scenario.obstacles)), np.inf)
     static_lines = shapely.linestrings(np.stack([p[:-1], p[1:]], axis=1))
+    if reach is None:
+        many = len(scenario.obstacles) - len(scenario.static_indices) >= INDEX_MOVERS
+        reach = INDEX_REACH * r if many and n_steps >= INDEX_STEPS else np.inf
+    elif not reach >= 0:
+        raise ValueError(f"reach must be >= 0 px (inf: every pair), got {reach!r}")
+    grown = robot_boxes(p, r + reach) if np.isfinite(reach) else None
     for o in scenario.obstacles:
         if o.is_static:  # no knots: the relative trajectory is the route itself
             clearance[:, o.index] = _shape_distance(o.shape, static_lines) - r
             continue
-        coords, index = [], []
-        for s in range(n_steps):
-            ta, tb = times[s], times[s + 1]
-            tk, ok = o.knots(ta, tb)
-            frac = (tk - ta) / (tb - ta) if tb > ta else np.zeros_like(tk)
-            robot = p[s] + frac[:, None] * (p[s + 1] - p[s])
-            rel = robot - ok  # robot centre in the obstacle's frame, linear per piece
-            if len(rel) == 1:
-                rel = np.vstack([rel, rel])
-            coords.append(rel)
-            index.append(np.full(len(rel), s))
-        lines = shapely.linestrings(np.concatenate(coords), indices=np.concatenate(index))
-        clearance[:, o.index] = _shape_distance(o.shape, lines) - r
+        steps = np.arange(n_steps) if grown is None else near_steps(o, p, times, grown)
+        if len(steps):
+            lines = _relative_lines(o, p, times, steps)
+            clearance[steps, o.index] = _shape_distance(o.shape, lines) - r
     return _report(
         clearance, tol, _moving(p), times[:-1], [int(i) for i in outside],
         _border_excess(p, r, W, H),
