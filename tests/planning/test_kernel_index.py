@@ -186,3 +186,30 @@ def test_the_guards_verdicts_with_the_index_are_those_without_it(monkeypatch):
     monkeypatch.setattr(threads, "population_cost", reference_population_cost)
     assert verdicts() == indexed
     assert len(set(indexed)) >= 5  # (a crowded map: counts of many sizes, not one verdict)
+
+
+def test_movers_at_the_edge_of_a_blocks_reach_are_tested():
+    # a flat population (its points' box has no height) and 600 movers gliding beside it, their
+    # centres within a pixel of the hit distance: skipping a mover whose window box misses
+    # the block's by less than the reach would lose hits
+    rng = np.random.default_rng(5)
+    r_mover, rho = 6.0, 6.0 + 4.0 + 0.5  # mover radius + robot radius + clearance
+    obstacles = []
+    for _ in range(600):
+        side, d = rng.choice([-1.0, 1.0]), rho + rng.uniform(-1.0, 1.0)
+        c = [float(rng.uniform(30, SIZE - 30)), 200.0 + side * d]
+        v = [float(rng.uniform(-0.5, 0.5)), 0.0]
+        obstacles.append({"shape": "circle", "center": c, "radius": r_mover,
+                          "motion": {"velocity": v}})  # fmt: skip
+    sc = scenario_from_dict({"schema_version": 1, "width": SIZE, "height": SIZE,
+                             "start": [10.0, 10.0], "goal": [390.0, 10.0],
+                             "obstacles": obstacles})  # fmt: skip
+    m = 4
+    cost = PathCost(sc, n_waypoints=m, mode="spacetime", clearance=0.5)
+    got, kernel = [], cost._kernel
+    cost._kernel = lambda *a: (got.append(a), kernel(*a))
+    X = np.tile(np.c_[np.linspace(120, 180, m), np.full(m, 200.0)].ravel(), (6, 1))
+    X[:, 0::2] += np.arange(6)[:, None] * 30.0
+    cost.parts(X, start=np.array([110.0, 200.0]), t0=3.0, goal=np.array([300.0, 200.0]))
+    want = _assert_same(got[0])
+    assert want[2].sum() > 0  # the gliders do hit

@@ -225,6 +225,53 @@ def _slice_boxes(i, t0, tmax, winv, ns, obs, motion, sbox):
             sbox[s, 3] = np.inf
 
 
+@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+def mover_reach(i, blk, a2, obs, pre):
+    """How near (pixels) a segment must come to obstacle i's centre to be kept."""
+    rho = obs[4][i, 6]
+    acc = math.sqrt(a2) if a2 > 0.0 else 0.0
+    return max(rho, acc) * (1.0 + MARGIN) + 4.0 * rounding_room(i, blk, pre) + MARGIN
+
+
+@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+def window_misses(i, t0, tmax, reach, geo, obs, motion):
+    """Obstacle i's centre stays, from ``t0`` to ``tmax``, farther than ``reach`` (pixels,
+    with room for rounding) from the block index's grid, which holds every entry's box: no
+    segment can be kept (:func:`obstacle_segments` would keep none). The caller tests it
+    before :func:`indexed_moving_pass`: among thousands of movers most are far from a block's
+    segments, and the call with its many arrays costs more than this test of a few pieces."""
+    gx, gy, ginv, nx, ny, _, _ = geo
+    bound = obs[4]
+    kt, ko, kv, nk, k_start = motion
+    last = nk[i] - 2
+    bcx = bound[i, 4]
+    bcy = bound[i, 5]
+    xlo = np.inf
+    ylo = np.inf
+    xhi = -np.inf
+    yhi = -np.inf
+    for k in range(k_start[i], last + 1):
+        a = max(kt[i, k], t0)
+        b = min(kt[i, k + 1], tmax) if k < last else tmax
+        if not a <= b:
+            if kt[i, k] > tmax:
+                break
+            continue
+        for t in (a, b):
+            x = bcx + ko[i, k, 0] + kv[i, k, 0] * (t - kt[i, k])
+            y = bcy + ko[i, k, 1] + kv[i, k, 1] * (t - kt[i, k])
+            xlo = min(xlo, x)
+            ylo = min(ylo, y)
+            xhi = max(xhi, x)
+            yhi = max(yhi, y)
+    # a piece's points in between lie on its chord, up to rounding: room of MARGIN, relative
+    room = reach + MARGIN * (1.0 + max(abs(xlo), abs(xhi), abs(ylo), abs(yhi), reach))
+    g = 1.0 / ginv
+    return (  # (a window no piece covered is never missed: NaN and inf compare False)
+        xhi + room < gx or yhi + room < gy or xlo - room > gx + nx * g or ylo - room > gy + ny * g
+    )
+
+
 @njit(cache=True, fastmath=False, error_model="numpy")
 def obstacle_segments(i, reach, blk, geo, head, ents, ebox, path, obs, motion, sbox, mark, kept):
     """Segments of the block that may come within ``reach`` (pixels) of obstacle i's centre:
@@ -295,10 +342,7 @@ def indexed_moving_pass(
     block): the same counts, added to ``ncol``."""
     geo, head, ents, ebox, sbox, mark, kept = index
     cpath, cwork, chits = compact
-    rho = obs[4][i, 6]
-    acc = math.sqrt(a2) if a2 > 0.0 else 0.0
-    room = rounding_room(i, blk, pre)
-    reach = max(rho, acc) * (1.0 + MARGIN) + 4.0 * room + MARGIN
+    reach = mover_reach(i, blk, a2, obs, pre)
     nq = obstacle_segments(
         i, reach, blk, geo, head, ents, ebox, path, obs, motion, sbox, mark, kept
     )

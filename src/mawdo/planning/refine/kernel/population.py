@@ -20,7 +20,12 @@ from mawdo.planning.refine.kernel.constants import (
     WALK_KNOTS,
 )
 from mawdo.planning.refine.kernel.horizon import horizon_path
-from mawdo.planning.refine.kernel.index import block_index, indexed_moving_pass
+from mawdo.planning.refine.kernel.index import (
+    block_index,
+    indexed_moving_pass,
+    mover_reach,
+    window_misses,
+)
 from mawdo.planning.refine.kernel.moving import moving_pass
 from mawdo.planning.refine.kernel.passes import block_paths, box_tables, static_pass, stride
 
@@ -406,6 +411,9 @@ def _population(
             a2 = acc2[i] if sane or is_circle[i] else -1.0
             if moving[i]:
                 if use_index:
+                    reach = mover_reach(i, blk, a2, obs, pre)
+                    if window_misses(i, t0, blk[6], reach, index[0], obs, motion):
+                        continue
                     indexed_moving_pass(
                         i, blk, a2, margin, mpath, mwork, cls, obs, extra, motion, pre, cgrid,
                         ncol, index, compact,
