@@ -1,10 +1,10 @@
-"""The cost's lookahead (``PathCost(horizon=H)``): moving obstacles count only on the segments
-the robot begins before ``t0 + H``, standing ones and the border on every segment.
+"""The cost's lookahead (``PathCost(horizon=H)``): moving obstacles count only on the path the
+robot travels before ``t0 + H``, standing ones and the border on every segment.
 
 The reference is built from the cost without a horizon, on other paths: the standing
-obstacles and the border on the whole path, and the movers on the path cut after its first
-point reached at or after ``t0 + H`` (that point repeated as the goal, and the hits of the
-repeat, a point at one moment, taken off again)."""
+obstacles and the border on the whole path, and the movers on the path cut where the robot is
+at ``t0 + H`` (that point repeated as the goal, and the hits of the repeat, a point at one
+moment, taken off again)."""
 
 from __future__ import annotations
 
@@ -30,11 +30,16 @@ def _times(P, t0, speed):
 
 
 def _movers_before(sc, movers, P, t0, horizon):
-    """Hits of the movers on the segments begun before ``t0 + horizon``, by the cost without
+    """Hits of the movers on the path travelled before ``t0 + horizon``, by the cost without
     a horizon."""
     tt = _times(P, t0, float(sc.robot_speed))
     cut = t0 + horizon
     j = next((k for k in range(1, len(P)) if tt[k] >= cut), len(P) - 1)
+    P = P[: j + 1].copy()
+    if tt[j] > cut:  # the straddling segment ends where the robot is at the cut
+        f = (cut - tt[j - 1]) / (tt[j] - tt[j - 1])
+        P[j] = P[j - 1] + f * (P[j] - P[j - 1])
+        tt[j] = cut
     wp = np.concatenate([P[1 : j + 1].ravel()])  # P1 .. Pj, then the goal Pj: a repeat
     whole = PathCost(sc, "spacetime", n_waypoints=j, clearance=CLEARANCE, obstacles=movers,
                      border=False)  # fmt: skip
