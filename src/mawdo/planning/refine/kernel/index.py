@@ -184,7 +184,7 @@ def block_index(bn, npts, t0, speed, tmax, cell, span, path, real, head, ents, e
     return (xlo, ylo, ginv, nx, ny, winv, ns), ents, ebox, items, ibox
 
 
-@njit(cache=True, fastmath=False, error_model="numpy")
+@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
 def _slice_boxes(i, t0, tmax, winv, ns, obs, motion, sbox):
     """Box of obstacle i's centre over each time slice, into ``sbox[:ns]`` (pixels)."""
     bound = obs[4]
@@ -234,40 +234,20 @@ def mover_reach(i, blk, a2, obs, pre):
 
 
 @njit(cache=True, fastmath=False, error_model="numpy", inline="always")
-def window_misses(i, t0, tmax, reach, geo, obs, motion):
+def window_misses(i, t0, tmax, reach, geo, obs, motion, sbox):
     """Obstacle i's centre stays, from ``t0`` to ``tmax``, farther than ``reach`` (pixels,
     with room for rounding) from the block index's grid, which holds every entry's box: no
     segment can be kept (:func:`obstacle_segments` would keep none). The caller tests it
     before :func:`indexed_moving_pass`: among thousands of movers most are far from a block's
-    segments, and the call with its many arrays costs more than this test of a few pieces."""
+    segments, and the call with its many arrays costs more than this test of a few pieces.
+    ``sbox`` is work space (its first row)."""
     gx, gy, ginv, nx, ny, _, _ = geo
-    bound = obs[4]
-    kt, ko, kv, nk, k_start = motion
-    last = nk[i] - 2
-    bcx = bound[i, 4]
-    bcy = bound[i, 5]
-    xlo = np.inf
-    ylo = np.inf
-    xhi = -np.inf
-    yhi = -np.inf
-    for k in range(k_start[i], last + 1):
-        a = max(kt[i, k], t0)
-        b = min(kt[i, k + 1], tmax) if k < last else tmax
-        if not a <= b:
-            if kt[i, k] > tmax:
-                break
-            continue
-        for t in (a, b):
-            x = bcx + ko[i, k, 0] + kv[i, k, 0] * (t - kt[i, k])
-            y = bcy + ko[i, k, 1] + kv[i, k, 1] * (t - kt[i, k])
-            xlo = min(xlo, x)
-            ylo = min(ylo, y)
-            xhi = max(xhi, x)
-            yhi = max(yhi, y)
+    _slice_boxes(i, t0, tmax, 1.0, 1, obs, motion, sbox)  # one slice: the whole window
+    xlo, ylo, xhi, yhi = sbox[0, 0], sbox[0, 1], sbox[0, 2], sbox[0, 3]
     # a piece's points in between lie on its chord, up to rounding: room of MARGIN, relative
     room = reach + MARGIN * (1.0 + max(abs(xlo), abs(xhi), abs(ylo), abs(yhi), reach))
     g = 1.0 / ginv
-    return (  # (a window no piece covered is never missed: NaN and inf compare False)
+    return (  # (a window no piece covered is anywhere: inf room, never missed)
         xhi + room < gx or yhi + room < gy or xlo - room > gx + nx * g or ylo - room > gy + ny * g
     )
 

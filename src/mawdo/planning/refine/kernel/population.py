@@ -412,7 +412,7 @@ def _population(
             if moving[i]:
                 if use_index:
                     reach = mover_reach(i, blk, a2, obs, pre)
-                    if window_misses(i, t0, blk[6], reach, index[0], obs, motion):
+                    if window_misses(i, t0, blk[6], reach, index[0], obs, motion, sbox):
                         continue
                     indexed_moving_pass(
                         i, blk, a2, margin, mpath, mwork, cls, obs, extra, motion, pre, cgrid,
