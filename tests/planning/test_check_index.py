@@ -6,6 +6,7 @@ import pytest
 from mawdo.planning import check_trajectory, scenario_from_dict
 from mawdo.planning.judge import check as checkmod
 from mawdo.planning.judge import check_index
+from mawdo.planning.world.stepped import with_movers
 
 W = H = 300.0
 
@@ -36,6 +37,11 @@ def _world(seed: int, movers: int = 40):
         "schema_version": 1, "seed": seed, "width": W, "height": H, "start": [8, 8],
         "goal": [292, 292], "robot": {"radius": 3.0, "speed": 4.0}, "obstacles": obstacles,
     })  # fmt: skip
+    # people as the stepped world records them: tracks through their centres, one a step
+    times = np.arange(200.0)
+    walks = [np.cumsum(rng.uniform(-2, 2, (200, 2)), axis=0) + rng.uniform(60, W - 60, 2)
+             for _ in range(8)]  # fmt: skip
+    sc = with_movers(sc, rng.uniform(3, 6, 8), [(times, w) for w in walks])
     # a wandering route: moves of up to 6 px, some rests, a few steps past the border
     steps = rng.uniform(-6, 6, (120, 2)) * (rng.random((120, 1)) > 0.15)
     route = np.clip(np.array([150.0, 150.0]) + np.cumsum(steps, axis=0), -2, W + 2)
