@@ -14,6 +14,10 @@ Python memory (:mod:`tracemalloc`; Numba's arrays are NumPy arrays and count). T
 tracemalloc records a traceback at every allocation, Numba's arrays inside the compiled kernels
 included, which doubled the safe-interval search's CPU on the reference world.
 
+``--only whole`` drives one run to its end among 10 000 movers on 4000 px (400 polygons) and
+prints its CPU in all against the target (a whole run <= 10 min), the first plan, the steps and
+the verdict.
+
 Three sweeps, each from the reference world (1000 x 1000 px, 200 movers, 40 polygons): movers
 10 -> 100 -> 1000, static polygons 10 -> 100 -> 300, map 366 -> 1000 -> 2000 px (movers and
 polygons scaled with the area), each with its log-log slope (the fitted exponent). Targets
@@ -39,6 +43,9 @@ import numpy as np
 #: the reference world of the targets
 REF = {"size": 1000.0, "movers": 200, "polygons": 40}
 TARGET_FIRST, TARGET_REPLAN = 1.0, 0.050
+#: the world of the whole-run target (``--only whole``), and that target (CPU seconds)
+BIG = {"size": 4000.0, "movers": 10_000, "polygons": 400}
+TARGET_WHOLE = 600.0
 STAGES = ("roadmap", "intervals", "search", "kernel", "guard", "checker", "oracle")
 
 
@@ -185,6 +192,39 @@ def run_world(sc, steps: int, seed: int = 0, preset: str = "large") -> dict:
             "steps": len(marks) - 1}  # fmt: skip
 
 
+def whole_run(sc, seed: int = 0, preset: str = "large", every: int = 100) -> dict:
+    """One ``mawdo`` run to its end (goal, give-up or the step cap) under ``preset``: CPU
+    seconds in all (the first plan and the final check included) and per stage, the first plan,
+    the steps, whether it reached the goal and the checker's verdict. Prints a line every
+    ``every`` steps (a run among 10 000 movers takes minutes)."""
+    from mawdo.planning.run.planner import plan
+
+    marks = []
+
+    def mark(step, _, replans):
+        marks.append(time.process_time())
+        if step and step % every == 0:
+            print(f"  step {step}: {marks[-1] - t0:.0f} s of CPU", flush=True)
+
+    t0 = time.process_time()
+    with StageClock() as clock:
+        res = plan(sc, "mawdo", seed=seed, config=preset, progress=mark)
+    total = time.process_time() - t0
+    return {"total": total, "first": marks[1] - t0 if len(marks) > 1 else total,
+            "steps": res.steps, "success": res.success, "collision_free": res.collision_free,
+            "stages": dict(clock.cpu) | {"other": total - sum(clock.cpu.values())}}  # fmt: skip
+
+
+def _whole(preset: str) -> None:
+    L, m, p = BIG["size"], BIG["movers"], BIG["polygons"]
+    r = whole_run(world(L, m, p), preset=preset)
+    st = " ".join(f"{k} {v:.1f}" for k, v in r["stages"].items())
+    print(f"whole run, {L:g} px, {m} movers, {p} polygons, preset {preset} (CPU): "
+          f"{r['total']:.1f} s (<= {TARGET_WHOLE:g} {_flag(r['total'] <= TARGET_WHOLE)}), "
+          f"first plan {r['first']:.1f} s, {r['steps']} steps, success {r['success']}, "
+          f"collision-free {r['collision_free']} | CPU s: {st}", flush=True)  # fmt: skip
+
+
 def _fmt(r: dict) -> str:
     rep = r["replans"]
     p50, p95 = (1e3 * np.median(rep), 1e3 * np.percentile(rep, 95)) if rep.size else (np.nan,) * 2
@@ -258,12 +298,17 @@ def main(argv=None) -> None:
                          "full: three; big: also 10 000 movers and a 4000 px map)")  # fmt: skip
     ap.add_argument("--steps", type=int, default=4, help="steps driven per run")
     ap.add_argument("--figure", default="out/bench/scaling.png")
-    ap.add_argument("--only", default="", help="reference world only ('ref')")
+    ap.add_argument("--only", default="", choices=("", "ref", "whole"),
+                    help="the reference world only ('ref'), or only one whole run among "
+                         "10 000 movers on 4000 px ('whole', about 10 min)")  # fmt: skip
     ap.add_argument("--preset", default="large",
                     help="planner preset of the sweeps (default large; the reference world "
                          "is also run under realtime)")  # fmt: skip
     a = ap.parse_args([] if argv is None else argv)
     run_world(world(366.0, 5, 5, seed=99), steps=2)  # compile / load the kernels
+    if a.only == "whole":
+        _whole(a.preset)
+        return
     sc = world(REF["size"], REF["movers"], REF["polygons"])
     for preset in dict.fromkeys(("realtime", a.preset)):
         # a fresh copy: the roadmap and guides are kept per world, and each run builds its own
