@@ -230,3 +230,8 @@ register(
         label="NL-SHADE-RSP",
     )
 )
+
+# The competitions' own protocols rank a method against those who won them: the hold-out field
+# and the three winners.
+CEC_WINNERS = ("lshade", "jso", "nlshade_rsp")
+OFFICIAL_ALGORITHMS = (*HOLDOUT_ALGORITHMS, *CEC_WINNERS)

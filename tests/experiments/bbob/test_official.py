@@ -10,6 +10,7 @@ import pytest
 
 from mawdo.experiments import Store, run_plan
 from mawdo.experiments.kinds.suite import preset_plan, write_suite_report
+from mawdo.optimizers import HOLDOUT_ALGORITHMS
 from mawdo.suites import SUITES, evaluation_budget
 
 from .conftest import tiny_plan
@@ -28,6 +29,8 @@ def test_presets_are_the_competitions_protocols(name, suite, n, evals, runs):
     assert plan.suite == suite and plan.functions == tuple(range(1, n + 1))
     assert {d: evaluation_budget(plan.budget, d) for d in plan.dims} == evals
     assert plan.runs == runs and plan.final_target == 1e-8 and plan.numbering == "official"
+    # judged against the competitions' winners as well as the hold-out field
+    assert plan.algorithms == (*HOLDOUT_ALGORITHMS, "lshade", "jso", "nlshade_rsp")
 
 
 def test_checkpoints_are_the_reports():

@@ -7,14 +7,15 @@ two presets, a suite plan having one budget per dimension). A run stops at an er
 at the budget, as both reports ask; every run's best-so-far record is stored, so the errors at
 the competitions' checkpoints (:func:`mawdo.suites.cec_native.checkpoints`) and their tables
 (:mod:`.competition`: best, worst, median, mean, std of the error per function, errors up to
-1e-8 as 0) come from the store. The algorithms are the hold-out study's ten.
+1e-8 as 0) come from the store. The algorithms are the hold-out study's ten and the three
+winners of recent competitions (L-SHADE, jSO, NL-SHADE-RSP): thirteen.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
-from mawdo.optimizers import HOLDOUT_ALGORITHMS
+from mawdo.optimizers import OFFICIAL_ALGORITHMS
 
 OFFICIAL_SEED = 20171122
 """Master seed of the official-protocol presets."""
@@ -24,7 +25,7 @@ def _official(name: str, suite: str, n: int, dims: list[int], budget: float, run
     return {
         "name": name,
         "suite": suite,
-        "algorithms": list(HOLDOUT_ALGORITHMS),
+        "algorithms": list(OFFICIAL_ALGORITHMS),
         "functions": list(range(1, n + 1)),
         "instances": [1],
         "dims": dims,
@@ -43,7 +44,8 @@ OFFICIAL_PRESETS: dict[str, dict[str, Any]] = {
 
 OFFICIAL_HELP = {
     "cec2017-official": "CEC 2017's protocol: F1-F30, D 10 and 30, 1e4 x D evaluations, 51 "
-    "runs, the hold-out's ten algorithms; report with the competition's tables",
+    "runs, the hold-out's ten algorithms and the three CEC winners; report with the "
+    "competition's tables",
     "cec2022-official-d10": "CEC 2022's protocol at D 10: F1-F12, 200 000 evaluations, 30 runs",
     "cec2022-official-d20": "CEC 2022's protocol at D 20: F1-F12, 1 000 000 evaluations, 30 runs",
 }
