@@ -161,6 +161,28 @@ class StageClock:
         self._saved.clear()
 
 
+def _timed_plan(sc, steps, seed: int, preset: str, every: int = 0):
+    """One ``mawdo`` run of at most ``steps`` steps (None: to its end) under ``preset``, timed:
+    ``(result, marks, total, stages)``, ``marks`` the CPU time and replan count at each step's
+    progress call, ``stages`` the CPU per stage (``other``: the rest). With ``every`` it prints
+    a line every ``every`` steps."""
+    from mawdo.planning.run.planner import plan
+
+    marks = []
+
+    def mark(step, _, replans):
+        marks.append((time.process_time(), replans))
+        if every and step and step % every == 0:
+            print(f"  step {step}: {marks[-1][0] - t0:.0f} s of CPU", flush=True)
+
+    t0 = time.process_time()
+    with StageClock() as clock:
+        res = plan(sc, "mawdo", seed=seed, config=preset, max_steps=steps, progress=mark)
+    total = time.process_time() - t0
+    stages = dict(clock.cpu) | {"other": total - sum(clock.cpu.values())}
+    return res, [(m - t0, r) for m, r in marks], total, stages
+
+
 def run_world(sc, steps: int, seed: int = 0, preset: str = "large") -> dict:
     """One ``mawdo`` run (planner preset ``preset``) of at most ``steps`` steps: first-plan and
     replan CPU (s), traced peak memory (MiB; from a second, untimed run), CPU per stage (s;
@@ -168,25 +190,16 @@ def run_world(sc, steps: int, seed: int = 0, preset: str = "large") -> dict:
     Python), success of the steps driven."""
     from mawdo.planning.run.planner import plan
 
-    marks = []
-
-    def mark(step, _, replans):
-        marks.append((time.process_time(), replans))
-
-    t0 = time.process_time()
-    with StageClock() as clock:
-        res = plan(sc, "mawdo", seed=seed, config=preset, max_steps=steps, progress=mark)
-    total = time.process_time() - t0
+    res, marks, total, stages = _timed_plan(sc, steps, seed, preset)
     # the memory from a run of its own, untimed: the same run (same seed) of a copy of the world,
     # which finds nothing the first built in the caches kept per world (roadmap, guides)
     tracemalloc.start()
     plan(copy.deepcopy(sc), "mawdo", seed=seed, config=preset, max_steps=steps)
     peak = tracemalloc.get_traced_memory()[1] / 2**20
     tracemalloc.stop()
-    first = marks[1][0] - t0 if len(marks) > 1 else total
+    first = marks[1][0] if len(marks) > 1 else total
     pairs = zip(marks[1:-1], marks[2:], strict=False)
     rep = np.array([b[0] - a[0] for a, b in pairs if b[1] > a[1]])
-    stages = dict(clock.cpu) | {"other": total - sum(clock.cpu.values())}
     return {"first": first, "replans": rep, "total": total, "peak_mib": peak,
             "stages": stages, "collision_free": res.collision_free,
             "steps": len(marks) - 1}  # fmt: skip
@@ -197,22 +210,10 @@ def whole_run(sc, seed: int = 0, preset: str = "large", every: int = 100) -> dic
     seconds in all (the first plan and the final check included) and per stage, the first plan,
     the steps, whether it reached the goal and the checker's verdict. Prints a line every
     ``every`` steps (a run among 10 000 movers takes minutes)."""
-    from mawdo.planning.run.planner import plan
-
-    marks = []
-
-    def mark(step, _, replans):
-        marks.append(time.process_time())
-        if step and step % every == 0:
-            print(f"  step {step}: {marks[-1] - t0:.0f} s of CPU", flush=True)
-
-    t0 = time.process_time()
-    with StageClock() as clock:
-        res = plan(sc, "mawdo", seed=seed, config=preset, progress=mark)
-    total = time.process_time() - t0
-    return {"total": total, "first": marks[1] - t0 if len(marks) > 1 else total,
+    res, marks, total, stages = _timed_plan(sc, None, seed, preset, every)
+    return {"total": total, "first": marks[1][0] if len(marks) > 1 else total,
             "steps": res.steps, "success": res.success, "collision_free": res.collision_free,
-            "stages": dict(clock.cpu) | {"other": total - sum(clock.cpu.values())}}  # fmt: skip
+            "stages": stages}  # fmt: skip
 
 
 def _whole(preset: str) -> None:

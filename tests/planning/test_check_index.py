@@ -7,36 +7,17 @@ from mawdo.planning import check_trajectory, scenario_from_dict
 from mawdo.planning.judge import check as checkmod
 from mawdo.planning.judge import check_index
 from mawdo.planning.world.stepped import with_movers
+from tests.planning.test_kernel_index import SIZE
+from tests.planning.test_kernel_index import _world as kernel_world
 
-W = H = 300.0
-
-
-def _mover(rng, kind: int) -> dict:
-    c = rng.uniform(40, W - 40, 2).round(2).tolist()
-    if kind == 0:
-        v = rng.uniform(-3, 3, 2).round(2).tolist()
-        motion = {"velocity": v}
-    elif kind == 1:
-        pts = rng.uniform(-30, 30, (2, 2)).round(1).tolist()
-        motion = {"model": "patrol", "waypoints": pts, "speed": float(rng.uniform(0.5, 3))}
-    else:
-        motion = {"model": "bounded_random_walk", "step": float(rng.uniform(0.5, 2.5))}
-    if rng.random() < 0.7:
-        return {"shape": "circle", "center": c, "radius": float(rng.uniform(3, 9)),
-                "motion": motion}  # fmt: skip
-    ang = np.sort(rng.uniform(0, 2 * np.pi, 4))
-    verts = np.asarray(c) + np.c_[10 * np.cos(ang), 10 * np.sin(ang)]
-    return {"shape": "polygon", "vertices": verts.round(2).tolist(), "motion": motion}
+W = H = SIZE
 
 
 def _world(seed: int, movers: int = 40):
-    rng = np.random.default_rng(seed)
-    obstacles = [_mover(rng, int(rng.integers(3))) for _ in range(movers)]
-    obstacles.append({"shape": "polygon", "vertices": [[140, 20], [160, 20], [160, 35], [140, 35]]})
-    sc = scenario_from_dict({
-        "schema_version": 1, "seed": seed, "width": W, "height": H, "start": [8, 8],
-        "goal": [292, 292], "robot": {"radius": 3.0, "speed": 4.0}, "obstacles": obstacles,
-    })  # fmt: skip
+    """The kernel index's random worlds (every kind of motion, circles and polygons, a few
+    standing shapes), people's recorded tracks, and a wandering route through them."""
+    sc = kernel_world(seed, movers=movers, standing=2)
+    rng = np.random.default_rng([seed, 5])
     # people as the stepped world records them: tracks through their centres, one a step
     times = np.arange(200.0)
     walks = [np.cumsum(rng.uniform(-2, 2, (200, 2)), axis=0) + rng.uniform(60, W - 60, 2)
@@ -44,7 +25,7 @@ def _world(seed: int, movers: int = 40):
     sc = with_movers(sc, rng.uniform(3, 6, 8), [(times, w) for w in walks])
     # a wandering route: moves of up to 6 px, some rests, a few steps past the border
     steps = rng.uniform(-6, 6, (120, 2)) * (rng.random((120, 1)) > 0.15)
-    route = np.clip(np.array([150.0, 150.0]) + np.cumsum(steps, axis=0), -2, W + 2)
+    route = np.clip(np.array([W / 2, H / 2]) + np.cumsum(steps, axis=0), -2, W + 2)
     times = 3.0 + np.cumsum(rng.uniform(0.3, 1.5, len(route)))
     return sc, route, times
 

@@ -318,25 +318,29 @@ class TimedRun:
         brake."""
         if self._profiled() and self._on_route(pos, float(step)):
             if self.following.times[-1] > step:
-                self.timed_follows += 1
-                return route_geometry(self._rest_of(step), pos)
-        # (a profiled route kept has been returned above: what is left is a lookahead's)
+                return self._follow_on(pos, step)
+        # (a profiled route kept has been returned above: what is left is a lookahead's, which
+        # the swarm's candidate replaces when it is free to the goal)
         kept = self._keeps_route(pos, float(step)) and self.following.times[-1] > step
-        previous, self.following = self.following, None
         if chosen is not None and not (self._profiled() and self.timed_first):
             length = polyline_length(chosen)
             if self.guard.stretch_hits(chosen, float(step), length) == 0:
+                self.following = None
                 return chosen
         if kept:
-            self.following = previous
-            self.timed_follows += 1
-            return route_geometry(self._rest_of(step), pos)
+            return self._follow_on(pos, step)
+        self.following = None
         timed = self._timed_routes(pos, step)
         if not timed:
             return chosen
         self.following = self._refined(timed, pos, step)
         self.timed_follows += 1
         return route_geometry(self.following, pos)
+
+    def _follow_on(self, pos, step: int):
+        """The rest of the followed route from ``pos``, counted as a timed follow."""
+        self.timed_follows += 1
+        return route_geometry(self._rest_of(step), pos)
 
     def _refined(self, timed: list, pos, step: int):
         """The earliest timed route ``timed[0]``, or, when the run's trajectory refiner
