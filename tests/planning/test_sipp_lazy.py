@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from mawdo.planning.guide.sipp import SafeIntervalGuide
+from mawdo.planning.guide.sipp.departures import new_memo
 from mawdo.planning.guide.sipp.profile import profile_table, rest_steps
 from mawdo.planning.guide.sipp.search import (
     _depart,
@@ -62,7 +63,9 @@ def _eager(graph, moves, kin, start, goal, t_start, h0, t_end, ptr, lo, hi, bann
                 x = float(math.ceil(x)) if kin[3] else x
                 if x + T >= arrival[J] or x + T + hv > bound:
                     continue
-                tau = _depart(moves, e, nodes[u, 0], nodes[u, 1], a, T, x, top, hi[J], kin[3], mv)
+                # (no memo: every departure found afresh, window by window)
+                tau = _depart(moves, e, nodes[u, 0], nodes[u, 1], a, T, x, top, hi[J], kin[3], mv,
+                              new_memo(2, 2), -1)[0]  # fmt: skip
                 if not tau + T < arrival[J]:
                     continue
                 arrival[J], parent[J], depart[J] = tau + T, sid, tau
@@ -107,8 +110,9 @@ def test_lazy_search_finds_the_eager_searchs_routes_bit_for_bit(seed, limits):
     args = (g.start, 0, g.t0, np.zeros(2), g.t_end, g.ptr, g.lo, g.hi)
     banned = np.zeros(len(g.lo), np.bool_)
     found = 0
+    memo = new_memo()  # the searches of one query share their forbidden departures
     for _ in range(3):  # the earliest route, then alternatives with its states barred
-        lazy = timed_search(graph, moves, kin, *args, banned, g._mv)
+        *lazy, memo = timed_search(graph, moves, kin, *args, banned, g._mv, memo, len(g.weights))
         eager = _eager(graph, moves, kin, *args, banned, g._mv)
         assert _same(_chain(lazy), _chain(eager))
         if lazy[0] < 0:

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mawdo.planning.guide.homotopy import GUIDE_SEGMENTS
+from mawdo.planning.guide.sipp.departures import new_memo
 from mawdo.planning.guide.sipp.intervals import safe_intervals
 from mawdo.planning.guide.sipp.profile import profile_table
 from mawdo.planning.guide.sipp.profiled import lead_clear, profile_points, profiled_search
@@ -106,6 +107,12 @@ class SafeIntervalGuide:
         end as before). None (default): the whole horizon. A route is then collision-free
         (under the predictions) only until ``t0 + lookahead``
         (:attr:`checked_until`); the run asks again well before then.
+    keep_departures : bool
+        Keep the forbidden departures the searches find and answer later searches from them
+        (:mod:`~mawdo.planning.guide.sipp.departures`; the same routes, found faster): this
+        query's, and, where every query slices the same motion (no ``lookahead``, no random
+        walker taken as a reachable set), the next queries' too, through the roadmap. False:
+        every departure found afresh (for comparisons).
 
     Raises
     ------
@@ -126,6 +133,7 @@ class SafeIntervalGuide:
         profile=None,
         lead=None,
         lookahead: float | None = None,
+        keep_departures: bool = True,
     ) -> None:
         if not math.isfinite(t0) or t0 < 0:
             raise ValueError(f"t0 must be finite and >= 0 time steps, got {t0!r}")
@@ -154,6 +162,12 @@ class SafeIntervalGuide:
         cut = self.checked_until < self.t_end  # a lookahead: no mover is tested after it
         self.movers = self.roadmap.movers(self.t0, self.checked_until, walkers, cut)
         self._mv = self.movers.arrays()
+        # the forbidden departures found by the searches: kept in the roadmap from query to
+        # query where every query slices the same motion, else for this query's searches
+        shared = keep_departures and not cut and not np.any(self.movers.kind == 1)
+        self._shares = (float(scenario.robot_speed), walkers) if shared else None
+        self._memo = self.roadmap.departures(self._shares) if shared else new_memo()
+        self._kept = len(self.roadmap.weights) if keep_departures else 0  # (not the start's)
         self.ptr, self.lo, self.hi = safe_intervals(self.nodes, self.t0, self.t_end, self._mv)
         self._v = float(scenario.robot_speed)
         if profile is not None:
@@ -176,11 +190,15 @@ class SafeIntervalGuide:
         if self.profile is not None:
             return profiled_search(self, banned)
         graph, v = (self.nodes, self.indptr, self.indices, self.weights, self.to_goal), self._v
-        return timed_search(
+        res = timed_search(
             graph, self.roadmap.straight_moves(graph, v), (v, False, math.inf, False),
             self.start, 0, self.t0, np.zeros(2), self.t_end, self.ptr, self.lo, self.hi, banned,
-            self._mv,
+            self._mv, self._memo, self._kept,
         )  # fmt: skip
+        self._memo = res[4]  # (the memo grows as it fills)
+        if self._shares is not None:
+            self.roadmap.keep_departures(self._shares, self._memo)
+        return res[:4]
 
     def _route(self, goal_state, arrival, parent, depart) -> TimedRoute:
         """The route ending in ``goal_state``: the lead (without a profile: the start), then

@@ -143,6 +143,7 @@ class Roadmap:
         self._moving = moving
         self._knots: dict[int, tuple[float, np.ndarray, np.ndarray]] = {}
         self._moves: dict[float, tuple] = {}  # straight_moves per speed (and room for a start)
+        self._departures: dict[tuple, object] = {}  # forbidden departures per speed and walkers
         # pieces over a window that holds a usual query (twice the default horizon of a
         # route across the map), so that queries only slice them
         diag = math.hypot(scenario.width, scenario.height)
@@ -233,6 +234,22 @@ class Roadmap:
         top = len(weights)
         straight_rows(edge, piece, nodes, indptr, indices, weights, float(speed), n)
         return eptr[: top + 1], edge[:top], piece[:top]
+
+    def departures(self, key: tuple):
+        """The forbidden departures of this roadmap's edges found so far by the queries
+        whose movers are slices of the same motion, ``key`` = (robot speed in px per step,
+        how they take random walkers) (:mod:`~mawdo.planning.guide.sipp.departures`); a memo
+        that ran out of room is replaced by an empty one."""
+        from mawdo.planning.guide.sipp.departures import new_memo, roomier
+
+        memo = self._departures.get(key)
+        memo = new_memo() if memo is None else roomier(memo)
+        self._departures[key] = memo
+        return memo
+
+    def keep_departures(self, key: tuple, memo) -> None:
+        """Keep ``memo`` (grown by a search) as :meth:`departures` of ``key``."""
+        self._departures[key] = memo
 
     def movers(self, t0: float, t_end: float, walkers: str, cut: bool = False) -> Movers:
         """The moving obstacles over ``[t0, t_end]`` (see :class:`Movers`). ``cut``: their

@@ -60,6 +60,7 @@ import numpy as np
 from numba import njit
 
 from mawdo.planning.guide.heap import heap_new, heap_pop, heap_push, heap_put, heap_room
+from mawdo.planning.guide.sipp.departures import new_memo, window_forbidden
 from mawdo.planning.guide.sipp.index import candidates
 from mawdo.planning.guide.sipp.intervals import (
     EPS,
@@ -199,11 +200,13 @@ def _integer_free(F, x):
 
 
 @njit(cache=True, inline="always")
-def _depart(moves, e, ux, uy, a, T, x, top, J_hi, whole, mv):
+def _depart(moves, e, ux, uy, a, T, x, top, J_hi, whole, mv, memo, key):
     """Earliest checked departure ``>= x`` and ``<= top`` (a whole step if ``whole``) whose
-    arrival precedes ``J_hi`` (``inf`` if none). The forbidden departures are computed over
-    windows growing from ``x`` (the answer is usually at or just after it), each exact over its
-    span."""
+    arrival precedes ``J_hi`` (``inf`` if none), and the memo (grown if it had to). The
+    forbidden departures are computed over windows growing from ``x`` (the answer is usually
+    at or just after it), each exact over its span; a one-piece move of a roadmap edge
+    (``key >= 0``) takes them from ``memo`` (:mod:`~mawdo.planning.guide.sipp.departures`: the
+    same sets, kept)."""
     eptr, _, piece = moves
     i, j = eptr[e], eptr[e + 1]
     # one piece from the departure (every edge without limits): the movers near the window
@@ -213,7 +216,9 @@ def _depart(moves, e, ux, uy, a, T, x, top, J_hi, whole, mv):
     lo, span, tries = x, _WINDOW, 0
     while lo <= top and lo + T < J_hi:
         hi = min(top, lo + span)
-        if one:
+        if one and key >= 0:
+            F, near, memo = window_forbidden(memo, key, ax, ay, ex, ey, dur, lo, hi, mv)
+        elif one:
             near = candidates(ax, ay, ex, ey, dur, lo, hi, mv[15])
             F = forbidden_among(ax, ay, ex, ey, dur, lo, hi, mv, near)
         else:
@@ -221,22 +226,24 @@ def _depart(moves, e, ux, uy, a, T, x, top, J_hi, whole, mv):
         tau = _integer_free(F, lo) if whole else earliest_free(F, lo)
         if tau > hi:  # forbidden up to the window's end: look further
             if hi == top:
-                return math.inf
+                return math.inf, memo
             lo, span = hi, 2.0 * span
             continue
         if tau + T >= J_hi:
-            return math.inf
+            return math.inf, memo
+        if one and len(near) == 1 and near[0] < 0:  # the window's own (as computed afresh)
+            near = candidates(ax, ay, ex, ey, dur, lo, hi, mv[15])
         if segment_free(ux, uy, ux, uy, a, tau, mv) and (
             segment_free_among(ax, ay, bx, by, tau, tau + dur, mv, near)
             if one
             else pieces_free(piece, i, j, tau, mv)
         ):
-            return tau
+            return tau, memo
         tries += 1  # refused at a touching contact (rounding): push on a little
         if tries == _RETRIES:
-            return math.inf
+            return math.inf, memo
         lo = tau + (1.0 if whole else 10.0 * EPS)
-    return math.inf
+    return math.inf, memo
 
 
 @njit(cache=True)
@@ -262,7 +269,9 @@ def _states(ptr, S):
 
 
 @njit(cache=True)
-def timed_search(graph, moves, kin, start, goal, t_start, h0, t_end, ptr, lo, hi, banned, mv):
+def timed_search(
+    graph, moves, kin, start, goal, t_start, h0, t_end, ptr, lo, hi, banned, mv, memo, kept
+):
     """Earliest arrival at ``goal`` from ``start`` at ``t_start`` over (vertex, interval) states.
 
     Parameters
@@ -291,6 +300,13 @@ def timed_search(graph, moves, kin, start, goal, t_start, h0, t_end, ptr, lo, hi
         Interval states the search may not enter (for alternatives).
     mv : tuple
         :meth:`~mawdo.planning.guide.sipp.intervals.Movers.arrays`.
+    memo : tuple
+        Forbidden departures kept per edge
+        (:func:`~mawdo.planning.guide.sipp.departures.new_memo`; filled as the search goes).
+        Give one only to searches whose ``mv`` are slices of the same motion (see
+        :mod:`~mawdo.planning.guide.sipp.departures`).
+    kept : int
+        The edges ``e < kept`` (one-piece moves only) use and fill ``memo``; 0: none.
 
     Returns
     -------
@@ -298,12 +314,14 @@ def timed_search(graph, moves, kin, start, goal, t_start, h0, t_end, ptr, lo, hi
         The goal's interval reached first (-1: none; -2: the start is not safe at ``t_start``).
     arrival, parent, depart : numpy.ndarray
         Per interval state: earliest arrival, previous state, departure from its vertex.
+    memo : tuple
+        ``memo`` with what this search found (a new, larger one when it had to grow).
     """
     nodes, indptr, indices, weights, to_goal = graph
     owner, arrival, parent, depart, heading, closed = _states(ptr, len(lo))
     s0 = start_state(ptr, lo, hi, start, t_start, nodes[start], mv)
     if s0 < 0:
-        return -2, arrival, parent, depart
+        return -2, arrival, parent, depart, memo
     arrival[s0] = t_start
     heading[s0, 0], heading[s0, 1] = h0[0], h0[1]
     keys, ids, nh = heap_new()
@@ -346,7 +364,8 @@ def timed_search(graph, moves, kin, start, goal, t_start, h0, t_end, ptr, lo, hi
             if a >= t_free and x <= top and x + T < hi[J]:  # no mover left: x is free
                 tau = x
             else:
-                tau = _depart(moves, e, nodes[u, 0], nodes[u, 1], a, T, x, top, hi[J], whole, mv)
+                tau, memo = _depart(moves, e, nodes[u, 0], nodes[u, 1], a, T, x, top, hi[J],
+                                    whole, mv, memo, e if e < kept else -1)  # fmt: skip
             if not _may_win(tau + T, J, sid, e, arrival, parent, rank, via):
                 continue
             if tau + T < arrival[J]:
@@ -365,7 +384,7 @@ def timed_search(graph, moves, kin, start, goal, t_start, h0, t_end, ptr, lo, hi
         closed[sid], rank[sid], expanded = True, expanded, expanded + 1
         u = owner[sid]
         if u == goal:
-            return sid, arrival, parent, depart
+            return sid, arrival, parent, depart, memo
         need = (indptr[u + 1] - indptr[u]) * most
         lkeys, lids = heap_room(lkeys, lids, ln, need)
         if made + need > len(lsrc):
@@ -401,7 +420,7 @@ def timed_search(graph, moves, kin, start, goal, t_start, h0, t_end, ptr, lo, hi
                 key = -math.inf if v == goal else x + T + hv
                 ln = heap_put(lkeys, lids, ln, key, x + T, (J << _SHIFT) | made)
                 made += 1
-    return -1, arrival, parent, depart
+    return -1, arrival, parent, depart, memo
 
 
 @njit(cache=True)
@@ -454,13 +473,14 @@ def search(
     nodes, indptr, indices, weights, to_goal, speed, start, goal, t0, t_end, ptr, lo, hi, banned, mv
 ):
     """:func:`timed_search` without limits: straight moves at ``speed`` (px per step, > 0),
-    departures at any time from ``t0``, instant starts, stops and turns; the other arguments
-    and the results as there."""
+    departures at any time from ``t0``, instant starts, stops and turns, no memo; the other
+    arguments and the results (but the memo) as there."""
     moves = straight_moves(nodes, indptr, indices, weights, speed)
-    return timed_search(
+    res = timed_search(
         (nodes, indptr, indices, weights, to_goal), moves, (speed, False, math.inf, False),
-        start, goal, t0, np.zeros(2), t_end, ptr, lo, hi, banned, mv,
+        start, goal, t0, np.zeros(2), t_end, ptr, lo, hi, banned, mv, new_memo(2, 2), 0,
     )  # fmt: skip
+    return res[0], res[1], res[2], res[3]
 
 
 @njit(cache=True)
@@ -471,11 +491,12 @@ def search_limited(graph, table, lim, start, goal, t_start, h0, t_end, ptr, lo, 
 
     ``lim`` is ``(v, accel_on, turn)``: speed (px per step, > 0), whether acceleration is
     limited, turn rate (radians per step, ``inf`` for none); the other arguments and the
-    results as in :func:`timed_search`.
+    results (but the memo: its moves are not straight) as in :func:`timed_search`.
     """
     nodes, indptr, indices, weights, _ = graph
     moves = profiled_moves(nodes, indptr, indices, weights, table)
-    return timed_search(
+    res = timed_search(
         graph, moves, (lim[0], lim[1], lim[2], True), start, goal, t_start, h0, t_end, ptr, lo,
-        hi, banned, mv,
+        hi, banned, mv, new_memo(2, 2), 0,
     )  # fmt: skip
+    return res[0], res[1], res[2], res[3]
