@@ -14,7 +14,7 @@ import pytest
 from benchmarks.bench_scaling import world
 
 from mawdo.planning.guide.sipp import SafeIntervalGuide
-from mawdo.planning.guide.sipp.departures import new_memo
+from mawdo.planning.guide.sipp.departures import empty_memo
 from mawdo.planning.guide.sipp.intervals import segment_free
 from mawdo.planning.guide.sipp.search import straight_moves, timed_search
 from mawdo.planning.run.config import PRESETS, PlannerConfig
@@ -43,7 +43,7 @@ def test_search_past_the_lookahead_equals_the_eager_search(seed, lookahead):
     kin = (v, False, math.inf, False)
     args = (g.start, 0, g.t0, np.zeros(2), g.t_end, g.ptr, g.lo, g.hi)
     banned = np.zeros(len(g.lo), np.bool_)
-    lazy = timed_search(graph, moves, kin, *args, banned, g._mv, new_memo(), len(g.weights))[:4]
+    lazy = timed_search(graph, moves, kin, *args, banned, g._mv, empty_memo(), len(g.weights))[:4]
     assert lazy[0] >= 0
     assert _same(_chain(lazy), _chain(_eager(graph, moves, kin, *args, banned, g._mv)))
 

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from mawdo.planning.guide.sipp import SafeIntervalGuide
-from mawdo.planning.guide.sipp.departures import new_memo
+from mawdo.planning.guide.sipp.departures import empty_memo, new_memo
 from mawdo.planning.guide.sipp.profile import profile_table, rest_steps
 from mawdo.planning.guide.sipp.search import (
     _depart,
@@ -110,7 +110,7 @@ def test_lazy_search_finds_the_eager_searchs_routes_bit_for_bit(seed, limits):
     args = (g.start, 0, g.t0, np.zeros(2), g.t_end, g.ptr, g.lo, g.hi)
     banned = np.zeros(len(g.lo), np.bool_)
     found = 0
-    memo = new_memo()  # the searches of one query share their forbidden departures
+    memo = empty_memo()  # the searches of one query share their forbidden departures
     for _ in range(3):  # the earliest route, then alternatives with its states barred
         *lazy, memo = timed_search(graph, moves, kin, *args, banned, g._mv, memo, len(g.weights))
         eager = _eager(graph, moves, kin, *args, banned, g._mv)

@@ -38,17 +38,21 @@ from numba import njit
 from mawdo.planning.guide.sipp.index import candidates
 from mawdo.planning.guide.sipp.intervals import forbidden_among
 
-__all__ = ["new_memo", "roomier", "window_forbidden"]
+__all__ = ["empty_memo", "new_memo", "roomier", "window_forbidden"]
 
 #: Largest memo: edges (a power of two; 40 bytes each) and pool rows (16 bytes each).
 MOST_EDGES, MOST_ROWS = 1 << 21, 1 << 22
 #: A new memo's room: edges (a power of two) and rows.
 FIRST_EDGES, FIRST_ROWS = 1 << 12, 1 << 13
-_NONE = np.full(1, -1, np.int64)  # no candidates looked up
+
+
+def empty_memo():
+    """A new, empty memo of the first size (:data:`FIRST_EDGES`, :data:`FIRST_ROWS`)."""
+    return new_memo(FIRST_EDGES, FIRST_ROWS)
 
 
 @njit(cache=True)
-def new_memo(edges=FIRST_EDGES, rows=FIRST_ROWS):
+def new_memo(edges, rows):
     """An empty memo for up to ``edges // 2`` edges (``edges`` a power of two) and ``rows``
     forbidden intervals before it grows: ``(keys, span, first, count, pool, meta)``, ``meta``
     = (edges kept, pool rows used, full: no more room at the largest size)."""
@@ -60,7 +64,7 @@ def new_memo(edges=FIRST_EDGES, rows=FIRST_ROWS):
 
 def roomier(memo):
     """``memo`` while it had room for all it was given; else a new, empty one."""
-    return new_memo() if memo[5][2] else memo
+    return empty_memo() if memo[5][2] else memo
 
 
 @njit(cache=True)
@@ -71,6 +75,13 @@ def _slot(keys, key):
     while keys[h] != -1 and keys[h] != key:
         h = (h + 1) & mask
     return h
+
+
+@njit(cache=True)
+def _unlooked():
+    """The candidates of a window answered without looking them up: one entry, -1 (a new
+    array: a global one would be typed read-only, and every kernel given it compiled twice)."""
+    return np.full(1, -1, np.int64)
 
 
 @njit(cache=True)
@@ -171,7 +182,7 @@ def window_forbidden(memo, key, ax, ay, ex, ey, dur, lo, hi, mv):
         c0, c1 = span[h, 0], span[h, 1]
         rows = pool[first[h] : first[h] + count[h]]
         if c0 <= lo and hi <= c1:
-            return _clip(rows, lo, hi), _NONE, memo
+            return _clip(rows, lo, hi), _unlooked(), memo
         if lo <= c1 and c0 <= hi:  # overlapping or touching: widen the span
             left, right = np.empty((0, 2)), np.empty((0, 2))
             if lo < c0:
@@ -182,7 +193,7 @@ def window_forbidden(memo, key, ax, ay, ex, ey, dur, lo, hi, mv):
                 right = forbidden_among(ax, ay, ex, ey, dur, c1, hi, mv, near)
             F = _joined(left, rows, right)
             memo = _keep(memo, key, min(lo, c0), max(hi, c1), F)
-            return _clip(F, lo, hi), _NONE, memo
+            return _clip(F, lo, hi), _unlooked(), memo
     near = candidates(ax, ay, ex, ey, dur, lo, hi, mv[15])
     F = forbidden_among(ax, ay, ex, ey, dur, lo, hi, mv, near)
     return F, near, _keep(memo, key, lo, hi, F)

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mawdo.planning.guide.homotopy import GUIDE_SEGMENTS
-from mawdo.planning.guide.sipp.departures import new_memo
+from mawdo.planning.guide.sipp.departures import empty_memo
 from mawdo.planning.guide.sipp.intervals import safe_intervals
 from mawdo.planning.guide.sipp.profile import profile_table
 from mawdo.planning.guide.sipp.profiled import lead_clear, profile_points, profiled_search
@@ -166,7 +166,7 @@ class SafeIntervalGuide:
         # query where every query slices the same motion, else for this query's searches
         shared = keep_departures and not cut and not np.any(self.movers.kind == 1)
         self._shares = (float(scenario.robot_speed), walkers) if shared else None
-        self._memo = self.roadmap.departures(self._shares) if shared else new_memo()
+        self._memo = self.roadmap.departures(self._shares) if shared else empty_memo()
         self._kept = len(self.roadmap.weights) if keep_departures else 0  # (not the start's)
         self.ptr, self.lo, self.hi = safe_intervals(self.nodes, self.t0, self.t_end, self._mv)
         self._v = float(scenario.robot_speed)

@@ -240,10 +240,10 @@ class Roadmap:
         whose movers are slices of the same motion, ``key`` = (robot speed in px per step,
         how they take random walkers) (:mod:`~mawdo.planning.guide.sipp.departures`); a memo
         that ran out of room is replaced by an empty one."""
-        from mawdo.planning.guide.sipp.departures import new_memo, roomier
+        from mawdo.planning.guide.sipp.departures import empty_memo, roomier
 
         memo = self._departures.get(key)
-        memo = new_memo() if memo is None else roomier(memo)
+        memo = empty_memo() if memo is None else roomier(memo)
         self._departures[key] = memo
         return memo
 
