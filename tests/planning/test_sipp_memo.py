@@ -13,6 +13,7 @@ import pytest
 from benchmarks.bench_scaling import world
 
 from mawdo.planning.guide.sipp import SafeIntervalGuide, departures
+from mawdo.planning.guide.sipp import guide as guide_module
 from mawdo.planning.guide.sipp.departures import _slot, new_memo, roomier, window_forbidden
 from mawdo.planning.guide.sipp.index import candidates
 from mawdo.planning.guide.sipp.intervals import forbidden_among
@@ -119,21 +120,38 @@ def test_replans_sharing_the_memo_find_what_fresh_queries_find(seed):
             pos, t = plan.send(got)
         except StopIteration:
             break
-    assert kept[0] == 0 and kept[1] > 0 and kept == sorted(kept)  # one memo, carried on
+    # the roadmap's first query keeps nothing, the second fills the memo, the rest carry it on
+    assert kept[:2] == [0, 0] and kept[2] > 0 and kept == sorted(kept)
 
 
 def test_only_queries_of_the_same_motion_share_a_memo():
     sc = world(300.0, 20, 4, seed=0)
+    first = SafeIntervalGuide(sc, t0=0.0)
+    assert first._kept == 0  # a roadmap's first query: it may be its only one
     a = SafeIntervalGuide(sc, t0=0.0)
     a.routes(2)
     b = SafeIntervalGuide(sc, t0=3.0, start=a.nodes[a.start])
-    assert b._memo is a._memo and b._kept > 0  # uncut tables of the same motion: carried on
-    assert a._memo[5][0] > 0
+    assert b._memo is a._memo and b._kept > 0 and a._memo[5][0] > 0  # carried on
     cut = SafeIntervalGuide(sc, t0=0.0, lookahead=30.0)
-    assert cut._shares is None and cut._memo is not a._memo  # a lookahead cuts: its own
+    assert cut._kept == 0 and cut._memo is not a._memo  # a lookahead cuts: its own, if any
     walk = _world(0, 40)  # random walkers, taken as reachable sets growing from t0
-    c, d = SafeIntervalGuide(walk, t0=0.0), SafeIntervalGuide(walk, t0=1.0)
-    assert c._shares is None and c._memo is not d._memo
+    for _ in range(2):
+        c = SafeIntervalGuide(walk, t0=0.0)
+        assert c._shares is None and c._kept == 0  # 40 movers: no memo of its own either
     known = SafeIntervalGuide(walk, t0=0.0, walkers="known")  # the seeded walks themselves
     assert known._shares is not None and known._shares != a._shares  # a memo of its own kind
     assert SafeIntervalGuide(sc, t0=0.0, keep_departures=False)._kept == 0
+
+
+def test_a_query_among_many_movers_keeps_its_own_for_its_alternatives(monkeypatch):
+    monkeypatch.setattr(guide_module, "MEMO_MOVERS", 20)
+    sc = world(300.0, 20, 4, seed=1)
+    cut = SafeIntervalGuide(sc, t0=0.0, lookahead=120.0)
+    got = cut.routes(3)
+    assert cut._kept > 0 and cut._memo[5][0] > 0
+    monkeypatch.setattr(guide_module, "MEMO_MOVERS", 21)
+    fresh = SafeIntervalGuide(sc, t0=0.0, lookahead=120.0)
+    assert fresh._kept == 0
+    want = fresh.routes(3)
+    assert [r.states for r in got] == [r.states for r in want]
+    assert [r.arrival for r in got] == [r.arrival for r in want]

@@ -21,7 +21,11 @@ Who may share a memo: searches whose movers' tables are slices of the same motio
 of one query always do. The queries of a run share the roadmap's memo
 (:meth:`~mawdo.planning.guide.sipp.roadmap.Roadmap.departures`) when there is no lookahead cut
 (a cut piece ends early, so what lies beyond it is untested, and its velocity is re-rounded) and
-no random walker taken as a reachable set (it grows from the query's own start time).
+no random walker taken as a reachable set (it grows from the query's own start time). When a
+query keeps one at all is the guide's choice
+(:meth:`~mawdo.planning.guide.sipp.guide.SafeIntervalGuide`, ``keep_departures``): filling a
+memo costs about a tenth more search, repaid by the queries after it, or among many movers by
+the query's own time-diverse alternatives.
 
 The memo is plain arrays (Numba's jit table records only such arguments): an open-addressing
 table of edges (``keys``, linear probing, at most half full) with each edge's span and its
@@ -42,13 +46,15 @@ __all__ = ["empty_memo", "new_memo", "roomier", "window_forbidden"]
 
 #: Largest memo: edges (a power of two; 40 bytes each) and pool rows (16 bytes each).
 MOST_EDGES, MOST_ROWS = 1 << 21, 1 << 22
-#: A new memo's room: edges (a power of two) and rows.
-FIRST_EDGES, FIRST_ROWS = 1 << 12, 1 << 13
+#: A new memo's least room: edges (a power of two).
+FIRST_EDGES = 1 << 12
 
 
-def empty_memo():
-    """A new, empty memo of the first size (:data:`FIRST_EDGES`, :data:`FIRST_ROWS`)."""
-    return new_memo(FIRST_EDGES, FIRST_ROWS)
+def empty_memo(edges: int = 0):
+    """A new, empty memo with room for about an eighth of ``edges`` (a graph's edge count; at
+    least :data:`FIRST_EDGES` // 2) before it first grows, and twice as many rows."""
+    size = max(FIRST_EDGES, 1 << max(0, int(edges // 4) - 1).bit_length())
+    return new_memo(min(size, MOST_EDGES), min(2 * size, MOST_ROWS))
 
 
 @njit(cache=True)
@@ -63,8 +69,8 @@ def new_memo(edges, rows):
 
 
 def roomier(memo):
-    """``memo`` while it had room for all it was given; else a new, empty one."""
-    return empty_memo() if memo[5][2] else memo
+    """``memo`` while it had room for all it was given; else a new, empty one as large."""
+    return new_memo(len(memo[0]), len(memo[4])) if memo[5][2] else memo
 
 
 @njit(cache=True)

@@ -144,6 +144,7 @@ class Roadmap:
         self._knots: dict[int, tuple[float, np.ndarray, np.ndarray]] = {}
         self._moves: dict[float, tuple] = {}  # straight_moves per speed (and room for a start)
         self._departures: dict[tuple, object] = {}  # forbidden departures per speed and walkers
+        self.queries = 0  # safe-interval queries made on this roadmap so far
         # pieces over a window that holds a usual query (twice the default horizon of a
         # route across the map), so that queries only slice them
         diag = math.hypot(scenario.width, scenario.height)
@@ -243,7 +244,7 @@ class Roadmap:
         from mawdo.planning.guide.sipp.departures import empty_memo, roomier
 
         memo = self._departures.get(key)
-        memo = empty_memo() if memo is None else roomier(memo)
+        memo = empty_memo(len(self.weights)) if memo is None else roomier(memo)
         self._departures[key] = memo
         return memo
 
