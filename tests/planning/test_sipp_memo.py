@@ -143,6 +143,23 @@ def test_only_queries_of_the_same_motion_share_a_memo():
     assert SafeIntervalGuide(sc, t0=0.0, keep_departures=False)._kept == 0
 
 
+def test_movers_knots_made_again_drop_the_kept_departures():
+    # a query far beyond the knots' window makes them again, the piece that ended at the old
+    # window's end with its velocity rounded anew: what was kept is dropped, not reused
+    sc = world(300.0, 20, 4, seed=2)
+    for t0 in (0.0, 1.0):
+        SafeIntervalGuide(sc, t0=t0).routes(2)
+    early = SafeIntervalGuide(sc, t0=2.0)
+    assert early._memo[5][0] > 0
+    late = SafeIntervalGuide(sc, t0=5000.0)
+    assert late._memo is not early._memo and late._memo[5][0] == 0
+    early.routes(2)  # its search, on the old tables, keeps nothing in the roadmap
+    assert late.roadmap.departures(late._shares)[5][0] == 0
+    got = late.routes(2)
+    want = SafeIntervalGuide(sc, t0=5000.0, keep_departures=False).routes(2)
+    assert [r.arrival for r in got] == [r.arrival for r in want]
+
+
 def test_a_query_among_many_movers_keeps_its_own_for_its_alternatives(monkeypatch):
     monkeypatch.setattr(guide_module, "MEMO_MOVERS", 20)
     sc = world(300.0, 20, 4, seed=1)

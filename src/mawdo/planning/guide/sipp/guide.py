@@ -182,6 +182,7 @@ class SafeIntervalGuide:
         before (a roadmap made for one query, as a crowd's per prediction, never repays the
         filling); else this query's own among :data:`MEMO_MOVERS` movers or more (its
         time-diverse alternatives reuse the first search's); else none."""
+        keep = keep and self.profile is None  # (profiled moves are not one straight piece)
         roadmap, many = self.roadmap, len(self.movers.kind) >= MEMO_MOVERS
         same = keep and not cut and not np.any(self.movers.kind == 1)
         self._shares, kept = None, keep and many
@@ -191,6 +192,7 @@ class SafeIntervalGuide:
         else:
             self._memo = empty_memo(len(roadmap.weights)) if kept else new_memo(2, 2)
         roadmap.queries += 1
+        self._made = roadmap.knots_made  # (the tables' knots: a memo kept later must match)
         self._kept = len(roadmap.weights) if kept else 0  # (never the start's edges)
 
     @property
@@ -215,7 +217,7 @@ class SafeIntervalGuide:
         )  # fmt: skip
         self._memo = res[4]  # (the memo grows as it fills)
         if self._shares is not None:
-            self.roadmap.keep_departures(self._shares, self._memo)
+            self.roadmap.keep_departures(self._shares, self._memo, self._made)
         return res[:4]
 
     def _route(self, goal_state, arrival, parent, depart) -> TimedRoute:

@@ -145,6 +145,7 @@ class Roadmap:
         self._moves: dict[float, tuple] = {}  # straight_moves per speed (and room for a start)
         self._departures: dict[tuple, object] = {}  # forbidden departures per speed and walkers
         self.queries = 0  # safe-interval queries made on this roadmap so far
+        self.knots_made = 0  # times a mover's knots were made again over a longer window
         # pieces over a window that holds a usual query (twice the default horizon of a
         # route across the map), so that queries only slice them
         diag = math.hypot(scenario.width, scenario.height)
@@ -211,6 +212,10 @@ class Roadmap:
             cap = max(2.0 * t_end, cap)
             t, off = self._moving[m].knots(0.0, cap)
             self._knots[m] = (cap, t, off)
+            # the piece that ended at the old cap runs on now, its velocity rounded anew: the
+            # forbidden departures kept so far were found on the old one
+            self._departures.clear()
+            self.knots_made += 1
         i0 = max(int(np.searchsorted(t, t0, side="right")) - 1, 0)
         i1 = int(np.searchsorted(t, t_end, side="left"))
         return t[i0 : i1 + 1], off[i0 : i1 + 1]
@@ -248,9 +253,12 @@ class Roadmap:
         self._departures[key] = memo
         return memo
 
-    def keep_departures(self, key: tuple, memo) -> None:
-        """Keep ``memo`` (grown by a search) as :meth:`departures` of ``key``."""
-        self._departures[key] = memo
+    def keep_departures(self, key: tuple, memo, made: int) -> None:
+        """Keep ``memo`` (grown by a search) as :meth:`departures` of ``key``, unless the
+        movers' knots were made again since ``made`` (:attr:`knots_made` when its query took
+        its tables)."""
+        if made == self.knots_made:
+            self._departures[key] = memo
 
     def movers(self, t0: float, t_end: float, walkers: str, cut: bool = False) -> Movers:
         """The moving obstacles over ``[t0, t_end]`` (see :class:`Movers`). ``cut``: their
