@@ -19,7 +19,7 @@ prints its CPU in all against the target (a whole run <= 10 min), the first plan
 the verdict.
 
 Three sweeps, each from the reference world (1000 x 1000 px, 200 movers, 40 polygons): movers
-10 -> 100 -> 1000, static polygons 10 -> 100 -> 300, map 366 -> 1000 -> 2000 px (movers and
+10 -> 100 -> 1000, static polygons 10 -> 100 -> 1000, map 366 -> 1000 -> 2000 px (movers and
 polygons scaled with the area), each with its log-log slope (the fitted exponent). Targets
 (reference world, one core, quiet machine): first plan <= 1 s, replan p95 <= 50 ms.
 By default two sizes per sweep (``make bench``); ``--size full`` (or
@@ -249,8 +249,7 @@ def sweeps(size: str) -> dict:
     s, m, p = REF["size"], REF["movers"], REF["polygons"]
     movers, polygons, maps = [10, 100], [10, 100], [366.0, 1000.0]
     if size in ("full", "big"):
-        # (1000 polygons are ~27 000 inflated corners: over the visibility graph's limit)
-        movers, polygons, maps = movers + [1000], polygons + [300], maps + [2000.0]
+        movers, polygons, maps = movers + [1000], polygons + [1000], maps + [2000.0]
     if size == "big":
         movers, maps = movers + [10_000], maps + [4000.0]
     area = lambda L: (L / s) ** 2  # noqa: E731

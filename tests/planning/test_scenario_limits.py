@@ -171,12 +171,12 @@ def test_plan_refuses_bad_input_with_exit_2_before_creating_out(case, words, tmp
 
 
 def test_too_many_obstacle_corners_suggest_what_the_cli_user_can_do(tmp_path):
-    # 3000 squares: 24 000 corners once inflated (octagons), over the 20 000 limit
+    # 6000 squares: 48 000 corners once inflated (octagons), over the 40 000 limit
     obstacles = [
         {"shape": "polygon", "vertices": [[x, y], [x + 8, y], [x + 8, y + 8], [x, y + 8]]}
-        for x in np.arange(10.0, 1750.0, 29.5)
-        for y in np.arange(10.0, 1500.0, 29.5)
-    ][:3000]
+        for x in np.arange(10.0, 2950.0, 29.5)
+        for y in np.arange(10.0, 2950.0, 29.5)
+    ][:6000]
     p = tmp_path / "many.json"
     p.write_text(json.dumps({**BASE, "width": 3000.0, "height": 3000.0, "start": [5.0, 5.0],
                              "goal": [2995.0, 2995.0], "obstacles": obstacles}))  # fmt: skip

@@ -53,8 +53,8 @@ FIRST_EDGES = 1 << 12
 def empty_memo(edges: int = 0):
     """A new, empty memo with room for about a thirty-second of ``edges`` (a graph's edge
     count; at least :data:`FIRST_EDGES` // 2) before it first grows, and four interval rows
-    per edge of room (a search on the 1000 x 1000 px world asks about a tenth of its roadmap's edges, among
-    200 movers as among 1000; the memo doubles as it needs)."""
+    per edge of room (a search on the 1000 x 1000 px world asks about a tenth of its
+    roadmap's edges, among 200 movers as among 1000; the memo doubles as it needs)."""
     size = max(FIRST_EDGES, 1 << max(0, int(edges // 16) - 1).bit_length())
     return new_memo(min(size, MOST_EDGES), min(2 * size, MOST_ROWS))
 
