@@ -184,6 +184,9 @@ def window_forbidden(memo, key, ax, ay, ex, ey, dur, lo, hi, mv):
     (:func:`~mawdo.planning.guide.sipp.index.candidates`) when they were looked up (the whole
     window computed afresh), else one entry, -1; ``memo`` the memo, grown if it had to.
     """
+    # the fresh computations below are written out, not one helper taking mv: every call that
+    # takes the movers' tables binds each of them again (an atomic count per array), and a
+    # helper cost about a tenth more of a search among 200 movers (benchmarks/log/scaling.md)
     keys, span, first, count, pool, _ = memo
     h = _slot(keys, key)
     if keys[h] == key:
