@@ -301,6 +301,12 @@ def main(argv=None) -> None:
     ap.add_argument("--only", default="", choices=("", "ref", "whole"),
                     help="the reference world only ('ref'), or only one whole run among "
                          "10 000 movers on 4000 px ('whole', about 10 min)")  # fmt: skip
+    ap.add_argument(
+        "--sweep",
+        default="",
+        choices=("", "movers", "polygons", "map"),
+        help="run this sweep only (without the reference world)",
+    )
     ap.add_argument("--preset", default="large",
                     help="planner preset of the sweeps (default large; the reference world "
                          "is also run under realtime)")  # fmt: skip
@@ -310,7 +316,7 @@ def main(argv=None) -> None:
         _whole(a.preset)
         return
     sc = world(REF["size"], REF["movers"], REF["polygons"])
-    for preset in dict.fromkeys(("realtime", a.preset)):
+    for preset in dict.fromkeys(("realtime", a.preset) if not a.sweep else ()):
         # a fresh copy: the roadmap and guides are kept per world, and each run builds its own
         r = run_world(copy.deepcopy(sc), a.steps, preset=preset)
         p95 = np.percentile(r["replans"], 95) if r["replans"].size else np.nan
@@ -323,6 +329,8 @@ def main(argv=None) -> None:
         return
     results = {}
     for name, sizes in sweeps(a.size).items():
+        if a.sweep and name != a.sweep:
+            continue
         rows = []
         for k, (L, m, p) in sizes:
             try:

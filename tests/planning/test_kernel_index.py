@@ -1,6 +1,7 @@
-"""The moving pass's space-time index: the kernel that tests each moving obstacle only against
-the segments that can come near it must give every output of the kernel that tests all of them
-(``reference_population_cost``), bit for bit, on worlds with every kind of motion."""
+"""The kernel's indexes: the kernel that tests each moving obstacle (space-time index) or
+standing obstacle (grid of a block's segments) only against the segments that can come near it
+must give every output of the kernel that tests all of them (``reference_population_cost``),
+bit for bit, on worlds with every kind of motion and shape."""
 
 from __future__ import annotations
 
@@ -201,15 +202,91 @@ def test_movers_at_the_edge_of_a_blocks_reach_are_tested():
         v = [float(rng.uniform(-0.5, 0.5)), 0.0]
         obstacles.append({"shape": "circle", "center": c, "radius": r_mover,
                           "motion": {"velocity": v}})  # fmt: skip
+    want = _flat_call(obstacles, "spacetime", (120.0, 180.0, 30.0), t0=3.0)
+    assert want[2].sum() > 0  # the gliders do hit
+
+
+def _flat_call(obstacles, mode, span, t0):
+    """Six flat 4-waypoint paths along y = 200 px (the first from ``span[0]`` to ``span[1]``
+    px, each next shifted by ``span[2]``) through the kernel on ``obstacles``: the outputs,
+    checked against the unindexed kernel's."""
     sc = scenario_from_dict({"schema_version": 1, "width": SIZE, "height": SIZE,
                              "start": [10.0, 10.0], "goal": [390.0, 10.0],
                              "obstacles": obstacles})  # fmt: skip
     m = 4
-    cost = PathCost(sc, n_waypoints=m, mode="spacetime", clearance=0.5)
+    cost = PathCost(sc, n_waypoints=m, mode=mode, clearance=0.5)
     got, kernel = [], cost._kernel
     cost._kernel = lambda *a: (got.append(a), kernel(*a))
-    X = np.tile(np.c_[np.linspace(120, 180, m), np.full(m, 200.0)].ravel(), (6, 1))
-    X[:, 0::2] += np.arange(6)[:, None] * 30.0
-    cost.parts(X, start=np.array([110.0, 200.0]), t0=3.0, goal=np.array([300.0, 200.0]))
-    want = _assert_same(got[0])
-    assert want[2].sum() > 0  # the gliders do hit
+    X = np.tile(np.c_[np.linspace(span[0], span[1], m), np.full(m, 200.0)].ravel(), (6, 1))
+    X[:, 0::2] += np.arange(6)[:, None] * span[2]
+    start, goal = np.array([span[0] - 10.0, 200.0]), np.array([span[1] + 120.0, 200.0])
+    cost.parts(X, start=start, t0=t0, goal=goal)
+    return _assert_same(got[0])
+
+
+def _standing_world(seed, shapes=180, movers=6):
+    """Many standing shapes of every sort (convex and star-shaped polygons of several sizes,
+    circles, one long wall) and a few movers."""
+    rng = np.random.default_rng([17, seed])
+    obstacles = []
+    for j in range(shapes):
+        c = rng.uniform(20, SIZE - 20, 2)
+        r = float(rng.choice([3.0, 8.0, 20.0]))
+        obstacles.append(
+            {"shape": "circle", "center": c.round(3).tolist(), "radius": r}
+            if j % 4 == 0
+            else {"shape": "polygon", "vertices": _polygon(rng, c, r)}
+        )
+    obstacles.append(
+        {"shape": "polygon", "vertices": [[50, 190], [350, 196], [350, 200], [50, 194]]}
+    )
+    for _ in range(movers):
+        c = rng.uniform(70, SIZE - 70, 2)
+        obstacles.append({"shape": "circle", "center": c.round(3).tolist(), "radius": 6.0,
+                          "motion": _motion(rng, "constant_velocity")})  # fmt: skip
+    spec = {"schema_version": 1, "seed": seed, "width": SIZE, "height": SIZE,
+            "start": [10.0, 10.0], "goal": [SIZE - 10.0, SIZE - 10.0],
+            "obstacles": obstacles}  # fmt: skip
+    return scenario_from_dict(spec)
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+@pytest.mark.parametrize("mode", ["spacetime", "snapshot"])
+def test_the_standing_obstacles_grid_gives_the_counts_of_the_full_pass(seed, mode):
+    # past INDEX_STANDING standing shapes the entry point measures each one only against the
+    # segments near it (kernel.static_index); every output equals the pass over all of them
+    from mawdo.planning.refine.kernel.constants import INDEX_STANDING
+
+    sc = _standing_world(seed)
+    assert len(sc.obstacles) > INDEX_STANDING
+    cost = PathCost(sc, mode=mode, clearance=0.5)
+    got, kernel = [], cost._kernel
+    cost._kernel = lambda *a: (got.append(a), kernel(*a))
+    rng = np.random.default_rng([seed, 2])
+    for t0 in (0.0, 9.5):
+        for n in (1, 40, 300):
+            cost.parts(_population(rng, n), start=np.array([10.0, 10.0]), t0=t0)
+    hits = 0
+    for args in got:
+        want = _assert_same(args)
+        hits += int(want[2].sum())
+        X = args[0].copy()  # NaN and out-of-range blocks take the full pass
+        X[0, 3] = np.nan
+        _assert_same((X, *args[1:]))
+    assert hits > 1000
+
+
+def test_standing_shapes_at_the_edge_of_their_reach_are_measured():
+    # standing circles whose centres lie within a pixel of the hit distance from a flat
+    # population: a grid that left out a segment near its square's edge would lose hits
+    from mawdo.planning.refine.kernel.constants import INDEX_STANDING
+
+    rng = np.random.default_rng(8)
+    r_disc, rho = 5.0, 5.0 + 4.0 + 0.5  # disc radius + robot radius + clearance
+    obstacles = []
+    for _ in range(INDEX_STANDING + 40):
+        side, d = rng.choice([-1.0, 1.0]), rho + rng.uniform(-1.0, 1.0)
+        c = [float(rng.uniform(30, SIZE - 30)), 200.0 + side * d]
+        obstacles.append({"shape": "circle", "center": c, "radius": r_disc})
+    want = _flat_call(obstacles, "snapshot", (40.0, 250.0, 3.0), t0=0.0)
+    assert want[2].min() > 0  # the discs within reach do hit

@@ -32,7 +32,10 @@ the exact tests alone (which get the very numbers they would get without the fil
   |ab|^2`` where the foot of the perpendicular falls inside the segment, else the nearer end):
   a division made the loop several times slower. That distance only decides segments more than
   :data:`MARGIN` from both radii; a block with any segment closer is measured again exactly
-  (:func:`_exact_distances`), so every verdict is the exact distance's.
+  (:func:`_exact_distances`), so every verdict is the exact distance's. From
+  :data:`INDEX_STANDING` standing obstacles on, each segment is measured only against those
+  whose reach square its box meets (:mod:`.static_index`: a grid of each block's segments),
+  with the same arithmetic per pair.
 * Polygon test: separating axes (convex-hull edge normals and the segment's normal) reject. For
   a convex polygon they also accept (overlap on every axis means intersection) and otherwise
   prove the two disjoint, when the distance is attained at a polygon vertex or a segment end
@@ -62,6 +65,8 @@ the package itself exports only the entry point): :mod:`.constants`, :mod:`.prim
 :mod:`.passes` (block layout, standing obstacles), :mod:`.moving` (moving obstacles, three
 steps), :mod:`.index` (a space-time index of a block's segments, so that the moving pass runs on
 those near each obstacle; used from :data:`.constants.INDEX_MOVERS` moving obstacles on),
+:mod:`.static_index` (the same for the standing obstacles, from
+:data:`.constants.INDEX_STANDING` on),
 :mod:`.horizon` (the part of a block before a lookahead, which the moving obstacles are tested
 against when one is given), :mod:`.population` (the entry point), :mod:`.threads` (the entry
 point on chunks of rows at once, for ``PathCost(threads=k)``).

@@ -45,3 +45,8 @@ INDEX_SLICES = 128
 INDEX_MOVERS = 500
 # The indexed moving pass walks an obstacle's table of at most this many knots (else its grid).
 WALK_KNOTS = 64
+# The standing obstacles are measured through a grid of each block's segments
+# (kernel.static_index) from this many on (at about 100 on a 1000 px map the two cost the same;
+# with fewer, the branch-free pass over every segment costs less: measured on the planner's
+# calls, benchmarks/log/scaling.md).
+INDEX_STANDING = 128

@@ -43,7 +43,7 @@ from mawdo.planning.refine.kernel.near import rounding_room
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _cell(v, lo, inv, n):
+def grid_cell(v, lo, inv, n):
     """Cell of coordinate ``v`` (monotone in ``v``), clipped to ``0 .. n - 1``."""
     u = (v - lo) * inv
     if not u > 0.0:  # (NaN too)
@@ -131,12 +131,12 @@ def block_index(bn, npts, t0, speed, tmax, cell, span, path, real, head, ents, e
     for p in range(npt - 1):
         if not real[p]:
             continue
-        for s in range(_cell(tt[p], t0, winv, ns), _cell(tt[p + 1], t0, winv, ns) + 1):
+        for s in range(grid_cell(tt[p], t0, winv, ns), grid_cell(tt[p + 1], t0, winv, ns) + 1):
             x0, y0, x1, y1 = _part_box(px, py, tt, p, t0, w, s, ns)
-            cx0 = _cell(x0, xlo, ginv, nx)
-            cx1 = _cell(x1, xlo, ginv, nx)
-            cy0 = _cell(y0, ylo, ginv, ny)
-            cy1 = _cell(y1, ylo, ginv, ny)
+            cx0 = grid_cell(x0, xlo, ginv, nx)
+            cx1 = grid_cell(x1, xlo, ginv, nx)
+            cy0 = grid_cell(y0, ylo, ginv, ny)
+            cy1 = grid_cell(y1, ylo, ginv, ny)
             if ni == items.shape[0]:  # (more than room for: a larger list)
                 grown = np.empty((2 * ni, 6), dtype=np.int64)
                 grown[:ni] = items
@@ -205,7 +205,7 @@ def _slice_boxes(i, t0, tmax, winv, ns, obs, motion, sbox):
             if kt[i, k] > tmax:
                 break
             continue
-        for s in range(_cell(a, t0, winv, ns), _cell(b, t0, winv, ns) + 1):
+        for s in range(grid_cell(a, t0, winv, ns), grid_cell(b, t0, winv, ns) + 1):
             ts, te = _slice_span(t0, w, s, ns)
             sa = min(max(a, ts), b)
             sb = max(min(b, te), sa)
@@ -267,10 +267,10 @@ def obstacle_segments(i, reach, blk, geo, head, ents, ebox, path, obs, motion, s
         yhi = sbox[s, 3] + reach
         if xhi < gx or yhi < gy:
             continue
-        x0 = _cell(xlo, gx, ginv, nx)
-        x1 = _cell(xhi, gx, ginv, nx)
-        y0 = _cell(ylo, gy, ginv, ny)
-        y1 = _cell(yhi, gy, ginv, ny)
+        x0 = grid_cell(xlo, gx, ginv, nx)
+        x1 = grid_cell(xhi, gx, ginv, nx)
+        y0 = grid_cell(ylo, gy, ginv, ny)
+        y1 = grid_cell(yhi, gy, ginv, ny)
         for cy in range(y0, y1 + 1):
             for cx in range(x0, x1 + 1):
                 c = (s * ny + cy) * nx + cx

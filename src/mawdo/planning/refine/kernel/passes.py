@@ -171,6 +171,21 @@ def _exact_distances(cx, cy, p0, p1, px, py, real, a2, rho2, near, hits):
 
 
 @njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+def scaled_d2(ax, ay, bx, by):
+    """Squared distance from the origin to segment ab (pixels), times ``den``, without a
+    division: ``(num, den)`` = ``(cross^2, |ab|^2)`` where the foot of the perpendicular falls
+    inside the segment, else (the nearer end's squared distance, 1)."""
+    dx = bx - ax
+    dy = by - ay
+    dot = -(ax * dx + ay * dy)
+    ee = dx * dx + dy * dy
+    cross = ax * dy - ay * dx
+    foot = (dot > 0.0) & (dot < ee)
+    num = cross * cross if foot else (ax * ax + ay * ay if dot <= 0.0 else bx * bx + by * by)
+    return num, ee if foot else 1.0
+
+
+@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
 def _sure_distances(cx, cy, npt, px, py, real, a2, rho, margin, near, hits):
     """:func:`_exact_distances` for a block of sane coordinates, without its division.
 
@@ -188,20 +203,7 @@ def _sure_distances(cx, cy, npt, px, py, real, a2, rho, margin, near, hits):
     nnear = 0
     namb = 0
     for p in range(npt - 1):
-        # squared distance times `den`: cross^2 / |ab|^2 where the foot of the perpendicular
-        # falls inside the segment, else the nearer end's
-        ax = px[p] - cx
-        ay = py[p] - cy
-        bx = px[p + 1] - cx
-        by = py[p + 1] - cy
-        dx = bx - ax
-        dy = by - ay
-        dot = -(ax * dx + ay * dy)
-        ee = dx * dx + dy * dy
-        cross = ax * dy - ay * dx
-        foot = (dot > 0.0) & (dot < ee)
-        num = cross * cross if foot else (ax * ax + ay * ay if dot <= 0.0 else bx * bx + by * by)
-        den = ee if foot else 1.0
+        num, den = scaled_d2(px[p] - cx, py[p] - cy, px[p + 1] - cx, py[p + 1] - cy)
         hit = num <= in2 * den
         close = (num > out2 * den) & (num <= lo2 * den) & real[p]
         # within margin of the accept radius or of the bounding radius: undecided
@@ -247,6 +249,15 @@ def static_pass(i, ox, oy, bn, npts, path, work, cls, obs, extra, a2, margin, hi
     for p in range(bn * npts - 1):
         flagged[nf] = p
         nf += 1 if near[p] else 0
+    near_verdicts(i, ox, oy, nf, flagged, px, py, cand, cls, obs, extra, margin, ncol)
+
+
+@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+def near_verdicts(i, ox, oy, nf, flagged, px, py, cand, cls, obs, extra, margin, ncol):
+    """The exact verdicts of the segments ``flagged[:nf]`` (each joins points ``p`` and ``p +
+    1`` of ``px, py``) that come within standing obstacle i's bounding circle, the obstacle at
+    offset ``(ox, oy)`` (pixels): one added to ``ncol[cand[p]]`` per hit."""
+    is_circle, thresh, verts, nverts, bound, hull, nhull = obs
     if not extra[1][i]:  # not convex: one by one
         for f in range(nf):
             p = flagged[f]

@@ -16,6 +16,7 @@ from mawdo.planning.refine.kernel.constants import (
     INDEX_MOVERS,
     INDEX_SLICES,
     INDEX_SPAN,
+    INDEX_STANDING,
     MARGIN,
     WALK_KNOTS,
 )
@@ -28,6 +29,7 @@ from mawdo.planning.refine.kernel.index import (
 )
 from mawdo.planning.refine.kernel.moving import moving_pass
 from mawdo.planning.refine.kernel.passes import block_paths, box_tables, static_pass, stride
+from mawdo.planning.refine.kernel.static_index import indexed_standing_pass, standing_table
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
@@ -139,6 +141,7 @@ def population_cost(
         X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
         scratch,
         INDEX_MOVERS,
+        INDEX_STANDING,
     )  # fmt: skip
 
 
@@ -153,6 +156,7 @@ def indexed_population_cost(
         X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
         scratch,
         1,
+        1,
     )  # fmt: skip
 
 
@@ -166,6 +170,7 @@ def reference_population_cost(
     _population(
         X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
         scratch,
+        1 << 62,
         1 << 62,
     )  # fmt: skip
 
@@ -200,10 +205,12 @@ def _index_scratch(buf, o, size, cells):
 @njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
 def _population(
     X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
-    scratch, min_movers,
+    scratch, min_movers, min_standing,
 ):  # fmt: skip
     """:func:`population_cost`, with the space-time index where there are ``min_movers``
-    moving obstacles or more (else the moving pass runs on all of a block's segments).
+    moving obstacles or more (else the moving pass runs on all of a block's segments), and the
+    grid of the standing ones where there are ``min_standing`` or more
+    (:mod:`~mawdo.planning.refine.kernel.static_index`).
 
     Long by design: one fused Numba pass; splitting it adds calls and array round trips.
     """
@@ -384,6 +391,15 @@ def _population(
              work[9], work[10], work[11], work[12], work[13], work[14])  # fmt: skip
     hnpt = np.int64(0)
     ncol = np.empty(nb, dtype=np.int64)  # and by the exact tests, per candidate
+    # the standing obstacles' grid, where there are enough of them (else an empty one)
+    ox = np.empty(n_obs)
+    oy = np.empty(n_obs)
+    for i in range(n_obs):
+        ox[i] = ko[i, 0, 0] if spacetime else snap_off[i, 0]
+        oy[i] = ko[i, 0, 1] if spacetime else snap_off[i, 1]
+    standing = n_obs - nmov >= max(min_standing, 1)
+    table = standing_table(moving if standing else ~moving[:0], ox, oy, obs, acc2, MARGIN)
+    sgrid = (np.zeros(1, np.int64), np.empty(0, np.int64), np.empty((0, 4)), np.empty(0, np.int64))
     for c0 in range(0, n, nb):
         bn = min(nb, n - c0)
         sane, cmax, tmax = block_paths(X, c0, bn, start, goal, t0, speed, path, out_len, out_turn)
@@ -406,6 +422,11 @@ def _population(
                 ents, ebox, items, ibox,
             )  # fmt: skip
             index = (geo, head, ents, ebox, sbox, mark, kept)
+        by_grid = standing and sane
+        if by_grid:
+            sgrid = indexed_standing_pass(
+                bn * npts, path, work, cls, obs, extra, margin, hits, ncol, table, sgrid
+            )
         # n_collision (Eq. 27): (segment, obstacle) pairs that hit
         for i in range(n_obs):
             a2 = acc2[i] if sane or is_circle[i] else -1.0
@@ -423,12 +444,11 @@ def _population(
                         i, blk, a2, margin, mpath, mwork, cls, obs, extra, motion, pre, grid,
                         mhits, ncol,
                     )  # fmt: skip
-            else:
-                ox = ko[i, 0, 0] if spacetime else snap_off[i, 0]
-                oy = ko[i, 0, 1] if spacetime else snap_off[i, 1]
+            elif not by_grid:
                 static_pass(
-                    i, ox, oy, bn, npts, path, work, cls, obs, extra, a2, margin, hits, ncol
-                )
+                    i, ox[i], oy[i], bn, npts, path, work, cls, obs, extra, a2, margin, hits,
+                    ncol,
+                )  # fmt: skip
         if cut:  # (the horizon's sure hits, per candidate)
             for p in range(hnpt):
                 ncol[hcand[p]] += hhits[p]
