@@ -14,6 +14,7 @@ from mawdo.planning.refine.kernel.population import (
     population_cost,
     reference_population_cost,
     scratch_size,
+    standing_population_cost,
 )
 
 # The index is used from 500 movers on (no world of the fast tier has as many) and its kernel
@@ -117,8 +118,9 @@ def _run(fn, args):
 
 def _assert_same(args):
     want = _run(reference_population_cost, args)
-    # the index forced on, and the entry point (which uses it from INDEX_MOVERS movers on)
-    for fn in (indexed_population_cost, population_cost):
+    # the indexes forced on, the entry point (the moving index from INDEX_MOVERS movers on)
+    # and its variant with the standing obstacles' grid
+    for fn in (indexed_population_cost, population_cost, standing_population_cost):
         got = _run(fn, args)
         for a, b in zip(got, want, strict=True):
             assert a.dtype == b.dtype
@@ -253,7 +255,7 @@ def _standing_world(seed, shapes=180, movers=6):
 @pytest.mark.parametrize("seed", [0, 1])
 @pytest.mark.parametrize("mode", ["spacetime", "snapshot"])
 def test_the_standing_obstacles_grid_gives_the_counts_of_the_full_pass(seed, mode):
-    # past INDEX_STANDING standing shapes the entry point measures each one only against the
+    # past INDEX_STANDING standing shapes the kernel measures each one only against the
     # segments near it (kernel.static_index); every output equals the pass over all of them
     from mawdo.planning.refine.kernel.constants import INDEX_STANDING
 

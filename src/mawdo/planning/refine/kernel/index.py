@@ -82,6 +82,20 @@ def _part_box(px, py, tt, p, t0, w, s, ns):
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
+def _doubled_rows(items, ibox, ni):
+    """``items`` and ``ibox`` with room for twice their ``ni`` rows, those copied (loops: a
+    slice assignment costs Numba about a second to compile)."""
+    grown = np.empty((2 * ni, 6), dtype=np.int64)
+    gbox = np.empty((2 * ni, 4))
+    for r in range(ni):
+        for c in range(6):
+            grown[r, c] = items[r, c]
+        for c in range(4):
+            gbox[r, c] = ibox[r, c]
+    return grown, gbox
+
+
+@njit(cache=True, fastmath=False, error_model="numpy")
 def block_index(bn, npts, t0, speed, tmax, cell, span, path, real, head, ents, ebox, items, ibox):
     """Space-time buckets of the block's real segments (the block must be sane).
 
@@ -138,12 +152,7 @@ def block_index(bn, npts, t0, speed, tmax, cell, span, path, real, head, ents, e
             cy0 = grid_cell(y0, ylo, ginv, ny)
             cy1 = grid_cell(y1, ylo, ginv, ny)
             if ni == items.shape[0]:  # (more than room for: a larger list)
-                grown = np.empty((2 * ni, 6), dtype=np.int64)
-                grown[:ni] = items
-                items = grown
-                gbox = np.empty((2 * ni, 4))
-                gbox[:ni] = ibox
-                ibox = gbox
+                items, ibox = _doubled_rows(items, ibox, ni)
             items[ni, 0] = p
             items[ni, 1] = s
             items[ni, 2] = cx0

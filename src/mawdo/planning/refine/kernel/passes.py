@@ -252,7 +252,9 @@ def static_pass(i, ox, oy, bn, npts, path, work, cls, obs, extra, a2, margin, hi
     near_verdicts(i, ox, oy, nf, flagged, px, py, cand, cls, obs, extra, margin, ncol)
 
 
-@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+# Not inlined: the standing obstacles' grid (kernel.static_index) calls it too, and one
+# compiled copy of the polygon tests spares a second.
+@njit(cache=True, fastmath=False, error_model="numpy")
 def near_verdicts(i, ox, oy, nf, flagged, px, py, cand, cls, obs, extra, margin, ncol):
     """The exact verdicts of the segments ``flagged[:nf]`` (each joins points ``p`` and ``p +
     1`` of ``px, py``) that come within standing obstacle i's bounding circle, the obstacle at

@@ -16,7 +16,6 @@ from mawdo.planning.refine.kernel.constants import (
     INDEX_MOVERS,
     INDEX_SLICES,
     INDEX_SPAN,
-    INDEX_STANDING,
     MARGIN,
     WALK_KNOTS,
 )
@@ -29,7 +28,11 @@ from mawdo.planning.refine.kernel.index import (
 )
 from mawdo.planning.refine.kernel.moving import moving_pass
 from mawdo.planning.refine.kernel.passes import block_paths, box_tables, static_pass, stride
-from mawdo.planning.refine.kernel.static_index import indexed_standing_pass, standing_table
+from mawdo.planning.refine.kernel.static_index import (
+    indexed_standing_pass,
+    no_standing_table,
+    standing_table,
+)
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
@@ -141,7 +144,25 @@ def population_cost(
         X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
         scratch,
         INDEX_MOVERS,
-        INDEX_STANDING,
+        None,
+    )  # fmt: skip
+
+
+@njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
+def standing_population_cost(
+    X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
+    scratch,
+):  # fmt: skip
+    """:func:`population_cost` with the standing obstacles measured through a grid of each
+    block's segments (:mod:`~mawdo.planning.refine.kernel.static_index`; the same counts, bit
+    for bit): :class:`~mawdo.planning.refine.kernel.threads.ThreadedKernel` calls it from
+    :data:`~mawdo.planning.refine.kernel.constants.INDEX_STANDING` standing obstacles on, so
+    that the common worlds never compile the grid."""
+    _population(
+        X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
+        scratch,
+        INDEX_MOVERS,
+        True,
     )  # fmt: skip
 
 
@@ -151,12 +172,12 @@ def indexed_population_cost(
     scratch,
 ):  # fmt: skip
     """:func:`population_cost` with the space-time index whatever the number of moving
-    obstacles."""
+    obstacles, and the standing obstacles' grid whatever theirs."""
     _population(
         X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
         scratch,
         1,
-        1,
+        True,
     )  # fmt: skip
 
 
@@ -165,13 +186,13 @@ def reference_population_cost(
     X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
     scratch,
 ):  # fmt: skip
-    """:func:`population_cost` with every moving obstacle tested against every segment of a
-    block (no space-time index): the reference the indexed kernel is tested against."""
+    """:func:`population_cost` with every moving and standing obstacle tested against every
+    segment of a block (no index): the reference the indexed kernels are tested against."""
     _population(
         X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
         scratch,
         1 << 62,
-        1 << 62,
+        None,
     )  # fmt: skip
 
 
@@ -205,12 +226,14 @@ def _index_scratch(buf, o, size, cells):
 @njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
 def _population(
     X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
-    scratch, min_movers, min_standing,
+    scratch, min_movers, by_cells,
 ):  # fmt: skip
     """:func:`population_cost`, with the space-time index where there are ``min_movers``
     moving obstacles or more (else the moving pass runs on all of a block's segments), and the
-    grid of the standing ones where there are ``min_standing`` or more
-    (:mod:`~mawdo.planning.refine.kernel.static_index`).
+    standing obstacles measured through the grid of a block's segments unless ``by_cells`` is
+    None (:mod:`~mawdo.planning.refine.kernel.static_index`). None is a compile-time choice:
+    Numba prunes the grid's branches before typing (an argument tested against None and never
+    assigned), so an entry point without it never compiles it.
 
     Long by design: one fused Numba pass; splitting it adds calls and array round trips.
     """
@@ -397,15 +420,19 @@ def _population(
     for i in range(n_obs):
         ox[i] = ko[i, 0, 0] if spacetime else snap_off[i, 0]
         oy[i] = ko[i, 0, 1] if spacetime else snap_off[i, 1]
-    standing = n_obs - nmov >= max(min_standing, 1)
-    table = standing_table(moving if standing else ~moving[:0], ox, oy, obs, acc2, MARGIN)
+    if by_cells is None:
+        table = no_standing_table(moving, ox, oy, obs, acc2, MARGIN)
+    else:
+        table = standing_table(moving, ox, oy, obs, acc2, MARGIN)
     sgrid = (np.zeros(1, np.int64), np.empty(0, np.int64), np.empty((0, 4)), np.empty(0, np.int64))
     for c0 in range(0, n, nb):
         bn = min(nb, n - c0)
         sane, cmax, tmax = block_paths(X, c0, bn, start, goal, t0, speed, path, out_len, out_turn)
         margin = MARGIN if sane else np.inf
-        hits[:] = 0
-        ncol[:] = 0
+        for p in range(size):  # (loops: a slice assignment costs Numba a compile)
+            hits[p] = 0
+        for b in range(nb):
+            ncol[b] = 0
         # what the moving pass sees: the whole block, or its part before the horizon
         cut = hsize > 0 and t_cut < tmax
         if cut:
@@ -422,11 +449,13 @@ def _population(
                 ents, ebox, items, ibox,
             )  # fmt: skip
             index = (geo, head, ents, ebox, sbox, mark, kept)
-        by_grid = standing and sane
-        if by_grid:
-            sgrid = indexed_standing_pass(
-                bn * npts, path, work, cls, obs, extra, margin, hits, ncol, table, sgrid
-            )
+        by_grid = False
+        if by_cells is not None:  # (pruned before typing where None)
+            by_grid = sane and len(table[0]) > 0
+            if by_grid:
+                sgrid = indexed_standing_pass(
+                    bn * npts, path, work, cls, obs, extra, margin, hits, ncol, table, sgrid
+                )
         # n_collision (Eq. 27): (segment, obstacle) pairs that hit
         for i in range(n_obs):
             a2 = acc2[i] if sane or is_circle[i] else -1.0

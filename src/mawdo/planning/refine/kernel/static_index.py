@@ -5,7 +5,7 @@ Per call (:func:`standing_table`): each standing obstacle gets its centre, its *
 larger of its bounding and accept radii, plus the pass's room twice and room for rounding up to
 the sane range) and the square of that reach about its centre. Per block
 (:func:`indexed_standing_pass`, sane blocks only): the real segments are listed in the cells of
-a uniform grid that their boxes meet (:func:`segment_grid`, cells twice the median square's
+a uniform grid that their boxes meet (:func:`segment_grid`, cells twice the squares' typical
 side); each obstacle looks in the cells its square meets and measures every segment listed
 there whose box meets the square, once.
 
@@ -47,7 +47,7 @@ def standing_table(moving, ox, oy, obs, acc2, margin):
     radii, cell)``. ``off[k]`` is obstacle ``ids[k]``'s offset, ``box[k]`` the square ``(x0,
     y0, x1, y1)`` of its reach about its centre and the centre ``(cx, cy)``, ``radii[k]`` the
     squares of the pass's radii ``(in, out, lo, hi, accept, bounding)``; ``cell`` the side of
-    the blocks' grid cells (pixels): twice the median square's side."""
+    the blocks' grid cells (pixels): twice the squares' geometric mean side."""
     bound = obs[4]
     n = 0
     for i in range(len(moving)):
@@ -72,8 +72,18 @@ def standing_table(moving, ox, oy, obs, acc2, margin):
         box[k, 4], box[k, 5] = cx, cy
         side[k] = 2.0 * reach
         k += 1
-    # cells twice the median square's side (measured best of 0.5, 1, 2 and 4 times it)
-    return ids, off, box, radii, 2.0 * np.median(side) if n > 0 else 1.0
+    # cells twice the squares' typical side, their geometric mean (robust to a few long walls;
+    # twice it measured best of 0.5, 1, 2 and 4 times; a median costs a sort to compile)
+    logs = 0.0
+    for k in range(n):
+        logs += math.log(side[k])
+    return ids, off, box, radii, 2.0 * math.exp(logs / n) if n > 0 else 1.0
+
+
+@njit(cache=True, fastmath=False, error_model="numpy")
+def no_standing_table(moving, ox, oy, obs, acc2, margin):
+    """:func:`standing_table`'s empty table (for the kernel without the grid)."""
+    return (np.empty(0, np.int64), np.empty((0, 2)), np.empty((0, 6)), np.empty((0, 6)), 1.0)
 
 
 @njit(cache=True, fastmath=False, error_model="numpy", inline="always")
@@ -110,7 +120,8 @@ def segment_grid(npt, px, py, real, cell, grid):
     nx, ny = int((xhi - gx) * ginv) + 1, int((yhi - gy) * ginv) + 1
     if len(head) < nx * ny + 1:
         head = np.empty(nx * ny + 1, np.int64)
-    head[: nx * ny + 1] = 0
+    for c in range(nx * ny + 1):  # (loops, not slices: each slice costs Numba a compile)
+        head[c] = 0
     for r in range(2):  # count, then place
         for p in range(npt - 1):
             if not real[p]:
@@ -149,7 +160,8 @@ def indexed_standing_pass(npt, path, work, cls, obs, extra, margin, hits, ncol, 
     geo, head, ents, sbox = segment_grid(npt, px, py, real, cell, grid[:3])
     gx, gy, ginv, nx, ny = geo
     seen = grid[3] if len(grid[3]) >= npt else np.empty(npt, np.int64)
-    seen[:npt] = -1
+    for p in range(npt):
+        seen[p] = -1
     for k in range(len(ids)):
         x0, y0, x1, y1, cx0, cy0 = box[k, 0], box[k, 1], box[k, 2], box[k, 3], box[k, 4], box[k, 5]
         if x1 < gx or y1 < gy:

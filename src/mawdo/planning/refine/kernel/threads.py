@@ -30,7 +30,12 @@ import threading
 import numpy as np
 from numba import njit, prange
 
-from mawdo.planning.refine.kernel.population import population_cost, scratch_size
+from mawdo.planning.refine.kernel.constants import INDEX_STANDING
+from mawdo.planning.refine.kernel.population import (
+    population_cost,
+    scratch_size,
+    standing_population_cost,
+)
 from mawdo.util.validate import check_int
 
 # Fewer rows than this per chunk do not repay the hand-over.
@@ -67,17 +72,17 @@ passive_wait()
 
 @njit(cache=True, parallel=True, nogil=True)
 def _chunked(
-    bounds, X, start, goal, t0, speed, spacetime, obs, snap, motion, horizon, weights, box, out,
-    buf,
+    bounds, kernel, X, start, goal, t0, speed, spacetime, obs, snap, motion, horizon, weights,
+    box, out, buf,
 ):  # fmt: skip
-    """:func:`population_cost` on rows ``bounds[j]:bounds[j + 1]`` for every ``j`` at once,
-    chunk ``j`` working in row ``j`` of ``buf``."""
+    """``kernel`` (:func:`population_cost` or a variant) on rows ``bounds[j]:bounds[j + 1]`` for
+    every ``j`` at once, chunk ``j`` working in row ``j`` of ``buf``."""
     cost, length, ncol, turn = out
     for j in prange(bounds.shape[0] - 1):
         lo = bounds[j]
         hi = bounds[j + 1]
         part = (cost[lo:hi], length[lo:hi], ncol[lo:hi], turn[lo:hi])
-        population_cost(
+        kernel(
             X[lo:hi], start, goal, t0, speed, spacetime, obs, snap, motion, horizon, weights, box,
             part, buf[j],
         )  # fmt: skip
@@ -132,17 +137,22 @@ class ThreadedKernel:
                 self._plans.clear()
             bounds = chunk_bounds(n, self.threads)
             k = bounds.size - 1
+            nk = motion[3]
+            standing = len(nk) if not spacetime else int(np.count_nonzero(nk <= 1))
             plan = self._plans[key] = (
-                motion[3],
+                nk,
                 bounds,
-                scratch_size(-(-n // k), npts, motion[3], spacetime),
+                scratch_size(-(-n // k), npts, nk, spacetime),
+                standing >= INDEX_STANDING,
             )
         bounds = plan[1]
         k = bounds.size - 1
         buf = self._scratch(k, plan[2])
+        # (many standing obstacles: the entry with their grid, compiled only where needed)
+        kernel = standing_population_cost if plan[3] else population_cost
         args = (X, start, goal, t0, speed, spacetime, obs, snap, motion, horizon, weights, box, out)
         if k == 1:
-            population_cost(*args, buf[0])
+            kernel(*args, buf[0])
             return
         with _lock:
-            _chunked(bounds, *args, buf)
+            _chunked(bounds, kernel, *args, buf)
