@@ -15,12 +15,13 @@ from benchmarks.bench_scaling import world
 
 from mawdo.planning.guide.sipp import SafeIntervalGuide
 from mawdo.planning.guide.sipp.departures import empty_memo
-from mawdo.planning.guide.sipp.intervals import segment_free
+from mawdo.planning.guide.sipp.intervals import safe_intervals, segment_free
+from mawdo.planning.guide.sipp.lazy import new_table
 from mawdo.planning.guide.sipp.search import straight_moves, timed_search
 from mawdo.planning.run.config import PRESETS, PlannerConfig
 from mawdo.planning.run.planner import plan
 from tests.planning.test_sipp_index import _world
-from tests.planning.test_sipp_lazy import _chain, _eager, _same
+from tests.planning.test_sipp_lazy import _chain, _eager, _eager_numbers, _same
 
 
 def _guide(seed: int, lookahead, t0: float = 0.0, walkers: str = "known"):
@@ -41,11 +42,15 @@ def test_search_past_the_lookahead_equals_the_eager_search(seed, lookahead):
     v = float(g.scenario.robot_speed)
     moves = straight_moves(g.nodes, g.indptr, g.indices, g.weights, v)
     kin = (v, False, math.inf, False)
-    args = (g.start, 0, g.t0, np.zeros(2), g.t_end, g.ptr, g.lo, g.hi)
-    banned = np.zeros(len(g.lo), np.bool_)
-    lazy = timed_search(graph, moves, kin, *args, banned, g._mv, empty_memo(), len(g.weights))[:4]
+    args = (g.start, 0, g.t0, np.zeros(2), g.t_end)
+    ptr, lo, hi = safe_intervals(g.nodes, g.t0, g.t_end, g._mv)
+    table = new_table(len(g.nodes), g.t0, g.t_end)
+    banned = np.zeros(len(lo), np.bool_)
+    lazy = timed_search(graph, moves, kin, *args, table, banned, g._mv, empty_memo(),
+                        len(g.weights))  # fmt: skip
     assert lazy[0] >= 0
-    assert _same(_chain(lazy), _chain(_eager(graph, moves, kin, *args, banned, g._mv)))
+    eager = _eager(graph, moves, kin, *args, ptr, lo, hi, banned, g._mv)
+    assert _same(_chain(lazy, _eager_numbers(lazy[5], ptr)), _chain(eager))
 
 
 @pytest.mark.parametrize("seed", range(4))

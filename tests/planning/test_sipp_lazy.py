@@ -1,7 +1,9 @@
 """The safe-interval search settles each move's exact departure lazily (when its lower bound
-comes off the heap) and the moves to the goal first: its routes are those of the eager search
-(each move settled when its source is expanded, the search before this change), ported here line
-by line, bit for bit (goal state, and arrival, parent and departure along the route), with and
+comes off the heap) and the moves to the goal first, and makes each vertex's safe intervals
+when it first touches the vertex: its routes are those of the eager search (each move settled
+when its source is expanded, over the safe intervals of every vertex made beforehand: the
+search before these changes), ported here line by line, bit for bit (goal state, and arrival,
+parent and departure along the route, each state by its number in the eager table), with and
 without acceleration and turn limits, for the earliest route and its alternatives."""
 
 from __future__ import annotations
@@ -14,6 +16,8 @@ import pytest
 
 from mawdo.planning.guide.sipp import SafeIntervalGuide
 from mawdo.planning.guide.sipp.departures import empty_memo, new_memo
+from mawdo.planning.guide.sipp.intervals import safe_intervals
+from mawdo.planning.guide.sipp.lazy import new_table
 from mawdo.planning.guide.sipp.profile import profile_table, rest_steps
 from mawdo.planning.guide.sipp.search import (
     _depart,
@@ -33,7 +37,7 @@ def _eager(graph, moves, kin, start, goal, t_start, h0, t_end, ptr, lo, hi, bann
     owner = np.repeat(np.arange(len(ptr) - 1), np.diff(ptr))
     arrival, parent, depart = np.full(S, np.inf), np.full(S, -1), np.full(S, np.nan)
     heading, closed = np.zeros((S, 2)), np.zeros(S, bool)
-    s0 = start_state(ptr, lo, hi, start, t_start, nodes[start], mv)
+    s0 = start_state(ptr[start], ptr[start + 1], lo, hi, t_start, nodes[start], mv)
     if s0 < 0:
         return -2, arrival, parent, depart
     arrival[s0], heading[s0] = t_start, h0
@@ -76,15 +80,23 @@ def _eager(graph, moves, kin, start, goal, t_start, h0, t_end, ptr, lo, hi, bann
     return -1, arrival, parent, depart
 
 
-def _chain(res) -> np.ndarray:
-    """The route's states from the goal back, with their arrivals and departures (rows)."""
-    goal, arrival, parent, depart = res
+def _chain(res, number=None) -> np.ndarray:
+    """The route's states from the goal back, with their arrivals and departures (rows); each
+    state as ``number`` numbers it (the eager table's numbers of the lazy table's states)."""
+    goal, arrival, parent, depart = res[:4]
     out = [int(goal)]
     while goal >= 0 and parent[out[-1]] >= 0:
         out.append(int(parent[out[-1]]))
     if goal < 0:
         return np.array([[goal, np.nan, np.nan]])
-    return np.array([[s, arrival[s], depart[s]] for s in out])
+    return np.array([[s if number is None else number[s], arrival[s], depart[s]] for s in out])
+
+
+def _eager_numbers(table, ptr) -> np.ndarray:
+    """Per row of a lazy table, its state's number in the eager table (CSR ``ptr``)."""
+    first, owner, used = table[2], table[6], table[7]
+    rows = np.arange(used)
+    return ptr[owner[:used]] + rows - first[owner[:used]]
 
 
 def _same(a, b) -> bool:
@@ -107,20 +119,58 @@ def test_lazy_search_finds_the_eager_searchs_routes_bit_for_bit(seed, limits):
         moves = profiled_moves(g.nodes, g.indptr, g.indices, g.weights,
                                profile_table(g.weights, v, limits[0]))  # fmt: skip
         kin = (v, True, limits[1], True)
-    args = (g.start, 0, g.t0, np.zeros(2), g.t_end, g.ptr, g.lo, g.hi)
-    banned = np.zeros(len(g.lo), np.bool_)
+    ptr, lo, hi = safe_intervals(g.nodes, g.t0, g.t_end, g._mv)
+    args = (g.start, 0, g.t0, np.zeros(2), g.t_end)
+    eager_args = (*args, ptr, lo, hi)
+    table = new_table(len(g.nodes), g.t0, g.t_end)
+    banned, eager_banned = np.zeros(0, np.bool_), np.zeros(len(lo), np.bool_)
     found = 0
     memo = empty_memo()  # the searches of one query share their forbidden departures
     for _ in range(3):  # the earliest route, then alternatives with its states barred
-        *lazy, memo = timed_search(graph, moves, kin, *args, banned, g._mv, memo, len(g.weights))
-        eager = _eager(graph, moves, kin, *args, banned, g._mv)
-        assert _same(_chain(lazy), _chain(eager))
-        if lazy[0] < 0:
+        res = timed_search(graph, moves, kin, *args, table, banned, g._mv, memo, len(g.weights))
+        memo, table = res[4], res[5]
+        number = _eager_numbers(table, ptr)
+        # the lazy table's intervals are the eager table's
+        assert np.array_equal(table[4][: table[7]], lo[number])
+        assert np.array_equal(table[5][: table[7]], hi[number])
+        eager = _eager(graph, moves, kin, *eager_args, eager_banned, g._mv)
+        assert _same(_chain(res, number), _chain(eager))
+        if res[0] < 0:
             break
         found += 1
-        banned[_chain(lazy)[1:-1, 0].astype(int)] = True
+        route = _chain(res)[1:-1, 0].astype(int)
+        banned = np.concatenate([banned, np.zeros(table[7] - len(banned), np.bool_)])
+        banned[route], eager_banned[number[route]] = True, True
     assert found >= 1
+    assert table[7] <= len(lo)  # (never more rows than the eager table)
     if limits is not None:  # search_limited is this search under the limits
-        table = profile_table(g.weights, v, limits[0])
-        res = search_limited(graph, table, kin[:3], *args, banned, g._mv)
-        assert _same(_chain(res), _chain(_eager(graph, moves, kin, *args, banned, g._mv)))
+        profile = profile_table(g.weights, v, limits[0])
+        res = search_limited(graph, profile, kin[:3], *args, table, banned, g._mv)
+        number = _eager_numbers(res[4], ptr)
+        eager = _eager(graph, moves, kin, *eager_args, eager_banned, g._mv)
+        assert _same(_chain(res, number), _chain(eager))
+
+
+def test_a_query_makes_the_safe_intervals_of_the_vertices_it_touches_only():
+    # a wall hides twenty squares from the start and the goal: the search ends before it
+    # reaches a vertex among them, and never makes their intervals
+    from mawdo.planning import scenario_from_dict
+
+    squares = [
+        {"shape": "polygon", "vertices": [[x, y], [x + 8, y], [x + 8, y + 8], [x, y + 8]]}
+        for x in (250.0, 300.0, 350.0, 400.0) for y in (40.0, 120.0, 200.0, 280.0, 360.0)
+    ]  # fmt: skip
+    wall = {"shape": "polygon", "vertices": [[200, 0], [210, 0], [210, 340], [200, 340]]}
+    mover = {"shape": "circle", "center": [60.0, 100.0], "radius": 6.0,
+             "motion": {"velocity": [0.0, -4.0]}}  # fmt: skip
+    sc = scenario_from_dict({"schema_version": 1, "width": 450.0, "height": 400.0,
+                             "start": [20.0, 60.0], "goal": [120.0, 60.0],
+                             "obstacles": [wall, mover, *squares]})  # fmt: skip
+    g = SafeIntervalGuide(sc, clearance=0.5)
+    route = g.routes(1)[0]
+    made = np.flatnonzero(g.safe[2] >= 0)
+    assert len(made) < 10 < 4 * len(squares) <= len(g.nodes)
+    ptr, lo, hi = safe_intervals(g.nodes, g.t0, g.t_end, g._mv)
+    number = _eager_numbers(g.safe, ptr)
+    assert np.array_equal(g.safe[4][: g.safe[7]], lo[number])
+    assert route.times[-1] > 100.0 / float(sc.robot_speed)  # (the mover made it wait)

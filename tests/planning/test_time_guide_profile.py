@@ -15,7 +15,8 @@ import math
 import numpy as np
 import pytest
 
-from mawdo.planning.guide.sipp.intervals import Movers, safe_intervals
+from mawdo.planning.guide.sipp.intervals import Movers
+from mawdo.planning.guide.sipp.lazy import new_table
 from mawdo.planning.guide.sipp.profile import edge_pieces, edge_steps, profile_table
 from mawdo.planning.guide.sipp.search import search_limited
 from mawdo.planning.guide.timeguide import position_at
@@ -75,14 +76,13 @@ def test_a_quarter_turn_adds_its_turn_time_to_the_arrival():
     indices = np.array([0, 1])
     weights = np.array([100.0, 100.0])
     to_goal = np.array([0.0, 100.0, 200.0])
-    ptr, lo, hi = safe_intervals(nodes, 0.0, 200.0, mv)
-    table = profile_table(weights, 3.0, 1.0)
+    profile = profile_table(weights, 3.0, 1.0)
     graph = (nodes, indptr, indices, weights, to_goal)
     for turn, expected in ((0.6, 75.0), (math.inf, 73.0)):
-        banned = np.zeros(len(lo), np.bool_)
-        goal, arrival, parent, depart = search_limited(
-            graph, table, (3.0, True, turn), 2, 0, 0.0, np.zeros(2), 200.0, ptr, lo, hi,
-            banned, mv,
+        banned = np.zeros(0, np.bool_)
+        goal, arrival, parent, depart, _ = search_limited(
+            graph, profile, (3.0, True, turn), 2, 0, 0.0, np.zeros(2), 200.0,
+            new_table(len(nodes), 0.0, 200.0), banned, mv,
         )  # fmt: skip
         assert goal >= 0 and arrival[goal] == expected
         corner = parent[goal]

@@ -20,7 +20,7 @@ import numpy as np
 
 from mawdo.planning.guide.homotopy import GUIDE_SEGMENTS
 from mawdo.planning.guide.sipp.departures import empty_memo, new_memo
-from mawdo.planning.guide.sipp.intervals import safe_intervals
+from mawdo.planning.guide.sipp.lazy import new_table, touch
 from mawdo.planning.guide.sipp.profile import profile_table
 from mawdo.planning.guide.sipp.profiled import lead_clear, profile_points, profiled_search
 from mawdo.planning.guide.sipp.roadmap import Roadmap
@@ -168,7 +168,9 @@ class SafeIntervalGuide:
         self.movers = self.roadmap.movers(self.t0, self.checked_until, walkers, cut)
         self._mv = self.movers.arrays()
         self._keeping(keep_departures, cut, walkers)
-        self.ptr, self.lo, self.hi = safe_intervals(self.nodes, self.t0, self.t_end, self._mv)
+        # safe intervals made as the searches touch the vertices; the query's searches share
+        # them, so that a state keeps its number from one search to the next
+        self.safe = new_table(len(self.nodes), self.t0, self.t_end)
         self._v = float(scenario.robot_speed)
         if profile is not None:
             accel, turn = (float(x) for x in profile)
@@ -203,8 +205,10 @@ class SafeIntervalGuide:
 
     def intervals(self, v: int) -> np.ndarray:
         """Safe intervals ``(lo, hi)`` of vertex ``v`` (open; time steps), shape ``(j, 2)``."""
-        a, b = self.ptr[v], self.ptr[v + 1]
-        return np.column_stack([self.lo[a:b], self.hi[a:b]])
+        self.safe = touch(self.safe, int(v), self.nodes, self._mv)
+        first, count, lo, hi = self.safe[2], self.safe[3], self.safe[4], self.safe[5]
+        a, b = first[v], first[v] + count[v]
+        return np.column_stack([lo[a:b], hi[a:b]])
 
     def _search(self, banned: np.ndarray):
         if self.profile is not None:
@@ -212,10 +216,10 @@ class SafeIntervalGuide:
         graph, v = (self.nodes, self.indptr, self.indices, self.weights, self.to_goal), self._v
         res = timed_search(
             graph, self.roadmap.straight_moves(graph, v), (v, False, math.inf, False),
-            self.start, 0, self.t0, np.zeros(2), self.t_end, self.ptr, self.lo, self.hi, banned,
-            self._mv, self._memo, self._kept,
+            self.start, 0, self.t0, np.zeros(2), self.t_end, self.safe, banned, self._mv,
+            self._memo, self._kept,
         )  # fmt: skip
-        self._memo = res[4]  # (the memo grows as it fills)
+        self._memo, self.safe = res[4], res[5]  # (both grow as they fill)
         if self._shares is not None:
             self.roadmap.keep_departures(self._shares, self._memo, self._made)
         return res[:4]
@@ -229,7 +233,7 @@ class SafeIntervalGuide:
         while parent[chain[-1]] >= 0:
             chain.append(int(parent[chain[-1]]))
         chain.reverse()
-        owner = np.searchsorted(self.ptr, chain, side="right") - 1  # each state's vertex
+        owner = self.safe[6][chain]  # each state's vertex
         lead = self.nodes[owner[:1]] if self.profile is None else self.lead
         pts, times = list(lead), [self.t0 + i for i in range(len(lead))]
         for j in range(1, len(chain)):
@@ -267,7 +271,7 @@ class SafeIntervalGuide:
         """
         if isinstance(k, bool) or not isinstance(k, int | np.integer) or k < 1:
             raise ValueError(f"k must be an integer >= 1, got {k!r}")
-        banned = np.zeros(len(self.lo), np.bool_)
+        banned = np.zeros(0, np.bool_)
         out: list[TimedRoute] = []
         if self.profile is not None and not lead_clear(self):
             return out
@@ -282,6 +286,8 @@ class SafeIntervalGuide:
                 break
             route = self._route(goal_state, arrival, parent, depart)
             out.append(route)
+            # (the states made since the last search: not barred)
+            banned = np.concatenate([banned, np.zeros(self.safe[7] - len(banned), np.bool_)])
             banned[list(route.states[1:-1])] = True
             if len(route.states) <= 2:  # a direct move: nothing left to bar
                 break

@@ -38,7 +38,7 @@ from mawdo.util.stablesort import stable_argsort
 
 __all__ = [
     "EPS", "Movers", "earliest_free", "forbidden", "forbidden_among", "safe_intervals",
-    "segment_free", "segment_free_among",
+    "segment_free", "segment_free_among", "vertex_intervals",
 ]  # fmt: skip
 
 #: A departure just after a closed forbidden interval (time steps): the forbidden sets are
@@ -409,26 +409,37 @@ def segment_free_among(ux, uy, vx, vy, ta, tb, mv, cands):
 
 
 @njit(cache=True)
+def vertex_intervals(x, y, t0, t_end, mv, lo, hi, k):
+    """Write the open safe intervals of a robot standing at ``(x, y)`` (pixels) over ``[t0,
+    t_end]`` (time steps) into ``lo, hi`` from row ``k``; returns ``(lo, hi, k)``: the arrays
+    (doubled where they were full) and the next free row. An interval starting at ``t0`` means
+    the point is safe at ``t0``."""
+    F = forbidden(x, y, 0.0, 0.0, 0.0, t0, t_end, mv)
+    cur = t0
+    for j in range(len(F) + 1):
+        end = F[j, 0] if j < len(F) else t_end
+        if end > cur:
+            if k == len(lo):
+                lo, hi = _doubled(lo), _doubled(hi)
+            lo[k] = cur
+            hi[k] = end
+            k += 1
+        if j < len(F):
+            cur = F[j, 1]
+    return lo, hi, k
+
+
+@njit(cache=True)
 def safe_intervals(nodes, t0, t_end, mv):
     """Open safe intervals of every node over ``[t0, t_end]``: CSR pointers ``(n + 1,)`` and
-    the intervals' ends ``lo, hi`` (time steps); a node safe at ``t0`` starts with ``lo = t0``."""
+    the intervals' ends ``lo, hi`` (time steps); a node safe at ``t0`` starts with ``lo = t0``
+    (each node's as :func:`vertex_intervals` gives them)."""
     n = len(nodes)
     ptr = np.zeros(n + 1, np.int64)
     lo = np.empty(16)
     hi = np.empty(16)
     k = 0
     for v in range(n):
-        F = forbidden(nodes[v, 0], nodes[v, 1], 0.0, 0.0, 0.0, t0, t_end, mv)
-        cur = t0
-        for j in range(len(F) + 1):
-            end = F[j, 0] if j < len(F) else t_end
-            if end > cur:
-                if k == len(lo):
-                    lo, hi = _doubled(lo), _doubled(hi)
-                lo[k] = cur
-                hi[k] = end
-                k += 1
-            if j < len(F):
-                cur = F[j, 1]
+        lo, hi, k = vertex_intervals(nodes[v, 0], nodes[v, 1], t0, t_end, mv, lo, hi, k)
         ptr[v + 1] = k
     return ptr, lo[:k], hi[:k]

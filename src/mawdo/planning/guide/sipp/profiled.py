@@ -46,13 +46,14 @@ def lead_clear(guide) -> bool:
 
 def profiled_search(guide, banned: np.ndarray):
     """The guide's search under its profile (as :func:`~mawdo.planning.guide.sipp.search.search`
-    returns)."""
+    returns, but the table: the guide keeps it)."""
     graph = (guide.nodes, guide.indptr, guide.indices, guide.weights, guide.to_goal)
     t_start = guide.t0 + float(len(guide.lead) - 1)
-    return search_limited(
+    *res, guide.safe = search_limited(
         graph, guide._table, guide._lim, guide.start, 0, t_start, _heading(guide.lead),
-        guide.t_end, guide.ptr, guide.lo, guide.hi, banned, guide._mv,
+        guide.t_end, guide.safe, banned, guide._mv,
     )  # fmt: skip
+    return tuple(res)
 
 
 def _edge_index(guide, u: int, v: int) -> int:

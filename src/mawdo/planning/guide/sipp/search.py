@@ -1,8 +1,11 @@
 """Compiled A* over (vertex, safe interval) states on arrival time, with or without limits.
 
-A state is one safe interval of one graph vertex (its global index in the interval arrays);
-its value is the earliest arrival in it. An edge ``u -> v`` is driven as its *moves*, a table of
-straight uniform pieces, and how the robot drives is data, ``kin = (v, accel_on, turn, whole)``:
+A state is one safe interval of one graph vertex (its row in the lazy table of
+:mod:`~mawdo.planning.guide.sipp.lazy`: a vertex's intervals are made when the search first
+expands a state next to it, and states that tie are ordered as the table of every vertex would
+number them); its value is the earliest arrival in it. An edge ``u -> v`` is driven as its
+*moves*, a table of straight uniform pieces, and how the robot drives is data,
+``kin = (v, accel_on, turn, whole)``:
 
 * without limits (:func:`search`, moves :func:`straight_moves`): one piece at full speed ``v``,
   duration ``T = L / v``, departures at any time, instant starts, stops and turns;
@@ -70,6 +73,7 @@ from mawdo.planning.guide.sipp.intervals import (
     segment_free,
     segment_free_among,
 )
+from mawdo.planning.guide.sipp.lazy import JB, order_key, state_of, touch, vertex_bits
 from mawdo.planning.guide.sipp.profile import rest_steps
 
 __all__ = [
@@ -85,9 +89,6 @@ __all__ = [
 ]
 
 _RETRIES = 3
-#: A lazy entry's id: its target interval above this many bits, its move's index below.
-_SHIFT = 40
-_LOW = (1 << _SHIFT) - 1
 #: First window of departures examined per edge and target interval (time steps).
 _WINDOW = 8.0
 
@@ -247,10 +248,10 @@ def _depart(moves, e, ux, uy, a, T, x, top, J_hi, whole, mv, memo, key):
 
 
 @njit(cache=True)
-def start_state(ptr, lo, hi, start, t0, pos, mv):
-    """The safe interval of vertex ``start`` holding ``t0`` in which standing at ``pos``
-    (pixels) at ``t0`` is safe, or -1."""
-    for sid in range(ptr[start], ptr[start + 1]):
+def start_state(a, b, lo, hi, t0, pos, mv):
+    """Among the safe intervals ``a .. b - 1`` of the start's vertex, the one holding ``t0``
+    in which standing at ``pos`` (pixels) at ``t0`` is safe, or -1."""
+    for sid in range(a, b):
         if lo[sid] <= t0 < hi[sid]:
             if segment_free(pos[0], pos[1], pos[0], pos[1], t0, t0, mv):
                 return sid
@@ -258,20 +259,43 @@ def start_state(ptr, lo, hi, start, t0, pos, mv):
 
 
 @njit(cache=True)
-def _states(ptr, S):
-    """Per interval state: its vertex, and the search's arrays (arrival, parent, departure,
-    heading in, closed) before it starts."""
-    owner = np.empty(S, np.int64)
-    for q in range(len(ptr) - 1):
-        owner[ptr[q] : ptr[q + 1]] = q
-    arrival, parent, depart = np.full(S, np.inf), np.full(S, -1, np.int64), np.full(S, np.nan)
-    return owner, arrival, parent, depart, np.zeros((S, 2)), np.zeros(S, np.bool_)
+def _states(S):
+    """The search's arrays per interval state (arrival, parent, departure, heading in,
+    closed, rank among the expanded, edge its arrival came by) before it starts."""
+    return _regrown(
+        (np.empty(0), np.empty(0, np.int64), np.empty(0), np.empty((0, 2)),
+         np.empty(0, np.bool_), np.empty(0, np.int64), np.empty(0, np.int64)), S,
+    )  # fmt: skip
 
 
 @njit(cache=True)
-def timed_search(
-    graph, moves, kin, start, goal, t_start, h0, t_end, ptr, lo, hi, banned, mv, memo, kept
-):
+def _regrown(st, S):
+    """The state arrays ``st`` (:func:`_states`) with room for ``S`` states, the old ones
+    copied and the new ones as before a search. (Loops, not slices or ``np.full``: they cost
+    Numba about a second more to compile.)"""
+    arrival, parent, depart, heading = (
+        np.empty(S),
+        np.empty(S, np.int64),
+        np.empty(S),
+        np.empty((S, 2)),
+    )
+    closed, rank, via = np.empty(S, np.bool_), np.empty(S, np.int64), np.empty(S, np.int64)
+    n = len(st[0])
+    for s in range(S):
+        old = s < n
+        arrival[s] = st[0][s] if old else np.inf
+        parent[s] = st[1][s] if old else -1
+        depart[s] = st[2][s] if old else np.nan
+        heading[s, 0] = st[3][s, 0] if old else 0.0
+        heading[s, 1] = st[3][s, 1] if old else 0.0
+        closed[s] = st[4][s] if old else False
+        rank[s] = st[5][s] if old else -1
+        via[s] = st[6][s] if old else -1
+    return arrival, parent, depart, heading, closed, rank, via
+
+
+@njit(cache=True)
+def timed_search(graph, moves, kin, start, goal, t_start, h0, t_end, table, banned, mv, memo, kept):
     """Earliest arrival at ``goal`` from ``start`` at ``t_start`` over (vertex, interval) states.
 
     Parameters
@@ -294,10 +318,13 @@ def timed_search(
         Unit heading the robot has at the start (zeros: none).
     t_end : float
         Horizon (time steps).
-    ptr, lo, hi : numpy.ndarray
-        Safe intervals per vertex (:func:`~mawdo.planning.guide.sipp.intervals.safe_intervals`).
+    table : tuple
+        Safe intervals per vertex, made as the search touches the vertices
+        (:func:`~mawdo.planning.guide.sipp.lazy.new_table`; a table a search of the same
+        query returned may be given again: its states keep their numbers).
     banned : numpy.ndarray of bool
-        Interval states the search may not enter (for alternatives).
+        Interval states the search may not enter (for alternatives; states past its end are
+        not barred).
     mv : tuple
         :meth:`~mawdo.planning.guide.sipp.intervals.Movers.arrays`.
     memo : tuple
@@ -313,42 +340,49 @@ def timed_search(
     goal_state : int
         The goal's interval reached first (-1: none; -2: the start is not safe at ``t_start``).
     arrival, parent, depart : numpy.ndarray
-        Per interval state: earliest arrival, previous state, departure from its vertex.
+        Per interval state (the table's rows, at least ``table``'s ``used``): earliest
+        arrival, previous state, departure from its vertex.
     memo : tuple
         ``memo`` with what this search found (a new, larger one when it had to grow).
+    table : tuple
+        ``table`` with the intervals of every vertex the search touched.
     """
     nodes, indptr, indices, weights, to_goal = graph
-    owner, arrival, parent, depart, heading, closed = _states(ptr, len(lo))
-    s0 = start_state(ptr, lo, hi, start, t_start, nodes[start], mv)
+    table = touch(table, start, nodes, mv)
+    first, count, lo, hi, owner, used = table[2:]
+    st = _states(len(lo))
+    arrival, parent, depart, heading, closed, rank, via = st
+    s0 = start_state(first[start], first[start] + count[start], lo, hi, t_start, nodes[start],
+                     mv)  # fmt: skip
     if s0 < 0:
-        return -2, arrival, parent, depart, memo
+        return -2, arrival, parent, depart, memo, table
     arrival[s0] = t_start
     heading[s0, 0], heading[s0, 1] = h0[0], h0[1]
     keys, ids, nh = heap_new()
-    keys, ids, nh = heap_push(keys, ids, nh, t_start + to_goal[start] / kin[0], t_start, s0)
+    keys, ids, nh = heap_push(keys, ids, nh, t_start + to_goal[start] / kin[0], t_start,
+                              order_key(first, owner, s0))  # fmt: skip
     # the earliest goal arrival found so far: no state whose arrival plus heuristic exceeds it
     # can precede the goal off the heap, so its exact departure is never needed
     bound = math.inf
-    edge, whole, S = moves[1], kin[3], len(lo)
+    edge, whole = moves[1], kin[3]
     # moves waiting for their exact departure (module docstring: lazy relaxation): a heap of
-    # lower bounds, each entry's source state and edge; its target interval is its id's top
+    # lower bounds, each entry's source state and edge; its target interval's order key is its
+    # id's top, above `shift` bits
     lkeys, lids, ln = heap_new()
     lsrc, ledge, made = np.empty(16, np.int64), np.empty(16, np.int64), 0
-    # per state: its rank among the expanded ones, and the edge its arrival came by
-    rank, via, expanded = np.full(S, -1, np.int64), np.full(S, -1, np.int64), 0
+    shift = 63 - JB - vertex_bits(len(nodes))
+    low = (1 << shift) - 1
+    expanded = 0
     # no mover is tested after t_free (its pieces end there; reachable sets never end): a
     # move from a vertex reached after it is free at its first departure, as _depart finds
     t_free = _movers_end(mv)
-    most = 0  # most safe intervals of a vertex: the most entries one edge makes
-    for q in range(len(ptr) - 1):
-        most = max(most, ptr[q + 1] - ptr[q])
     # The loops are written out here, every table bound once above: Numba counts each binding
     # of an array (an atomic increment and decrement), and an inlined relaxation per edge
     # bound about twenty tables, 60 % of the search's CPU on the 1000 x 1000 px, 200-mover map.
     while nh > 0 or ln > 0:
-        if ln > 0 and (nh == 0 or _lazy_first(lkeys, lids, keys, ids)):
+        if ln > 0 and (nh == 0 or _lazy_first(lkeys, lids, keys, ids, shift)):
             _, _, lid, ln = heap_pop(lkeys, lids, ln)
-            J, sid, e = lid >> _SHIFT, lsrc[lid & _LOW], ledge[lid & _LOW]
+            J, sid, e = state_of(first, lid >> shift), lsrc[lid & low], ledge[lid & low]
             if closed[J]:
                 continue
             u, v, a, T = owner[sid], indices[e], arrival[sid], edge[e, 0]
@@ -369,7 +403,8 @@ def timed_search(
             if not _may_win(tau + T, J, sid, e, arrival, parent, rank, via):
                 continue
             if tau + T < arrival[J]:
-                keys, ids, nh = heap_push(keys, ids, nh, tau + T + hv, tau + T, J)
+                keys, ids, nh = heap_push(keys, ids, nh, tau + T + hv, tau + T,
+                                          order_key(first, owner, J))  # fmt: skip
             arrival[J], parent[J], depart[J], via[J] = tau + T, sid, tau, e
             if weights[e] > 0.0:  # a move: its heading; else the one it had
                 heading[J, 0], heading[J, 1] = edge[e, 1], edge[e, 2]
@@ -378,16 +413,29 @@ def timed_search(
             if v == goal:
                 bound = min(bound, tau + T)
             continue
-        _, a, sid, nh = heap_pop(keys, ids, nh)
+        _, a, skey, nh = heap_pop(keys, ids, nh)
+        sid = state_of(first, skey)
         if closed[sid]:
             continue
         closed[sid], rank[sid], expanded = True, expanded, expanded + 1
         u = owner[sid]
         if u == goal:
-            return sid, arrival, parent, depart, memo
-        need = (indptr[u + 1] - indptr[u]) * most
+            return sid, arrival, parent, depart, memo, table
+        # the safe intervals of the vertices this state can move to, made where not yet
+        need = 0
+        for e in range(indptr[u], indptr[u + 1]):
+            v = indices[e]
+            if first[v] < 0 and to_goal[v] < math.inf:
+                table = touch(table, v, nodes, mv)
+                lo, hi, owner, used = table[4], table[5], table[6], table[7]
+            need += count[v]
+        if used > len(arrival):
+            st = _regrown((arrival, parent, depart, heading, closed, rank, via), len(lo))
+            arrival, parent, depart, heading, closed, rank, via = st
         lkeys, lids = heap_room(lkeys, lids, ln, need)
         if made + need > len(lsrc):
+            if made + need > low:
+                raise ValueError("the safe-interval search made more moves than it can order")
             lsrc, ledge = _grown(lsrc, made + need), _grown(ledge, made + need)
         for e in range(indptr[u], indptr[u + 1]):
             v = indices[e]
@@ -402,8 +450,8 @@ def timed_search(
                 continue
             hv = to_goal[v] / kin[0]
             # the arrivals in the safe intervals of v by this move
-            for J in range(ptr[v], ptr[v + 1]):
-                if hi[J] <= ready + T or closed[J] or banned[J]:
+            for J in range(first[v], first[v] + count[v]):
+                if hi[J] <= ready + T or closed[J] or (J < len(banned) and banned[J]):
                     continue
                 if lo[J] >= top + T:
                     break
@@ -418,9 +466,10 @@ def timed_search(
                 # a move to the goal is settled first (as the eager search did): its arrival
                 # bounds every other (the order of settling changes no result)
                 key = -math.inf if v == goal else x + T + hv
-                ln = heap_put(lkeys, lids, ln, key, x + T, (J << _SHIFT) | made)
+                lid = (order_key(first, owner, J) << shift) | made
+                ln = heap_put(lkeys, lids, ln, key, x + T, lid)
                 made += 1
-    return -1, arrival, parent, depart, memo
+    return -1, arrival, parent, depart, memo, table
 
 
 @njit(cache=True)
@@ -438,14 +487,15 @@ def _movers_end(mv):
 
 
 @njit(cache=True, inline="always")
-def _lazy_first(lkeys, lids, keys, ids):
+def _lazy_first(lkeys, lids, keys, ids, shift):
     """The least lazy entry comes before the least state entry: ``(key, arrival, interval)``
-    not greater (a lazy entry first on a tie: its move may arrive there as early)."""
+    not greater (a lazy entry first on a tie: its move may arrive there as early; intervals in
+    the order of their order keys, the top of a lazy entry's id above ``shift`` bits)."""
     if lkeys[0, 0] != keys[0, 0]:
         return lkeys[0, 0] < keys[0, 0]
     if lkeys[0, 1] != keys[0, 1]:
         return lkeys[0, 1] < keys[0, 1]
-    return (lids[0] >> _SHIFT) <= ids[0]
+    return (lids[0] >> shift) <= ids[0]
 
 
 @njit(cache=True, inline="always")
@@ -470,7 +520,7 @@ def _grown(a, n):
 
 @njit(cache=True)
 def search(
-    nodes, indptr, indices, weights, to_goal, speed, start, goal, t0, t_end, ptr, lo, hi, banned, mv
+    nodes, indptr, indices, weights, to_goal, speed, start, goal, t0, t_end, table, banned, mv
 ):
     """:func:`timed_search` without limits: straight moves at ``speed`` (px per step, > 0),
     departures at any time from ``t0``, instant starts, stops and turns, no memo; the other
@@ -478,15 +528,15 @@ def search(
     moves = straight_moves(nodes, indptr, indices, weights, speed)
     res = timed_search(
         (nodes, indptr, indices, weights, to_goal), moves, (speed, False, math.inf, False),
-        start, goal, t0, np.zeros(2), t_end, ptr, lo, hi, banned, mv, new_memo(2, 2), 0,
+        start, goal, t0, np.zeros(2), t_end, table, banned, mv, new_memo(2, 2), 0,
     )  # fmt: skip
-    return res[0], res[1], res[2], res[3]
+    return res[0], res[1], res[2], res[3], res[5]
 
 
 @njit(cache=True)
-def search_limited(graph, table, lim, start, goal, t_start, h0, t_end, ptr, lo, hi, banned, mv):
+def search_limited(graph, profile, lim, start, goal, t_start, h0, t_end, table, banned, mv):
     """:func:`timed_search` under acceleration or turn-rate limits: each edge its rest-to-rest
-    profile ``table`` (:func:`~mawdo.planning.guide.sipp.profile.profile_table` of the graph's
+    profile (:func:`~mawdo.planning.guide.sipp.profile.profile_table` of the graph's
     weights), departures at whole steps from the whole step ``t_start``, rests at the vertices.
 
     ``lim`` is ``(v, accel_on, turn)``: speed (px per step, > 0), whether acceleration is
@@ -494,9 +544,9 @@ def search_limited(graph, table, lim, start, goal, t_start, h0, t_end, ptr, lo, 
     results (but the memo: its moves are not straight) as in :func:`timed_search`.
     """
     nodes, indptr, indices, weights, _ = graph
-    moves = profiled_moves(nodes, indptr, indices, weights, table)
+    moves = profiled_moves(nodes, indptr, indices, weights, profile)
     res = timed_search(
-        graph, moves, (lim[0], lim[1], lim[2], True), start, goal, t_start, h0, t_end, ptr, lo,
-        hi, banned, mv, new_memo(2, 2), 0,
+        graph, moves, (lim[0], lim[1], lim[2], True), start, goal, t_start, h0, t_end, table,
+        banned, mv, new_memo(2, 2), 0,
     )  # fmt: skip
-    return res[0], res[1], res[2], res[3]
+    return res[0], res[1], res[2], res[3], res[5]
