@@ -40,15 +40,7 @@ from numba import njit
 from mawdo.planning.refine.kernel.constants import INDEX_SLICES, MARGIN
 from mawdo.planning.refine.kernel.moving import moving_pass
 from mawdo.planning.refine.kernel.near import rounding_room
-
-
-@njit(cache=True, fastmath=False, error_model="numpy")
-def grid_cell(v, lo, inv, n):
-    """Cell of coordinate ``v`` (monotone in ``v``), clipped to ``0 .. n - 1``."""
-    u = (v - lo) * inv
-    if not u > 0.0:  # (NaN too)
-        return 0
-    return int(u) if u < n else n - 1
+from mawdo.util.cells import cell_of as grid_cell
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")

@@ -32,9 +32,10 @@ import numpy as np
 from numba import njit
 
 from mawdo.planning.refine.kernel.constants import MARGIN
-from mawdo.planning.refine.kernel.index import grid_cell as _cell
 from mawdo.planning.refine.kernel.passes import near_verdicts, scaled_d2
 from mawdo.planning.refine.kernel.primitives import point_segment_d2
+from mawdo.util.cells import cell_lists
+from mawdo.util.cells import cell_of as _cell
 
 #: Cells per axis at most.
 _CELLS = 256
@@ -120,30 +121,7 @@ def segment_grid(npt, px, py, real, cell, grid):
     nx, ny = int((xhi - gx) * ginv) + 1, int((yhi - gy) * ginv) + 1
     if len(head) < nx * ny + 1:
         head = np.empty(nx * ny + 1, np.int64)
-    for c in range(nx * ny + 1):  # (loops, not slices: each slice costs Numba a compile)
-        head[c] = 0
-    for r in range(2):  # count, then place
-        for p in range(npt - 1):
-            if not real[p]:
-                continue
-            for cy in range(_cell(sbox[p, 1], gy, ginv, ny), _cell(sbox[p, 3], gy, ginv, ny) + 1):
-                for cx in range(
-                    _cell(sbox[p, 0], gx, ginv, nx), _cell(sbox[p, 2], gx, ginv, nx) + 1
-                ):
-                    c = cy * nx + cx
-                    if r == 0:
-                        head[c + 1] += 1
-                    else:
-                        ents[head[c]] = p
-                        head[c] += 1
-        if r == 0:
-            for c in range(nx * ny):
-                head[c + 1] += head[c]
-            if len(ents) < head[nx * ny]:
-                ents = np.empty(2 * head[nx * ny], np.int64)
-    for c in range(nx * ny, 0, -1):  # (placing moved each start to the next cell's)
-        head[c] = head[c - 1]
-    head[0] = 0
+    head, ents = cell_lists(sbox, real[: npt - 1], (gx, gy, ginv, nx, ny), head, ents)
     return (gx, gy, ginv, nx, ny), head, ents, sbox
 
 
