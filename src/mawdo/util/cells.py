@@ -9,7 +9,8 @@ from numba import njit
 __all__ = ["cell_lists", "cell_of"]
 
 
-@njit(cache=True, fastmath=False, error_model="numpy", inline="always")
+# (not inlined: Numba's inlining copies the body into every call, and the grids call it often)
+@njit(cache=True, fastmath=False, error_model="numpy")
 def cell_of(v, lo, inv, n):
     """Cell of coordinate ``v`` on an axis from ``lo`` in cells of side ``1 / inv``: monotone
     in ``v``, clipped to ``0 .. n - 1`` (NaN: 0)."""
