@@ -98,7 +98,18 @@ def segment_visible(px, py, qx, qy, edges, ring_ptr, ring_box, grid=None):
     # (1e-10 at 1e4 px)
     tol = 1e-6 * (abs(py - qy) + abs(qx - px))
     if grid is None:  # (None: Numba prunes the other branch before typing)
+        # (the loop written out: through _ring_blocks it ran 4 times slower, 0.25 against
+        # 0.06 ms for a point's visible corners on the 1000 px map)
+        lo_x, lo_y, hi_x, hi_y = box
+        nx, ny = py - qy, qx - px
         for r in range(len(ring_ptr) - 1):
+            x0, y0, x1, y1 = ring_box[r, 0], ring_box[r, 1], ring_box[r, 2], ring_box[r, 3]
+            if x0 > hi_x or x1 < lo_x or y0 > hi_y or y1 < lo_y:
+                continue
+            c0, c1 = nx * (x0 - px) + ny * (y0 - py), nx * (x1 - px) + ny * (y0 - py)
+            c2, c3 = nx * (x0 - px) + ny * (y1 - py), nx * (x1 - px) + ny * (y1 - py)
+            if min(c0, c1, c2, c3) > tol or max(c0, c1, c2, c3) < -tol:
+                continue
             if _ring_blocks(r, px, py, qx, qy, box, tol, edges, ring_ptr, ring_box):
                 return False
         return True

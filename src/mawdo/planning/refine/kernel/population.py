@@ -414,7 +414,7 @@ def _population(
              work[9], work[10], work[11], work[12], work[13], work[14])  # fmt: skip
     hnpt = np.int64(0)
     ncol = np.empty(nb, dtype=np.int64)  # and by the exact tests, per candidate
-    # the standing obstacles' grid, where there are enough of them (else an empty one)
+    # the standing obstacles' table, for the entry points with their grid (else empty)
     ox = np.empty(n_obs)
     oy = np.empty(n_obs)
     for i in range(n_obs):
