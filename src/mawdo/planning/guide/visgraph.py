@@ -22,21 +22,17 @@ import shapely
 
 from mawdo.planning.guide.visgraph_kernels import (
     csr_dijkstra,
-    ring_grid,
     segment_visible,
     tangent_edges,
     visible_from_point,
 )
 
-__all__ = ["MAX_NODES", "RING_GRID", "VisGraph", "build", "csr_dijkstra", "visible_from_point"]
+__all__ = ["MAX_NODES", "VisGraph", "build", "csr_dijkstra", "visible_from_point"]
 
 #: Most corner nodes a graph may have: the build enumerates ``n^2 / 2`` pairs (2.3 s of CPU for
 #: the 27 600 corners of 1000 polygons on a 1000 px map, about 5 s at the limit); beyond it the
 #: caller must simplify the obstacles.
 MAX_NODES = 40_000
-#: From this many obstacle rings on, the visibility tests go through a grid of the rings
-#: (``visgraph_kernels.ring_grid``; the same answers; measured in benchmarks/log/scaling.md).
-RING_GRID = 64
 
 
 def _ring_table(geom):
@@ -167,7 +163,6 @@ class VisGraph:
     blocked: object
     bounds: tuple
     eps2: float
-    grid: tuple | None = None
 
     def visible_from(self, p) -> np.ndarray:
         """Indices of nodes a free point ``p`` sees along a segment tangent at the node."""
@@ -182,15 +177,12 @@ class VisGraph:
             self.ring_ptr,
             self.ring_box,
             self.eps2,
-            self.grid,
         )
 
     def sees(self, p, q) -> bool:
         """The segment ``pq`` stays out of the (shrunk) obstacles."""
         return bool(
-            segment_visible(
-                p[0], p[1], q[0], q[1], self.edges, self.ring_ptr, self.ring_box, self.grid
-            )
+            segment_visible(p[0], p[1], q[0], q[1], self.edges, self.ring_ptr, self.ring_box)
         )
 
     def dijkstra(self, init_nodes, init_dist):
@@ -249,11 +241,8 @@ def build(obstacles, bounds, points=(), tol: float = 1e-7, max_nodes: int = MAX_
     nx = _relative(np.vstack([pts, nxt]), nodes)
     corner = np.r_[np.zeros(len(pts), bool), np.ones(len(corners), bool)]
     edges, ring_ptr, ring_box = _blocking_edges(blocked)
-    # many rings: each visibility test asks only those in the cells its segment crosses (the
-    # same answer: a ring that blocks it is listed there), compiled only where used
-    grid = ring_grid(ring_box) if len(ring_box) >= RING_GRID else None
     eps2 = 1e-18  # (1e-9 rad)^2: neighbours this close to the line count as on it
-    i, j, w = tangent_edges(nodes, prev, nx, corner, edges, ring_ptr, ring_box, eps2, grid)
+    i, j, w = tangent_edges(nodes, prev, nx, corner, edges, ring_ptr, ring_box, eps2)
     n = len(nodes)
     # csr by hand: both directions, sorted by source
     src, dst, ww = np.r_[i, j], np.r_[j, i], np.r_[w, w]
@@ -275,7 +264,6 @@ def build(obstacles, bounds, points=(), tol: float = 1e-7, max_nodes: int = MAX_
         blocked=blocked,
         bounds=tuple(bounds),
         eps2=eps2,
-        grid=grid,
     )
 
 

@@ -5,14 +5,10 @@ corners and Dijkstra over the graph's CSR arrays.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit
 
 from mawdo.planning.guide.heap import heap_new, heap_pop, heap_push
-from mawdo.util.cells import cell_lists
-from mawdo.util.cells import cell_of as _cell
 
 __all__ = ["csr_dijkstra", "segment_visible", "tangent_edges", "visible_from_point"]
 
@@ -63,120 +59,39 @@ def _seg_hits(px, py, qx, qy, ex0, ey0, ex1, ey1):
     return False
 
 
-@njit(cache=True, inline="always")
-def _ring_blocks(r, px, py, qx, qy, box, tol, edges, ring_ptr, ring_box):
-    """Some edge of ring r meets the segment pq (``box``: its bounding box; ``tol``: the line
-    test's margin)."""
-    lo_x, lo_y, hi_x, hi_y = box
-    x0, y0, x1, y1 = ring_box[r, 0], ring_box[r, 1], ring_box[r, 2], ring_box[r, 3]
-    if x0 > hi_x or x1 < lo_x or y0 > hi_y or y1 < lo_y:
-        return False
-    # a box wholly on one side of the line holds no edge the segment can touch (the ring's box
-    # holds its edges): its edges need no test (a long segment's box overlaps many rings its
-    # line misses); the line through pq as n . (x - p), n normal to it
+@njit(cache=True)
+def segment_visible(px, py, qx, qy, edges, ring_ptr, ring_box):
+    """The segment pq meets no blocking edge (rings pre-filtered by their bounding boxes)."""
+    lo_x, hi_x = min(px, qx), max(px, qx)
+    lo_y, hi_y = min(py, qy), max(py, qy)
+    # the line through pq, as n . (x - p) with n normal to it, and a margin of 1e-6 px in
+    # those units: far above the rounding of the corners' sides (1e-10 at 1e4 px)
     nx, ny = py - qy, qx - px
-    c0, c1 = nx * (x0 - px) + ny * (y0 - py), nx * (x1 - px) + ny * (y0 - py)
-    c2, c3 = nx * (x0 - px) + ny * (y1 - py), nx * (x1 - px) + ny * (y1 - py)
-    if min(c0, c1, c2, c3) > tol or max(c0, c1, c2, c3) < -tol:
-        return False
-    for e in range(ring_ptr[r], ring_ptr[r + 1]):
-        if max(edges[e, 0], edges[e, 2]) < lo_x or min(edges[e, 0], edges[e, 2]) > hi_x:
+    tol = 1e-6 * (abs(nx) + abs(ny))
+    for r in range(len(ring_ptr) - 1):
+        x0, y0, x1, y1 = ring_box[r, 0], ring_box[r, 1], ring_box[r, 2], ring_box[r, 3]
+        if x0 > hi_x or x1 < lo_x or y0 > hi_y or y1 < lo_y:
             continue
-        if max(edges[e, 1], edges[e, 3]) < lo_y or min(edges[e, 1], edges[e, 3]) > hi_y:
+        # a box wholly on one side of the line holds no edge the segment can touch (the
+        # ring's box holds its edges): its edges need no test (a long segment's box overlaps
+        # many rings its line misses)
+        c0, c1 = nx * (x0 - px) + ny * (y0 - py), nx * (x1 - px) + ny * (y0 - py)
+        c2, c3 = nx * (x0 - px) + ny * (y1 - py), nx * (x1 - px) + ny * (y1 - py)
+        if min(c0, c1, c2, c3) > tol or max(c0, c1, c2, c3) < -tol:
             continue
-        if _seg_hits(px, py, qx, qy, edges[e, 0], edges[e, 1], edges[e, 2], edges[e, 3]):
-            return True
-    return False
-
-
-@njit(cache=True)
-def segment_visible(px, py, qx, qy, edges, ring_ptr, ring_box, grid=None):
-    """The segment pq meets no blocking edge (rings pre-filtered by their bounding boxes; with
-    a ``grid`` (:func:`ring_grid`), only the rings listed in the cells the segment crosses)."""
-    box = (min(px, qx), min(py, qy), max(px, qx), max(py, qy))
-    # a margin of 1e-6 px in the line's units: far above the rounding of the corners' sides
-    # (1e-10 at 1e4 px)
-    tol = 1e-6 * (abs(py - qy) + abs(qx - px))
-    if grid is None:  # (None: Numba prunes the other branch before typing)
-        # (the loop written out: through _ring_blocks it ran 4 times slower, 0.25 against
-        # 0.06 ms for a point's visible corners on the 1000 px map)
-        lo_x, lo_y, hi_x, hi_y = box
-        nx, ny = py - qy, qx - px
-        for r in range(len(ring_ptr) - 1):
-            x0, y0, x1, y1 = ring_box[r, 0], ring_box[r, 1], ring_box[r, 2], ring_box[r, 3]
-            if x0 > hi_x or x1 < lo_x or y0 > hi_y or y1 < lo_y:
+        for e in range(ring_ptr[r], ring_ptr[r + 1]):
+            if max(edges[e, 0], edges[e, 2]) < lo_x or min(edges[e, 0], edges[e, 2]) > hi_x:
                 continue
-            c0, c1 = nx * (x0 - px) + ny * (y0 - py), nx * (x1 - px) + ny * (y0 - py)
-            c2, c3 = nx * (x0 - px) + ny * (y1 - py), nx * (x1 - px) + ny * (y1 - py)
-            if min(c0, c1, c2, c3) > tol or max(c0, c1, c2, c3) < -tol:
+            if max(edges[e, 1], edges[e, 3]) < lo_y or min(edges[e, 1], edges[e, 3]) > hi_y:
                 continue
-            if _ring_blocks(r, px, py, qx, qy, box, tol, edges, ring_ptr, ring_box):
+            if _seg_hits(px, py, qx, qy, edges[e, 0], edges[e, 1], edges[e, 2], edges[e, 3]):
                 return False
-        return True
-    return not _crossed_rings_block(px, py, qx, qy, box, tol, edges, ring_ptr, ring_box, grid)
+    return True
 
 
 @njit(cache=True)
-def ring_grid(ring_box):
-    """A uniform grid of the rings: ``(gx, gy, ginv, nx, ny, head, ents, seen)``, origin and
-    inverse cell side (pixels), cells per axis, each cell's rings (``ents[head[c]:head[c +
-    1]]``), and a mark per ring with the last query's number after them (``seen``, work space
-    of :func:`segment_visible`). Cells twice the rings' boxes' geometric mean side, at most 256
-    a side; a ring is listed in every cell its box meets."""
-    n = len(ring_box)
-    gx, gy, xhi, yhi, logs = np.inf, np.inf, -np.inf, -np.inf, 0.0
-    for r in range(n):
-        gx, gy = min(gx, ring_box[r, 0]), min(gy, ring_box[r, 1])
-        xhi, yhi = max(xhi, ring_box[r, 2]), max(yhi, ring_box[r, 3])
-        side = max(ring_box[r, 2] - ring_box[r, 0], ring_box[r, 3] - ring_box[r, 1])
-        logs += math.log(max(side, 1e-3))
-    g = max(2.0 * math.exp(logs / max(n, 1)), max(xhi - gx, yhi - gy) / 256.0, 1e-3)
-    ginv = 1.0 / g
-    nx, ny = int((xhi - gx) * ginv) + 1, int((yhi - gy) * ginv) + 1
-    head, ents = cell_lists(ring_box, np.ones(n, np.bool_), (gx, gy, ginv, nx, ny),
-                            np.empty(nx * ny + 1, np.int64), np.empty(0, np.int64))  # fmt: skip
-    return gx, gy, ginv, nx, ny, head, ents, np.zeros(n + 1, np.int64)
-
-
-@njit(cache=True)
-def _crossed_rings_block(px, py, qx, qy, box, tol, edges, ring_ptr, ring_box, grid):
-    """Some ring listed in a cell the segment pq crosses blocks it (:func:`_ring_blocks`),
-    each ring tested once. The cells are taken column by column, each column's from the
-    segment's lowest to its highest point over the column (grown by a margin for rounding):
-    every point of the segment lies in one of them, so a ring an edge of which meets the
-    segment (at a point inside the ring's box) is listed in one."""
-    gx, gy, ginv, nx, ny, head, ents, seen = grid
-    n = len(seen) - 1
-    seen[n] += 1
-    stamp = seen[n]
-    lo_x, lo_y, hi_x, hi_y = box
-    m = 1e-9 * (1.0 + abs(lo_x) + abs(hi_x) + abs(lo_y) + abs(hi_y))
-    g = 1.0 / ginv
-    for cx in range(_cell(lo_x - m, gx, ginv, nx), _cell(hi_x + m, gx, ginv, nx) + 1):
-        # the segment's y over the column's x (the whole y range for a vertical segment)
-        ya, yb = lo_y, hi_y
-        if qx != px:
-            xa = max(lo_x, gx + cx * g - m) if cx > 0 else lo_x
-            xb = min(hi_x, gx + (cx + 1) * g + m) if cx < nx - 1 else hi_x
-            ta, tb = (xa - px) / (qx - px), (xb - px) / (qx - px)
-            y0, y1 = py + (qy - py) * ta, py + (qy - py) * tb
-            ya, yb = max(lo_y, min(y0, y1) - m), min(hi_y, max(y0, y1) + m)
-        for cy in range(_cell(ya, gy, ginv, ny), _cell(yb, gy, ginv, ny) + 1):
-            c = cy * nx + cx
-            for k in range(head[c], head[c + 1]):
-                r = ents[k]
-                if seen[r] == stamp:
-                    continue
-                seen[r] = stamp
-                if _ring_blocks(r, px, py, qx, qy, box, tol, edges, ring_ptr, ring_box):
-                    return True
-    return False
-
-
-@njit(cache=True)
-def tangent_edges(nodes, prev, nxt, corner, edges, ring_ptr, ring_box, eps2, grid=None):
-    """Tangent, visible node pairs ``(i, j)``, ``i < j``, and their lengths (``grid``: the
-    rings' :func:`ring_grid`, or None)."""
+def tangent_edges(nodes, prev, nxt, corner, edges, ring_ptr, ring_box, eps2):
+    """Tangent, visible node pairs ``(i, j)``, ``i < j``, and their lengths."""
     n = len(nodes)
     ei, ej = [], []
     for i in range(n):
@@ -200,7 +115,7 @@ def tangent_edges(nodes, prev, nxt, corner, edges, ring_ptr, ring_box, eps2, gri
                 eps2,
             ):
                 continue
-            if segment_visible(ax, ay, bx, by, edges, ring_ptr, ring_box, grid):
+            if segment_visible(ax, ay, bx, by, edges, ring_ptr, ring_box):
                 ei.append(i)
                 ej.append(j)
     a = np.array(ei, dtype=np.int64)
@@ -210,7 +125,7 @@ def tangent_edges(nodes, prev, nxt, corner, edges, ring_ptr, ring_box, eps2, gri
 
 
 @njit(cache=True)
-def visible_from_point(p, nodes, prev, nxt, corner, edges, ring_ptr, ring_box, eps2, grid=None):
+def visible_from_point(p, nodes, prev, nxt, corner, edges, ring_ptr, ring_box, eps2):
     """Nodes visible from a free point ``p`` (pixels) along a segment tangent at the node.
 
     The arrays are a :class:`VisGraph`'s fields (:meth:`VisGraph.visible_from` passes them);
@@ -233,7 +148,7 @@ def visible_from_point(p, nodes, prev, nxt, corner, edges, ring_ptr, ring_box, e
             eps2,
         ):
             continue
-        if segment_visible(p[0], p[1], nodes[j, 0], nodes[j, 1], edges, ring_ptr, ring_box, grid):
+        if segment_visible(p[0], p[1], nodes[j, 0], nodes[j, 1], edges, ring_ptr, ring_box):
             out.append(j)
     return np.array(out, dtype=np.int64)
 

@@ -172,7 +172,7 @@ class Roadmap:
         plain = np.zeros(len(g.nodes), np.bool_)  # no corner rule: visibility alone decides
         p = np.ascontiguousarray(p, dtype=float)
         return visible_from_point(
-            p, g.nodes, g.prev, g.nxt, plain, g.edges, g.ring_ptr, g.ring_box, g.eps2, g.grid
+            p, g.nodes, g.prev, g.nxt, plain, g.edges, g.ring_ptr, g.ring_box, g.eps2
         )
 
     def with_start(self, start) -> tuple:
