@@ -17,7 +17,8 @@ import pytest
 
 from mawdo.planning import PathCost, get_scenario
 from mawdo.planning.judge.metrics import run_metrics_kept
-from mawdo.planning.refine.kernel.threads import MIN_ROWS, chunk_bounds
+from mawdo.planning.refine.kernel.constants import INDEX_MOVERS, INDEX_STANDING
+from mawdo.planning.refine.kernel.threads import MIN_ROWS, chunk_bounds, index_choice
 from mawdo.planning.run.config import PlannerConfig
 from mawdo.planning.run.planner import plan
 from mawdo.planning.scenes import generate_scene
@@ -75,6 +76,22 @@ def test_chunk_bounds_are_even_cover_every_row_and_respect_the_minimum():
                 assert sizes.min() >= MIN_ROWS
             else:  # one chunk only where two would fall below the minimum
                 assert threads == 1 or n < 2 * MIN_ROWS
+
+
+def _knots(moving, standing):
+    return np.array([3] * moving + [1] * standing, dtype=np.int64)
+
+
+def test_each_world_gets_only_the_indexes_it_may_use():
+    # (the counts on either side of each threshold; standing ones in snapshot mode include
+    # every obstacle, since none moves there)
+    below = _knots(INDEX_MOVERS - 1, INDEX_STANDING - 1)
+    assert index_choice(below, True) == (None, None)
+    assert index_choice(_knots(INDEX_MOVERS, 3), True) == (INDEX_MOVERS, None)
+    assert index_choice(_knots(INDEX_MOVERS, 3), False) == (INDEX_MOVERS, True)
+    assert index_choice(_knots(10, INDEX_STANDING), True) == (INDEX_MOVERS, True)
+    assert index_choice(_knots(INDEX_MOVERS, INDEX_STANDING), True) == (INDEX_MOVERS, True)
+    assert index_choice(_knots(0, INDEX_STANDING - 1), False) == (None, None)
 
 
 def test_concurrent_callers_each_get_their_own_numbers():

@@ -41,7 +41,7 @@ def test_search_past_the_lookahead_equals_the_eager_search(seed, lookahead):
     graph = (g.nodes, g.indptr, g.indices, g.weights, g.to_goal)
     v = float(g.scenario.robot_speed)
     moves = straight_moves(g.nodes, g.indptr, g.indices, g.weights, v)
-    kin = (v, False, math.inf, False)
+    kin = (v, False, math.inf, None)
     args = (g.start, 0, g.t0, np.zeros(2), g.t_end)
     ptr, lo, hi = safe_intervals(g.nodes, g.t0, g.t_end, g._mv)
     table = new_table(len(g.nodes), g.t0, g.t_end)

@@ -1,6 +1,6 @@
 """The kernel's indexes: the kernel that tests each moving obstacle (space-time index) or
 standing obstacle (grid of a block's segments) only against the segments that can come near it
-must give every output of the kernel that tests all of them (``reference_population_cost``),
+must give every output of the kernel that tests all of them (``plain_population_cost``),
 bit for bit, on worlds with every kind of motion and shape."""
 
 from __future__ import annotations
@@ -11,8 +11,8 @@ import pytest
 from mawdo.planning import PathCost, scenario_from_dict
 from mawdo.planning.refine.kernel.population import (
     indexed_population_cost,
+    plain_population_cost,
     population_cost,
-    reference_population_cost,
     scratch_size,
     standing_population_cost,
 )
@@ -117,7 +117,7 @@ def _run(fn, args):
 
 
 def _assert_same(args):
-    want = _run(reference_population_cost, args)
+    want = _run(plain_population_cost, args)
     # the indexes forced on, the entry point (the moving index from INDEX_MOVERS movers on)
     # and its variant with the standing obstacles' grid
     for fn in (indexed_population_cost, population_cost, standing_population_cost):
@@ -185,8 +185,11 @@ def test_the_guards_verdicts_with_the_index_are_those_without_it(monkeypatch):
         guard = Guard(sc, clearance=0.5)
         return [guard.stretch_hits(route, t, d) for route, t, d in stretches]
 
+    used, choose = [], threads.index_choice
+    monkeypatch.setattr(threads, "index_choice", lambda *a: used.append(choose(*a)) or used[-1])
     indexed = verdicts()
-    monkeypatch.setattr(threads, "population_cost", reference_population_cost)
+    assert used and all(c[0] is not None for c in used)  # (the guard used the index)
+    monkeypatch.setattr(threads, "index_choice", lambda nk, spacetime: (None, None))
     assert verdicts() == indexed
     assert len(set(indexed)) >= 5  # (a crowded map: counts of many sizes, not one verdict)
 

@@ -114,7 +114,7 @@ def test_lazy_search_finds_the_eager_searchs_routes_bit_for_bit(seed, limits):
     v = float(sc.robot_speed)
     if limits is None:
         moves = straight_moves(g.nodes, g.indptr, g.indices, g.weights, v)
-        kin = (v, False, math.inf, False)
+        kin = (v, False, math.inf, None)
     else:
         moves = profiled_moves(g.nodes, g.indptr, g.indices, g.weights,
                                profile_table(g.weights, v, limits[0]))  # fmt: skip

@@ -111,9 +111,16 @@ def record(argv: list[str], path: Path = SIGNATURES) -> list[Entry]:
 
     class Recorder(event.Listener):
         def on_start(self, ev) -> None:
-            func = ev.data["dispatcher"].py_func
-            args = ev.data["args"]
-            keep = func.__module__.startswith("mawdo.") and _reads_back(repr(tuple(args)), args)
+            disp = ev.data["dispatcher"]
+            func, args = disp.py_func, ev.data["args"]
+            # only what the table can name (an overload's implementation cannot be looked up:
+            # its caller compiles it), with types that read back
+            named = getattr(sys.modules.get(func.__module__), func.__name__, None) is disp
+            keep = (
+                func.__module__.startswith("mawdo.")
+                and named
+                and _reads_back(repr(tuple(args)), args)
+            )
             stack.append([time.process_time(), 0.0, keep and f"{func.__module__}.{func.__name__}"])
 
         def on_end(self, ev) -> None:

@@ -81,6 +81,8 @@ def densify_many(pts, counts, m):
     numpy.ndarray, shape (n, m, 2)
         Pixels.
     """
+    # (rows copied coordinate by coordinate: each row or slice assignment costs Numba about
+    # a second of compile, and this kernel is on a cold first plan's path)
     n = pts.shape[0]
     out = np.empty((n, m, 2))
     for i in range(n):
@@ -88,19 +90,22 @@ def densify_many(pts, counts, m):
         inner = min(k - 2, m)
         first = 1 + (k - 2 - inner)  # the last ``m`` interior points are kept
         base = np.empty((inner + 2, 2))
-        base[0] = pts[i, 0]
-        for v in range(inner):
-            base[1 + v] = pts[i, first + v]
-        base[inner + 1] = pts[i, k - 1]
+        for v in range(inner + 2):
+            src = 0 if v == 0 else (k - 1 if v == inner + 1 else first + v - 1)
+            base[v, 0] = pts[i, src, 0]
+            base[v, 1] = pts[i, src, 1]
         need = m - inner
         if need <= 0:
-            out[i] = base[1 : inner + 1]
+            for v in range(inner):
+                out[i, v, 0] = base[1 + v, 0]
+                out[i, v, 1] = base[1 + v, 1]
             continue
         cj, cc = _cuts(base, need)
         w, c = 0, 0
         for seg in range(inner + 1):
             if seg:
-                out[i, w] = base[seg]
+                out[i, w, 0] = base[seg, 0]
+                out[i, w, 1] = base[seg, 1]
                 w += 1
             ax, ay = base[seg, 0], base[seg, 1]
             dx, dy = base[seg + 1, 0] - ax, base[seg + 1, 1] - ay

@@ -215,7 +215,7 @@ class SafeIntervalGuide:
             return profiled_search(self, banned)
         graph, v = (self.nodes, self.indptr, self.indices, self.weights, self.to_goal), self._v
         res = timed_search(
-            graph, self.roadmap.straight_moves(graph, v), (v, False, math.inf, False),
+            graph, self.roadmap.straight_moves(graph, v), (v, False, math.inf, None),
             self.start, 0, self.t0, np.zeros(2), self.t_end, self.safe, banned, self._mv,
             self._memo, self._kept,
         )  # fmt: skip

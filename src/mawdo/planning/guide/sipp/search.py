@@ -5,7 +5,9 @@ A state is one safe interval of one graph vertex (its row in the lazy table of
 expands a state next to it, and states that tie are ordered as the table of every vertex would
 number them); its value is the earliest arrival in it. An edge ``u -> v`` is driven as its
 *moves*, a table of straight uniform pieces, and how the robot drives is data,
-``kin = (v, accel_on, turn, whole)``:
+``kin = (v, accel_on, turn, whole)`` (``whole`` None: straight moves, one piece each, and the
+search compiled without the several-piece code, which a type decides; see
+:func:`_pieces_forbidden`):
 
 * without limits (:func:`search`, moves :func:`straight_moves`): one piece at full speed ``v``,
   duration ``T = L / v``, departures at any time, instant starts, stops and turns;
@@ -60,7 +62,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from numba import njit, types
+from numba.extending import overload
 
 from mawdo.planning.guide.heap import heap_new, heap_pop, heap_push, heap_put, heap_room
 from mawdo.planning.guide.sipp.departures import new_memo, window_forbidden
@@ -187,6 +190,34 @@ def pieces_free(piece, i, j, tau, mv):
     return True
 
 
+def _pieces_forbidden(whole, piece, i, j, lo, hi, mv):
+    """:func:`pieces_forbidden` in compiled code where moves may have several pieces
+    (``whole`` a bool); nothing to compile where ``whole`` is None (straight moves, one piece
+    each: never asked). The choice is made on the argument's type, so the straight search's
+    specialisation never compiles the several-piece code (about 3 s of a cold first plan)."""
+    raise NotImplementedError("called from compiled code only")
+
+
+@overload(_pieces_forbidden)
+def _pieces_forbidden_typed(whole, piece, i, j, lo, hi, mv):
+    if isinstance(whole, types.NoneType):
+        return lambda whole, piece, i, j, lo, hi, mv: np.empty((0, 2))
+    return lambda whole, piece, i, j, lo, hi, mv: pieces_forbidden(piece, i, j, lo, hi, mv)
+
+
+def _pieces_free(whole, piece, i, j, tau, mv):
+    """:func:`pieces_free` in compiled code, chosen on ``whole``'s type as
+    :func:`_pieces_forbidden` is (True where ``whole`` is None: never asked)."""
+    raise NotImplementedError("called from compiled code only")
+
+
+@overload(_pieces_free)
+def _pieces_free_typed(whole, piece, i, j, tau, mv):
+    if isinstance(whole, types.NoneType):
+        return lambda whole, piece, i, j, tau, mv: True
+    return lambda whole, piece, i, j, tau, mv: pieces_free(piece, i, j, tau, mv)
+
+
 @njit(cache=True)
 def _integer_free(F, x):
     """The first whole step ``>= x`` outside the closed intervals ``F`` (sorted, disjoint)."""
@@ -223,7 +254,7 @@ def _depart(moves, e, ux, uy, a, T, x, top, J_hi, whole, mv, memo, key):
             near = candidates(ax, ay, ex, ey, dur, lo, hi, mv[15])
             F = forbidden_among(ax, ay, ex, ey, dur, lo, hi, mv, near)
         else:
-            F = pieces_forbidden(piece, i, j, lo, hi, mv)
+            F = _pieces_forbidden(whole, piece, i, j, lo, hi, mv)
         tau = _integer_free(F, lo) if whole else earliest_free(F, lo)
         if tau > hi:  # forbidden up to the window's end: look further
             if hi == top:
@@ -237,7 +268,7 @@ def _depart(moves, e, ux, uy, a, T, x, top, J_hi, whole, mv, memo, key):
         if segment_free(ux, uy, ux, uy, a, tau, mv) and (
             segment_free_among(ax, ay, bx, by, tau, tau + dur, mv, near)
             if one
-            else pieces_free(piece, i, j, tau, mv)
+            else _pieces_free(whole, piece, i, j, tau, mv)
         ):
             return tau, memo
         tries += 1  # refused at a touching contact (rounding): push on a little
@@ -309,7 +340,8 @@ def timed_search(graph, moves, kin, start, goal, t_start, h0, t_end, table, bann
     kin : tuple
         ``(v, accel_on, turn, whole)``: speed (px per step, > 0), whether acceleration is
         limited, turn rate (radians per step, ``inf`` for none), whether departures are whole
-        steps (module docstring).
+        steps (module docstring); ``whole`` None for straight moves (:func:`straight_moves`:
+        any departure, and no several-piece code compiled).
     start, goal : int
         Vertex indices.
     t_start : float
@@ -527,7 +559,7 @@ def search(
     arguments and the results (but the memo) as there."""
     moves = straight_moves(nodes, indptr, indices, weights, speed)
     res = timed_search(
-        (nodes, indptr, indices, weights, to_goal), moves, (speed, False, math.inf, False),
+        (nodes, indptr, indices, weights, to_goal), moves, (speed, False, math.inf, None),
         start, goal, t0, np.zeros(2), t_end, table, banned, mv, new_memo(2, 2), 0,
     )  # fmt: skip
     return res[0], res[1], res[2], res[3], res[5]

@@ -137,10 +137,10 @@ def population_cost(
     With :data:`~mawdo.planning.refine.kernel.constants.INDEX_MOVERS` moving obstacles or more,
     each is tested only against the segments of a block that come near it in space and time
     (:mod:`mawdo.planning.refine.kernel.index`; with fewer, building the index costs more than
-    it saves); the counts are those of testing all of them (:func:`reference_population_cost`),
+    it saves); the counts are those of testing all of them (:func:`plain_population_cost`),
     bit for bit.
     """
-    _population(
+    fused_population_cost(
         X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
         scratch,
         INDEX_MOVERS,
@@ -155,10 +155,10 @@ def standing_population_cost(
 ):  # fmt: skip
     """:func:`population_cost` with the standing obstacles measured through a grid of each
     block's segments (:mod:`~mawdo.planning.refine.kernel.static_index`; the same counts, bit
-    for bit): :class:`~mawdo.planning.refine.kernel.threads.ThreadedKernel` calls it from
-    :data:`~mawdo.planning.refine.kernel.constants.INDEX_STANDING` standing obstacles on, so
-    that the common worlds never compile the grid."""
-    _population(
+    for bit), as :class:`~mawdo.planning.refine.kernel.threads.ThreadedKernel` measures them
+    from :data:`~mawdo.planning.refine.kernel.constants.INDEX_STANDING` standing obstacles
+    on."""
+    fused_population_cost(
         X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
         scratch,
         INDEX_MOVERS,
@@ -173,7 +173,7 @@ def indexed_population_cost(
 ):  # fmt: skip
     """:func:`population_cost` with the space-time index whatever the number of moving
     obstacles, and the standing obstacles' grid whatever theirs."""
-    _population(
+    fused_population_cost(
         X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
         scratch,
         1,
@@ -182,16 +182,17 @@ def indexed_population_cost(
 
 
 @njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
-def reference_population_cost(
+def plain_population_cost(
     X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
     scratch,
 ):  # fmt: skip
     """:func:`population_cost` with every moving and standing obstacle tested against every
-    segment of a block (no index): the reference the indexed kernels are tested against."""
-    _population(
+    segment of a block (neither index, both pruned before typing): the reference the indexed
+    kernels are tested against."""
+    fused_population_cost(
         X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
         scratch,
-        1 << 62,
+        None,
         None,
     )  # fmt: skip
 
@@ -224,16 +225,22 @@ def _index_scratch(buf, o, size, cells):
 
 
 @njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
-def _population(
+def fused_population_cost(
     X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
     scratch, min_movers, by_cells,
 ):  # fmt: skip
-    """:func:`population_cost`, with the space-time index where there are ``min_movers``
-    moving obstacles or more (else the moving pass runs on all of a block's segments), and the
-    standing obstacles measured through the grid of a block's segments unless ``by_cells`` is
-    None (:mod:`~mawdo.planning.refine.kernel.static_index`). None is a compile-time choice:
-    Numba prunes the grid's branches before typing (an argument tested against None and never
-    assigned), so an entry point without it never compiles it.
+    """:func:`population_cost` with its indexes chosen by the caller: the space-time index
+    where there are ``min_movers`` moving obstacles or more (else, or where ``min_movers`` is
+    None, the moving pass runs on all of a block's segments), and the standing obstacles
+    measured through the grid of a block's segments unless ``by_cells`` is None
+    (:mod:`~mawdo.planning.refine.kernel.static_index`). The numbers are the same, bit for bit,
+    whatever the choice.
+
+    None is a compile-time choice: Numba prunes the branches an argument tested against None
+    guards before typing (the argument never assigned), so a call with None never compiles
+    that index. :class:`~mawdo.planning.refine.kernel.threads.ThreadedKernel` calls this
+    function itself, not one of the thin entry points around it: each call level costs the
+    compile another pass of LLVM over everything below it (about 2 s).
 
     Long by design: one fused Numba pass; splitting it adds calls and array round trips.
     """
@@ -288,7 +295,10 @@ def _population(
     # block is point p % npts of candidate p // npts; "segment" p joins points p and p + 1 and
     # is a real segment unless p % npts == nseg), so that the loops over segments are long
     # enough to vectorise.
-    nb, size, cap, fs, fc, gs, nmov, nrow, total = _layout(n, npts, nk, spacetime, min_movers)
+    fewest = 1 << 62  # (no index: the entry point passed None)
+    if min_movers is not None:
+        fewest = min_movers
+    nb, size, cap, fs, fc, gs, nmov, nrow, total = _layout(n, npts, nk, spacetime, fewest)
     # All scratch space is one buffer the caller keeps (allocating it on every call would cost
     # page faults). The arrays of the loops start at different multiples of 64 bytes into a
     # 4 KiB page, so that their streams never share cache sets (nor trip the store-to-load
@@ -383,25 +393,26 @@ def _population(
     # the index of the moving pass: kept segments as pairs of points (path and work arrays
     # of their own; the rest shared), bucket heads and entries, per-slice boxes
     # (without the index, a few pages of their own: one set of types either way)
-    indexed = nmov > 0 and nmov >= min_movers
-    isize = size if indexed else 0
-    icells = INDEX_CELLS if indexed else 0
-    ibase = buf if indexed else np.empty(_index_floats(0, 0))
-    pairs, kept, head, ents, ebox, items, ibox = _index_scratch(
-        ibase, o if indexed else 0, isize, icells
-    )
-    cpx, cpy, ctt, crvx, crvy, ccxp, ccyp, ccep, cflag, ccand, ckpt, chits = pairs
-    cpath = (cpx, cpy, ctt, path[3], path[4], path[5], crvx, crvy, path[8], path[9],
-             path[10], path[11])  # fmt: skip
-    cwork = (np.empty(2 * isize, dtype=np.bool_), cflag, np.empty(2 * isize, dtype=np.bool_),
-             ccand, ckpt, ccxp, ccyp, ccep, work[8], work[9], work[10], work[11], work[12],
-             work[13], np.zeros(2 * isize, dtype=np.bool_))  # fmt: skip
-    compact = (cpath, cwork, chits)
-    sbox = np.empty((INDEX_SLICES, 4))
-    mark = np.zeros(isize, dtype=np.bool_)
-    one = np.int64(1)
-    geo = (0.0, 0.0, 1.0, one, one, 1.0, one)
-    index = (geo, head, ents, ebox, sbox, mark, kept)
+    indexed = nmov > 0 and nmov >= fewest
+    if min_movers is not None:  # (pruned before typing where None)
+        isize = size if indexed else 0
+        icells = INDEX_CELLS if indexed else 0
+        ibase = buf if indexed else np.empty(_index_floats(0, 0))
+        pairs, kept, head, ents, ebox, items, ibox = _index_scratch(
+            ibase, o if indexed else 0, isize, icells
+        )
+        cpx, cpy, ctt, crvx, crvy, ccxp, ccyp, ccep, cflag, ccand, ckpt, chits = pairs
+        cpath = (cpx, cpy, ctt, path[3], path[4], path[5], crvx, crvy, path[8], path[9],
+                 path[10], path[11])  # fmt: skip
+        cwork = (np.empty(2 * isize, dtype=np.bool_), cflag, np.empty(2 * isize, dtype=np.bool_),
+                 ccand, ckpt, ccxp, ccyp, ccep, work[8], work[9], work[10], work[11], work[12],
+                 work[13], np.zeros(2 * isize, dtype=np.bool_))  # fmt: skip
+        compact = (cpath, cwork, chits)
+        sbox = np.empty((INDEX_SLICES, 4))
+        mark = np.zeros(isize, dtype=np.bool_)
+        one = np.int64(1)
+        geo = (0.0, 0.0, 1.0, one, one, 1.0, one)
+        index = (geo, head, ents, ebox, sbox, mark, kept)
     # the horizon's layout (kernel.horizon): its own points, flags and hits, the rest shared
     t_cut = t0 + horizon
     hsize = size if spacetime and nmov > 0 and t_cut < np.inf else 0
@@ -443,12 +454,13 @@ def _population(
             blk = (t0, speed, bn, npts, sane, cmax, tmax)
             mpath, mwork, mhits = path, work, hits
         use_index = indexed and sane
-        if use_index:
-            geo, ents, ebox, items, ibox = block_index(
-                blk[2], blk[3], t0, speed, blk[6], INDEX_CELL, INDEX_SPAN, mpath, mwork[2], head,
-                ents, ebox, items, ibox,
-            )  # fmt: skip
-            index = (geo, head, ents, ebox, sbox, mark, kept)
+        if min_movers is not None:  # (pruned before typing where None)
+            if use_index:
+                geo, ents, ebox, items, ibox = block_index(
+                    blk[2], blk[3], t0, speed, blk[6], INDEX_CELL, INDEX_SPAN, mpath, mwork[2],
+                    head, ents, ebox, items, ibox,
+                )  # fmt: skip
+                index = (geo, head, ents, ebox, sbox, mark, kept)
         by_grid = False
         if by_cells is not None:  # (pruned before typing where None)
             by_grid = sane and len(table[0]) > 0
@@ -460,15 +472,15 @@ def _population(
         for i in range(n_obs):
             a2 = acc2[i] if sane or is_circle[i] else -1.0
             if moving[i]:
-                if use_index:
-                    reach = mover_reach(i, blk, a2, obs, pre)
-                    if window_misses(i, t0, blk[6], reach, index[0], obs, motion, sbox):
-                        continue
-                    indexed_moving_pass(
-                        i, blk, a2, margin, mpath, mwork, cls, obs, extra, motion, pre, cgrid,
-                        ncol, index, compact,
-                    )  # fmt: skip
-                else:
+                if min_movers is not None:  # (pruned before typing where None)
+                    if use_index:
+                        reach = mover_reach(i, blk, a2, obs, pre)
+                        if not window_misses(i, t0, blk[6], reach, index[0], obs, motion, sbox):
+                            indexed_moving_pass(
+                                i, blk, a2, margin, mpath, mwork, cls, obs, extra, motion, pre,
+                                cgrid, ncol, index, compact,
+                            )  # fmt: skip
+                if not use_index:
                     moving_pass(
                         i, blk, a2, margin, mpath, mwork, cls, obs, extra, motion, pre, grid,
                         mhits, ncol,

@@ -30,12 +30,8 @@ import threading
 import numpy as np
 from numba import njit, prange
 
-from mawdo.planning.refine.kernel.constants import INDEX_STANDING
-from mawdo.planning.refine.kernel.population import (
-    population_cost,
-    scratch_size,
-    standing_population_cost,
-)
+from mawdo.planning.refine.kernel.constants import INDEX_MOVERS, INDEX_STANDING
+from mawdo.planning.refine.kernel.population import fused_population_cost, scratch_size
 from mawdo.util.validate import check_int
 
 # Fewer rows than this per chunk do not repay the hand-over.
@@ -72,19 +68,20 @@ passive_wait()
 
 @njit(cache=True, parallel=True, nogil=True)
 def _chunked(
-    bounds, kernel, X, start, goal, t0, speed, spacetime, obs, snap, motion, horizon, weights,
-    box, out, buf,
+    bounds, X, start, goal, t0, speed, spacetime, obs, snap, motion, horizon, weights, box, out,
+    buf, min_movers, by_cells,
 ):  # fmt: skip
-    """``kernel`` (:func:`population_cost` or a variant) on rows ``bounds[j]:bounds[j + 1]`` for
-    every ``j`` at once, chunk ``j`` working in row ``j`` of ``buf``."""
+    """:func:`~mawdo.planning.refine.kernel.population.fused_population_cost` on rows
+    ``bounds[j]:bounds[j + 1]`` for every ``j`` at once, chunk ``j`` working in row ``j`` of
+    ``buf``."""
     cost, length, ncol, turn = out
     for j in prange(bounds.shape[0] - 1):
         lo = bounds[j]
         hi = bounds[j + 1]
         part = (cost[lo:hi], length[lo:hi], ncol[lo:hi], turn[lo:hi])
-        kernel(
+        fused_population_cost(
             X[lo:hi], start, goal, t0, speed, spacetime, obs, snap, motion, horizon, weights, box,
-            part, buf[j],
+            part, buf[j], min_movers, by_cells,
         )  # fmt: skip
 
 
@@ -95,9 +92,26 @@ def chunk_bounds(n: int, threads: int) -> np.ndarray:
     return np.array([(j * n) // k for j in range(k + 1)], dtype=np.int64)
 
 
+def index_choice(nk: np.ndarray, spacetime: bool) -> tuple:
+    """The indexes the kernel uses in a world whose obstacles have ``nk`` motion knots each
+    (``> 1``: moving in spacetime mode), as the ``(min_movers, by_cells)`` arguments of
+    :func:`~mawdo.planning.refine.kernel.population.fused_population_cost`: neither below
+    :data:`INDEX_MOVERS` moving and :data:`INDEX_STANDING` standing obstacles, the moving index
+    from :data:`INDEX_MOVERS` movers on, and the standing obstacles' grid too from
+    :data:`INDEX_STANDING` standing ones on.
+
+    All give the same numbers, bit for bit; a world below both thresholds compiles neither
+    index (about a fifth of the kernel's compile)."""
+    moving = int(np.count_nonzero(nk > 1)) if spacetime else 0
+    if len(nk) - moving >= INDEX_STANDING:
+        return INDEX_MOVERS, True
+    return (INDEX_MOVERS, None) if moving >= INDEX_MOVERS else (None, None)
+
+
 class ThreadedKernel:
-    """Calls :func:`population_cost` on chunks of rows in parallel, keeping the scratch space
-    from call to call.
+    """Calls the population cost (:func:`~mawdo.planning.refine.kernel.population
+    .fused_population_cost` with the indexes the world needs, :func:`index_choice`) on chunks
+    of rows in parallel, keeping the scratch space from call to call.
 
     Parameters
     ----------
@@ -138,21 +152,18 @@ class ThreadedKernel:
             bounds = chunk_bounds(n, self.threads)
             k = bounds.size - 1
             nk = motion[3]
-            standing = len(nk) if not spacetime else int(np.count_nonzero(nk <= 1))
             plan = self._plans[key] = (
                 nk,
                 bounds,
                 scratch_size(-(-n // k), npts, nk, spacetime),
-                standing >= INDEX_STANDING,
+                index_choice(nk, spacetime),
             )
         bounds = plan[1]
         k = bounds.size - 1
         buf = self._scratch(k, plan[2])
-        # (many standing obstacles: the entry with their grid, compiled only where needed)
-        kernel = standing_population_cost if plan[3] else population_cost
         args = (X, start, goal, t0, speed, spacetime, obs, snap, motion, horizon, weights, box, out)
         if k == 1:
-            kernel(*args, buf[0])
+            fused_population_cost(*args, buf[0], *plan[3])
             return
         with _lock:
-            _chunked(bounds, kernel, *args, buf)
+            _chunked(bounds, *args, buf, *plan[3])
