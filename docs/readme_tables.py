@@ -117,6 +117,7 @@ def suites_table() -> list[str]:
 #: Committed full-protocol CEC studies: (results folder, suite label).
 OFFICIAL = (
     ("cec2022-official-d10", "CEC 2022 F1-F12, D = 10 (official: 200 000 evaluations, 30 runs)"),
+    ("cec2022-official-d20", "CEC 2022 F1-F12, D = 20 (official: 1 000 000 evaluations, 30 runs)"),
 )
 
 

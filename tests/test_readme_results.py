@@ -417,10 +417,20 @@ def test_the_crowd_share_is_that_of_the_committed_store(tmp_path, folder):
     assert to_markdown(table) == (path / "crowd_share.md").read_text("utf-8")
 
 
-def test_the_official_cec2022_ranks_are_those_of_the_committed_store(tmp_path):
-    """docs/results/cec2022-official-d10: the store holds CEC 2022's protocol (F1-F12, D = 10,
-    200 000 evaluations, 30 runs) as its plan file says, and gives the committed Friedman
-    table and competition table, from which the README's last suites row is rendered."""
+@pytest.mark.parametrize(
+    ("folder", "dim", "evaluations", "row", "anchor"),
+    [
+        ("cec2022-official-d10", 10, 200_000, -2, "cec2022-official"),
+        ("cec2022-official-d20", 20, 1_000_000, -1, "cec2022-official-d20"),
+    ],
+)
+def test_the_official_cec2022_ranks_are_those_of_the_committed_store(
+    tmp_path, folder, dim, evaluations, row, anchor
+):
+    """docs/results/cec2022-official-d*: the store holds CEC 2022's protocol (F1-F12, 30 runs,
+    200 000 evaluations at D = 10, 1 000 000 at D = 20) as its plan file says, and gives the
+    committed Friedman table and competition tables, from which the README's official suites
+    rows and the results page's sentence are made."""
     import json
 
     from mawdo.experiments.kinds.suite.competition import competition_tables
@@ -428,23 +438,23 @@ def test_the_official_cec2022_ranks_are_those_of_the_committed_store(tmp_path):
     from mawdo.experiments.kinds.suite.report import friedman_table
     from mawdo.experiments.tables import to_markdown
 
-    folder = ROOT / "docs" / "results" / "cec2022-official-d10"
-    db = unpack(folder / "store.db.xz", tmp_path)
-    plan = json.loads((folder / "plan.json").read_text("utf-8"))
+    where = ROOT / "docs" / "results" / folder
+    db = unpack(where / "store.db.xz", tmp_path)
+    plan = json.loads((where / "plan.json").read_text("utf-8"))
     stored = json.loads(sqlite3.connect(db).execute("SELECT plan_json FROM meta").fetchone()[0])
     assert {k: stored[k] for k in plan} == plan
-    assert (plan["suite"], plan["dims"], plan["budget"] * 10, plan["runs"]) == (
-        "cec2022", [10], 200_000, 30,
+    assert (plan["suite"], plan["dims"], plan["budget"] * dim, plan["runs"]) == (
+        "cec2022", [dim], evaluations, 30,
     )  # fmt: skip
     assert plan["functions"] == list(range(1, 13)) and len(plan["algorithms"]) == 10
     study = load_runs(db)
-    assert to_markdown(friedman_table(study)) == (folder / "friedman.md").read_text("utf-8")
-    tables = {t.name: t for t in competition_tables(study, 10)}
-    for name in ("competition_d10", "checkpoints_d10"):
-        assert to_markdown(tables[name]) == (folder / f"{name}.md").read_text("utf-8")
-    row = readme_tables().suites_table()[-1]
-    assert row.startswith("| CEC 2022 F1-F12, D = 10 (official") and "| WDO+ |" in row
-    # the results page's sentence names the first five in the store's order
+    assert to_markdown(friedman_table(study)) == (where / "friedman.md").read_text("utf-8")
+    tables = {t.name: t for t in competition_tables(study, dim)}
+    for name in (f"competition_d{dim}", f"checkpoints_d{dim}"):
+        assert to_markdown(tables[name]) == (where / f"{name}.md").read_text("utf-8")
+    line = readme_tables().suites_table()[row]
+    assert line.startswith(f"| CEC 2022 F1-F12, D = {dim} (official") and "| WDO+ |" in line
+    # the results page's sentence in the section on this store names the first five in order
     fr = friedman_table(study).rows[-1]  # the "all" row: label, blocks, ranks..., chi2, p
     ranks = dict(zip(study.algorithms, fr[2 : 2 + len(study.algorithms)], strict=True))
     names = {
@@ -452,5 +462,11 @@ def test_the_official_cec2022_ranks_are_those_of_the_committed_store(tmp_path):
         "wdo_plus": "WDO+", "gwo": "GWO", "wdo": "WDO", "woa": "WOA", "mawdo": "MAWDO",
     }  # fmt: skip
     top = [names[a] for a in sorted(ranks, key=ranks.get)[:5]]
-    page = " ".join((ROOT / "docs" / "results.md").read_text("utf-8").split())
-    assert f"order them {', '.join(top[:4])}, then {top[4]}" in page
+    page = (ROOT / "docs" / "results.md").read_text("utf-8")
+    section = page.split(f'<a id="{anchor}"></a>')[1].split("\n## ")[0].split("<a id=")[0]
+    assert f"order them {', '.join(top[:4])}, then {top[4]}" in " ".join(section.split())
+    # and the algorithms page names the four ahead of WDO+ in that order, with this report
+    assert top[4] == "WDO+"
+    algos = " ".join((ROOT / "docs" / "algorithms.md").read_text("utf-8").split())
+    ahead = f"behind {', '.join(top[:3])} and {top[3]} ([report](results/{folder}/report.md)"
+    assert ahead in algos
