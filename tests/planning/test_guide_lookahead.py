@@ -17,7 +17,8 @@ from mawdo.planning.guide.sipp import SafeIntervalGuide
 from mawdo.planning.guide.sipp.departures import empty_memo
 from mawdo.planning.guide.sipp.intervals import safe_intervals, segment_free
 from mawdo.planning.guide.sipp.lazy import new_table
-from mawdo.planning.guide.sipp.search import straight_moves, timed_search
+from mawdo.planning.guide.sipp.moves import straight_moves
+from mawdo.planning.guide.sipp.search import timed_search
 from mawdo.planning.run.config import PRESETS, PlannerConfig
 from mawdo.planning.run.planner import plan
 from tests.planning.test_sipp_index import _world

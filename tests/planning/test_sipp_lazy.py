@@ -18,15 +18,9 @@ from mawdo.planning.guide.sipp import SafeIntervalGuide
 from mawdo.planning.guide.sipp.departures import empty_memo, new_memo
 from mawdo.planning.guide.sipp.intervals import safe_intervals
 from mawdo.planning.guide.sipp.lazy import new_table
+from mawdo.planning.guide.sipp.moves import profiled_moves, straight_moves
 from mawdo.planning.guide.sipp.profile import profile_table, rest_steps
-from mawdo.planning.guide.sipp.search import (
-    _depart,
-    profiled_moves,
-    search_limited,
-    start_state,
-    straight_moves,
-    timed_search,
-)
+from mawdo.planning.guide.sipp.search import _depart, search_limited, start_state, timed_search
 from tests.planning.test_sipp_index import _world
 
 

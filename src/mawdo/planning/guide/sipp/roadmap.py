@@ -221,12 +221,12 @@ class Roadmap:
         return t[i0 : i1 + 1], off[i0 : i1 + 1]
 
     def straight_moves(self, graph, speed: float) -> tuple:
-        """:func:`~mawdo.planning.guide.sipp.search.straight_moves` of ``graph`` (a
+        """:func:`~mawdo.planning.guide.sipp.moves.straight_moves` of ``graph`` (a
         :meth:`with_start` of this roadmap) at ``speed`` (px per step): the roadmap's own
         edges' rows are made once per speed and kept, the start's written at each call (into
         room kept after them). The rows are views of the kept tables, valid until the next
         call: hand them to one search, then drop them."""
-        from mawdo.planning.guide.sipp.search import straight_rows
+        from mawdo.planning.guide.sipp.moves import straight_rows
 
         nodes, indptr, indices, weights, _ = graph
         E, n = len(self.weights), len(self.nodes)
