@@ -1,7 +1,7 @@
 """The kernel's indexes: the kernel that tests each moving obstacle (space-time index) or
 standing obstacle (grid of a block's segments) only against the segments that can come near it
-must give every output of the kernel that tests all of them (``plain_population_cost``),
-bit for bit, on worlds with every kind of motion and shape."""
+must give every output of the kernel that tests all of them (``fused_population_cost`` with
+neither index), bit for bit, on worlds with every kind of motion and shape."""
 
 from __future__ import annotations
 
@@ -9,12 +9,11 @@ import numpy as np
 import pytest
 
 from mawdo.planning import PathCost, scenario_from_dict
+from mawdo.planning.refine.kernel.constants import INDEX_MOVERS
 from mawdo.planning.refine.kernel.population import (
-    indexed_population_cost,
-    plain_population_cost,
+    fused_population_cost,
     population_cost,
     scratch_size,
-    standing_population_cost,
 )
 
 # The index is used from 500 movers on (no world of the fast tier has as many) and its kernel
@@ -107,21 +106,23 @@ def _calls(sc, rows, t0s, seed, horizon=None):
     return got
 
 
-def _run(fn, args):
+def _run(fn, args, *choice):
+    """``fn`` (the kernel's public entry, or ``fused_population_cost`` with ``choice``: its
+    ``min_movers`` and ``by_cells``) on ``args``; its four outputs."""
     X = args[0]
     n = X.shape[0]
     out = (np.empty(n), np.empty(n), np.empty(n, dtype=np.int64), np.empty(n))
     buf = np.empty(scratch_size(n, X.shape[1] // 2 + 2, args[8][3], args[5]))
-    fn(*args[:12], out, buf)
+    fn(*args[:12], out, buf, *choice)
     return out
 
 
 def _assert_same(args):
-    want = _run(plain_population_cost, args)
+    want = _run(fused_population_cost, args, None, None)  # neither index
     # the indexes forced on, the entry point (the moving index from INDEX_MOVERS movers on)
-    # and its variant with the standing obstacles' grid
-    for fn in (indexed_population_cost, population_cost, standing_population_cost):
-        got = _run(fn, args)
+    # and the planner's choice with the standing obstacles' grid
+    for choice in ((1, True), (), (INDEX_MOVERS, True)):
+        got = _run(fused_population_cost if choice else population_cost, args, *choice)
         for a, b in zip(got, want, strict=True):
             assert a.dtype == b.dtype
             assert a.tobytes() == b.tobytes()
@@ -170,7 +171,6 @@ def test_the_guards_verdicts_with_the_index_are_those_without_it(monkeypatch):
     # a world past INDEX_MOVERS: the guard's kernel uses the index; forced to the unindexed
     # kernel, every stretch gets the same count
     from mawdo.planning.refine.kernel import threads
-    from mawdo.planning.refine.kernel.constants import INDEX_MOVERS
     from mawdo.planning.safety.guard import Guard
 
     sc = _world(11, movers=INDEX_MOVERS + 20, standing=3)

@@ -74,8 +74,8 @@ def _index_floats(size, cells):
 def scratch_size(n, npts, nk, spacetime):
     """Floats of scratch space :func:`population_cost` needs for ``n`` candidates of ``npts``
     path points (pass it a buffer at least this long to spare it allocating one;
-    :func:`indexed_population_cost` with fewer than ``INDEX_MOVERS`` moving obstacles needs
-    more, and allocates it)."""
+    :func:`fused_population_cost` with ``min_movers`` below the number of moving obstacles and
+    under ``INDEX_MOVERS`` needs more, and allocates it)."""
     return _layout(n, npts, nk, spacetime, INDEX_MOVERS)[8]
 
 
@@ -137,62 +137,13 @@ def population_cost(
     With :data:`~mawdo.planning.refine.kernel.constants.INDEX_MOVERS` moving obstacles or more,
     each is tested only against the segments of a block that come near it in space and time
     (:mod:`mawdo.planning.refine.kernel.index`; with fewer, building the index costs more than
-    it saves); the counts are those of testing all of them (:func:`plain_population_cost`),
-    bit for bit.
+    it saves); the counts are those of testing all of them (:func:`fused_population_cost` with
+    neither index), bit for bit.
     """
     fused_population_cost(
         X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
         scratch,
         INDEX_MOVERS,
-        None,
-    )  # fmt: skip
-
-
-@njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
-def standing_population_cost(
-    X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
-    scratch,
-):  # fmt: skip
-    """:func:`population_cost` with the standing obstacles measured through a grid of each
-    block's segments (:mod:`~mawdo.planning.refine.kernel.static_index`; the same counts, bit
-    for bit), as :class:`~mawdo.planning.refine.kernel.threads.ThreadedKernel` measures them
-    from :data:`~mawdo.planning.refine.kernel.constants.INDEX_STANDING` standing obstacles
-    on."""
-    fused_population_cost(
-        X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
-        scratch,
-        INDEX_MOVERS,
-        True,
-    )  # fmt: skip
-
-
-@njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
-def indexed_population_cost(
-    X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
-    scratch,
-):  # fmt: skip
-    """:func:`population_cost` with the space-time index whatever the number of moving
-    obstacles, and the standing obstacles' grid whatever theirs."""
-    fused_population_cost(
-        X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
-        scratch,
-        1,
-        True,
-    )  # fmt: skip
-
-
-@njit(cache=True, fastmath=False, error_model="numpy", nogil=True)
-def plain_population_cost(
-    X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
-    scratch,
-):  # fmt: skip
-    """:func:`population_cost` with every moving and standing obstacle tested against every
-    segment of a block (neither index, both pruned before typing): the reference the indexed
-    kernels are tested against."""
-    fused_population_cost(
-        X, start, goal, t0, speed, spacetime, obs, snap_off, motion, horizon, weights, box, out,
-        scratch,
-        None,
         None,
     )  # fmt: skip
 
