@@ -38,10 +38,14 @@ readme-img: demo
 
 # CI (CI=true) runs the fast tier; `make test-all` adds the slow convergence and study tests.
 # The planner's kernels are compiled first, in 2 processes at once (the tests would compile
-# them one after the other, on a fresh clone about a minute of waiting).
+# them one after the other, on a fresh clone about a minute of waiting). The tests run in
+# TEST_WORKERS processes (pytest-xdist), each test file whole in one of them: on 2 cores the
+# fast tier takes about half the time of one process (a kernel that only tests need may be
+# compiled in both).
+TEST_WORKERS ?= 2
 test: $(DEVSTAMP)
 	$(PY) -m mawdo.jit --jobs 2
-	$(PY) -m pytest -q -m "not slow and not rl" --timeout=600
+	$(PY) -m pytest -q -n $(TEST_WORKERS) --dist loadfile -m "not slow and not rl" --timeout=600
 
 test-all: $(DEVSTAMP)
 	$(PY) -m pytest -q -m "not rl" --timeout=1800
