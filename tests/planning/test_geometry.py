@@ -117,3 +117,31 @@ def test_motion_table_knots_and_start_indices():
     k = table.start_indices(57.5)
     for o in sc.moving_indices:
         assert table.times[o, k[o]] <= 57.5 < table.times[o, k[o] + 1]
+
+
+def _per_obstacle_table(pieces, n):
+    """The motion table's velocities as one np.diff per obstacle (the reference)."""
+    K = max([len(t) for t, _ in pieces] + [1])
+    velocity = np.zeros((n, K, 2))
+    for i, (t, off) in enumerate(pieces):
+        velocity[i, : len(t) - 1] = np.diff(off, axis=0) / np.diff(t)[:, None]
+    return velocity
+
+
+def test_the_motion_tables_velocities_are_one_diff_per_obstacle():
+    from mawdo.planning.world.geometry import MotionTable
+    from mawdo.planning.world.motion import Track
+    from mawdo.planning.world.scenario import Obstacle
+
+    rng = np.random.default_rng(2)
+    for _ in range(30):
+        obstacles = []
+        for j in range(int(rng.integers(1, 6))):
+            k = int(rng.integers(1, 6))
+            times = np.cumsum(rng.uniform(0.01, 9.0, k)) - rng.uniform(0, 5)
+            motion = Track(times, rng.normal(0, 30, (k, 2)))
+            obstacles.append(Obstacle(j, f"m{j}", None, motion))
+        t0, t1 = sorted(rng.uniform(-5, 40, 2))
+        table = MotionTable.build(tuple(obstacles), t0, t1)
+        pieces = [o.knots(t0, t1) for o in obstacles]
+        assert np.array_equal(table.velocity, _per_obstacle_table(pieces, len(obstacles)))

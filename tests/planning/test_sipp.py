@@ -365,3 +365,30 @@ def test_earliest_arrival_matches_time_grid_search(seed):
     sc = _small_scene(seed)
     route, grid = _against_grid(sc, 0.25, horizon=150.0)
     _assert_same_within_grid(route, grid, sc, 0.25)
+
+
+def test_the_movers_pieces_are_one_diff_per_mover():
+    # the pieces of every mover are laid out at once; one np.diff per mover is the reference
+    from mawdo.planning.guide.sipp.intervals import Movers
+    from mawdo.planning.world.geometry import FlatObstacles
+
+    rng = np.random.default_rng(4)
+    for _ in range(30):
+        pieces = []
+        for _ in range(int(rng.integers(1, 6))):
+            k = int(rng.integers(0, 5))
+            t = np.cumsum(rng.uniform(0.01, 9.0, k))
+            pieces.append((t, rng.normal(0, 30, (k, 2))))
+        n = len(pieces)
+        flat = FlatObstacles(np.ones(n, np.bool_), np.ones(n), np.zeros((n, 1, 2)),
+                             np.zeros(n, np.int64), np.zeros((n, 7)), np.zeros((n, 1, 3)),
+                             np.zeros(n, np.int64))  # fmt: skip
+        mv = Movers._from_pieces(np.zeros(n, np.int64), flat, np.zeros(n), np.zeros((n, 2)),
+                                 0.0, pieces, indexed=False)  # fmt: skip
+        for m, (t, off) in enumerate(pieces):
+            a, b = mv.pptr[m], mv.pptr[m + 1]
+            assert b - a == max(len(t) - 1, 0)
+            assert np.array_equal(mv.pt0[a:b], t[:-1]) and np.array_equal(mv.pt1[a:b], t[1:])
+            assert np.array_equal(mv.po[a:b], off[:-1].reshape(-1, 2))
+            want = np.diff(off, axis=0) / np.diff(t)[:, None]
+            assert np.array_equal(mv.pv[a:b], want.reshape(-1, 2))

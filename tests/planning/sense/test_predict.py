@@ -235,3 +235,20 @@ def test_a_disc_a_hair_from_its_stop_gives_increasing_knot_times():
     times = pred.motion.times
     assert np.all(np.diff(times) > 0) and times[0] == 1000.0 and times[-1] == 1050.0
     assert np.allclose(pred.motion.offset(np.array([1000.0, 1050.0])), 0.0, atol=1e-12)
+
+
+def test_the_predictors_knot_times_are_those_of_the_general_rule():
+    # the predictor's loop builds each track's knots on Python floats; the general rule
+    # (np.unique of the look-aheads, repeated times dropped) is the reference
+    from mawdo.planning.sense.predict import _knot_times, _stop_knot_times
+
+    rng = np.random.default_rng(5)
+    cases = [(0.0, 0.0, 0.0), (1000.0, 50.0, 2e-14), (3.0, 10.0, 10.0), (0.0, 10.0, 0.0)]
+    for _ in range(5000):
+        now = float(rng.choice([0.0, rng.uniform(0, 1e4)]))
+        h = float(rng.choice([0.0, rng.uniform(0, 300)]))
+        stop = float(rng.choice([0.0, h, rng.uniform(0, h + 1), rng.uniform(0, 1e-12)]))
+        cases.append((now, h, min(stop, h)))
+    for now, h, stop in cases:
+        want, got = _knot_times(now, h, [stop]), _stop_knot_times(now, h, stop)
+        assert want.shape == got.shape and np.array_equal(want, got), (now, h, stop)

@@ -123,6 +123,15 @@ def _knot_times(now: float, horizon: float, inner=()) -> np.ndarray:
     return times[np.concatenate(([True], np.diff(times) > 0.0))]
 
 
+def _stop_knot_times(now: float, horizon: float, stop: float) -> np.ndarray:
+    """``_knot_times(now, horizon, [stop])`` on Python floats (the same numbers: one knot
+    inside is already in order), for the predictor's loop over tracks."""
+    ahead = [0.0, stop, horizon] if 0.0 < stop < horizon else [0.0, horizon]
+    times = [now + a for a in ahead]
+    kept = [times[0]] + [b for a, b in zip(times[:-1], times[1:], strict=True) if b > a]
+    return np.array(kept)
+
+
 def tube_radius(
     tracks: Tracks, horizon: float, k_sd: float = K_SD, tube_horizon: float = 5.0, accel_sd=0.2
 ) -> np.ndarray:
@@ -215,7 +224,7 @@ def constant_velocity(
     t_stop = np.minimum(t_stop, horizon)
     out = []
     for i, track_id in enumerate(tracks.ids):
-        times = _knot_times(now, horizon, [t_stop[i]])
+        times = _stop_knot_times(now, horizon, float(t_stop[i]))
         ahead = np.minimum(times - now, t_stop[i])
         offsets = ahead[:, None] * tracks.velocities[i]
         out.append(Predicted(int(track_id), float(radius[i]), Track(times, offsets)))

@@ -308,8 +308,14 @@ class MotionTable:
             times[i, : len(t)] = t
             offsets[i, : len(t)] = off
             offsets[i, len(t) :] = off[-1]
-            velocity[i, : len(t) - 1] = np.diff(off, axis=0) / np.diff(t)[:, None]
             nknots[i] = len(t)
+        # every piece's velocity in one array operation (elementwise: the numbers of one
+        # np.diff per obstacle); the padding after the last knot moves at 0
+        if K > 1:
+            inside = np.arange(K - 1)[None, :] < (nknots - 1)[:, None]
+            step = np.where(inside, times[:, 1:], 1.0) - np.where(inside, times[:, :-1], 0.0)
+            v = (offsets[:, 1:] - offsets[:, :-1]) / step[..., None]
+            velocity[:, :-1] = np.where(inside[..., None], v, 0.0)
         return cls(times, offsets, velocity, nknots, float(t_lo), float(t_hi))
 
     @classmethod

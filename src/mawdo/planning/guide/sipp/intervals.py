@@ -131,11 +131,17 @@ class Movers:
         pptr[1:] = np.cumsum([max(len(t) - 1, 0) for t, _ in pieces])
         pt0, pt1 = np.zeros(pptr[-1]), np.zeros(pptr[-1])
         po, pv = np.zeros((pptr[-1], 2)), np.zeros((pptr[-1], 2))
-        for m, (t, off) in enumerate(pieces):
-            a, b = pptr[m], pptr[m + 1]
-            if b > a:
-                pt0[a:b], pt1[a:b], po[a:b] = t[:-1], t[1:], off[:-1]
-                pv[a:b] = np.diff(off, axis=0) / np.diff(t)[:, None]
+        if pptr[-1]:
+            # every mover's pieces at once (elementwise: the numbers of one np.diff per
+            # mover): the knots laid end to end, a piece from each knot but a mover's last
+            t_all = np.concatenate([t for t, _ in pieces])
+            o_all = np.concatenate([np.reshape(off, (-1, 2)) for _, off in pieces])
+            last = np.cumsum([len(t) for t, _ in pieces]) - 1
+            first = np.ones(len(t_all), np.bool_)
+            first[last[last >= 0]] = False
+            k = np.flatnonzero(first)
+            pt0[:], pt1[:], po[:] = t_all[k], t_all[k + 1], o_all[k]
+            pv[:] = (o_all[k + 1] - o_all[k]) / (t_all[k + 1] - t_all[k])[:, None]
         box = np.ascontiguousarray(flat.bound[:, :4])
         center = np.ascontiguousarray(flat.bound[:, 4:6])
         if indexed:
