@@ -1,9 +1,9 @@
 """Timed families under kinematic limits: does the limited run carry speed through corners?
 
 ``python -m benchmarks limits`` (or ``python benchmarks/bench_limits.py [--scenes N]
-[--families a,b] [--workers W] [--save PATH] [--load PATH]``). For each timed family, scenes
-``0 .. N-1`` of seed 0 (``realtime`` preset, planner seed 0), with ``v`` the scene's robot speed
-(px per step):
+[--families a,b] [--workers W] [--refiners gwo,woa] [--save PATH] [--load PATH]``). For
+each timed family, scenes ``0 .. N-1`` of seed 0 (``realtime`` preset, planner seed 0), with
+``v`` the scene's robot speed (px per step):
 
 * (a) the speed cap alone: ``max_speed = 0.75 v``;
 * (b) the three limits: ``max_speed = 0.75 v``, ``max_accel = 0.25 v``, ``max_turn = 0.6`` rad;
@@ -15,6 +15,11 @@ solved (median), the kinematic violations of every run (the independent
 :func:`~mawdo.planning.judge.kincheck.check_kinematics`, target 0) and its active collisions
 (:func:`~mawdo.planning.judge.check.check_trajectory`, target 0). ``--save`` writes the rows as
 JSON, ``--load`` prints a saved table (e.g. the code before a change) without running.
+
+``--refiners``: other registered optimizers run under (b) on the same scenes, each as the
+limited run's refiner in MAWDO's place; a second table gives each one's success, median arrival
+and paired ratios against ``guide_only(b)`` and ``mawdo(b)``: which optimizer refines the
+limited drive best.
 """
 
 from __future__ import annotations
@@ -56,9 +61,10 @@ def _one(args):
     }  # fmt: skip
 
 
-def run(families, scenes: int, workers: int) -> list[dict]:
-    """Every (family, scene, planner, case) run's row."""
+def run(families, scenes: int, workers: int, refiners=()) -> list[dict]:
+    """Every (family, scene, planner, case) run's row; ``refiners`` under case (b) only."""
     jobs = [(f, i, p, c) for f in families for i in range(scenes) for p in PLANNERS for c in CASES]
+    jobs += [(f, i, p, "b") for f in families for i in range(scenes) for p in refiners]
     if workers <= 1:
         return [_one(j) for j in jobs]
     with ProcessPoolExecutor(workers) as pool:
@@ -108,11 +114,31 @@ def report(rows: list[dict]) -> None:
     )
 
 
+def report_refiners(rows: list[dict]) -> None:
+    """Each optimizer as the refiner under (b): success, median arrival, paired ratios."""
+    names = [p for p in dict.fromkeys(r["planner"] for r in rows if r["case"] == "b")]
+    names = [p for p in names if p != "guide_only"]
+    if len(names) < 2:
+        return
+    fmt = lambda x: f"{np.median(x):.3f}" if x else "    -"  # noqa: E731
+    print(f"\n{'refiner (b)':12s} {'ok':>7s} {'T':>6s} {'/guide':>7s} {'/mawdo':>7s}  kin  act")
+    for p in names:
+        sel = [r for r in rows if r["planner"] == p and r["case"] == "b"]
+        ok = [r["steps"] for r in sel if r["success"]]
+        med = f"{np.median(ok):6.1f}" if ok else "     -"
+        g = _ratio(rows, (p, "b"), ("guide_only", "b"))
+        m = _ratio(rows, (p, "b"), ("mawdo", "b"))
+        kin, act = sum(r["kin"] for r in sel), sum(r["active"] for r in sel)
+        done = f"{sum(r['success'] for r in sel)}/{len(sel)}"
+        print(f"{p:12s} {done:>7s} {med} {fmt(g):>7s} {fmt(m):>7s} {kin:4d} {act:4d}")
+
+
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--scenes", type=int, default=8)
     ap.add_argument("--families", default=",".join(FAMILIES))
     ap.add_argument("--workers", type=int, default=1)
+    ap.add_argument("--refiners", default="", help="more optimizers under (b), e.g. gwo,woa")
     ap.add_argument("--save", default=None)
     ap.add_argument("--load", default=None)
     args = ap.parse_args([] if argv is None else argv)
@@ -120,11 +146,13 @@ def main(argv=None) -> None:
         with open(args.load) as fh:
             rows = json.load(fh)
     else:
-        rows = run(args.families.split(","), args.scenes, args.workers)
+        refiners = [r for r in args.refiners.split(",") if r]
+        rows = run(args.families.split(","), args.scenes, args.workers, refiners)
     if args.save:
         with open(args.save, "w") as fh:
             json.dump(rows, fh, indent=1)
-    report(rows)
+    report([r for r in rows if r["planner"] in PLANNERS])
+    report_refiners(rows)
 
 
 if __name__ == "__main__":
