@@ -84,20 +84,29 @@ def _ratio(rows, num, den) -> list[float]:
     return out
 
 
+def _ratio_text(ratios: list[float]) -> str:
+    """The median of paired ratios, or a dash without pairs."""
+    return f"{np.median(ratios):.3f}" if ratios else "    -"
+
+
+def _runs_text(sel: list[dict]) -> tuple[str, str]:
+    """``("solved/runs", median arrival step of the solved)`` of some runs."""
+    ok = [r["steps"] for r in sel if r["success"]]
+    med = f"{np.median(ok):6.1f}" if ok else "     -"
+    return f"{len(ok)}/{len(sel)}", med
+
+
 def _line(name: str, rows: list[dict]) -> str:
     cells = []
     for p in PLANNERS:
         for c in CASES:
-            sel = [r for r in rows if r["planner"] == p and r["case"] == c]
-            ok = [r["steps"] for r in sel if r["success"]]
-            med = f"{np.median(ok):6.1f}" if ok else "     -"
-            cells.append(f"{sum(r['success'] for r in sel)}/{len(sel)} {med}")
-    ba = _ratio(rows, ("mawdo", "b"), ("mawdo", "a"))
-    bg = _ratio(rows, ("mawdo", "b"), ("guide_only", "b"))
-    fmt = lambda x: f"{np.median(x):.3f}" if x else "    -"  # noqa: E731
+            done, med = _runs_text([r for r in rows if r["planner"] == p and r["case"] == c])
+            cells.append(f"{done} {med}")
+    ba = _ratio_text(_ratio(rows, ("mawdo", "b"), ("mawdo", "a")))
+    bg = _ratio_text(_ratio(rows, ("mawdo", "b"), ("guide_only", "b")))
     kin = sum(r["kin"] for r in rows)
     act = sum(r["active"] for r in rows)
-    return f"{name:9s} " + "  ".join(cells) + f"  {fmt(ba):>6s} {fmt(bg):>8s} {kin:4d} {act:4d}"
+    return f"{name:9s} " + "  ".join(cells) + f"  {ba:>6s} {bg:>8s} {kin:4d} {act:4d}"
 
 
 def report(rows: list[dict]) -> None:
@@ -120,17 +129,14 @@ def report_refiners(rows: list[dict]) -> None:
     names = [p for p in names if p != "guide_only"]
     if len(names) < 2:
         return
-    fmt = lambda x: f"{np.median(x):.3f}" if x else "    -"  # noqa: E731
     print(f"\n{'refiner (b)':12s} {'ok':>7s} {'T':>6s} {'/guide':>7s} {'/mawdo':>7s}  kin  act")
     for p in names:
         sel = [r for r in rows if r["planner"] == p and r["case"] == "b"]
-        ok = [r["steps"] for r in sel if r["success"]]
-        med = f"{np.median(ok):6.1f}" if ok else "     -"
-        g = _ratio(rows, (p, "b"), ("guide_only", "b"))
-        m = _ratio(rows, (p, "b"), ("mawdo", "b"))
+        done, med = _runs_text(sel)
+        g = _ratio_text(_ratio(rows, (p, "b"), ("guide_only", "b")))
+        m = _ratio_text(_ratio(rows, (p, "b"), ("mawdo", "b")))
         kin, act = sum(r["kin"] for r in sel), sum(r["active"] for r in sel)
-        done = f"{sum(r['success'] for r in sel)}/{len(sel)}"
-        print(f"{p:12s} {done:>7s} {med} {fmt(g):>7s} {fmt(m):>7s} {kin:4d} {act:4d}")
+        print(f"{p:12s} {done:>7s} {med} {g:>7s} {m:>7s} {kin:4d} {act:4d}")
 
 
 def main(argv=None) -> None:
