@@ -98,7 +98,7 @@ ADDED_DEFAULTS = {
     "robot_caused": None, "other_collisions": None, "units": "px", "dt": None, "resolution": None,
     "file_spec": None, "derived_units": None, "crowd": None, "check": None, "comfort": 0.0,
     "comfort_weight": 8.0, "refine_trajectory": True, "guide_lookahead": None, "lookahead": None,
-    "first_patience": None,
+    "first_patience": None, "risk": 0.0, "risk_reach": 40, "uncertainty": None,
 }  # fmt: skip
 
 

@@ -67,6 +67,12 @@ class PlannerConfig:
         preset): the paper's cost.
     comfort_weight : float
         What one such near pair costs, in pixels of route length (>= 0).
+    risk : float
+        What one expected contact with a predicted agent costs the refinement, in pixels of
+        route length (>= 0): the collision-risk term under the predictor's uncertainty
+        (:mod:`mawdo.planning.refine.risk`), for an observing planner. 0 (every preset): off.
+    risk_reach : int
+        Time steps ahead (>= 1) over which the risk is summed.
     elite_size : int
         Distinct candidates kept from each optimisation for the guard to fall back on, >= 1.
     give_up_steps : int
@@ -181,6 +187,8 @@ class PlannerConfig:
     clearance: float = 0.5
     comfort: float = 0.0
     comfort_weight: float = 8.0
+    risk: float = 0.0
+    risk_reach: int = 40
     elite_size: int = 8
     give_up_steps: int = 60
     guide_routes: int = 6
@@ -225,7 +233,7 @@ class PlannerConfig:
             )
         if self.max_steps is not None:
             check_int("PlannerConfig.max_steps", self.max_steps, 1, MAX_RUN_STEPS)
-        for name in ("clearance", "comfort", "comfort_weight"):
+        for name in ("clearance", "comfort", "comfort_weight", "risk"):
             v = getattr(self, name)
             if not (np.isfinite(v) and v >= 0):
                 raise ValueError(f"PlannerConfig.{name}={v!r} must be finite and >= 0 px")
@@ -234,6 +242,7 @@ class PlannerConfig:
                 raise ValueError(f"PlannerConfig.{name}={getattr(self, name)!r} must be >= 1")
         if not (np.isfinite(self.hold_gap) and self.hold_gap >= 0):
             raise ValueError(f"PlannerConfig.hold_gap={self.hold_gap!r} must be finite and >= 0")
+        check_int("PlannerConfig.risk_reach", self.risk_reach, 1)
         check_int("PlannerConfig.polish_rounds", self.polish_rounds, 0)
         check_int("PlannerConfig.threads", self.threads, 1)
         check_int("PlannerConfig.time_routes", self.time_routes, 1)

@@ -21,6 +21,7 @@ from mawdo.planning.guide.timeguide import TimedRun, TimeGuide
 from mawdo.planning.refine.cost import PathCost, assemble_paths
 from mawdo.planning.refine.polish import polish
 from mawdo.planning.refine.seeding import RunGuide, via_paths, warm_seeds
+from mawdo.planning.refine.terms import cost_class
 from mawdo.planning.run.config import PLANNING_OPTIONS, PlannerConfig, step_limit, step_limit_note
 from mawdo.planning.run.decide import NO_ROUTE, DecidingRun
 from mawdo.planning.run.loop import run_loop
@@ -58,18 +59,20 @@ def share_guide(source: Scenario, target: Scenario) -> None:
 
 def _path_cost(sc: Scenario, cfg: PlannerConfig, m: int, dynamic: bool) -> PathCost:
     """The refinement's cost: the paper's, plus the comfort term where ``cfg.comfort`` asks
-    for it and the run sees time (near passes are judged along the robot's motion); movers
-    tested over ``cfg.lookahead`` where it is set."""
+    for it and the collision-risk term where ``cfg.risk`` does and the scenario's movers are
+    predictions with an uncertainty, each only where the run sees time (both are judged
+    along the robot's motion); movers tested over ``cfg.lookahead`` where it is set."""
     mode = cfg.mode if dynamic else "snapshot"
     args = (sc, mode, cfg.weights, m, cfg.clearance, cfg.threads)
     ahead = cfg.lookahead if mode == "spacetime" else None
-    if cfg.comfort > 0 and mode == "spacetime":
-        from mawdo.planning.refine.comfort import ComfortPathCost
-
-        return ComfortPathCost(
-            *args, comfort=cfg.comfort, comfort_weight=cfg.comfort_weight, horizon=ahead
-        )
-    return PathCost(*args, horizon=ahead)
+    if mode != "spacetime":
+        return PathCost(*args, horizon=ahead)
+    terms = {}
+    if cfg.comfort > 0:
+        terms.update(comfort=cfg.comfort, comfort_weight=cfg.comfort_weight)
+    if cfg.risk > 0 and sc.uncertainty is not None:
+        terms.update(risk_weight=cfg.risk, risk_reach=cfg.risk_reach)
+    return cost_class(**terms)(*args, horizon=ahead, **terms)
 
 
 def _waypoints_needed(routes, cfg: PlannerConfig) -> int:

@@ -216,7 +216,9 @@ class PlannerPolicy:
         grown = np.array([p.radius for p in preds])
         radii = self._held_margin(reading.position, centres, grown, tracks.radii[k])
         ids = [f"track-{int(p.id)}" for p in preds]
-        return with_movers(sc, radii, movers, ids, start=reading.position)
+        spreads = [p.spread for p in preds]
+        spreads = None if any(s is None for s in spreads) else spreads
+        return with_movers(sc, radii, movers, ids, start=reading.position, spreads=spreads)
 
     def _held_margin(self, position, centres, radii, own) -> np.ndarray:
         """Predicted radii whose uncertainty margin stops short of the robot: a margin that

@@ -38,6 +38,7 @@ from scipy.optimize import linear_sum_assignment
 
 from mawdo.planning.sense.reading import Tracks
 from mawdo.planning.world.motion import Track
+from mawdo.planning.world.uncertainty import centre_sd
 from mawdo.registry import Registry
 from mawdo.util.validate import check_int, check_real
 
@@ -72,11 +73,17 @@ class Predicted:
     motion : Track
         Offsets (pixels) of the disc's centre from the track's centre at ``now``, at absolute
         times (time steps) from ``now`` to ``now + horizon``.
+    spread : tuple of float or None
+        ``(own_radius, position_sd, velocity_sd, accel_sd)``: the agent's radius (pixels) and
+        the terms of the predicted centre's s.d. bound
+        (:func:`~mawdo.planning.world.uncertainty.centre_sd`, look-ahead from ``now``); None
+        for an exact prediction (``oracle``).
     """
 
     id: int
     radius: float
     motion: Track
+    spread: tuple[float, float, float, float] | None = None
 
 
 @dataclass(frozen=True)
@@ -174,8 +181,7 @@ def tube_radius(
     k_sd = check_real("k_sd", k_sd, 0.0)
     tau = min(check_real("tube_horizon", tube_horizon, 0.0), float(horizon))
     accel_sd = check_real("accel_sd", accel_sd, 0.0)
-    steer = accel_sd * np.sqrt(max(tau**3 / 3.0 - tau / 12.0, 0.0))
-    return tracks.radii + k_sd * (tracks.position_sd + tau * tracks.velocity_sd + steer)
+    return tracks.radii + k_sd * centre_sd(tracks.position_sd, tracks.velocity_sd, accel_sd, tau)
 
 
 def border_stop_times(centers, velocities, radii, bounds) -> np.ndarray:
@@ -227,7 +233,8 @@ def constant_velocity(
         times = _stop_knot_times(now, horizon, float(t_stop[i]))
         ahead = np.minimum(times - now, t_stop[i])
         offsets = ahead[:, None] * tracks.velocities[i]
-        out.append(Predicted(int(track_id), float(radius[i]), Track(times, offsets)))
+        spread = _spread(tracks, i, accel_sd)
+        out.append(Predicted(int(track_id), float(radius[i]), Track(times, offsets), spread))
     return out
 
 
@@ -244,9 +251,19 @@ def stop(
     times = _knot_times(now, horizon)
     still = np.zeros((len(times), 2))
     return [
-        Predicted(int(track_id), float(radius[i]), Track(times, still))
+        Predicted(
+            int(track_id), float(radius[i]), Track(times, still), _spread(tracks, i, accel_sd)
+        )
         for i, track_id in enumerate(tracks.ids)
     ]
+
+
+def _spread(tracks: Tracks, i: int, accel_sd) -> tuple[float, float, float, float]:
+    """Track ``i``'s ``Predicted.spread``."""
+    return (
+        float(tracks.radii[i]), float(tracks.position_sd[i]), float(tracks.velocity_sd[i]),
+        float(accel_sd),
+    )  # fmt: skip
 
 
 def match_agents(tracks: Tracks, true_centers) -> np.ndarray:

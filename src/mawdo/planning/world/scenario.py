@@ -47,6 +47,7 @@ from mawdo.planning.world.scenario_schema import (
     semantic_errors,
 )
 from mawdo.planning.world.scenario_text import ScenarioTextError, parse_scenario_text
+from mawdo.planning.world.uncertainty import Uncertainty
 from mawdo.planning.world.units import PIXELS, Units, spec_to_pixels, spec_units, units_errors
 from mawdo.registry import Registry
 
@@ -132,12 +133,17 @@ class Scenario:
         The units of the scenario a derived one (a prediction, the realised world of a
         stepped run: :mod:`mawdo.planning.world.stepped`) was made from, when it has no file of
         its own; None otherwise.
+    uncertainty : Uncertainty or None
+        For a prediction scenario, how far its movers' true centres may stray from the
+        predicted ones (:mod:`mawdo.planning.world.uncertainty`); None for a scenario whose
+        motions are known.
     """
 
     spec: ScenarioSpec
     obstacles: tuple[Obstacle, ...]
     file_spec: ScenarioSpec | None = None
     derived_units: Units | None = None
+    uncertainty: Uncertainty | None = None
 
     def __post_init__(self) -> None:
         if self.file_spec is None:

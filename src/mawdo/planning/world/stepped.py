@@ -21,6 +21,7 @@ import numpy as np
 from mawdo.planning.world.motion import Track
 from mawdo.planning.world.scenario import CircleObstacle, Obstacle, Scenario
 from mawdo.planning.world.scenario_schema import StaticMotion
+from mawdo.planning.world.uncertainty import Uncertainty
 
 #: The motion field of a mover's shape spec (its motion is the obstacle's ``Track``), shared:
 #: specs are frozen, and ``model_construct`` would deep-copy the default for every mover.
@@ -67,7 +68,7 @@ class Move:
         return float(np.hypot(*np.diff(pts, axis=0).T).sum())
 
 
-def with_movers(scenario: Scenario, radii, tracks, ids=None, start=None) -> Scenario:
+def with_movers(scenario: Scenario, radii, tracks, ids=None, start=None, spreads=None) -> Scenario:
     """``scenario`` plus circle obstacles moving along ``tracks``; the start may be replaced.
 
     The result is built without the whole-scenario checks (a person may stand on the robot's
@@ -85,6 +86,10 @@ def with_movers(scenario: Scenario, radii, tracks, ids=None, start=None) -> Scen
         Names of the new obstacles (default ``mover-<i>``).
     start : array_like, shape (2,), optional
         A new robot start (pixels).
+    spreads : sequence of tuple, optional
+        Per mover ``(own_radius, position_sd, velocity_sd, accel_sd)`` of a predicted motion
+        (:attr:`~mawdo.planning.sense.predict.Predicted.spread`): the result's
+        ``uncertainty``, look-ahead from time 0. None (default): the motions are known.
     """
     radii = np.asarray(radii, dtype=float).reshape(-1)
     obstacles = list(scenario.obstacles)
@@ -103,8 +108,14 @@ def with_movers(scenario: Scenario, radii, tracks, ids=None, start=None) -> Scen
     if start is not None:
         update["start"] = (float(start[0]), float(start[1]))
     units = scenario.units
+    first = len(scenario.obstacles)
+    spread = None
+    if spreads is not None and len(radii):
+        cols = np.asarray(spreads, dtype=float).reshape(len(radii), 4).T
+        spread = Uncertainty(np.arange(first, first + len(radii)), *cols)
     return Scenario(scenario.spec.model_copy(update=update), tuple(obstacles),
-                    derived_units=None if units.is_pixels else units)  # fmt: skip
+                    derived_units=None if units.is_pixels else units,
+                    uncertainty=spread)  # fmt: skip
 
 
 def bounding_disc(obstacle: Obstacle, t: float) -> tuple[np.ndarray, float]:
