@@ -435,7 +435,7 @@ def test_the_official_cec2022_ranks_are_those_of_the_committed_store(
 
     from mawdo.experiments.kinds.suite.competition import competition_tables
     from mawdo.experiments.kinds.suite.data import load_runs
-    from mawdo.experiments.kinds.suite.report import friedman_table
+    from mawdo.experiments.kinds.suite.report import friedman_groups_table, friedman_table
     from mawdo.experiments.tables import to_markdown
 
     where = ROOT / "docs" / "results" / folder
@@ -449,6 +449,30 @@ def test_the_official_cec2022_ranks_are_those_of_the_committed_store(
     assert plan["functions"] == list(range(1, 13)) and len(plan["algorithms"]) == 10
     study = load_runs(db)
     assert to_markdown(friedman_table(study)) == (where / "friedman.md").read_text("utf-8")
+    by_group = friedman_groups_table(study)
+    assert to_markdown(by_group) == (where / "friedman_groups.md").read_text("utf-8")
+    # the four groups cover the twelve functions once; their ranks, weighted by their blocks,
+    # average to the ranks over all functions (a block's ranks do not depend on the others)
+    n = len(study.algorithms)
+    sizes = np.array([r[2] for r in by_group.rows])
+    assert list(sizes) == [1, 4, 3, 4]
+    group_ranks = np.array([r[3 : 3 + n] for r in by_group.rows])
+    np.testing.assert_allclose(sizes @ group_ranks / 12, friedman_table(study).rows[0][2 : 2 + n])
+    # docs/algorithms.md gives WDO+'s place in each group (1 + those ranked strictly better)
+    ours = study.algorithms.index("wdo_plus")
+    places = []
+    for r in by_group.rows:
+        rank = np.array(r[3 : 3 + n])
+        place = 1 + int(np.sum(rank < rank[ours]))
+        suffix = {1: "st", 2: "nd", 3: "rd"}.get(place, "th")
+        places.append(f"{r[1].split(' (')[0]} {place}{suffix}")
+    algos_page = " ".join((ROOT / "docs" / "algorithms.md").read_text("utf-8").split())
+    assert f"D = {dim}: {', '.join(places)}" in algos_page
+    comp = by_group.rows[-1]
+    assert (
+        comp[1].startswith("composition")
+        and comp[3 + ours] < comp[3 + study.algorithms.index("cmaes")]
+    )
     tables = {t.name: t for t in competition_tables(study, dim)}
     for name in (f"competition_d{dim}", f"checkpoints_d{dim}"):
         assert to_markdown(tables[name]) == (where / f"{name}.md").read_text("utf-8")

@@ -31,7 +31,16 @@ CEC2017_GROUPS: dict[str, tuple[int, ...]] = {
 """CEC 2017's four function groups in the official numbering (Awad et al. 2016, the
 competition's technical report, Table I: unimodal F1-F3, simple multimodal F4-F10, hybrid
 F11-F20, composition F21-F30)."""
-GROUPS = {2017: CEC2017_GROUPS, 2022: {}}
+CEC2022_GROUPS: dict[str, tuple[int, ...]] = {
+    "unimodal": (1,),
+    "basic": (2, 3, 4, 5),
+    "hybrid": (6, 7, 8),
+    "composition": (9, 10, 11, 12),
+}
+"""CEC 2022's four function groups (Kumar, Price, Mohamed, Hadi and Awad 2021, the
+competition's technical report, Table I: unimodal F1, basic F2-F5, hybrid F6-F8, composition
+F9-F12)."""
+GROUPS = {2017: CEC2017_GROUPS, 2022: CEC2022_GROUPS}
 
 
 def checkpoints(year: int, dim: int, max_evals: int) -> tuple[int, ...]:

@@ -117,6 +117,28 @@ def test_friedman_ranks_equal_ranks_from_the_raw_store(tiny_store, report):
         )
 
 
+def test_group_ranks_equal_ranks_from_the_raw_store(tiny_store, report):
+    # f1, f12 and f21 lie in three of COCO's five groups, one function each
+    runs = raw_runs(tiny_store)
+    algos = TINY["algorithms"]
+    lines = read_csv(report / "friedman_groups.csv")
+    names = {1: "separable", 12: "high conditioning, unimodal", 21: "multimodal, weak"}
+    assert len(lines) == len(TINY["dims"]) * len(names)
+    for line in lines:
+        dim = int(line["dimensions"][2:])
+        (fid,) = [f for f, name in names.items() if line["group"].startswith(name)]
+        ranks = []
+        for iid in TINY["instances"]:
+            med = []
+            for algo in algos:
+                sel = [r for r in runs if (r["algo"], r["fid"], r["dim"], r["iid"])
+                       == (algo, fid, dim, iid)]  # fmt: skip
+                med.append(np.median([max(r["best"][-1] - r["f_star"], 1e-8) for r in sel]))
+            ranks.append(rankdata(med))
+        assert int(line["blocks"]) == len(ranks)
+        np.testing.assert_allclose([float(line[a]) for a in algos], np.mean(ranks, axis=0))
+
+
 def test_ecdf_equals_the_fraction_of_solved_run_target_pairs(tiny_store):
     runs = raw_runs(tiny_store)
     targets = 10.0 ** np.linspace(2, -8, 51)
@@ -167,6 +189,11 @@ def test_every_algorithm_differs_in_colour_dash_and_marker(tiny_store, tmp_path,
         assert len(set(values)) == 10, f"two of 10 algorithms share a {key}: {values}"
     study = load_runs(tiny_store)
     plots.plot_ecdfs(study, TINY["dims"][0], tmp_path)
+    # four ECDF panels (all functions and three groups) on a 3 x 2 grid: the legend sits in
+    # a free slot, over no curve
+    holders = [ax for ax in drawn[0].axes if ax.get_legend() is not None]
+    assert len(holders) == 1 and not holders[0].lines and holders[0].get_visible()
+    assert len(holders[0].get_legend().get_texts()) == len(TINY["algorithms"])
     plots.plot_convergence(study, TINY["dims"][0], tmp_path)
     for fig in drawn:
         for ax in fig.axes:

@@ -79,12 +79,13 @@ def median_precision(study: StudyRuns, dim: int, budgets) -> dict[int, np.ndarra
     return out
 
 
-def friedman_final(study: StudyRuns, dims) -> Friedman:
+def friedman_final(study: StudyRuns, dims, functions=None) -> Friedman:
     """Friedman ranks over ``(function, instance, dimension)`` blocks of the median final
-    precision (floored at :data:`RANK_FLOOR`, so runs that all solved the problem tie)."""
+    precision (floored at :data:`RANK_FLOOR`, so runs that all solved the problem tie), over
+    ``functions`` (default: all of the study's)."""
     blocks = []
     for dim in dims:
-        for fid in study.functions:
+        for fid in study.functions if functions is None else functions:
             for iid in sorted({r.instance for r in study.select(dim=dim, function_id=fid)}):
                 row = []
                 for algo in study.algorithms:

@@ -121,7 +121,14 @@ def plot_ecdfs(
         ax.set_title(f"{name} ({function_list(fids)})", fontsize=9)
         ax.set_xlabel("evaluations / D")
         ax.set_ylabel("fraction of (function, run, target)")
-    axes[0].legend(fontsize=8, loc="upper left")
+    handles = axes[0].get_legend_handles_labels()
+    spare = fig.axes[len(axes)] if len(fig.axes) > len(axes) else None
+    if spare is not None:  # an empty slot of the grid: the legend there covers no curve
+        spare.set_visible(True)
+        spare.axis("off")
+        spare.legend(*handles, fontsize=9, loc="center")
+    else:
+        axes[0].legend(fontsize=8, loc="upper left")
     cut = f"; y axis cut at {top:g}" if top < 1 else ""
     # one panel (a suite without function groups) is too narrow for the title on one line
     sep = "\n" if len(grp) == 1 else ", "

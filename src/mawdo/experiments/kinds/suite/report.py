@@ -16,10 +16,11 @@ from mawdo.experiments.kinds.suite.measures import (
     art,
     budget_grid,
     friedman_final,
+    groups,
     median_precision,
     success_counts,
 )
-from mawdo.experiments.kinds.suite.summary import headline
+from mawdo.experiments.kinds.suite.summary import function_list, headline
 from mawdo.experiments.tables import Table, to_csv, to_latex, to_markdown
 
 
@@ -84,6 +85,33 @@ def friedman_table(study: StudyRuns) -> Table:
     )
 
 
+def friedman_groups_table(study: StudyRuns) -> Table | None:
+    """Friedman mean ranks within each of the suite's function groups, per dimension: where
+    each algorithm stands on unimodal, multimodal, hybrid and composition functions (None for
+    a suite without groups)."""
+    grp = {k: v for k, v in groups(study).items() if k != "all functions"}
+    if not grp:
+        return None
+    rows = []
+    for dim in study.dims:
+        for name, fids in grp.items():
+            fr = friedman_final(study, (dim,), fids)
+            rows.append([f"D={dim}", f"{name} ({function_list(fids)})", fr.n_functions,
+                         *fr.mean_ranks.tolist(), fr.statistic, fr.pvalue])  # fmt: skip
+    return Table(
+        name="friedman_groups",
+        title=f"{study.suite}: Friedman mean ranks per function group (1 = best)",
+        columns=["dimensions", "group", "blocks", *study.algorithms, "chi2", "p"],
+        rows=rows,
+        notes=[
+            "Each group's blocks ranked as in the table of all functions (the ranks of a "
+            "block do not depend on the other blocks); chi2 and p: Friedman's test within "
+            "the group.",
+        ],
+        formats={**dict.fromkeys(study.algorithms, ".2f"), "chi2": ".1f", "p": ".2g"},
+    )
+
+
 def _write(table: Table, out: Path) -> list[Path]:
     files = []
     for ext, text in (
@@ -143,6 +171,8 @@ def write_suite_report(
     if summary:
         (out / "summary.md").write_text("\n".join(summary) + "\n", encoding="utf-8")
     tables = [friedman_table(study)]
+    by_group = friedman_groups_table(study)
+    tables += [by_group] if by_group is not None else []
     for dim in study.dims:
         tables += [art_table(study, dim), fixed_budget_table(study, dim)]
     for dim in study.dims:  # component studies: each switch against its base
