@@ -119,3 +119,41 @@ def test_static_path_accepts_shapely_geometries():
     report = check_static_path([[0, 50], [100, 50]], [wall])
     assert not report.ok and report.min_clearance == -10.0  # reaches the wall's centre line
     assert check_static_path([[0, 50], [30, 50]], [wall], radius=5).min_clearance == 5.0
+
+
+def test_moving_circles_measured_together_give_each_ones_own_distances():
+    """The checker measures every moving circle in one shapely call; each clearance is the
+    one the obstacle-by-obstacle measure gives (bit for bit), over every kind of motion, with
+    and without the near-pairs index."""
+    from mawdo.planning.judge.check import _relative_lines, _shape_distance
+
+    rng = np.random.default_rng(4)
+    movers = []
+    for k in range(12):
+        c = rng.uniform(20, 180, 2).tolist()
+        motion = [
+            {"velocity": rng.normal(0, 2, 2).tolist()},
+            {"model": "patrol", "waypoints": [[0, 0], rng.uniform(-40, 40, 2).tolist()],
+             "speed": 1.5, "cycle": "back_and_forth"},
+            {"model": "bounded_random_walk", "step": 2.0, "hold": 1},
+        ][k % 3]  # fmt: skip
+        movers.append({"shape": "circle", "center": c, "radius": float(rng.uniform(3, 9)),
+                       "motion": motion})  # fmt: skip
+    movers.append({"shape": "polygon", "vertices": [[90, 90], [110, 92], [100, 110]],
+                   "motion": {"velocity": [0.5, -0.3]}})  # fmt: skip
+    movers.append({"shape": "circle", "center": [50.0, 150.0], "radius": 6.0})
+    sc = scenario(movers)
+    for trial in range(20):
+        k = 2 if trial % 2 else int(rng.integers(3, 40))
+        pts = np.cumsum(rng.normal(0, 4, (k, 2)), axis=0) + rng.uniform(40, 160, 2)
+        times = np.cumsum(rng.uniform(0.2, 1.5, k)) + rng.uniform(0, 30)
+        for reach in (np.inf, 6.0):
+            rep = check_trajectory(pts, sc, times=times, reach=reach)
+            for o in sc.obstacles:
+                if o.is_static or not np.isinf(reach):
+                    continue
+                lines = _relative_lines(o, pts, times, np.arange(k - 1))
+                own = _shape_distance(o.shape, lines) - sc.robot_radius
+                assert np.array_equal(rep.clearance[:, o.index], own), (trial, o.index)
+            near = np.isfinite(rep.clearance)
+            assert near.any()
