@@ -25,6 +25,11 @@ the robot's centre falls within ``R`` of it is the Rice distribution's CDF,
 and non-centrality ``(d / s)^2`` at ``(R / s)^2`` (:func:`overlap_probability`). ``E`` is the
 expected number of (step, agent) contacts while the robot drives, and ``w = alpha *
 risk_weight``: ``risk_weight`` pixels of route length per expected contact.
+
+The planner evaluates ``E`` for whole populations in a compiled kernel
+(:mod:`mawdo.planning.refine.kernel.risk`), which reads the CDF from a table made once from
+scipy's exact one (within 4e-4 of it; the tests compare the two), so that a call for 240
+candidates, 40 steps and 5 people costs about 0.6 ms.
 """
 
 from __future__ import annotations
