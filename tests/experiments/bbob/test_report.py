@@ -205,3 +205,21 @@ def test_every_algorithm_differs_in_colour_dash_and_marker(tiny_store, tmp_path,
                 assert len({look[part] for look in seen.values()}) == len(seen)
             solid = [a for a, look in seen.items() if look[1] == str((0, None))]
             assert len(solid) <= 1  # at most one plain solid line
+
+
+def test_a_group_with_no_finished_run_has_no_row(tiny_store, tmp_path):
+    # a study still running: f21 (the weak-structure group's only function) not yet run
+    import shutil
+
+    from mawdo.experiments.kinds.suite.report import friedman_groups_table
+
+    part = tmp_path / "part.db"
+    shutil.copy(tiny_store, part)
+    conn = sqlite3.connect(part)
+    with conn:
+        conn.execute("DELETE FROM runs WHERE function_id = 21")
+    conn.close()
+    groups = [row[1] for row in friedman_groups_table(load_runs(part)).rows]
+    assert len(groups) == 2 * len(TINY["dims"]) and not any(
+        g.startswith("multimodal") for g in groups
+    )

@@ -96,6 +96,8 @@ def friedman_groups_table(study: StudyRuns) -> Table | None:
     for dim in study.dims:
         for name, fids in grp.items():
             fr = friedman_final(study, (dim,), fids)
+            if not fr.n_functions:  # a study still running: no finished block in the group
+                continue
             rows.append([f"D={dim}", f"{name} ({function_list(fids)})", fr.n_functions,
                          *fr.mean_ranks.tolist(), fr.statistic, fr.pvalue])  # fmt: skip
     return Table(
