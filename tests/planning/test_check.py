@@ -122,9 +122,9 @@ def test_static_path_accepts_shapely_geometries():
 
 
 def test_moving_circles_measured_together_give_each_ones_own_distances():
-    """The checker measures every moving circle in one shapely call; each clearance is the
-    one the obstacle-by-obstacle measure gives (bit for bit), over every kind of motion, with
-    and without the near-pairs index."""
+    """The checker measures every moving circle in one shapely call, and every standing one in
+    another; each clearance is the one the obstacle-by-obstacle measure gives (bit for bit),
+    over every kind of motion, with and without the near-pairs index."""
     from mawdo.planning.judge.check import _relative_lines, _shape_distance
 
     rng = np.random.default_rng(4)
@@ -142,6 +142,8 @@ def test_moving_circles_measured_together_give_each_ones_own_distances():
     movers.append({"shape": "polygon", "vertices": [[90, 90], [110, 92], [100, 110]],
                    "motion": {"velocity": [0.5, -0.3]}})  # fmt: skip
     movers.append({"shape": "circle", "center": [50.0, 150.0], "radius": 6.0})
+    movers.append({"shape": "circle", "center": [150.0, 60.0], "radius": 4.5})
+    movers.append({"shape": "polygon", "vertices": [[20, 20], [40, 20], [30, 35]]})
     sc = scenario(movers)
     for trial in range(20):
         k = 2 if trial % 2 else int(rng.integers(3, 40))
@@ -150,9 +152,12 @@ def test_moving_circles_measured_together_give_each_ones_own_distances():
         for reach in (np.inf, 6.0):
             rep = check_trajectory(pts, sc, times=times, reach=reach)
             for o in sc.obstacles:
-                if o.is_static or not np.isinf(reach):
+                if not o.is_static and not np.isinf(reach):
                     continue
-                lines = _relative_lines(o, pts, times, np.arange(k - 1))
+                if o.is_static:  # the route itself
+                    lines = shapely.linestrings(np.stack([pts[:-1], pts[1:]], axis=1))
+                else:
+                    lines = _relative_lines(o, pts, times, np.arange(k - 1))
                 own = _shape_distance(o.shape, lines) - sc.robot_radius
                 assert np.array_equal(rep.clearance[:, o.index], own), (trial, o.index)
             near = np.isfinite(rep.clearance)

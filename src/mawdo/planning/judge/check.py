@@ -339,9 +339,11 @@ def check_trajectory(
     def steps_of(o):
         return np.arange(n_steps) if grown is None else near_steps(o, p, times, grown)
 
-    circles = []
+    circles, posts = [], []
     for o in scenario.obstacles:
-        if o.is_static:  # no knots: the relative trajectory is the route itself
+        if o.is_static and isinstance(o.shape, CircleObstacle):
+            posts.append(o)
+        elif o.is_static:  # no knots: the relative trajectory is the route itself
             clearance[:, o.index] = _shape_distance(o.shape, static_lines) - r
         elif isinstance(o.shape, CircleObstacle):
             circles.append(o)
@@ -351,6 +353,11 @@ def check_trajectory(
                 lines = _relative_lines(o, p, times, steps)
                 clearance[steps, o.index] = _shape_distance(o.shape, lines) - r
     _moving_circle_clearances(circles, p, times, steps_of, r, clearance)
+    if posts:  # standing circles: every step against every centre, in one call
+        centres = shapely.points(np.array([o.shape.center for o in posts], dtype=float))
+        gap = shapely.distance(static_lines[:, None], centres[None, :])
+        radii = np.array([float(o.shape.radius) for o in posts])
+        clearance[:, [o.index for o in posts]] = (gap - radii) - r
     return _report(
         clearance, tol, _moving(p), times[:-1], [int(i) for i in outside],
         _border_excess(p, r, W, H),
