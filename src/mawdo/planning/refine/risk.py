@@ -40,7 +40,7 @@ import math
 import numpy as np
 from scipy.special import chndtr
 
-from mawdo.planning.refine.cost import PathCost, _end
+from mawdo.planning.refine.cost import PathCost
 from mawdo.planning.refine.kernel.risk import X_HI, expected_contacts, rice_table
 
 __all__ = ["RISK_REACH", "RiskPathCost", "overlap_probability"]
@@ -86,6 +86,10 @@ def overlap_probability(distance, reach, sd) -> np.ndarray:
 def _table() -> np.ndarray:
     """The Rice CDF table of the compiled sum, made once per process (about 0.05 s)."""
     return rice_table()
+
+
+def _point(p) -> np.ndarray:
+    return np.ascontiguousarray(np.asarray(p, dtype=np.float64).reshape(2))
 
 
 class RiskPathCost(PathCost):
@@ -148,8 +152,8 @@ class RiskPathCost(PathCost):
         out = np.zeros(len(X2))
         if self._spread is None or not len(self._spread) or not len(X2):
             return out
-        start = _end("start", self.scenario.start if start is None else start)
-        goal = _end("goal", self.scenario.goal if goal is None else goal)
+        start = _point(self.scenario.start if start is None else start)
+        goal = _point(self.scenario.goal if goal is None else goal)
         centres, sd, reach = self._agents_at(t0)
         X2 = np.ascontiguousarray(X2, dtype=np.float64)
         expected_contacts(X2, start, goal, self._speed, centres, reach, sd, _table(), out)
