@@ -13,7 +13,9 @@ from scipy.optimize import differential_evolution
 from scipy.optimize._differentialevolution import DifferentialEvolutionSolver
 
 from mawdo import ObjectiveError, minimize
-from mawdo.optimizers.scipy_de import STRATEGIES
+from mawdo.optimizers.base import Space
+from mawdo.optimizers.scipy_de import STRATEGIES, ScipyDE
+from mawdo.streams import RunStreams
 from tests.cli_run import mawdo
 
 BOUNDS = [(-5.0, 5.0), (-2.0, 3.0), (0.0, 4.0)]
@@ -137,22 +139,37 @@ def test_without_restarts_a_finished_run_repeats_its_result():
     assert k < 399 and np.all(res.history[0, k:] == res.fun[0])
 
 
-def test_threads_end_with_the_batch_even_after_an_objective_error():
+def _live_scipy_calls() -> list:
     gc.collect()
-    before = threading.active_count()
-    de_run(runs=3, max_evals=50)
+    runs = [o for o in gc.get_objects() if type(o).__qualname__ == "_Run"]
+    return [r for r in runs if r.glet]  # started and not ended
+
+
+def test_scipy_calls_end_with_the_batch_even_after_an_objective_error():
+    threads = threading.active_count()
+    res = de_run(runs=3, max_evals=50)
+    assert res.nfev.tolist() == [50, 50, 50] and _live_scipy_calls() == []
 
     def broken(x):
         raise RuntimeError("boom")
 
     with pytest.raises(ObjectiveError, match="boom"):
         de_run(runs=3, max_evals=50, fun=broken)
-    gc.collect()
-    for _ in range(200):  # each thread unwinds scipy once told to stop
-        if threading.active_count() == before:
-            break
-        threading.Event().wait(0.01)
-    assert threading.active_count() == before
+    assert _live_scipy_calls() == []
+    assert threading.active_count() == threads  # the calls run in the driver's own thread
+
+
+def test_a_dropped_state_unwinds_its_scipy_calls_at_once():
+    opt = ScipyDE()
+    space = Space(np.array([b[0] for b in BOUNDS]), np.array([b[1] for b in BOUNDS]))
+    streams = RunStreams.from_seed_sequences(np.random.SeedSequence(1).spawn(2))
+    state = opt.init(space, streams, max_iter=10)
+    X = opt.ask(state)
+    opt.tell(state, X, ((X - C) ** 2).sum(axis=2))
+    runs = list(state.runs)
+    assert all(r.glet for r in runs)  # suspended inside scipy, waiting for a value
+    del state
+    assert not any(r.glet for r in runs) and all(r.glet.dead for r in runs)
 
 
 @pytest.mark.parametrize(
