@@ -19,6 +19,7 @@ SUITES = [
     "bench_arena",
     "bench_bbob",
     "bench_cec",
+    "bench_protocol",
     "bench_sipp",
     "bench_timed",
     "bench_limits",
