@@ -75,6 +75,29 @@ class SuiteFunction(BenchmarkFunction):
 
 
 @dataclass(frozen=True)
+class CompetitionScore:
+    """How a competition scores its entries from their mean final errors (CEC 2017's score).
+
+    Attributes
+    ----------
+    name : str
+        The score's name in reports (``"CEC 2017 score"``).
+    weights : dict of int to float
+        Weight of each dimension's sums (CEC 2017: 0.1, 0.2, 0.3, 0.4 for D = 10, 30, 50,
+        100); a study's other dimensions do not count.
+    excluded : tuple of int
+        Function ids the score leaves out (CEC 2017: F2).
+    source : str
+        Where the rule is written, for the report's note.
+    """
+
+    name: str
+    weights: dict[int, float]
+    excluded: tuple[int, ...] = ()
+    source: str = ""
+
+
+@dataclass(frozen=True)
 class SuiteSpec:
     """A registered suite.
 
@@ -109,6 +132,8 @@ class SuiteSpec:
     checkpoints : callable or None
         ``checkpoints(dim, max_evals) -> tuple of int``: the evaluations after which the
         suite's competition records errors (CEC), for its result tables; None: none defined.
+    score : CompetitionScore or None
+        The competition's overall score of algorithms, for its reports; None: none defined.
     """
 
     name: str
@@ -123,6 +148,7 @@ class SuiteSpec:
     groups: dict[str, tuple[int, ...]] = dataclasses.field(default_factory=dict)
     prepare: Callable[[int, int], None] | None = None
     checkpoints: Callable[[int, int], tuple[int, ...]] | None = None
+    score: CompetitionScore | None = None
 
     def require(self) -> None:
         """Import the suite's library now; :class:`MissingExtraError` names the ``pip install``

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mawdo.suites.base import SuiteFunction, SuiteSpec, register_suite
+from mawdo.suites.base import CompetitionScore, SuiteFunction, SuiteSpec, register_suite
 from mawdo.suites.cec_compose import Composition, Hybrid, Plain, evaluate
 from mawdo.suites.cec_data import CECDataError, load
 from mawdo.suites.cec_tables import TABLES, CECFunction
@@ -41,6 +41,15 @@ CEC2022_GROUPS: dict[str, tuple[int, ...]] = {
 competition's technical report, Table I: unimodal F1, basic F2-F5, hybrid F6-F8, composition
 F9-F12)."""
 GROUPS = {2017: CEC2017_GROUPS, 2022: CEC2022_GROUPS}
+CEC2017_SCORE = CompetitionScore(
+    name="CEC 2017 score",
+    weights={10: 0.1, 30: 0.2, 50: 0.3, 100: 0.4},
+    excluded=(2,),
+    source="the CEC 2017 competition's ranking of its entries (Awad, Ali, Liang, Qu and "
+    "Suganthan); F2 left out, as the competition dropped it for unstable behaviour",
+)
+"""CEC 2017's ranking of entries: Score1 from the weighted sum of mean errors, Score2 from the
+weighted sum of ranks, 50 points each."""
 
 
 def checkpoints(year: int, dim: int, max_evals: int) -> tuple[int, ...]:
@@ -155,6 +164,7 @@ def _spec(year: int) -> SuiteSpec:
         prepare=lambda fid, dim: _prepare(table[fid - 1], dim),
         checkpoints=lambda dim, max_evals: checkpoints(year, dim, max_evals),
         groups=GROUPS[year],
+        score=CEC2017_SCORE if year == 2017 else None,
     )
 
 

@@ -10,6 +10,7 @@ import pytest
 
 from mawdo.experiments import Store, run_plan
 from mawdo.experiments.kinds.suite import preset_plan, write_suite_report
+from mawdo.experiments.kinds.suite.competition import competition_score
 from mawdo.optimizers import HOLDOUT_ALGORITHMS
 from mawdo.suites import SUITES, evaluation_budget
 
@@ -78,3 +79,55 @@ def test_competition_tables_are_the_stored_runs_statistics(tmp_path):
             ]  # fmt: skip
             have = [float(cps[f"F{fid}", algo][str(m)]) for m in marks]
             np.testing.assert_allclose(have, np.mean(at, axis=0), rtol=1e-3)
+
+
+def test_the_cec2017_score_by_hand():
+    # three algorithms, two functions at D = 10: SE = 5, 4, 10; ranks (2, 2), (3, 1), (1, 3)
+    s = competition_score(np.array([[1.0, 2.0, 0.0], [4.0, 2.0, 10.0]]), np.array([0.1, 0.1]))
+    np.testing.assert_allclose(s["SE"], [0.5, 0.4, 1.0])
+    np.testing.assert_allclose(s["Score1"], [40.0, 50.0, 20.0])  # 50 (1 - (SE - 4) / SE)
+    np.testing.assert_allclose(s["Score2"], [50.0, 50.0, 50.0])  # every rank sum is 4
+    np.testing.assert_allclose(s["Score"], [90.0, 100.0, 70.0])
+    # two dimensions weigh 0.1 and 0.2; ties share the mean of their ranks
+    s = competition_score(np.array([[1.0, 1.0, 3.0], [5.0, 2.0, 2.0]]), np.array([0.1, 0.2]))
+    np.testing.assert_allclose(s["SE"], [1.1, 0.5, 0.7])
+    np.testing.assert_allclose(s["SR"], [0.75, 0.45, 0.6])  # (1.5, 3), (1.5, 1.5), (3, 1.5)
+    np.testing.assert_allclose(s["Score1"], [50 * 0.5 / 1.1, 50.0, 50 * 0.5 / 0.7])
+    np.testing.assert_allclose(s["Score2"], [30.0, 50.0, 37.5])
+    # an algorithm with no error at all is the least SE: 50, not 0/0
+    s = competition_score(np.array([[0.0, 1.0], [0.0, 2.0]]), np.array([0.1, 0.1]))
+    np.testing.assert_array_equal(s["Score1"], [50.0, 0.0])
+
+
+def test_the_score_table_is_the_competition_means_of_the_store(tmp_path):
+    algos = ["random", "cmaes", "gwo"]
+    plan = tiny_plan(suite="cec2017", functions=[1, 2, 4], instances=None, dims=[10],
+                     budget=20, algorithms=algos, runs=3)  # fmt: skip
+    db = tmp_path / "cec.db"
+    assert run_plan(plan, db, workers=1, progress=False).complete
+    write_suite_report(db, tmp_path / "report", plots=False)
+    means = _read_csv(tmp_path / "report" / "competition_d10.csv")
+    with open(tmp_path / "report" / "score.csv", newline="") as fh:
+        score = {r["algorithm"]: r for r in csv.DictReader(fh)}
+    # F2 is left out: the score reads F1 and F4 only, each weighing 0.1 at D = 10
+    e = np.array([[float(means[f, a]["mean"]) for a in algos] for f in ("F1", "F4")])
+    ranks = np.argsort(np.argsort(e, axis=1), axis=1) + 1.0  # no ties among random means
+    se, sr = 0.1 * e.sum(axis=0), 0.1 * ranks.sum(axis=0)
+    want = 50 * (1 - (se - se.min()) / se) + 50 * (1 - (sr - sr.min()) / sr)
+    have = np.array([float(score[a]["Score"]) for a in algos])
+    np.testing.assert_allclose(have, want, rtol=1e-3)  # the csv's rounding
+    places = sorted(algos, key=lambda a: -want[algos.index(a)])
+    assert [score[a]["place"] for a in places] == ["1", "2", "3"]
+    report = (tmp_path / "report" / "report.md").read_text(encoding="utf-8")
+    assert "D=10 (weight 0.1): 2 functions; F2 left out" in report
+
+
+def test_a_suite_without_a_score_gets_no_score_table(tmp_path):
+    plan = tiny_plan(suite="cec2022", functions=[1], instances=None, dims=[10], budget=10,
+                     algorithms=["random", "gwo"], runs=2)  # fmt: skip
+    db = tmp_path / "cec.db"
+    assert run_plan(plan, db, workers=1, progress=False).complete
+    write_suite_report(db, tmp_path / "report", plots=False)
+    assert (tmp_path / "report" / "competition_d10.csv").exists()
+    assert not (tmp_path / "report" / "score.csv").exists()
+    assert SUITES["cec2022"].score is None and SUITES["bbob"].score is None

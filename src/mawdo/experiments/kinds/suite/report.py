@@ -7,7 +7,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from mawdo.experiments.kinds.suite.competition import competition_tables
+from mawdo.experiments.kinds.suite.competition import competition_tables, score_table
 from mawdo.experiments.kinds.suite.data import StudyRuns, load_runs
 from mawdo.experiments.kinds.suite.effects import effect_tables
 from mawdo.experiments.kinds.suite.measures import (
@@ -181,6 +181,8 @@ def write_suite_report(
         tables += effect_tables(study, dim)
     for dim in study.dims:  # the competition's own tables (CEC)
         tables += competition_tables(study, dim)
+    score = score_table(study)
+    tables += [score] if score is not None else []
     lines = [
         f"# {study.suite} study: {', '.join(study.algorithms)}",
         "",
