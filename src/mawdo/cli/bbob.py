@@ -132,15 +132,20 @@ def report_suite(
 def export_cmd(
     store: Path = typer.Argument(..., help="Results store of a suite study (`run --suite`)."),
     folder: Path = typer.Argument(..., help="Output folder (one sub-folder per algorithm)."),
-    fmt: str = typer.Option("ioh", "--format", help="Log format: ioh (IOHanalyzer)."),
+    fmt: str = typer.Option(
+        "ioh", "--format", help="ioh (IOHanalyzer logs) or cec (the CEC competitions' files)."
+    ),
 ) -> None:
-    """Export a suite study's runs as IOHanalyzer logs (zip a folder and upload it)."""
+    """Export a suite study's runs: IOHanalyzer logs (zip a folder and upload it), or for a CEC
+    study the competition's result files (``<algorithm>_<F>_<D>.txt``)."""
     from mawdo.cli.errors import check_output_dir, on_ctrl_c
-    from mawdo.experiments.kinds.suite import export_ioh
+    from mawdo.experiments.kinds.suite import EXPORT_FORMATS
 
-    on_ctrl_c("the export was not finished (its folder may hold some of the logs)")
-    if fmt.lower() != "ioh":
-        raise ValueError(f"--format {fmt!r}: the only export format is 'ioh' (IOHanalyzer)")
+    on_ctrl_c("the export was not finished (its folder may hold some of the files)")
+    if fmt.lower() not in EXPORT_FORMATS:
+        names = ", ".join(f"'{k}' ({what})" for k, (_, what) in EXPORT_FORMATS.items())
+        raise ValueError(f"--format {fmt!r} is not an export format; choose {names}")
+    export, what = EXPORT_FORMATS[fmt.lower()]
     check_output_dir(folder, "export folder")
-    files = export_ioh(store, folder)
-    typer.echo(f"wrote IOHanalyzer logs of {len(files)} (algorithm, function) pairs to {folder}/")
+    files = export(store, folder)
+    typer.echo(f"wrote {what}: {len(files)} files to {folder}/")

@@ -13,6 +13,7 @@ from mawdo.experiments.kinds.suite import preset_plan, write_suite_report
 from mawdo.experiments.kinds.suite.competition import competition_score
 from mawdo.optimizers import HOLDOUT_ALGORITHMS
 from mawdo.suites import SUITES, evaluation_budget
+from tests.cli_run import mawdo
 
 from .conftest import tiny_plan
 
@@ -131,3 +132,42 @@ def test_a_suite_without_a_score_gets_no_score_table(tmp_path):
     assert (tmp_path / "report" / "competition_d10.csv").exists()
     assert not (tmp_path / "report" / "score.csv").exists()
     assert SUITES["cec2022"].score is None and SUITES["bbob"].score is None
+
+
+def _matrix(path) -> np.ndarray:
+    return np.array([[float(v) for v in line.split()] for line in path.read_text().splitlines()])
+
+
+@pytest.mark.parametrize(("suite", "rows"), [("cec2017", 14), ("cec2022", 17)])
+def test_the_cec_files_are_the_stored_runs_errors_at_the_checkpoints(tmp_path, suite, rows):
+    plan = tiny_plan(suite=suite, functions=[1, 3], instances=None, dims=[10], budget=30,
+                     algorithms=["random", "gwo"], runs=3)  # fmt: skip
+    db = tmp_path / "cec.db"
+    assert run_plan(plan, db, workers=1, progress=False).complete
+    res = mawdo("bench", "export", "--format", "cec", str(db), str(tmp_path / "cec"))
+    assert res.returncode == 0, res.stderr
+    assert "4 files" in res.stdout
+    marks = SUITES[suite].checkpoints(10, 300)
+    with Store.read(db) as store:
+        rows_of = [(a, r) for a, _, r in store.rows()]
+    for algo in ("random", "gwo"):
+        for fid in (1, 3):
+            m = _matrix(tmp_path / "cec" / algo / f"{algo}_{fid}_10.txt")
+            assert m.shape == (rows, 3)  # one column per run, in run order
+            mine = sorted((r for a, r in rows_of if a == algo and r.function_id == fid),
+                          key=lambda r: r.run)  # fmt: skip
+            for col, r in enumerate(mine):
+                # the error after each checkpoint: the best value up to it, <= 1e-8 as 0
+                at = [r.best_so_far[np.searchsorted(r.evals, k, side="right") - 1] - r.f_star
+                      for k in marks]  # fmt: skip
+                want = np.where(np.array(at) <= 1e-8, 0.0, at)
+                np.testing.assert_allclose(m[: len(marks), col], want, rtol=1e-8)
+                if rows > len(marks):  # CEC 2022's FEterm: the evaluations the run used
+                    assert m[-1, col] == r.nfev
+
+
+def test_only_a_cec_study_exports_the_competition_files(tiny_store, tmp_path):
+    res = mawdo("bench", "export", "--format", "cec", str(tiny_store), str(tmp_path / "x"))
+    assert res.returncode == 2
+    assert "bbob study, which has no checkpoints (use --format ioh)" in res.stderr
+    assert not (tmp_path / "x").exists() or not any((tmp_path / "x").iterdir())

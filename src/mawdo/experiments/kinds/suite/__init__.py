@@ -1,11 +1,12 @@
 """The standard black-box study: BBOB through ``ioh``, CEC 2017/2022 from the
 official code (or through ``opfunu``), COCO's protocol and measures, the CEC competitions'
-tables and presets (:mod:`.official`, :mod:`.competition`), IOHanalyzer export.
+tables and presets (:mod:`.official`, :mod:`.competition`), IOHanalyzer and CEC exports.
 
 Plan (:class:`SuitePlan`, presets ``bbob-quick`` and ``bbob-full``), one task on a worker
 (:func:`execute_suite_task`, rows :class:`SuiteRow` holding each run's best-so-far against
 evaluations), reading back (:mod:`.data`), measures (:mod:`.measures`), tables and report
-(:mod:`.report`), figures (:mod:`.plots`), IOHanalyzer export (:mod:`.export`), COCO's measures
+(:mod:`.report`), figures (:mod:`.plots`), IOHanalyzer and CEC exports (:mod:`.export`,
+:mod:`.cec_export`), COCO's measures
 as array functions (:mod:`.metrics`) and ioh's log format (:mod:`.ioh_logs`); the WDO family's
 component study (presets ``wdo-components`` and ``wdo-components-quick`` from
 :mod:`.components`, each switch's effect per function group in :mod:`.effects`; WDO+'s on CEC
@@ -16,8 +17,9 @@ package registers the ``suite`` study kind (called ``bbob`` before: stores and p
 ``kind = "bbob"`` are read as it).
 """
 
+from mawdo.experiments.kinds.suite.cec_export import export_cec
 from mawdo.experiments.kinds.suite.execute import SuiteRow, execute_suite_task
-from mawdo.experiments.kinds.suite.export import export_ioh
+from mawdo.experiments.kinds.suite.export import EXPORT_FORMATS, export_ioh
 from mawdo.experiments.kinds.suite.keys import parse_ids
 from mawdo.experiments.kinds.suite.plan import (
     KIND,
@@ -52,7 +54,9 @@ __all__ = [
     "PRESET_HELP",
     "SuitePlan",
     "SuiteRow",
+    "EXPORT_FORMATS",
     "execute_suite_task",
+    "export_cec",
     "export_ioh",
     "parse_ids",
     "preset_plan",

@@ -1,9 +1,12 @@
-"""IOHanalyzer logs of a suite study, written from its store (one folder per algorithm)."""
+"""Exports of a suite study, written from its store: IOHanalyzer logs (one folder per
+algorithm) and, for CEC studies, the competitions' result files (:mod:`.cec_export`);
+:data:`EXPORT_FORMATS` names them for the command line."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
+from mawdo.experiments.kinds.suite.cec_export import export_cec
 from mawdo.experiments.kinds.suite.data import load_runs
 from mawdo.experiments.kinds.suite.ioh_logs import IOHRun, write_analyzer_logs
 from mawdo.suites import SUITES
@@ -53,3 +56,10 @@ def export_ioh(store_path, folder) -> list[Path]:
             label = SUITES[study.suite].label
             written += write_analyzer_logs(folder / algo, runs, algo, info, suite=label)
     return written
+
+
+EXPORT_FORMATS = {
+    "ioh": (export_ioh, "IOHanalyzer logs"),
+    "cec": (export_cec, "the CEC competitions' result files"),
+}
+"""``--format`` name -> (``export(store_path, folder) -> list of Path``, what it writes)."""
