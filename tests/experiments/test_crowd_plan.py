@@ -55,3 +55,20 @@ def test_presets_build_and_an_unknown_one_lists_them():
         assert crowd_preset(name).name == name
     with pytest.raises(PlanError, match="crowdnav-quick"):
         crowd_preset("crowdnav-quik")
+
+
+@pytest.mark.parametrize("name", ["woa", "gwo", "wdo_plus"])
+def test_a_refiner_policy_is_the_mawdo_policy_with_its_optimizer(name):
+    from mawdo.optimizers import OPTIMIZERS
+    from mawdo.planning.run.policies import POLICIES, make_policy
+
+    options = {"preset": None, "overrides": {}, "noise": 2.0, "predictor": "constant_velocity"}
+    ours, base = make_policy(name, options), make_policy("mawdo", options)
+    assert name in OPTIMIZERS and POLICIES[name].knowledge == "observed"
+    assert (ours.algorithm, base.algorithm) == (name, "mawdo")
+    assert ours.config == base.config and ours.config.time_guide  # the same planner settings
+    assert (ours.knowledge, ours.predictor) == (base.knowledge, base.predictor) == (
+        "observed", "constant_velocity")  # fmt: skip
+    assert ours.tracker.noise == base.tracker.noise == 2.0
+    plan = CrowdPlan.from_dict({"settings": ["circle-5-invisible"], "policies": ["mawdo", name]})
+    assert plan.policies == ("mawdo", name)

@@ -13,6 +13,8 @@ social_force_robot     observed    the robot driven by the social force (``crowd
 dwa                    observed    a sampling local planner (dynamic window) on the
                                    tracks moving at constant velocity
 straight               none        straight to the goal at full speed
+woa, gwo, wdo_plus     observed    our planner with that optimizer in MAWDO's place
+                                   (which swarm refines best)
 =====================  ==========  ====================================================
 
 A policy is built by ``make(options)``, ``options`` holding the planner preset and overrides,
@@ -113,6 +115,10 @@ for _spec in (
     PolicySpec("dwa", _dwa, "observed",
                "sampling local planner (dynamic window) on constant-velocity tracks"),
     PolicySpec("straight", _straight, "none", "straight to the goal, blind"),
+    # the same planner with another swarm as its refiner: which optimizer refines best
+    *(PolicySpec(name, _planner(name, "observed"), "observed",
+                 f"the planner with {label} as its optimizer, on the same predictions")
+      for name, label in (("woa", "WOA"), ("gwo", "GWO"), ("wdo_plus", "WDO+"))),
 ):  # fmt: skip
     POLICIES.register(_spec.name, _spec)
 
