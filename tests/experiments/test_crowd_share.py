@@ -84,14 +84,31 @@ def test_the_report_writes_the_table(store, tmp_path):
     with Store.read(store) as st:
         t = crowd_share_table(st)
     assert t.columns == [
-        "setting", "pairs", "mawdo success", "guide_only success", "mawdo robot-caused",
-        "guide_only robot-caused", "mawdo time (s)", "guide_only time (s)", "time p",
-        "time p Holm", "time verdict", "mawdo discomfort", "guide_only discomfort",
+        "policy", "setting", "pairs", "success", "guide_only success", "robot-caused",
+        "guide_only robot-caused", "time (s)", "guide_only time (s)", "time p",
+        "time p Holm", "time verdict", "discomfort", "guide_only discomfort",
         "discomfort p", "discomfort p Holm", "discomfort verdict",
     ]  # fmt: skip
+    assert t.column("policy") == ["mawdo", "mawdo"]
     assert t.column("time verdict") == ["helps", "no measurable difference"]
     assert t.column("discomfort verdict") == ["no measurable difference", "hurts"]
-    assert f"| {SQUARE} | 10 | 0.833 | 1.000 | 0.167 | 0.000 |" in md
+    assert f"| mawdo | {SQUARE} | 10 | 0.833 | 1.000 | 0.167 | 0.000 |" in md
+
+
+def test_every_swarm_in_mawdos_place_is_compared_and_nothing_else(tmp_path):
+    # WOA drives like guide_only here (its rows are guide_only's values): no difference
+    plan = CrowdPlan.from_dict({**PLAN, "policies": ["mawdo_oracle", "mawdo", "straight", "woa",
+                                                     "guide_only"]})  # fmt: skip
+    db = tmp_path / "crowd.db"
+    hand_store(db, plan, plan.policies, plan.settings, _rows)
+    with Store.read(db) as st:
+        t = crowd_share_table(st)
+        mawdo_rows = crowd_share(st, "mawdo")
+    assert t.column("policy") == ["mawdo", "mawdo", "woa", "woa"]
+    assert t.column("setting") == [CIRCLE, SQUARE, CIRCLE, SQUARE]
+    assert t.column("time verdict")[:2] == [r["time_s_verdict"] for r in mawdo_rows]
+    assert t.column("time p")[2:] == [1.0, 1.0]  # the same times as guide_only's
+    assert t.column("pairs")[2:] == [N - 1, N]  # guide_only's failure on the circle
 
 
 def test_no_table_unless_both_policies_ran(tmp_path):

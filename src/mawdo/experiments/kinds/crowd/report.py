@@ -4,10 +4,11 @@ Rates are shares of the episodes that ran; time to goal is the mean over success
 discomfort the mean share of steps closer than 0.2 m to a person; latency the median over
 episodes of each episode's p50 / p95 decision time (wall time of the policy's ``act``).
 Every policy meets the same people (common random numbers), so the columns compare directly;
-and since episode ``k`` of a setting is the same crowd for every policy, ``mawdo`` and
-``guide_only`` (the same planner with its optimizer switched off) are compared episode by
+and since episode ``k`` of a setting is the same crowd for every policy, each
+optimizer-driven policy (``mawdo``, and ``woa``, ``gwo``, ``wdo_plus`` when the plan has them)
+is compared with ``guide_only`` (the same planner with its optimizer switched off) episode by
 episode in ``crowd_share`` (:func:`crowd_share_table`): paired Wilcoxon signed-rank tests of
-time to goal and discomfort on the episodes both succeed, Holm over the settings
+time to goal and discomfort on the episodes both succeed, Holm over a policy's settings
 (:mod:`mawdo.experiments.kinds.arena.share`).
 """
 
@@ -107,10 +108,23 @@ def crowd_table(store: Store) -> Table:
 
 
 SHARE_COLUMNS = [
-    "setting", "pairs", "{a} success", "{b} success", "{a} robot-caused", "{b} robot-caused",
-    "{a} time (s)", "{b} time (s)", "time p", "time p Holm", "time verdict", "{a} discomfort",
+    "policy", "setting", "pairs", "success", "{b} success", "robot-caused", "{b} robot-caused",
+    "time (s)", "{b} time (s)", "time p", "time p Holm", "time verdict", "discomfort",
     "{b} discomfort", "discomfort p", "discomfort p Holm", "discomfort verdict",
 ]  # fmt: skip
+
+
+def share_policies(plan, base: str = "guide_only") -> list[str]:
+    """The plan's optimizer-driven policies that observe as ``base`` does (MAWDO and the
+    other swarms in its place: each is ``base`` with an optimizer), in plan order."""
+    from mawdo.optimizers import OPTIMIZERS
+    from mawdo.planning.run.policies import POLICIES
+
+    if base not in POLICIES:
+        return []
+    know = POLICIES[base].knowledge
+    swarms = [p for p in plan.policies if p != base and p in OPTIMIZERS and p in POLICIES]
+    return [p for p in swarms if POLICIES[p].knowledge == know]
 
 
 def crowd_share(store: Store, ours: str = "mawdo", base: str = "guide_only") -> list[dict]:
@@ -149,29 +163,31 @@ def crowd_share(store: Store, ours: str = "mawdo", base: str = "guide_only") -> 
     return out
 
 
-def crowd_share_table(store: Store, ours: str = "mawdo", base: str = "guide_only") -> Table | None:
-    """:func:`crowd_share` as a table (``crowd_share.md/.tex/.csv``); None without both."""
-    rows = crowd_share(store, ours, base)
+def crowd_share_table(store: Store, base: str = "guide_only") -> Table | None:
+    """:func:`crowd_share` of every optimizer-driven policy (:func:`share_policies`) against
+    ``base`` as one table (``crowd_share.md/.tex/.csv``); None without ``base`` or any."""
+    rows = [(p, r) for p in share_policies(store.plan, base) for r in crowd_share(store, p, base)]
     if not rows:
         return None
-    cols = [c.format(a=ours, b=base) for c in SHARE_COLUMNS]
+    cols = [c.format(b=base) for c in SHARE_COLUMNS]
     body = [
-        [r["setting"], r["pairs"], *r["success"], *r["robot_caused"], *r["time_s"],
+        [p, r["setting"], r["pairs"], *r["success"], *r["robot_caused"], *r["time_s"],
          r["time_s_test"].pvalue, r["time_s_holm"], r["time_s_verdict"], *r["discomfort"],
          r["discomfort_test"].pvalue, r["discomfort_holm"], r["discomfort_verdict"]]
-        for r in rows
+        for p, r in rows
     ]  # fmt: skip
-    fmts = {c: ".3f" for c in cols[2:6] + cols[11:13]} | {c: ".2f" for c in cols[6:8]}
-    fmts |= {c: ".2g" for c in (cols[8], cols[9], cols[13], cols[14])}
+    fmts = {c: ".3f" for c in cols[3:7] + cols[12:14]} | {c: ".2f" for c in cols[7:9]}
+    fmts |= {c: ".2g" for c in (cols[9], cols[10], cols[14], cols[15])}
     return Table(
         name="crowd_share", columns=cols, rows=body, formats=fmts,
-        title=f"{ours} against {base} (the same planner without its optimizer), episode by episode",
+        title=f"Each optimizer-driven policy against {base} (the same planner without its "
+        "optimizer), episode by episode",
         notes=[f"pairs: episodes both succeed (the same people for both); success and robot-caused "
                "are shares of each one's episodes; time and discomfort are means over the pairs. "
                "p: two-sided Wilcoxon signed-rank test of the paired values (scipy.stats.wilcoxon; "
-               "p = 1 when no pair differs); p Holm: Holm over the settings, per metric. Verdict "
-               f"at 0.05 after Holm: helps = {ours} significantly lower than {base}, hurts = "
-               "higher."],
+               "p = 1 when no pair differs); p Holm: Holm over a policy's settings, per metric. "
+               f"Verdict at 0.05 after Holm: helps = the policy significantly lower than {base}, "
+               "hurts = higher."],
     )  # fmt: skip
 
 
