@@ -14,9 +14,10 @@ evaluation per run (``ask`` returns ``(R, 1, D)``), and ``max_iter`` counts eval
 
 Each run's scipy call lives in a greenlet, not a thread: handing a point over is a switch of
 stacks in the driver's own thread (about a microsecond), where a thread hand-over waits for the
-operating system to wake the other thread and for the GIL. On CEC 2017 F1, D = 10, five runs,
-that took the driver's CPU time per evaluation from about 140-230 us to the figures in
-``benchmarks/log/optimizers.md``; scipy's own work is about 55-80 us of it.
+operating system to wake the other thread and for the GIL. That halved the CPU time per
+evaluation (CEC 2017 F1, D = 10, five runs: about 225 -> 112 us, of which scipy's own loop is
+55-80 us; ``benchmarks/log/optimizers.md``). An exception raised in a scipy call, Ctrl-C
+included, ends its greenlet and is raised again in the driver.
 
 At the budget the driver stops asking; the point scipy asked for next is never evaluated, and the
 greenlet is told to stop (a private exception raised inside the objective unwinds scipy) when the
