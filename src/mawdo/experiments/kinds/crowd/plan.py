@@ -191,6 +191,14 @@ CROWD_PRESETS: dict[str, dict[str, Any]] = {
         "policies": list(_POLICIES_ALL),
         "batch_size": 25,
     },
+    # which swarm refines best: MAWDO and the other swarms in its place against guide_only
+    "crowdnav-refiners": {
+        "name": "crowdnav-refiners",
+        "settings": ["circle-5-invisible", "circle-10-invisible"],
+        "n": 100,
+        "policies": ["mawdo", "woa", "gwo", "wdo_plus", "guide_only"],
+        "batch_size": 25,
+    },
     # the headline setting only, fewer episodes: minutes, not hours
     "crowdnav-quick": {
         "name": "crowdnav-quick",
