@@ -107,6 +107,15 @@ class PlannerConfig:
         guide's shortest route (its rounded corners are drawn as octagons, so that length is
         a close upper estimate of the true optimum). Skipped replans count as ``holds``. Off
         in the ``paper`` and ``study`` presets.
+    guide_gate : bool
+        Receding horizon, space-time mode: before each (re)plan's search, rank the guides' own
+        answers (``guide_only``'s candidates) by the cost; when the best is at most
+        ``hold_gap`` (relative) longer than the static shortest route from the robot and the
+        guard finds it collision-free to the goal at full speed, take it without consulting the
+        optimizer: no search could make the route shorter or arrive earlier by more than
+        ``hold_gap`` (:mod:`mawdo.planning.run.gate`; counted in ``PlanResult.gated``). The
+        swarm then searches only where movers make the guides' answer a detour or a
+        collision. Off (default): every (re)plan searches.
     polish_rounds : int
         Rounds of greedy local descent on each (re)plan's best candidate, >= 0 (0: off):
         single waypoints moved toward their neighbours' midpoint, kept only when the plan's own
@@ -197,6 +206,7 @@ class PlannerConfig:
     max_waypoints: int = 48
     hold_straight: bool = True
     hold_gap: float = 0.002
+    guide_gate: bool = False
     polish_rounds: int = 5
     polish_steps: tuple = (0.5, 1.0)
     threads: int = 1
@@ -249,7 +259,7 @@ class PlannerConfig:
         check_int("PlannerConfig.ics_horizon", self.ics_horizon, 0)
         _check_lookahead(self)
         _check_limits(self)
-        for name in ("time_guide", "refine_trajectory"):
+        for name in ("time_guide", "refine_trajectory", "guide_gate"):
             if not isinstance(getattr(self, name), bool | np.bool_):
                 raise ValueError(
                     f"PlannerConfig.{name}={getattr(self, name)!r} must be True or False"

@@ -24,6 +24,7 @@ from mawdo.planning.refine.seeding import RunGuide, via_paths, warm_seeds
 from mawdo.planning.refine.terms import cost_class
 from mawdo.planning.run.config import PLANNING_OPTIONS, PlannerConfig, step_limit, step_limit_note
 from mawdo.planning.run.decide import NO_ROUTE, DecidingRun
+from mawdo.planning.run.gate import gated_plan
 from mawdo.planning.run.loop import run_loop
 from mawdo.planning.run.result import Drive, PlanResult, Replan
 from mawdo.planning.safety.guard import Elite, Guard
@@ -134,7 +135,8 @@ class Run(DecidingRun, TimedRun, SafeRun, LimitedRun):
         self.guard = Guard(sc, cfg.clearance)
         self.optimizers = self._make_optimizers()
         self.replans: list[Replan] = []
-        self.counts = {"waits": 0, "evasions": 0, "fallbacks": 0, "holds": 0, "inevitable": 0}
+        self.counts = {"waits": 0, "evasions": 0, "fallbacks": 0, "holds": 0, "gated": 0,
+                       "inevitable": 0}  # fmt: skip
         on = dynamic and cfg.ics_horizon > 0  # no inevitable collisions
         self.ics = SafeContinuation(sc, cfg.clearance, cfg.ics_horizon) if on else None
         self.limits = limits = Limits.of(cfg, self.given.robot_speed) if dynamic else None
@@ -212,11 +214,15 @@ class Run(DecidingRun, TimedRun, SafeRun, LimitedRun):
         from mawdo.minimize import minimize
 
         cfg, k = self.cfg, len(self.replans)
+        t_start = time.perf_counter()
+        if cfg.guide_gate:  # the guides' answer, when they certify it (module gate)
+            gated = gated_plan(self, pos, step, remainder, self._turn_cost())
+            if gated is not None:
+                return gated, self.replans[-1].latency
         ss, own = replan_seed_sequences(self.seed, k)
         rng = np.random.default_rng(own)
         first = remainder is None
         pop = (cfg.first_pop_size or cfg.pop_size) if first else cfg.pop_size
-        t_start = time.perf_counter()
         x0 = self._x0(pos, remainder, rng, pop, step)
         elite = Elite(cfg.elite_size)
         t = float(step)

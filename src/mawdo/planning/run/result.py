@@ -69,6 +69,11 @@ class PlanResult:
     holds : int
         Replans skipped, each cleared by the guard to the goal (see
         :attr:`~mawdo.planning.run.config.PlannerConfig.hold_straight` and ``hold_gap``).
+    gated : int
+        Replans that took the guides' own answer without a search: it was within ``hold_gap``
+        of the shortest route and free to the goal
+        (:attr:`~mawdo.planning.run.config.PlannerConfig.guide_gate`,
+        :mod:`~mawdo.planning.run.gate`; stored since 0.10, 0 when read from older payloads).
     fallbacks : int
         Times the guard drove an elite candidate other than the optimizer's best.
     inevitable : int
@@ -114,6 +119,7 @@ class PlanResult:
     evasions: int = 0
     fallbacks: int = 0
     holds: int = 0
+    gated: int = 0
     inevitable: int = 0
     kinematic_violations: int = 0
     hits: int = 0
@@ -244,6 +250,8 @@ def result_to_bytes(result: PlanResult) -> bytes:
                 result.holds,
                 result.inevitable,
                 result.kinematic_violations,
+                # only where a replan was gated: earlier payloads stay byte for byte
+                *([result.gated] if result.gated else []),
             ]
         ),
         verdict=np.array([result.hits, result.solved, result.guarded]),
@@ -278,13 +286,15 @@ def result_from_bytes(data: bytes, scenario) -> PlanResult:
     sc = resolve_scenario(scenario)
     extra = {}
     if "events" in z.files:  # payloads written since the guard
-        # holds: written since 0.3; inevitable steps and kinematic violations since 0.8
+        # holds: written since 0.3; inevitable steps and kinematic violations since 0.8;
+        # gated replans since 0.10
         w, e, f, nm, *later = (int(x) for x in z["events"])
-        later += [0] * (3 - len(later))
+        later += [0] * (4 - len(later))
         extra = dict(
             holds=later[0],
             inevitable=later[1],
             kinematic_violations=later[2],
+            gated=later[3],
             collision_free=bool(z["collision_free"]),
             min_clearance=float(z["min_clearance"]),
             waits=w,

@@ -15,12 +15,10 @@ from __future__ import annotations
 import time
 from dataclasses import replace
 
-import numpy as np
-
 from mawdo.planning.run.config import PlannerConfig
 from mawdo.planning.run.execute import Run
-from mawdo.planning.run.result import PlanResult, Replan
-from mawdo.planning.world.path import densify
+from mawdo.planning.run.gate import rank_seeds, record
+from mawdo.planning.run.result import PlanResult
 
 __all__ = ["GuideOnlyRun", "guide_only_run", "mawdo_time_run"]
 
@@ -41,31 +39,12 @@ class GuideOnlyRun(Run):
     def _make_refiner(self):
         return None  # the guides alone: their timed routes are driven as they are
 
-    def _plain_seeds(self, pos, step: int, remainder) -> np.ndarray:
-        m = self.m
-        rows = [densify(r, m).reshape(-1) for r in (self.guide.routes(pos) if self.guide else [])]
-        if remainder is not None:
-            rows.append(densify(remainder, m).reshape(-1))
-        rows.append(densify(np.array([pos, self.sc.goal]), m).reshape(-1))
-        X = np.vstack([self._timed_seeds(pos, step, remainder is None), np.array(rows)])
-        return np.clip(X, *self.cost.bounds)
-
     def optimise(self, pos, step: int, remainder):
         """Rank the seeds from ``pos`` at time ``step`` by the cost; best first."""
         t_start = time.perf_counter()
-        X = self._plain_seeds(pos, step, remainder)
-        f = np.asarray(self.cost(X, start=pos, t0=float(step)), dtype=float)
-        order = np.argsort(f, kind="stable")
-        best = X[order[0]]
-        length, ncol, _ = self.cost.parts(best[None, :], start=pos, t0=float(step))
-        self.replans.append(
-            Replan(step=step, position=np.array(pos, dtype=float),
-                   waypoints=best.reshape(-1, 2).copy(), cost=float(f[order[0]]),
-                   length=float(length[0]), collisions=int(ncol[0]),
-                   latency=time.perf_counter() - t_start, nfev=len(X),
-                   history=np.array([f[order[0]]]))
-        )  # fmt: skip
-        return X[order], self.replans[-1].latency
+        X, f = rank_seeds(self, pos, step, remainder)
+        record(self, pos, step, X[0], float(f[0]), len(X), time.perf_counter() - t_start)
+        return X, self.replans[-1].latency
 
 
 def guide_only_run(scenario, seed, config: PlannerConfig) -> PlanResult:
