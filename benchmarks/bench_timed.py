@@ -19,7 +19,8 @@ load average (``os.getloadavg``) above them. ``--split`` adds, per case, that CP
 into the cost kernel's calls (:class:`KernelClock`) and the rest, the planner's Python.
 ``--cases paper`` (or ``crowd``) and ``--latency-planners mawdo_time`` (or ``mawdo``) time
 only those (``--cases paper --latency-planners mawdo_time``: the default planner on the paper
-scenario, about a minute).
+scenario, about a minute); ``--guide-gate`` times them with
+:attr:`~mawdo.planning.run.config.PlannerConfig.guide_gate` on.
 """
 
 from __future__ import annotations
@@ -90,9 +91,10 @@ class KernelClock:
         self._cls.__call__ = self._call
 
 
-def step_times(scenario, time_guide: bool, seed: int = 0, clock=None) -> list[tuple]:
+def step_times(scenario, time_guide: bool, seed: int = 0, clock=None, **settings) -> list[tuple]:
     """Wall and CPU time (s) of each replanning step of one realtime run (see the module
-    docstring); with a :class:`KernelClock` ``clock``, the step's kernel CPU third."""
+    docstring), with planner ``settings`` changed; with a :class:`KernelClock` ``clock``, the
+    step's kernel CPU third."""
     from mawdo.planning.run.planner import plan
 
     marks = []
@@ -101,17 +103,20 @@ def step_times(scenario, time_guide: bool, seed: int = 0, clock=None) -> list[tu
         kernel = clock.cpu if clock is not None else 0.0
         marks.append((time.perf_counter(), time.process_time(), replans, kernel))
 
-    plan(scenario, "mawdo", seed=seed, time_guide=time_guide, progress=mark)
+    plan(scenario, "mawdo", seed=seed, time_guide=time_guide, progress=mark, **settings)
     pairs = zip(marks[1:-1], marks[2:], strict=True)
     out = [(b[0] - a[0], b[1] - a[1], b[3] - a[3]) for a, b in pairs if b[2] > a[2]]
     return out if clock is not None else [t[:2] for t in out]
 
 
-def latency(runs: int = 5, split: bool = False, cases=("paper", "crowd"), planners=None) -> None:
+def latency(
+    runs: int = 5, split: bool = False, cases=("paper", "crowd"), planners=None, **settings
+) -> None:
     """Replan p95 of ``mawdo`` and ``mawdo_time`` on the paper scenario and on ``crowd``;
     ``split``: a second row per case, the CPU of the steps in the cost kernel and the rest
     (the Python around it), each as median and p95 over the steps. ``cases``: which of the
-    two scenes; ``planners``: which of ``mawdo`` and ``mawdo_time`` (default both)."""
+    two scenes; ``planners``: which of ``mawdo`` and ``mawdo_time`` (default both);
+    ``settings``: planner settings changed in every run (``guide_gate=True``)."""
     from mawdo.planning import get_scenario
     from mawdo.planning.scenes import generate_scene
 
@@ -125,13 +130,13 @@ def latency(runs: int = 5, split: bool = False, cases=("paper", "crowd"), planne
     # measured replan would be counted as latency
     for _, scenes, _ in cases:
         for _, on in kinds:
-            step_times(scenes[0], on, seed=0)
+            step_times(scenes[0], on, seed=0, **settings)
     print("load average (1, 5, 15 min): " + ", ".join(f"{x:.2f}" for x in os.getloadavg()))
     for name, scenes, target in cases:
         for planner, on in kinds:
             with KernelClock() if split else contextlib.nullcontext() as clock:
                 lat = np.array([t for k, sc in enumerate(scenes)
-                                for t in step_times(sc, on, seed=k, clock=clock)])  # fmt: skip
+                                for t in step_times(sc, on, k, clock, **settings)])  # fmt: skip
             p95, med = 1e3 * np.percentile(lat, 95, axis=0), 1e3 * np.median(lat, axis=0)
             ok = "ok" if p95[0] <= target else "MISSED"
             print(f"replan {name:5s} {planner:11s} {len(lat):5d} replans  median {med[0]:6.1f} ms "
@@ -171,13 +176,16 @@ def main(argv=None) -> None:
                     help="with --latency, the scenes timed (paper, crowd)")  # fmt: skip
     ap.add_argument("--latency-planners", default="mawdo,mawdo_time",
                     help="with --latency, the planners timed (mawdo, mawdo_time)")  # fmt: skip
+    ap.add_argument("--guide-gate", action="store_true",
+                    help="with --latency, the planner's guide gate on")  # fmt: skip
     a = ap.parse_args([] if argv is None else argv)
     if a.latency or argv is None:
         cases, planners = a.cases.split(","), a.latency_planners.split(",")
         for name, known in ((cases, ("paper", "crowd")), (planners, ("mawdo", "mawdo_time"))):
             if bad := [x for x in name if x not in known]:
                 ap.error(f"unknown {bad[0]!r}: choose from {', '.join(known)}")
-        latency(split=a.split, cases=cases, planners=planners)
+        gate = {"guide_gate": True} if a.guide_gate else {}
+        latency(split=a.split, cases=cases, planners=planners, **gate)
         if a.latency:
             return
     fams, plans = a.families.split(","), a.planners.split(",")
