@@ -91,3 +91,15 @@ def test_presets_and_validation():
     assert not PRESETS["paper"].guide_gate and not PRESETS["study"].guide_gate
     with pytest.raises(ValueError, match="guide_gate"):
         PlannerConfig(guide_gate="yes")
+
+
+def test_no_gate_under_acceleration_or_turn_limits_where_the_shortest_route_is_not_fastest():
+    # a speed cap alone scales every arrival alike: the gate applies
+    capped = _run(_crossing_scene(10.0), guide_gate=True, max_speed=3.0)
+    capped.optimise(START, 0, None)
+    assert capped.counts["gated"] == 1
+    for limit in ({"max_accel": 0.5}, {"max_turn": 0.6}):
+        run = _run(_crossing_scene(10.0), guide_gate=True, **limit)
+        assert run.limits is not None
+        run.optimise(START, 0, None)
+        assert run.counts["gated"] == 0 and run.replans[-1].nfev > 20 * 40

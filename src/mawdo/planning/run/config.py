@@ -115,7 +115,8 @@ class PlannerConfig:
         optimizer: no search could make the route shorter or arrive earlier by more than
         ``hold_gap`` (:mod:`mawdo.planning.run.gate`; counted in ``PlanResult.gated``). The
         swarm then searches only where movers make the guides' answer a detour or a
-        collision. Off (default): every (re)plan searches.
+        collision. Not applied under acceleration or turn-rate limits, where the shortest
+        route need not arrive first. Off (default): every (re)plan searches.
     polish_rounds : int
         Rounds of greedy local descent on each (re)plan's best candidate, >= 0 (0: off):
         single waypoints moved toward their neighbours' midpoint, kept only when the plan's own

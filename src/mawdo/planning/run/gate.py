@@ -87,9 +87,13 @@ def certifies(run, pos, step: int, best) -> bool:
 def gated_plan(run, pos, step: int, remainder, extra=None):
     """The (re)plan without a search when the guides certify it (:func:`certifies`): the
     ranked seeds, best first, for the guard to choose from; ``None`` when the swarm must search
-    (or the gate does not apply: a frozen-map run, another cost mode, no static guide)."""
+    (or the gate does not apply: a frozen-map run, another cost mode, no static guide, or
+    acceleration or turn-rate limits, under which the shortest route is not the fastest)."""
     if not (run.dynamic and run.cfg.mode == "spacetime" and run.guide is not None):
         return None
+    lim = run.limits
+    if lim is not None and (lim.accel, lim.turn) != (None, None):
+        return None  # stops and turns take time: the shortest route need not arrive first
     t_start = time.perf_counter()
     X, f = rank_seeds(run, pos, step, remainder, extra)
     if not certifies(run, pos, step, X[0]):
