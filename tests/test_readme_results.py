@@ -417,11 +417,38 @@ def test_the_crowd_share_is_that_of_the_committed_store(tmp_path, folder):
     assert to_markdown(table) == (path / "crowd_share.md").read_text("utf-8")
 
 
+def official_store(folder: str, tmp_path):
+    """A committed official CEC study: its folder, the unpacked store and its plan file, which
+    must be what the store's own plan says."""
+    import json
+
+    where = ROOT / "docs" / "results" / folder
+    db = unpack(where / "store.db.xz", tmp_path)
+    plan = json.loads((where / "plan.json").read_text("utf-8"))
+    stored = json.loads(sqlite3.connect(db).execute("SELECT plan_json FROM meta").fetchone()[0])
+    assert {k: stored[k] for k in plan} == plan
+    return where, db, plan
+
+
+def assert_group_places_stated(study, by_group, dim: int) -> None:
+    """docs/algorithms.md states WDO+'s place in each function group of ``by_group`` (the
+    Friedman ranks per group), in order: 1 + the algorithms ranked strictly better."""
+    n, ours = len(study.algorithms), study.algorithms.index("wdo_plus")
+    places = []
+    for r in by_group.rows:
+        rank = np.array(r[3 : 3 + n])
+        place = 1 + int(np.sum(rank < rank[ours]))
+        suffix = {1: "st", 2: "nd", 3: "rd"}.get(place, "th")
+        places.append(f"{r[1].split(' (')[0]} {place}{suffix}")
+    algos_page = " ".join((ROOT / "docs" / "algorithms.md").read_text("utf-8").split())
+    assert f"D = {dim}: {', '.join(places)}" in algos_page
+
+
 @pytest.mark.parametrize(
     ("folder", "dim", "evaluations", "row", "anchor"),
     [
-        ("cec2022-official-d10", 10, 200_000, -2, "cec2022-official"),
-        ("cec2022-official-d20", 20, 1_000_000, -1, "cec2022-official-d20"),
+        ("cec2022-official-d10", 10, 200_000, -3, "cec2022-official"),
+        ("cec2022-official-d20", 20, 1_000_000, -2, "cec2022-official-d20"),
     ],
 )
 def test_the_official_cec2022_ranks_are_those_of_the_committed_store(
@@ -431,18 +458,13 @@ def test_the_official_cec2022_ranks_are_those_of_the_committed_store(
     200 000 evaluations at D = 10, 1 000 000 at D = 20) as its plan file says, and gives the
     committed Friedman table and competition tables, from which the README's official suites
     rows and the results page's sentence are made."""
-    import json
 
     from mawdo.experiments.kinds.suite.competition import competition_tables
     from mawdo.experiments.kinds.suite.data import load_runs
     from mawdo.experiments.kinds.suite.report import friedman_groups_table, friedman_table
     from mawdo.experiments.tables import to_markdown
 
-    where = ROOT / "docs" / "results" / folder
-    db = unpack(where / "store.db.xz", tmp_path)
-    plan = json.loads((where / "plan.json").read_text("utf-8"))
-    stored = json.loads(sqlite3.connect(db).execute("SELECT plan_json FROM meta").fetchone()[0])
-    assert {k: stored[k] for k in plan} == plan
+    where, db, plan = official_store(folder, tmp_path)
     assert (plan["suite"], plan["dims"], plan["budget"] * dim, plan["runs"]) == (
         "cec2022", [dim], evaluations, 30,
     )  # fmt: skip
@@ -458,16 +480,9 @@ def test_the_official_cec2022_ranks_are_those_of_the_committed_store(
     assert list(sizes) == [1, 4, 3, 4]
     group_ranks = np.array([r[3 : 3 + n] for r in by_group.rows])
     np.testing.assert_allclose(sizes @ group_ranks / 12, friedman_table(study).rows[0][2 : 2 + n])
-    # docs/algorithms.md gives WDO+'s place in each group (1 + those ranked strictly better)
+    # docs/algorithms.md gives WDO+'s place in each group
     ours = study.algorithms.index("wdo_plus")
-    places = []
-    for r in by_group.rows:
-        rank = np.array(r[3 : 3 + n])
-        place = 1 + int(np.sum(rank < rank[ours]))
-        suffix = {1: "st", 2: "nd", 3: "rd"}.get(place, "th")
-        places.append(f"{r[1].split(' (')[0]} {place}{suffix}")
-    algos_page = " ".join((ROOT / "docs" / "algorithms.md").read_text("utf-8").split())
-    assert f"D = {dim}: {', '.join(places)}" in algos_page
+    assert_group_places_stated(study, by_group, dim)
     comp = by_group.rows[-1]
     assert (
         comp[1].startswith("composition")
@@ -494,3 +509,63 @@ def test_the_official_cec2022_ranks_are_those_of_the_committed_store(
     algos = " ".join((ROOT / "docs" / "algorithms.md").read_text("utf-8").split())
     ahead = f"behind {', '.join(top[:3])} and {top[3]} ([report](results/{folder}/report.md)"
     assert ahead in algos
+
+
+#: The algorithms' names as the pages write them.
+NAMES = {
+    "nlshade_rsp": "NL-SHADE-RSP", "jso": "jSO", "lshade": "L-SHADE", "cmaes": "CMA-ES",
+    "scipy_de": "scipy's DE", "wdo_plus": "WDO+", "gwo": "GWO", "wdo": "WDO", "woa": "WOA",
+    "mawdo": "MAWDO", "random": "random search",
+}  # fmt: skip
+
+
+def test_the_official_cec2017_study_is_that_of_the_committed_store(tmp_path):
+    """docs/results/cec2017-official-d10: the store holds CEC 2017's protocol at D = 10 (F1-F30,
+    51 runs, 100 000 evaluations) as its plan file says; it gives the committed Friedman, group,
+    score and competition tables, and the README row, the results page's order and the
+    algorithms page's places by group are read from them."""
+
+    from mawdo.experiments.kinds.suite.competition import competition_tables, score_table
+    from mawdo.experiments.kinds.suite.data import load_runs
+    from mawdo.experiments.kinds.suite.report import friedman_groups_table, friedman_table
+    from mawdo.experiments.tables import to_markdown
+
+    folder, dim = "cec2017-official-d10", 10
+    where, db, plan = official_store(folder, tmp_path)
+    assert (plan["suite"], plan["dims"], plan["budget"] * dim, plan["runs"]) == (
+        "cec2017", [dim], 100_000, 51,
+    )  # fmt: skip
+    assert plan["functions"] == list(range(1, 31)) and len(plan["algorithms"]) == 10
+    study = load_runs(db)
+    n_runs = sqlite3.connect(db).execute("SELECT count(*) FROM runs").fetchone()[0]
+    assert n_runs == 30 * 10 * 51
+    assert to_markdown(friedman_table(study)) == (where / "friedman.md").read_text("utf-8")
+    by_group = friedman_groups_table(study)
+    assert to_markdown(by_group) == (where / "friedman_groups.md").read_text("utf-8")
+    assert to_markdown(score_table(study)) == (where / "score.md").read_text("utf-8")
+    tables = {t.name: t for t in competition_tables(study, dim)}
+    for name in (f"competition_d{dim}", f"checkpoints_d{dim}"):
+        assert to_markdown(tables[name]) == (where / f"{name}.md").read_text("utf-8")
+    n = len(study.algorithms)
+    sizes = np.array([r[2] for r in by_group.rows])
+    assert list(sizes) == [3, 7, 10, 10]
+    group_ranks = np.array([r[3 : 3 + n] for r in by_group.rows])
+    np.testing.assert_allclose(sizes @ group_ranks / 30, friedman_table(study).rows[0][2 : 2 + n])
+    line = readme_tables().suites_table()[-1]
+    assert line.startswith("| CEC 2017 F1-F30, D = 10 (official") and "| WDO+ |" in line
+    assert_group_places_stated(study, by_group, dim)
+    # the results page names, in order, every algorithm ranked ahead of WDO+
+    fr = friedman_table(study).rows[-1]
+    ranks = dict(zip(study.algorithms, fr[2 : 2 + n], strict=True))
+    order = sorted(ranks, key=ranks.get)
+    ahead = [NAMES[a] for a in order[: order.index("wdo_plus")]]
+    page = (ROOT / "docs" / "results.md").read_text("utf-8")
+    section = page.split('<a id="cec2017-official-d10"></a>')[1].split("\n## ")[0]
+    listed = ", ".join(ahead[:-1]) + f" and {ahead[-1]}" if len(ahead) > 1 else ahead[0]
+    assert f"order them {listed}, then WDO+" in " ".join(section.split())
+    # and the score's order, best first, as the results page gives it
+    score = score_table(study)
+    top = [NAMES[r[1]] for r in score.rows]
+    assert f"by the competition's score: {', '.join(top[:-1])} and {top[-1]}" in " ".join(
+        section.split()
+    )
