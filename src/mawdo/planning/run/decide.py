@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mawdo.planning.refine.cost import assemble_paths
+from mawdo.planning.run.gate import near_shortest
 from mawdo.planning.run.loop import GOAL_TOL
 from mawdo.planning.run.result import Drive
 from mawdo.planning.world.path import polyline_length
@@ -211,7 +212,6 @@ class DecidingRun:
         return length <= direct + STRAIGHT_TOL  # else collinear but doubling back
 
     def _near_shortest(self, remainder, length: float) -> bool:
-        gap = self.cfg.hold_gap
-        if not (self.stalled and gap > 0 and self.guide is not None):
+        if not (self.stalled and self.guide is not None):
             return False
-        return length <= (1.0 + gap) * self.guide.shortest(remainder[0])
+        return near_shortest(self, remainder, length)

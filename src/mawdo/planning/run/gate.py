@@ -32,7 +32,7 @@ from mawdo.planning.refine.cost import assemble_paths
 from mawdo.planning.run.result import Replan
 from mawdo.planning.world.path import densify, polyline_length
 
-__all__ = ["gated_plan", "plain_seeds", "rank_seeds"]
+__all__ = ["gated_plan", "near_shortest", "plain_seeds", "rank_seeds"]
 
 
 def plain_seeds(run, pos, step: int, remainder) -> np.ndarray:
@@ -70,16 +70,20 @@ def record(run, pos, step: int, best, cost: float, nfev: int, latency: float) ->
     return rep
 
 
+def near_shortest(run, route, length: float) -> bool:
+    """``route`` (of ``length`` px) is at most ``hold_gap`` (relative, > 0) longer than the
+    static shortest route from its first point: the test of a held plan and of a gated one."""
+    gap = run.cfg.hold_gap
+    return gap > 0 and length <= (1.0 + gap) * run.guide.shortest(route[0])
+
+
 def certifies(run, pos, step: int, best) -> bool:
     """True when ``best`` (a candidate from ``pos`` at ``step``) is at most ``hold_gap``
     (relative) longer than the static shortest route from ``pos`` and the guard finds it
     collision-free to the goal, driven at full speed from ``step``."""
-    gap = run.cfg.hold_gap
-    if not gap > 0:
-        return False
     route = assemble_paths(best[None, :], pos, run.sc.goal)[0]
     length = polyline_length(route)
-    if not length <= (1.0 + gap) * run.guide.shortest(pos):
+    if not near_shortest(run, route, length):
         return False
     return run.guard.stretch_hits(route, float(step), length) == 0
 
