@@ -135,6 +135,27 @@ def test_same_plan_reopens_and_keeps_runs(tmp_path):
         assert store.count() == 2
 
 
+def test_a_store_made_before_a_column_existed_resumes_and_reads_it_as_none(tmp_path):
+    # a store of the same plan and version whose runs table lacks a column the row type has
+    # since gained (as when a column is added between releases): resuming it must add the
+    # column, keep the old rows (None there) and write the new ones whole
+    path = tmp_path / "s.db"
+    plan = small_plan()
+    with Store.open(path, plan) as store:
+        store.write_task(outcome(plan, Task("gwo", "quartic", 0, 2)))
+    con = sqlite3.connect(path)
+    with con:
+        con.execute("ALTER TABLE runs DROP COLUMN seed_entropy")
+    con.close()
+    with Store.open(path, plan) as store:
+        store.write_task(outcome(plan, Task("gwo", "quartic", 2, 1)))
+    with Store.read(path) as store:
+        recs = {r.run: r for _, _, r in store.rows()}
+    assert sorted(recs) == [0, 1, 2]
+    assert recs[0].seed_entropy is None and recs[1].seed_entropy is None
+    assert recs[2].seed_entropy == [123, 456] and recs[2].fun == 3.5
+
+
 def test_read_only_store_file_is_refused_for_writing(tmp_path):
     path = tmp_path / "s.db"
     plan = small_plan()

@@ -116,6 +116,18 @@ def create_tables(conn: sqlite3.Connection, row_type: type[RunRow]) -> None:
             conn.execute(stmt)
 
 
+def add_missing_columns(conn: sqlite3.Connection, row_type: type[RunRow]) -> list[str]:
+    """Add to ``runs`` the columns of ``row_type`` that a store made before they existed lacks
+    (NULL in its rows, read as None), so that resuming it can write rows of today's type;
+    returns their names."""
+    present = {r[1] for r in conn.execute("PRAGMA table_info(runs)").fetchall()}
+    missing = [(n, s) for n, s in schema(row_type) if n not in present]
+    with conn:
+        for name, storage in missing:
+            conn.execute(f"ALTER TABLE runs ADD COLUMN {name} {STORAGE_SQL[storage]}")
+    return [n for n, _ in missing]
+
+
 def drop_tables(conn: sqlite3.Connection) -> None:
     with conn:
         for t in ("runs", "tasks", "meta"):

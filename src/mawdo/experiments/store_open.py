@@ -14,6 +14,7 @@ from mawdo.experiments.protocol import STUDY_KINDS, StudyKind, plan_from_json
 from mawdo.experiments.sqlitefile import (
     SCHEMA_VERSION,
     StoreError,
+    add_missing_columns,
     create_tables,
     drop_tables,
     library_version,
@@ -46,6 +47,9 @@ def open_meta(conn, path: Path, plan: Any, kind: StudyKind, force: bool) -> dict
             drop_tables(conn)
             create_tables(conn, kind.row)
         meta = write_meta(conn, path, plan)
+    else:  # the same plan and version: columns added to the row type since are added here
+        with translate(path, "update"):
+            add_missing_columns(conn, kind.row)
     return meta
 
 

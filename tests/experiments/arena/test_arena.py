@@ -144,6 +144,7 @@ def test_each_row_stores_its_scene_which_reruns_alone_to_the_same_numbers(refere
     res = plan(sc, algorithm="mawdo", seed=r.planner_seed, config="quick", max_steps=40)
     assert int(res.success) == r.success
     assert res.nfev == r.nfev
+    assert (r.replans, r.gated) == (len(res.replans), res.gated)
     from mawdo.planning.world.path import polyline_length
 
     assert polyline_length(res.route) == pytest.approx(r.length, rel=1e-12)
@@ -153,6 +154,23 @@ def test_each_row_stores_its_scene_which_reruns_alone_to_the_same_numbers(refere
     check = check_trajectory(res.route, sc, times=res.route_times)
     assert r.collision_free == int(check.ok)
     assert r.clearance == check.min_clearance
+
+
+def test_rows_count_the_plans_the_guide_gate_took_without_a_search(tmp_path):
+    from mawdo.planning.run.config import PRESETS
+
+    # on a static map with the gate on, the guides certify every plan: no search at all, and
+    # the row says so; guide_only's plans are never counted as gated
+    plan = tiny(families=["forest"], n=2, baselines=["guide_only"],
+                overrides={"max_steps": 40, "guide_gate": True})  # fmt: skip
+    run_plan(plan, tmp_path / "g.db", progress=False)
+    with Store.read(tmp_path / "g.db") as store:
+        rows = [(a, r) for a, _, r in store.rows()]
+    for a, r in rows:
+        assert r.replans >= 1
+        assert r.gated == (r.replans if a == "mawdo" else 0)
+        if a == "mawdo":
+            assert r.nfev < PRESETS["quick"].pop_size  # the seeds' costs, not a population's
 
 
 def test_straight_baseline_numbers_match_a_hand_computation(reference):

@@ -44,14 +44,24 @@ DOORWAY = BASE + 0.002 * (1 + np.arange(N))
 MAWDO_FAILS, GUIDE_FAILS = {0, 1}, {2}
 
 
-def _row(k: int, family: str, gap: float, success: bool, latency: float) -> ArenaRow:
+def _row(k: int, family: str, gap: float, success: bool, latency: float,
+         counts: tuple = (None, None)) -> ArenaRow:  # fmt: skip
     timed = family == "doorway"
     won = gap if success else float("nan")
     return ArenaRow(run=k, wall_time=0.1, status="ok", scene_name=f"{family}-{k}",
                     scene_toml="", scene_hash="h", l_star=100.0, planner_seed=k,
                     success=int(success), collision_free=int(success), length=100.0 * gap,
                     gap=won, latency_p95_ms=latency, t_star=40.0 if timed else None,
-                    time_gap=won if timed else None)  # fmt: skip
+                    time_gap=won if timed else None, replans=counts[0],
+                    gated=counts[1])  # fmt: skip
+
+
+def _counts(planner: str, family: str, k: int) -> tuple:
+    """(replans, gated): mawdo's every plan gated on even forest scenes (no search there), one
+    of three elsewhere; woa's counts not stored (a store made before they were)."""
+    if planner == "woa":
+        return None, None
+    return 3, 3 if (planner == "mawdo" and family == "forest" and k % 2 == 0) else 1
 
 
 def _gaps(planner: str, family: str) -> tuple[np.ndarray, set[int]]:
@@ -79,7 +89,8 @@ def hand_store(db, plan, who, where, rows_of) -> None:
 def _rows(planner: str, family: str) -> list[ArenaRow]:
     gaps, failed = _gaps(planner, family)
     lat = 10.0 if planner == "guide_only" else 50.0
-    return [_row(k, family, gaps[k], k not in failed, lat + k) for k in range(N)]
+    return [_row(k, family, gaps[k], k not in failed, lat + k, _counts(planner, family, k))
+            for k in range(N)]  # fmt: skip
 
 
 @pytest.fixture(scope="module")
@@ -158,13 +169,15 @@ def test_the_table_columns_and_rows(store):
         "planner", "family", "gap", "pairs", "success", "guide_only success", "only planner",
         "only guide_only", "gap median", "guide_only gap median", "median ratio", "differ",
         "mean difference", "p", "p Holm", "verdict", "latency p95 (ms)",
-        "guide_only latency p95 (ms)",
+        "guide_only latency p95 (ms)", "runs searched",
     ]  # fmt: skip
     assert [(r[0], r[1]) for r in t.rows] == [
         (p, f) for p in ("MAWDO", "WOA") for f in ("forest", "dense", "doorway")
     ]
     assert t.column("verdict") == [HELPS, SAME, HURTS, SAME, SAME, SAME]
     assert t.column("pairs") == [N, N, 7, N, N, 9]
+    # over each planner's runs (failed ones too); unknown where the store holds no counts
+    assert t.column("runs searched") == [N // 2, N, N, None, None, None]
     md = to_markdown(t)
     assert "| MAWDO | doorway | T/T* | 7 | 80% | 90% | 1 | 2 |" in md
     assert len(to_csv(t).splitlines()) == 1 + len(t.rows)

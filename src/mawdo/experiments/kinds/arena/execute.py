@@ -41,8 +41,10 @@ class ArenaRow(RunRow):
     rest, hit by an obstacle); ``inevitable`` counts the steps at which no option kept a safe
     continuation; ``robot_caused`` the collisions the robot's own motion produced, for runs
     stepped in a world (observed knowledge; None for the others:
-    :func:`~mawdo.planning.judge.fault.blame`). Stores made before these columns existed read
-    them as None.
+    :func:`~mawdo.planning.judge.fault.blame`). ``replans`` counts the run's (re)plans, the
+    first included, and ``gated`` those the guide gate took without a search
+    (:mod:`~mawdo.planning.run.gate`): an optimizer-driven planner searched ``replans -
+    gated`` times. Stores made before these columns existed read them as None.
     """
 
     status: str | None = column("text", required=True)
@@ -73,6 +75,8 @@ class ArenaRow(RunRow):
     passive_collisions: int | None = column("int")
     inevitable: int | None = column("int")
     robot_caused: int | None = column("int")
+    replans: int | None = column("int")
+    gated: int | None = column("int")
 
 
 #: Row fields a caller that needs no trace or scene text leaves unread (large blobs).
@@ -136,6 +140,7 @@ def row_metrics(res, l_star: float, t_star: float | None = None) -> dict[str, An
     for col in _NONE_IF_NAN:
         out[col] = None if np.isnan(out[col]) else out[col]
     out["robot_caused"] = getattr(res, "robot_caused", None)
+    out["replans"], out["gated"] = len(res.replans), int(res.gated)
     return out
 
 

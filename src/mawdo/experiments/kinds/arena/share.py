@@ -137,7 +137,17 @@ def _family(ours: list, base: list) -> dict:
         "latency": _median(won[n].latency_p95_ms for n in both),
         "base latency": _median(theirs[n].latency_p95_ms for n in both),
         "test": signed_rank(a, b),
+        "searched": _searched(ours),
     }
+
+
+def _searched(rows: list) -> int | None:
+    """How many of the runs searched at least once (a (re)plan not taken by the guide gate);
+    None for a store made before the counts were stored."""
+    counts = [(r.replans, r.gated) for r in rows]
+    if not counts or any(n is None or g is None for n, g in counts):
+        return None
+    return sum(n > g for n, g in counts)
 
 
 def share_rows(store: Store, base: str = "guide_only", alpha: float = ALPHA) -> list[dict]:
@@ -150,7 +160,9 @@ def share_rows(store: Store, base: str = "guide_only", alpha: float = ALPHA) -> 
     the base's), ``differ`` (pairs whose gaps differ, :func:`differences`), ``mean
     difference`` (the planner's gap minus the base's, over the pairs), ``latency`` and
     ``base latency`` (median over the pairs of each run's replan p95, ms), ``test``
-    (:class:`Paired`), ``p holm`` and ``verdict`` (Holm over the planner's families).
+    (:class:`Paired`), ``p holm`` and ``verdict`` (Holm over the planner's families),
+    ``searched`` (the planner's runs in which its optimizer searched at least once, that is
+    made a (re)plan the guide gate did not take; None for stores without the counts).
     """
     plan = store.plan
     if base not in plan.planners:
@@ -175,7 +187,7 @@ def share_columns(base: str) -> list[str]:
     return ["planner", "family", "gap", "pairs", "success", f"{base} success", "only planner",
             f"only {base}", "gap median", f"{base} gap median", "median ratio", "differ",
             "mean difference", "p", "p Holm",
-            "verdict", "latency p95 (ms)", f"{base} latency p95 (ms)"]  # fmt: skip
+            "verdict", "latency p95 (ms)", f"{base} latency p95 (ms)", "runs searched"]  # fmt: skip
 
 
 _KEYS = ["pairs", "success", "base success", "only planner", "only base", "median",
@@ -195,12 +207,12 @@ def share_table(store: Store, base: str = "guide_only", alpha: float = ALPHA) ->
         formats={c: ".3f" for c in cols[8:11]}
         | {"success": ".0%", f"{base} success": ".0%", "mean difference": "+.2g"}
         | {"p": ".2g", "p Holm": ".2g"}
-        | {c: ".1f" for c in cols[16:]},
+        | {c: ".1f" for c in cols[16:18]},
     )
     for r in rows:
         t.rows.append([label(r["planner"]), r["family"], r["gap"], *(r[k] for k in _KEYS),
                        r["test"].pvalue, r["p holm"], r["verdict"], r["latency"],
-                       r["base latency"]])  # fmt: skip
+                       r["base latency"], r["searched"]])  # fmt: skip
     t.notes.append(
         f"{base} is the same planner with its optimizer switched off. Pairs: the scenes both "
         "solve; success over each one's planned scenes; only planner / only "
@@ -214,6 +226,10 @@ def share_table(store: Store, base: str = "guide_only", alpha: float = ALPHA) ->
         f"pairs within a relative {RTOL:g} count as equal and drop out; p = 1 when no pair "
         f"differs); p Holm: Holm over the planner's families. Verdict at {alpha:g} after Holm: "
         f"helps = significantly smaller gaps than {base}, hurts = larger."
+    )
+    t.notes.append(
+        "Runs searched: the planner's runs of the family in which its optimizer searched at "
+        "least once; the guide gate takes the others' every plan from the guides, unsearched."
     )
     return t
 
