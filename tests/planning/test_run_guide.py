@@ -30,3 +30,26 @@ def test_run_guide_answers_as_the_guide_and_searches_a_repeat_once(monkeypatch):
         assert all(np.array_equal(x, y) for x, y in zip(got, routes, strict=True))
     # a new search only when the position changes: a, b, a, b
     assert searched == [a.tobytes(), b.tobytes(), a.tobytes(), b.tobytes()]
+
+
+def test_seed_rows_are_the_densified_routes_and_made_once_per_position(monkeypatch):
+    from mawdo.planning.world import path
+
+    sc = get_scenario("paper")
+    plain, kept = Guide(sc, clearance=0.5, k=6), RunGuide(sc, clearance=0.5, k=6)
+    a, b = np.array([30.0, 40.0]), np.array([120.5, 200.25])
+    made = []
+    assembled = Guide.routes
+
+    def counted(self, pos):
+        made.append(np.asarray(pos, dtype=float).tobytes())
+        return assembled(self, pos)
+
+    monkeypatch.setattr(Guide, "routes", counted)
+    for p, m in ((a, 10), (a, 10), (a, 12), (b, 10), (b, 10)):
+        rows = kept.seed_rows(p, m)
+        want = [path.densify(r, m).reshape(-1) for r in assembled(plain, p)]
+        assert len(rows) == len(want) > 0
+        assert all(np.array_equal(x, y) for x, y in zip(rows, want, strict=True))
+    # the routes are assembled once per position (a new m densifies them again)
+    assert made == [a.tobytes(), b.tobytes()]

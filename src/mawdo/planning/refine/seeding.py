@@ -20,12 +20,28 @@ class RunGuide(Guide):
     The arrays returned are the query's own (its callers only read them)."""
 
     _last: tuple = (None, None)
+    _routes: tuple = (None, None)
 
     def query(self, pos):
         key = np.asarray(pos, dtype=float).tobytes()
         if self._last[0] != key:
             self._last = (key, super().query(pos))
         return self._last[1]
+
+    def routes(self, pos) -> list[np.ndarray]:
+        # the guide gate and the search's seeds ask from the same position in one replan
+        key = np.asarray(pos, dtype=float).tobytes()
+        if self._routes[0] != key:
+            self._routes = (key, super().routes(pos))
+        return self._routes[1]
+
+    def seed_rows(self, pos, m: int) -> list[np.ndarray]:
+        """The routes from ``pos`` as ``m`` waypoints each (:func:`densify`), flat ``(2 m,)``
+        rows, made once per position and read only by the callers."""
+        key = (np.asarray(pos, dtype=float).tobytes(), m)
+        if getattr(self, "_rows", (None,))[0] != key:
+            self._rows = (key, [densify(r, m).reshape(-1) for r in self.routes(pos)])
+        return self._rows[1]
 
 
 def warm_seeds(route, m: int, config: PlannerConfig, rng, lb, ub) -> np.ndarray:

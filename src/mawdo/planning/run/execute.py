@@ -184,8 +184,7 @@ class Run(DecidingRun, TimedRun, SafeRun, LimitedRun):
         if self.guide is None:
             return np.empty((0, 2 * self.m))
         rows = []
-        for r in self.guide.routes(pos):
-            base = densify(r, self.m).reshape(-1)
+        for base in self.guide.seed_rows(pos, self.m):
             noise = rng.normal(0.0, self.cfg.warm_sigma, (self.cfg.guide_copies, base.size))
             rows.append(np.vstack([base, base + noise]))
         return np.clip(np.vstack(rows), lb, ub) if rows else np.empty((0, 2 * self.m))

@@ -40,7 +40,7 @@ def plain_seeds(run, pos, step: int, remainder) -> np.ndarray:
     the timed routes' paths (where the run asks them), the static guide's routes, the previous
     plan's remainder and the straight line to the goal, clipped to the cost's box."""
     m = run.m
-    rows = [densify(r, m).reshape(-1) for r in (run.guide.routes(pos) if run.guide else [])]
+    rows = list(run.guide.seed_rows(pos, m)) if run.guide else []
     if remainder is not None:
         rows.append(densify(remainder, m).reshape(-1))
     rows.append(densify(np.array([pos, run.sc.goal]), m).reshape(-1))
