@@ -15,7 +15,7 @@ Every baseline returns a :class:`BaselineResult` (:func:`as_plan_result` turns i
 t = 0, is judged against all obstacles (moving ones included) by
 :func:`mawdo.planning.judge.check.check_trajectory`. ``run_baseline(name, scenario, **options)``
 dispatches by name; OMPL options are ``time_limit`` (s), ``resolution`` (px), ``clearance``
-(px) and ``simplify`` (see :func:`plan_ompl`).
+(px), ``simplify`` and ``max_time`` (s; see :func:`plan_ompl`).
 """
 
 from __future__ import annotations
