@@ -10,6 +10,8 @@
    ``0 .. N-1``; p50 and p95 over every decision after each episode's first (its first plan),
    and the CPU time (``time.process_time``) of the same calls beside it, since the wall figure
    moves with the machine's load (printed above). Target: p95 <= 20 ms with 20 people.
+   ``--no-guide-gate`` times the planner policies with the guide gate off (the default
+   preset has it on).
 """
 
 from __future__ import annotations
@@ -59,8 +61,11 @@ class Timed:
         return out
 
 
-def decisions(policy_name: str, people: int, episodes: int) -> tuple[np.ndarray, np.ndarray, int]:
-    """Wall and CPU seconds of every decision after the first, and the successes."""
+def decisions(
+    policy_name: str, people: int, episodes: int, overrides: dict | None = None
+) -> tuple[np.ndarray, np.ndarray, int]:
+    """Wall and CPU seconds of every decision after the first, and the successes
+    (``overrides``: planner settings changed, for the planner policies)."""
     from mawdo.experiments.kinds.crowd.execute import scene_of, world_of
     from mawdo.planning.run.episode import run_episode
     from mawdo.planning.run.policies import make_policy
@@ -68,7 +73,8 @@ def decisions(policy_name: str, people: int, episodes: int) -> tuple[np.ndarray,
     wall, cpu, ok = [], [], 0
     for k in range(episodes):
         scene = scene_of(f"circle-{people}-invisible", k)
-        timed = Timed(make_policy(policy_name, {"res": scene.res, "dt": scene.dt}))
+        options = {"res": scene.res, "dt": scene.dt, "overrides": dict(overrides or {})}
+        timed = Timed(make_policy(policy_name, options))
         res = run_episode(world_of(scene, k), timed, scene.time_limit_steps, seed=k)
         wall += timed.wall
         cpu += timed.cpu
@@ -81,6 +87,7 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--episodes", type=int, default=5)
     ap.add_argument("--people", type=int, default=20)
     ap.add_argument("--policies", default="mawdo,guide_only")
+    ap.add_argument("--no-guide-gate", action="store_true", help="the guide gate off")
     args = ap.parse_args([] if argv is None else argv)  # (python -m benchmarks: defaults)
     print(f"load average {os.getloadavg()[0]:.2f} (one core per figure)")
     for model in ("orca", "social_force"):
@@ -91,7 +98,8 @@ def main(argv: list[str] | None = None) -> None:
     # one untimed episode first: the kernels compile
     decisions(args.policies.split(",")[0], args.people, 1)
     for name in args.policies.split(","):
-        wall, cpu, ok = decisions(name, args.people, args.episodes)
+        gate = {"guide_gate": False} if args.no_guide_gate else {}
+        wall, cpu, ok = decisions(name, args.people, args.episodes, gate)
         w50, w95 = 1e3 * np.percentile(wall, [50, 95])
         c50, c95 = 1e3 * np.percentile(cpu, [50, 95])
         mark = "ok" if w95 <= TARGET_P95_MS else "MISSED"

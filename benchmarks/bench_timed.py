@@ -19,8 +19,9 @@ load average (``os.getloadavg``) above them. ``--split`` adds, per case, that CP
 into the cost kernel's calls (:class:`KernelClock`) and the rest, the planner's Python.
 ``--cases paper`` (or ``crowd``) and ``--latency-planners mawdo_time`` (or ``mawdo``) time
 only those (``--cases paper --latency-planners mawdo_time``: the default planner on the paper
-scenario, about a minute); ``--guide-gate`` times them with
-:attr:`~mawdo.planning.run.config.PlannerConfig.guide_gate` on.
+scenario, about a minute); ``--no-guide-gate`` times them with
+:attr:`~mawdo.planning.run.config.PlannerConfig.guide_gate` off (the default presets have it
+on).
 """
 
 from __future__ import annotations
@@ -116,7 +117,7 @@ def latency(
     ``split``: a second row per case, the CPU of the steps in the cost kernel and the rest
     (the Python around it), each as median and p95 over the steps. ``cases``: which of the
     two scenes; ``planners``: which of ``mawdo`` and ``mawdo_time`` (default both);
-    ``settings``: planner settings changed in every run (``guide_gate=True``)."""
+    ``settings``: planner settings changed in every run (``guide_gate=False``)."""
     from mawdo.planning import get_scenario
     from mawdo.planning.scenes import generate_scene
 
@@ -176,15 +177,15 @@ def main(argv=None) -> None:
                     help="with --latency, the scenes timed (paper, crowd)")  # fmt: skip
     ap.add_argument("--latency-planners", default="mawdo,mawdo_time",
                     help="with --latency, the planners timed (mawdo, mawdo_time)")  # fmt: skip
-    ap.add_argument("--guide-gate", action="store_true",
-                    help="with --latency, the planner's guide gate on")  # fmt: skip
+    ap.add_argument("--no-guide-gate", action="store_true",
+                    help="with --latency, the planner's guide gate off")  # fmt: skip
     a = ap.parse_args([] if argv is None else argv)
     if a.latency or argv is None:
         cases, planners = a.cases.split(","), a.latency_planners.split(",")
         for name, known in ((cases, ("paper", "crowd")), (planners, ("mawdo", "mawdo_time"))):
             if bad := [x for x in name if x not in known]:
                 ap.error(f"unknown {bad[0]!r}: choose from {', '.join(known)}")
-        gate = {"guide_gate": True} if a.guide_gate else {}
+        gate = {"guide_gate": False} if a.no_guide_gate else {}
         latency(split=a.split, cases=cases, planners=planners, **gate)
         if a.latency:
             return
