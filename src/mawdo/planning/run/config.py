@@ -318,9 +318,11 @@ _AS_PUBLISHED = {
 }  # fmt: skip
 
 # Named settings: the paper's study size, and a real-time setting that meets 20 Hz replanning.
-# The real-time presets search only where the guides cannot vouch for their own route (the guide
+# The real-time preset searches only where the guides cannot vouch for their own route (the guide
 # gate): on static maps and free stretches the swarm's search was measured to change the route by
-# under 3e-4 of its length while costing seconds (docs/deviations.md#d-guide-gate).
+# under 3e-4 of its length while costing seconds (docs/deviations.md#d-guide-gate). Not in
+# `large`: among hundreds of movers it took none of 1500 plans and its check cost a tenth of a
+# replan (benchmarks/log/latency.md).
 PRESETS = {
     "paper": PlannerConfig(pop_size=1360, first_iters=300, replan_iters=15, **_AS_PUBLISHED),
     "realtime": PlannerConfig(pop_size=240, first_iters=300, replan_iters=15, guide_gate=True),
@@ -334,12 +336,7 @@ PRESETS = {
     # saw a warehouse's conflict too late: benchmarks/log/scaling.md); the first plan stops
     # once the swarm stagnates (on most large worlds it never improves on the guide's seeds)
     "large": PlannerConfig(
-        pop_size=240,
-        first_iters=300,
-        first_patience=50,
-        replan_iters=15,
-        lookahead=180.0,
-        guide_gate=True,
+        pop_size=240, first_iters=300, first_patience=50, replan_iters=15, lookahead=180.0
     ),
     # single-shot queries in tens of milliseconds: the guide's routes do the topology, a short
     # refinement smooths them
