@@ -181,8 +181,32 @@ def swarm_sentence() -> list[str]:
         "Where the swarm helps: each optimizer's gap (L/L* or T/T*) against the same planner "
         f"with its optimizer off (`guide_only`), scene by scene over {families} families "
         "(Wilcoxon signed-rank, Holm, 5 %; in brackets the mean paired difference; "
-        "[table](docs/results/arena-default/swarm_share.md)): " + "; ".join(parts) + "."
+        "[table](docs/results/arena-default/swarm_share.md)): "
+        + "; ".join(parts)
+        + ". "
+        + _searched([r for r in rows if r["planner"] == "MAWDO"])
     ]
+
+
+def _searched(rows: list[dict[str, str]]) -> str:
+    """Where the default planner's swarm searched at all (the guide gate took every other
+    plan), from the share table's ``runs searched`` column."""
+    n = int(_arena_runs() / len(rows))
+    some = [r for r in rows if int(r["runs searched"]) > 0]
+    never = [r["family"] for r in rows if int(r["runs searched"]) == 0]
+    listed = ", ".join(f"{r['family']} {r['runs searched']}" for r in some) or "none"
+    return (
+        "The default planner searches only where the guides cannot vouch for their route "
+        f"(the guide gate): MAWDO's swarm ran in no run on {', '.join(never) or 'no family'} "
+        "(a difference there is the gated route kept against `guide_only`'s re-ranking at "
+        f"every step), and in some of the {n} runs of the others ({listed})."
+    )
+
+
+def _arena_runs() -> int:
+    """The arena's scenes per planner (the summary's "over N scenes")."""
+    summary = (RESULTS / "arena-default" / "summary.md").read_text(encoding="utf-8")
+    return int(re.search(r"over (\d+) scenes", summary)[1])
 
 
 def crowd_table() -> list[str]:

@@ -295,6 +295,14 @@ def test_the_swarm_share_is_that_of_the_committed_store(tmp_path):
             "ELSE gap END FROM runs WHERE status = 'ok' AND error_text IS NULL AND success = 1"
         )
     }
+    # runs in which the optimizer searched at least once: a plan the guide gate did not take
+    searched = {
+        (a, f): n
+        for a, f, n in conn.execute(
+            "SELECT algorithm, problem, SUM(replans > gated) FROM runs WHERE status = 'ok' "
+            "AND error_text IS NULL GROUP BY algorithm, problem"
+        )
+    }
     conn.close()
     committed = {
         (r["planner"], r["family"]): r for r in readme_tables()._rows(folder / "swarm_share.md")
@@ -319,6 +327,7 @@ def test_the_swarm_share_is_that_of_the_committed_store(tmp_path):
             verdict = ("helps" if low else "hurts") if adj < 0.05 else "no measurable difference"
             assert row["verdict"] == verdict, (planner, f)
             assert row["p Holm"] == f"{adj:.2g}" and row["mean difference"] == f"{dm:+.2g}"
+            assert int(row["runs searched"]) == searched[planner, f], (planner, f)
 
 
 @pytest.mark.slow

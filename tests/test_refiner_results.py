@@ -35,9 +35,12 @@ def test_the_arena_comparison_with_mawdo_is_the_stores(tmp_path):
     with Store.read(_unpack("arena-default", tmp_path)) as store:
         rows = {(r["planner"], r["family"]): r for r in share_rows(store, base="mawdo")}
     woa_shorter = sorted(f for (p, f), r in rows.items() if p == "woa" and r["verdict"] == "helps")
-    assert woa_shorter == sorted(["forest", "rooms", "maze", "u_trap", "corridor"])
-    gains = [-rows["woa", f]["mean difference"] for f in woa_shorter]
-    assert f"{min(gains):.0e}" == "6e-05" and f"{max(gains):.2g}" == "0.0017"
+    assert woa_shorter == ["corridor"]
+    assert f"{-rows['woa', 'corridor']['mean difference']:.2g}" == "0.0015"
+    # the guide gate took every plan of the three on the static families: the same routes
+    for p in ("woa", "gwo"):
+        for f in ("forest", "rooms", "maze", "u_trap"):
+            assert rows[p, f]["differ"] == 0 and rows[p, f]["pairs"] == 50, (p, f)
     dense = rows["woa", "dense"]
     assert dense["verdict"] == "hurts" and f"{dense['mean difference']:.1g}" == "0.009"
     assert (f"{dense['median']:.3f}", f"{dense['base median']:.3f}") == ("1.011", "1.005")
@@ -46,9 +49,7 @@ def test_the_arena_comparison_with_mawdo_is_the_stores(tmp_path):
     assert gwo["dense"]["verdict"] == "hurts"
     assert f"{gwo['dense']['mean difference']:.2g}" == "0.026"
     page = _page()
-    assert (
-        "WOA's routes are shorter than MAWDO's in forest, rooms, maze, u_trap and corridor" in page
-    )
+    assert "WOA's routes are shorter than MAWDO's only in corridor, by 0.0015 in T/T*" in page
     assert "longer in `dense` by 0.009 (median L/L* 1.011 against 1.005)" in page
     assert "GWO is shorter nowhere and longer in `dense` by 0.026" in page
 

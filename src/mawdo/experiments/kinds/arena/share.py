@@ -229,7 +229,8 @@ def share_table(store: Store, base: str = "guide_only", alpha: float = ALPHA) ->
     )
     t.notes.append(
         "Runs searched: the planner's runs of the family in which its optimizer searched at "
-        "least once; the guide gate takes the others' every plan from the guides, unsearched."
+        "least once; the guide gate takes the others' every plan from the guides, unsearched "
+        "(blank: a store made before the counts were stored)."
     )
     return t
 
