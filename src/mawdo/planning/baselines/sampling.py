@@ -104,17 +104,6 @@ class _Validity:
         return g == 0
 
 
-def _until_solved(base, pdef, time_limit: float, max_time: float):
-    """OMPL's stop rule for the later of ``time_limit`` seconds and the first exact solution,
-    never past ``max_time`` seconds."""
-    budget = base.timedPlannerTerminationCondition(float(time_limit))
-    solved = base.exactSolnPlannerTerminationCondition(pdef)
-    cap = base.timedPlannerTerminationCondition(float(max_time))
-    return base.plannerOrTerminationCondition(
-        base.plannerAndTerminationCondition(budget, solved), cap
-    )
-
-
 def _check_options(planner: str, time_limit: float, resolution: float, clearance: float) -> None:
     if planner not in OMPL_PLANNERS:
         raise ValueError(f"unknown OMPL planner {planner!r}; known: {', '.join(OMPL_PLANNERS)}")
@@ -212,9 +201,15 @@ def plan_ompl(
     algo = getattr(geometric, OMPL_PLANNERS[planner])(si)
     algo.setProblemDefinition(pdef)
     algo.setup()
-    algo.solve(
-        float(time_limit) if max_time is None else _until_solved(base, pdef, time_limit, max_time)
-    )
+    t_solve = time.perf_counter()
+    algo.solve(float(time_limit))
+    # more of the same budget while no route is found: a planner keeps its tree between calls,
+    # and publishes its solution only when a call returns
+    while max_time is not None and not pdef.hasExactSolution():
+        left = t_solve + max_time - time.perf_counter()
+        if left <= 0:
+            break
+        algo.solve(float(min(time_limit, left)))
     route, reason = None, "no exact solution within the time budget"
     if pdef.hasExactSolution():
         path = pdef.getSolutionPath()
