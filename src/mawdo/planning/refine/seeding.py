@@ -21,6 +21,7 @@ class RunGuide(Guide):
 
     _last: tuple = (None, None)
     _routes: tuple = (None, None)
+    _rows: tuple = (None, None)
 
     def query(self, pos):
         key = np.asarray(pos, dtype=float).tobytes()
@@ -39,7 +40,7 @@ class RunGuide(Guide):
         """The routes from ``pos`` as ``m`` waypoints each (:func:`densify`), flat ``(2 m,)``
         rows, made once per position and read only by the callers."""
         key = (np.asarray(pos, dtype=float).tobytes(), m)
-        if getattr(self, "_rows", (None,))[0] != key:
+        if self._rows[0] != key:
             self._rows = (key, [densify(r, m).reshape(-1) for r in self.routes(pos)])
         return self._rows[1]
 
