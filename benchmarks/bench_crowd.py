@@ -11,7 +11,8 @@
    and the CPU time (``time.process_time``) of the same calls beside it, since the wall figure
    moves with the machine's load (printed above). Target: p95 <= 20 ms with 20 people.
    ``--no-guide-gate`` times the planner policies with the guide gate off (the default
-   preset has it on).
+   preset has it on); ``--threads N`` gives the planner policies' population cost N threads
+   (the preset uses one).
 """
 
 from __future__ import annotations
@@ -88,6 +89,7 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--people", type=int, default=20)
     ap.add_argument("--policies", default="mawdo,guide_only")
     ap.add_argument("--no-guide-gate", action="store_true", help="the guide gate off")
+    ap.add_argument("--threads", type=int, default=1, help="the population cost's threads")
     args = ap.parse_args([] if argv is None else argv)  # (python -m benchmarks: defaults)
     print(f"load average {os.getloadavg()[0]:.2f} (one core per figure)")
     for model in ("orca", "social_force"):
@@ -98,13 +100,15 @@ def main(argv: list[str] | None = None) -> None:
     # one untimed episode first: the kernels compile
     decisions(args.policies.split(",")[0], args.people, 1)
     for name in args.policies.split(","):
-        gate = {"guide_gate": False} if args.no_guide_gate else {}
-        wall, cpu, ok = decisions(name, args.people, args.episodes, gate)
+        settings = {"guide_gate": False} if args.no_guide_gate else {}
+        if args.threads != 1:
+            settings["threads"] = args.threads
+        wall, cpu, ok = decisions(name, args.people, args.episodes, settings)
         w50, w95 = 1e3 * np.percentile(wall, [50, 95])
         c50, c95 = 1e3 * np.percentile(cpu, [50, 95])
         mark = "ok" if w95 <= TARGET_P95_MS else "MISSED"
         print(
-            f"decision {name:>11}, {args.people} people, {args.episodes} episodes "
+            f"decision {name:>11} ({args.threads} thr), {args.people} people, {args.episodes} ep. "
             f"({ok} succeeded), {len(wall)} decisions: wall p50 {w50:6.1f} ms p95 {w95:6.1f} ms "
             f"(target p95 <= {TARGET_P95_MS:.0f} ms: {mark}); CPU p50 {c50:6.1f} p95 {c95:6.1f} ms"
         )

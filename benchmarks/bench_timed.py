@@ -21,7 +21,9 @@ into the cost kernel's calls (:class:`KernelClock`) and the rest, the planner's 
 only those (``--cases paper --latency-planners mawdo_time``: the default planner on the paper
 scenario, about a minute); ``--no-guide-gate`` times them with
 :attr:`~mawdo.planning.run.config.PlannerConfig.guide_gate` off (the default presets have it
-on).
+on). ``--threads 1,2`` times them with the population cost on that many threads each
+(:attr:`~mawdo.planning.run.config.PlannerConfig.threads`; default one and every CPU this
+process may use, a row each): the presets use one, a robot's planner may use its cores.
 """
 
 from __future__ import annotations
@@ -110,14 +112,28 @@ def step_times(scenario, time_guide: bool, seed: int = 0, clock=None, **settings
     return out if clock is not None else [t[:2] for t in out]
 
 
+def usable_cpus() -> int:
+    """CPUs this process may run on (its affinity where the platform reports it)."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # (not Linux)
+        return os.cpu_count() or 1
+
+
 def latency(
-    runs: int = 5, split: bool = False, cases=("paper", "crowd"), planners=None, **settings
+    runs: int = 5,
+    split: bool = False,
+    cases=("paper", "crowd"),
+    planners=None,
+    threads=(1,),
+    **settings,
 ) -> None:
     """Replan p95 of ``mawdo`` and ``mawdo_time`` on the paper scenario and on ``crowd``;
     ``split``: a second row per case, the CPU of the steps in the cost kernel and the rest
     (the Python around it), each as median and p95 over the steps. ``cases``: which of the
     two scenes; ``planners``: which of ``mawdo`` and ``mawdo_time`` (default both);
-    ``settings``: planner settings changed in every run (``guide_gate=False``)."""
+    ``threads``: the population cost's thread counts, a row each; ``settings``: planner
+    settings changed in every run (``guide_gate=False``)."""
     from mawdo.planning import get_scenario
     from mawdo.planning.scenes import generate_scene
 
@@ -126,21 +142,24 @@ def latency(
         "crowd": lambda: ([generate_scene("crowd", i, seed=0).scenario for i in range(runs)], 50.0),
     }
     cases = [(name, *make[name]()) for name in cases]
-    kinds = [(p, p == "mawdo_time") for p in (planners or ("mawdo", "mawdo_time"))]
+    kinds = [(p, p == "mawdo_time", t) for p in (planners or ("mawdo", "mawdo_time"))
+             for t in threads]  # fmt: skip
     # one untimed run of each kind first: a kernel compiled (or loaded from the cache) inside a
     # measured replan would be counted as latency
     for _, scenes, _ in cases:
-        for _, on in kinds:
-            step_times(scenes[0], on, seed=0, **settings)
+        for _, on, t in kinds:
+            step_times(scenes[0], on, seed=0, threads=t, **settings)
     print("load average (1, 5, 15 min): " + ", ".join(f"{x:.2f}" for x in os.getloadavg()))
     for name, scenes, target in cases:
-        for planner, on in kinds:
+        for planner, on, th in kinds:
             with KernelClock() if split else contextlib.nullcontext() as clock:
-                lat = np.array([t for k, sc in enumerate(scenes)
-                                for t in step_times(sc, on, k, clock, **settings)])  # fmt: skip
+                got = [step_times(sc, on, k, clock, threads=th, **settings)
+                       for k, sc in enumerate(scenes)]  # fmt: skip
+                lat = np.array([t for run in got for t in run])
             p95, med = 1e3 * np.percentile(lat, 95, axis=0), 1e3 * np.median(lat, axis=0)
             ok = "ok" if p95[0] <= target else "MISSED"
-            print(f"replan {name:5s} {planner:11s} {len(lat):5d} replans  median {med[0]:6.1f} ms "
+            print(f"replan {name:5s} {planner:11s} {th} thr {len(lat):4d} replans  "
+                  f"median {med[0]:6.1f} ms "
                   f"p95 {p95[0]:6.1f} ms (<= {target:g} {ok})  CPU median {med[1]:6.1f} ms "
                   f"p95 {p95[1]:6.1f} ms (<= {target:g})")  # fmt: skip
             if split:
@@ -179,6 +198,8 @@ def main(argv=None) -> None:
                     help="with --latency, the planners timed (mawdo, mawdo_time)")  # fmt: skip
     ap.add_argument("--no-guide-gate", action="store_true",
                     help="with --latency, the planner's guide gate off")  # fmt: skip
+    ap.add_argument("--threads", default=",".join(map(str, sorted({1, usable_cpus()}))),
+                    help="with --latency, the cost's thread counts, a row each")  # fmt: skip
     a = ap.parse_args([] if argv is None else argv)
     if a.latency or argv is None:
         cases, planners = a.cases.split(","), a.latency_planners.split(",")
@@ -186,7 +207,11 @@ def main(argv=None) -> None:
             if bad := [x for x in name if x not in known]:
                 ap.error(f"unknown {bad[0]!r}: choose from {', '.join(known)}")
         gate = {"guide_gate": False} if a.no_guide_gate else {}
-        latency(split=a.split, cases=cases, planners=planners, **gate)
+        try:
+            threads = [int(t) for t in a.threads.split(",")]
+        except ValueError:
+            ap.error(f"--threads {a.threads!r}: give thread counts like 1,2")
+        latency(split=a.split, cases=cases, planners=planners, threads=threads, **gate)
         if a.latency:
             return
     fams, plans = a.families.split(","), a.planners.split(",")

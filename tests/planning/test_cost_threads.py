@@ -17,8 +17,15 @@ import pytest
 
 from mawdo.planning import PathCost, get_scenario
 from mawdo.planning.judge.metrics import run_metrics_kept
+from mawdo.planning.refine.kernel import threads as kthreads
 from mawdo.planning.refine.kernel.constants import INDEX_MOVERS, INDEX_STANDING
-from mawdo.planning.refine.kernel.threads import MIN_ROWS, chunk_bounds, index_choice
+from mawdo.planning.refine.kernel.threads import (
+    MIN_ROWS,
+    PARALLEL_SECONDS,
+    ThreadedKernel,
+    chunk_bounds,
+    index_choice,
+)
 from mawdo.planning.run.config import PlannerConfig
 from mawdo.planning.run.planner import plan
 from mawdo.planning.scenes import generate_scene
@@ -40,6 +47,13 @@ def _population(sc, n, seed, far=1.9):
     return X
 
 
+@pytest.fixture
+def always_split(monkeypatch):
+    """Split every call that has rows enough, however short (else small test populations
+    would run on one thread only)."""
+    monkeypatch.setattr(kthreads, "PARALLEL_SECONDS", 0.0)
+
+
 def _same(a, b):
     for u, v in zip(a, b, strict=True):
         np.testing.assert_array_equal(u, v)
@@ -47,7 +61,7 @@ def _same(a, b):
 
 @pytest.mark.parametrize("name", ["paper", "crossing", "dense", "movingai", "maze"])
 @pytest.mark.parametrize("mode", ["snapshot", "spacetime"])
-def test_threads_give_the_one_thread_numbers_bit_for_bit(name, mode):
+def test_threads_give_the_one_thread_numbers_bit_for_bit(name, mode, always_split):
     sc = _scenario(name)
     one = PathCost(sc, mode=mode)
     many = {t: PathCost(sc, mode=mode, threads=t) for t in (2, 3, 7)}
@@ -59,9 +73,10 @@ def test_threads_give_the_one_thread_numbers_bit_for_bit(name, mode):
             ref = one.parts(X, t0=t0)
             ref_cost = one(X, t0=t0)
             assert np.unique(ref[1]).size > 1 or n < 40  # counts that differ between rows
-            for cost in many.values():
-                _same(cost.parts(X, t0=t0), ref)
-                np.testing.assert_array_equal(cost(X, t0=t0), ref_cost)
+            for cost in many.values():  # (the first call of a size is timed on one thread)
+                for _ in range(2):
+                    _same(cost.parts(X, t0=t0), ref)
+                    np.testing.assert_array_equal(cost(X, t0=t0), ref_cost)
 
 
 def test_chunk_bounds_are_even_cover_every_row_and_respect_the_minimum():
@@ -76,6 +91,71 @@ def test_chunk_bounds_are_even_cover_every_row_and_respect_the_minimum():
                 assert sizes.min() >= MIN_ROWS
             else:  # one chunk only where two would fall below the minimum
                 assert threads == 1 or n < 2 * MIN_ROWS
+
+
+class _Clock:
+    """A stand-in for the thread's CPU clock: each call advances it by ``step`` seconds."""
+
+    def __init__(self, step):
+        self.step, self.now, self.calls = step, 0.0, 0
+
+    def __call__(self):
+        self.calls += 1
+        self.now += self.step
+        return self.now
+
+
+def _kernel_args(sc, n, t0=4.0):
+    cost = PathCost(sc, mode="spacetime")
+    X = _population(sc, n, 5)
+    args, ref = [], cost.parts(X, t0=t0)
+
+    def grab(kernel, *a):
+        args.append(a)
+
+    original = ThreadedKernel.__call__
+    ThreadedKernel.__call__ = grab
+    try:
+        cost.parts(X, t0=t0)
+    finally:
+        ThreadedKernel.__call__ = original
+    return args[0], ref
+
+
+@pytest.mark.parametrize(
+    "seconds, split", [(PARALLEL_SECONDS * 0.9, False), (PARALLEL_SECONDS, True)]
+)
+def test_a_call_is_split_only_when_one_thread_took_long_enough(monkeypatch, seconds, split):
+    args, ref = _kernel_args(get_scenario("paper"), 240)
+    chunked = []
+    run = kthreads._chunked
+    monkeypatch.setattr(kthreads, "_chunked", lambda *a: chunked.append(1) or run(*a))
+    clock = _Clock(seconds)  # (two readings per timed call, ``seconds`` apart)
+    kernel = ThreadedKernel(2, clock=clock)
+    for call in range(4):
+        out = tuple(np.zeros_like(o) for o in args[-1])
+        kernel(*args[:-1], out)
+        _same((out[1], out[2], out[3]), ref)
+        # the first call is timed on one thread; later calls split or not by what it took
+        assert len(chunked) == (call if split else 0)
+    assert clock.calls == 2  # timed once per size and motion table
+    # a new motion table (another planning time) is timed again
+    args2, _ = _kernel_args(get_scenario("paper"), 240, t0=9.0)
+    out = tuple(np.zeros_like(o) for o in args2[-1])
+    kernel(*args2[:-1], out)
+    assert clock.calls == 4
+
+
+def test_one_thread_never_times_or_splits(monkeypatch):
+    args, ref = _kernel_args(get_scenario("paper"), 240)
+    monkeypatch.setattr(kthreads, "_chunked", lambda *a: pytest.fail("split on one thread"))
+    clock = _Clock(1.0)
+    kernel = ThreadedKernel(1, clock=clock)
+    for _ in range(3):
+        out = tuple(np.zeros_like(o) for o in args[-1])
+        kernel(*args[:-1], out)
+        _same((out[1], out[2], out[3]), ref)
+    assert clock.calls == 0
 
 
 def _knots(moving, standing):
@@ -94,7 +174,7 @@ def test_each_world_gets_only_the_indexes_it_may_use():
     assert index_choice(_knots(0, INDEX_STANDING - 1), False) == (None, None)
 
 
-def test_concurrent_callers_each_get_their_own_numbers():
+def test_concurrent_callers_each_get_their_own_numbers(always_split):
     sc = get_scenario("paper")
     X = [_population(sc, 400, s) for s in range(4)]
     ref = [PathCost(sc, mode="spacetime").parts(x, t0=5.0) for x in X]
@@ -129,7 +209,7 @@ def test_a_thread_count_that_is_not_an_integer_is_refused(bad):
         PathCost(get_scenario("paper"), threads=bad)
 
 
-def test_the_planner_drives_the_same_route_on_two_threads():
+def test_the_planner_drives_the_same_route_on_two_threads(always_split):
     runs = [plan("paper", "mawdo", seed=4, config="fast", threads=t) for t in (1, 2)]
     np.testing.assert_array_equal(runs[0].route, runs[1].route)
     assert [r.cost for r in runs[0].replans] == [r.cost for r in runs[1].replans]

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import os
 import threading
+import time
 
 import numpy as np
 from numba import njit, prange
@@ -36,6 +37,12 @@ from mawdo.util.validate import check_int
 
 # Fewer rows than this per chunk do not repay the hand-over.
 MIN_ROWS = 16
+# A call is split into chunks only when the same call on one thread took at least this much CPU
+# (seconds): each chunk repeats the call's set-up (the obstacles' bounds, the movers' position
+# grids) and waking a sleeping thread costs tens of microseconds, so on the paper scenario's
+# 0.3-0.5 ms population calls two threads made replans slower (median 18 ms against 15-19 ms),
+# while the crowd's 1.3-1.7 ms calls ran 35-40 % faster (benchmarks/log/latency.md).
+PARALLEL_SECONDS = 1e-3
 
 _lock = threading.Lock()
 
@@ -120,14 +127,16 @@ class ThreadedKernel:
         (``numba.get_num_threads()``, the number of cores unless set lower).
     """
 
-    def __init__(self, threads: int = 1) -> None:
+    def __init__(self, threads: int = 1, clock=time.thread_time) -> None:
         self.threads = check_int(
             "threads", threads, 1, what="an integer >= 1 (1: the calling thread only)"
         )
+        self._clock = clock
         self._buf = np.empty((0, 0))
-        # per population size: its chunk bounds and the scratch floats a chunk needs (keyed
-        # by the knot counts' array too: a new motion table brings a new one); a planner
-        # alternates a few sizes (populations, one-candidate guard checks), so both are kept
+        # per population size: its chunk bounds, the scratch floats a chunk and the whole call
+        # need, the indexes, and whether to split it (None: not yet timed); keyed by the knot
+        # counts' array too, since a new motion table brings a new one. A planner alternates a
+        # few sizes (populations, one-candidate guard checks), so all are kept.
         self._plans: dict = {}
 
     def _scratch(self, rows: int, need: int) -> np.ndarray:
@@ -138,32 +147,43 @@ class ThreadedKernel:
             self._buf = np.empty((rows, cols))
         return self._buf
 
-    def __call__(
-        self, X, start, goal, t0, speed, spacetime, obs, snap, motion, horizon, weights, box, out
-    ):
-        """Fill ``out = (cost, length, n_collisions, turning)`` for the rows of ``X``; the
-        arguments are those of :func:`population_cost` without the scratch buffer."""
-        n, npts = X.shape[0], X.shape[1] // 2 + 2
+    def _plan(self, n: int, npts: int, spacetime: bool, nk: np.ndarray) -> list:
         key = (n, npts, spacetime)
         plan = self._plans.get(key)
-        if plan is None or plan[0] is not motion[3]:
+        if plan is None or plan[0] is not nk:
             if len(self._plans) >= 16:  # (sizes seen long ago)
                 self._plans.clear()
             bounds = chunk_bounds(n, self.threads)
             k = bounds.size - 1
-            nk = motion[3]
-            plan = self._plans[key] = (
-                nk,
-                bounds,
-                scratch_size(-(-n // k), npts, nk, spacetime),
-                index_choice(nk, spacetime),
-            )
-        bounds = plan[1]
-        k = bounds.size - 1
-        buf = self._scratch(k, plan[2])
+            whole = scratch_size(n, npts, nk, spacetime)
+            part = scratch_size(-(-n // k), npts, nk, spacetime) if k > 1 else whole
+            # a call that cannot be split is never timed
+            plan = [nk, bounds, part, whole, index_choice(nk, spacetime), False if k == 1 else None]
+            self._plans[key] = plan
+        return plan
+
+    def __call__(
+        self, X, start, goal, t0, speed, spacetime, obs, snap, motion, horizon, weights, box, out
+    ):
+        """Fill ``out = (cost, length, n_collisions, turning)`` for the rows of ``X``; the
+        arguments are those of :func:`population_cost` without the scratch buffer.
+
+        With ``threads > 1`` the first call of each population size under a motion table runs
+        on the calling thread and is timed (the thread's CPU time, which other processes do not
+        inflate); the rest of that size and table run in chunks when it took
+        :data:`PARALLEL_SECONDS` or more. The numbers are the same either way."""
+        plan = self._plan(X.shape[0], X.shape[1] // 2 + 2, spacetime, motion[3])
         args = (X, start, goal, t0, speed, spacetime, obs, snap, motion, horizon, weights, box, out)
-        if k == 1:
-            fused_population_cost(*args, buf[0], *plan[3])
+        if not plan[5]:
+            buf = self._scratch(1, plan[3])
+            if plan[5] is None:
+                t = self._clock()
+                fused_population_cost(*args, buf[0], *plan[4])
+                plan[5] = self._clock() - t >= PARALLEL_SECONDS
+            else:
+                fused_population_cost(*args, buf[0], *plan[4])
             return
+        bounds = plan[1]
+        buf = self._scratch(bounds.size - 1, plan[2])
         with _lock:
-            _chunked(bounds, *args, buf, *plan[3])
+            _chunked(bounds, *args, buf, *plan[4])
