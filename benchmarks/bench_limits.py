@@ -16,6 +16,14 @@ solved (median), the kinematic violations of every run (the independent
 (:func:`~mawdo.planning.judge.check.check_trajectory`, target 0). ``--save`` writes the rows as
 JSON, ``--load`` prints a saved table (e.g. the code before a change) without running.
 
+Beside them, ``T*(a)``: the scene's earliest arrival at the capped speed alone, the exact
+optimum of the roadmap class (:func:`~mawdo.planning.guide.sipp.optimum.scenario_time_optimum`
+with the scene's spots, robot speed ``0.75 v``), and the paired median ``T*(a) / guide_only(b)``.
+Every trajectory within the three limits is within the speed cap, so no run under (b) arrives
+before the optimum under (a); ``T*(a)`` is that optimum up to the roadmap's restriction (waits
+only at vertices, full-speed moves between them), so the ratio is where ``mawdo(b) /
+guide_only(b)`` could go at best.
+
 ``--refiners``: other registered optimizers run under (b) on the same scenes, each as the
 limited run's refiner in MAWDO's place; a second table gives each one's success, median arrival
 and paired ratios against ``guide_only(b)`` and ``mawdo(b)``: which optimizer refines the
@@ -35,10 +43,30 @@ FAMILIES = ("corridor", "doorway", "chaser", "crowd", "parked", "slalom")
 PLANNERS = ("mawdo", "guide_only")
 CASES = {"a": (0.75, None, None), "b": (0.75, 0.25, 0.6)}  # (speed, accel) x v; turn in rad
 TARGETS = {"b/a": 1.05, "b/guide": 0.87}
+OPTIMUM = "T*"  # the rows of the earliest arrival under (a)
+
+
+def _optimum(family: str, index: int) -> dict:
+    """``T*(a)``: the scene's earliest arrival with its robot's speed capped as in case (a)."""
+    from mawdo.planning.guide.sipp.optimum import scenario_time_optimum
+    from mawdo.planning.scenes import generate_scene
+    from mawdo.planning.world.scenario import scenario_from_dict
+
+    scene = generate_scene(family, index, seed=0)
+    spec = scene.scenario.to_dict()
+    spec["robot"]["speed"] = CASES["a"][0] * scene.scenario.robot_speed
+    opt = scenario_time_optimum(scenario_from_dict(spec, source=spec["name"]), spots=scene.spots)
+    return {
+        "family": family, "index": index, "planner": OPTIMUM, "case": "a",
+        "success": bool(opt.reachable), "steps": float(opt.t_star) if opt.reachable else None,
+        "kin": 0, "active": 0,
+    }  # fmt: skip
 
 
 def _one(args):
     family, index, planner, case = args
+    if planner == OPTIMUM:
+        return _optimum(family, index)
     from mawdo.planning.judge.check import check_trajectory
     from mawdo.planning.judge.kincheck import check_kinematics
     from mawdo.planning.run.config import PRESETS
@@ -64,6 +92,7 @@ def _one(args):
 def run(families, scenes: int, workers: int, refiners=()) -> list[dict]:
     """Every (family, scene, planner, case) run's row; ``refiners`` under case (b) only."""
     jobs = [(f, i, p, c) for f in families for i in range(scenes) for p in PLANNERS for c in CASES]
+    jobs += [(f, i, OPTIMUM, "a") for f in families for i in range(scenes)]
     jobs += [(f, i, p, "b") for f in families for i in range(scenes) for p in refiners]
     if workers <= 1:
         return [_one(j) for j in jobs]
@@ -104,29 +133,31 @@ def _line(name: str, rows: list[dict]) -> str:
             cells.append(f"{done} {med}")
     ba = _ratio_text(_ratio(rows, ("mawdo", "b"), ("mawdo", "a")))
     bg = _ratio_text(_ratio(rows, ("mawdo", "b"), ("guide_only", "b")))
+    og = _ratio_text(_ratio(rows, (OPTIMUM, "a"), ("guide_only", "b")))
     kin = sum(r["kin"] for r in rows)
     act = sum(r["active"] for r in rows)
-    return f"{name:9s} " + "  ".join(cells) + f"  {ba:>6s} {bg:>8s} {kin:4d} {act:4d}"
+    return f"{name:9s} " + "  ".join(cells) + f"  {ba:>6s} {bg:>8s} {og:>8s} {kin:4d} {act:4d}"
 
 
 def report(rows: list[dict]) -> None:
     """The table (per family, then overall), targets beside the figures."""
     head = "  ".join(f"{p[:6]}({c}) ok  T" for p in PLANNERS for c in CASES)
-    print(f"{'family':9s} {head}   b/a   b/guide  kin  act")
+    print(f"{'family':9s} {head}   b/a   b/guide  T*(a)/g   kin  act")
     for f in dict.fromkeys(r["family"] for r in rows):
         print(_line(f, [r for r in rows if r["family"] == f]))
     print(_line("overall", rows))
     print(
         f"targets: mawdo(b)/mawdo(a) <= {TARGETS['b/a']}, mawdo(b)/guide_only(b) <= "
         f"{TARGETS['b/guide']}, kinematic violations 0, active collisions 0 (ratios: medians "
-        "of paired arrival steps)"
+        "of paired arrival steps; T*(a)/g: the earliest arrival under the speed cap alone over "
+        "guide_only(b), where b/guide could go at best)"
     )
 
 
 def report_refiners(rows: list[dict]) -> None:
     """Each optimizer as the refiner under (b): success, median arrival, paired ratios."""
     names = [p for p in dict.fromkeys(r["planner"] for r in rows if r["case"] == "b")]
-    names = [p for p in names if p != "guide_only"]
+    names = [p for p in names if p not in ("guide_only", OPTIMUM)]
     if len(names) < 2:
         return
     print(f"\n{'refiner (b)':12s} {'ok':>7s} {'T':>6s} {'/guide':>7s} {'/mawdo':>7s}  kin  act")
@@ -157,7 +188,7 @@ def main(argv=None) -> None:
     if args.save:
         with open(args.save, "w") as fh:
             json.dump(rows, fh, indent=1)
-    report([r for r in rows if r["planner"] in PLANNERS])
+    report([r for r in rows if r["planner"] in (*PLANNERS, OPTIMUM)])
     report_refiners(rows)
 
 
