@@ -91,6 +91,8 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--no-guide-gate", action="store_true", help="the guide gate off")
     ap.add_argument("--threads", type=int, default=1, help="the population cost's threads")
     args = ap.parse_args([] if argv is None else argv)  # (python -m benchmarks: defaults)
+    if args.threads < 1:
+        ap.error(f"--threads {args.threads}: give a thread count >= 1")
     print(f"load average {os.getloadavg()[0]:.2f} (one core per figure)")
     for model in ("orca", "social_force"):
         for n in (5, 20):

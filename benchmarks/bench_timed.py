@@ -210,7 +210,9 @@ def main(argv=None) -> None:
         try:
             threads = [int(t) for t in a.threads.split(",")]
         except ValueError:
-            ap.error(f"--threads {a.threads!r}: give thread counts like 1,2")
+            threads = []
+        if not threads or min(threads) < 1:
+            ap.error(f"--threads {a.threads!r}: give thread counts >= 1, like 1,2")
         latency(split=a.split, cases=cases, planners=planners, threads=threads, **gate)
         if a.latency:
             return
