@@ -146,17 +146,6 @@ def test_a_call_is_split_only_when_one_thread_took_long_enough(monkeypatch, seco
     assert clock.calls == 4
 
 
-def test_the_warm_up_table_compiles_the_split_call_the_planner_makes(always_split):
-    # (else a first run on two threads among movers waits ~15 s for the parallel compile)
-    from mawdo.jit.warm import load_table
-
-    rows = [e.sig for e in load_table() if e.key == f"{kthreads.__name__}._chunked"]
-    assert len(rows) == 1
-    plan(generate_scene("crowd", 0, 0).scenario, "mawdo", seed=0, config="fast", threads=2)
-    # (other tests in this process may have compiled other worlds' variants too)
-    assert rows[0] in [repr(s) for s in kthreads._chunked.signatures]
-
-
 def test_one_thread_never_times_or_splits(monkeypatch):
     args, ref = _kernel_args(get_scenario("paper"), 240)
     monkeypatch.setattr(kthreads, "_chunked", lambda *a: pytest.fail("split on one thread"))

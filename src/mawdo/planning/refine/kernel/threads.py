@@ -4,9 +4,8 @@ A candidate's cost, length, count and turning depend on that candidate alone (th
 front of the exact tests only skip work whose outcome is certain), so chunks of rows can run at
 once and give the very numbers of one call. The chunks run in a Numba ``prange`` loop, on
 Numba's threading layer (a pool of Python threads took about 0.1 ms to hand a chunk over, as
-long as a whole call of 240 candidates). The parallel function is in the warm-up's table
-(``python -m mawdo.jit``, run by ``make install``), so a first split call loads it instead of
-compiling it for about 15 s; with ``threads = 1`` the kernel is called directly.
+long as a whole call of 240 candidates). The parallel function is compiled on the first call
+with ``threads > 1``; with ``threads = 1`` the kernel is called directly.
 
 OpenMP's threads, left to themselves, wait spinning after a call (libgomp: 300,000 spins) so
 that the next one starts at once. On a machine whose cores are busy that spinning takes the
