@@ -13,9 +13,10 @@ Targets: success >= 99 %, 0 active collisions, ``T / T*`` median <= 1.05 and p95
 ``progress`` calls of a step that replanned; the first plan excluded; one untimed warm-up run of
 each case first), p95 over the runs, for
 ``mawdo`` and ``mawdo_time`` on the paper scenario (seeds 0-4; target <= 20 ms) and on
-``crowd`` scenes 0-4 (seed 0; target <= 50 ms). One core; the wall figure moves with the
-load, so the CPU time of the same steps (``time.process_time``) is printed beside it, and the
-load average (``os.getloadavg``) above them. ``--split`` adds, per case, that CPU divided
+``crowd`` scenes 0-4 (seed 0; target <= 50 ms). One core per row unless ``--threads`` says
+more (see below); the wall figure moves with the load, so the CPU time of the same steps
+(``time.process_time``, every thread's) is printed beside it, and the load average
+(``os.getloadavg``) above them. ``--split`` adds, per case, that CPU divided
 into the cost kernel's calls (:class:`KernelClock`) and the rest, the planner's Python.
 ``--cases paper`` (or ``crowd``) and ``--latency-planners mawdo_time`` (or ``mawdo``) time
 only those (``--cases paper --latency-planners mawdo_time``: the default planner on the paper
