@@ -4,9 +4,10 @@ The protocol (``mawdo study run cec2017-official --set dims=10``) is 10 algorith
 functions x 51 runs of ``10000 D`` evaluations, each run stopping early at an error of 1e-8.
 Its cost is almost all the algorithms' own: the batched CEC functions take 0.2-3 us a point.
 This benchmark computes, for every algorithm of the committed study, one task of that plan (the
-plan's batch of runs 0-4, full budget, the study's own ``execute_suite_task``) on one function
-of each CEC 2017 group, and measures its CPU time. The projection weights each group's sample
-by the group's size (3 unimodal, 7 simple multimodal, 10 hybrid, 10 composition functions):
+plan's batch of runs 0-4, full budget, through the runner's ``execute_task`` as a worker computes
+it) on one function of each CEC 2017 group, and measures its CPU time. The projection weights
+each group's sample by the group's size (3 unimodal, 7 simple multimodal, 10 hybrid, 10
+composition functions):
 
     hours = sum over algorithms and groups of size x CPU s a run x 51 / 3600 / workers
 
@@ -41,15 +42,16 @@ def _group(fid: int) -> str:
 
 def task_cpu(plan, algorithm: str, fid: int, dim: int = 10) -> float:
     """CPU seconds a run of the plan's first task of ``algorithm`` on function ``fid`` at
-    ``dim``."""
-    from mawdo.experiments.kinds.suite.execute import execute_suite_task
+    ``dim``, computed as a study's worker computes it (:func:`~mawdo.experiments.runner
+    .execute_task`: BLAS on one thread)."""
     from mawdo.experiments.protocol import Task
+    from mawdo.experiments.runner import execute_task
 
     problem = f"f{fid:02d}_i01_d{dim:02d}"
     n = min(plan.batch_size, plan.runs)
     spec = plan.task_spec(Task(algorithm, problem, 0, n))
     t = time.process_time()
-    rows = execute_suite_task(spec)
+    rows = execute_task(spec)["rows"]
     cpu = time.process_time() - t
     errors = [r.error_text for r in rows if r.error_text]
     if errors:

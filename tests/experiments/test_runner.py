@@ -51,6 +51,30 @@ def test_execute_task_matches_a_direct_minimize_call():
     np.testing.assert_array_equal(row.curve, res.history[0])
 
 
+def _blas_threads() -> list[int]:
+    from threadpoolctl import threadpool_info
+
+    return [i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas"]
+
+
+def test_a_task_runs_its_blas_on_one_thread_and_gives_the_threads_back():
+    from threadpoolctl import threadpool_limits
+
+    seen = []
+
+    def execute(spec):
+        seen.append(_blas_threads())
+        return []
+
+    plan = small_plan()
+    with threadpool_limits(limits=2, user_api="blas"):  # as on any machine of 2 cores or more
+        before = _blas_threads()
+        assert before and max(before) == 2  # numpy's BLAS is loaded and would use two
+        execute_task(plan.task_spec(Task("mawdo", "quartic", 0, 1)), execute)
+        assert _blas_threads() == before
+    assert seen == [[1] * len(before)]
+
+
 def test_workers_do_not_change_stored_values(reference_store, tmp_path):
     ref = stored_values(reference_store)
     assert len(ref) == small_plan().total_runs
