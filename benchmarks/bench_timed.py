@@ -113,14 +113,6 @@ def step_times(scenario, time_guide: bool, seed: int = 0, clock=None, **settings
     return out if clock is not None else [t[:2] for t in out]
 
 
-def usable_cpus() -> int:
-    """CPUs this process may run on (its affinity where the platform reports it)."""
-    try:
-        return len(os.sched_getaffinity(0))
-    except AttributeError:  # (not Linux)
-        return os.cpu_count() or 1
-
-
 def latency(
     runs: int = 5,
     split: bool = False,
@@ -199,6 +191,8 @@ def main(argv=None) -> None:
                     help="with --latency, the planners timed (mawdo, mawdo_time)")  # fmt: skip
     ap.add_argument("--no-guide-gate", action="store_true",
                     help="with --latency, the planner's guide gate off")  # fmt: skip
+    from mawdo.cli.plan import usable_cpus
+
     ap.add_argument("--threads", default=",".join(map(str, sorted({1, usable_cpus()}))),
                     help="with --latency, the cost's thread counts, a row each")  # fmt: skip
     a = ap.parse_args([] if argv is None else argv)

@@ -27,6 +27,7 @@ from __future__ import annotations
 import os
 import threading
 import time
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit, prange
@@ -115,6 +116,21 @@ def index_choice(nk: np.ndarray, spacetime: bool) -> tuple:
     return (INDEX_MOVERS, None) if moving >= INDEX_MOVERS else (None, None)
 
 
+@dataclass(slots=True)
+class _Plan:
+    """How :class:`ThreadedKernel` calls one population size under one motion table: the
+    table's knot counts (its identity), the chunk bounds, the scratch floats a chunk and the
+    whole call need, the indexes (:func:`index_choice`), and whether to split (None: not yet
+    timed)."""
+
+    nk: np.ndarray
+    bounds: np.ndarray
+    part: int
+    whole: int
+    indexes: tuple
+    split: bool | None
+
+
 class ThreadedKernel:
     """Calls the population cost (:func:`~mawdo.planning.refine.kernel.population
     .fused_population_cost` with the indexes the world needs, :func:`index_choice`) on chunks
@@ -133,10 +149,8 @@ class ThreadedKernel:
         )
         self._clock = clock
         self._buf = np.empty((0, 0))
-        # per population size: its chunk bounds, the scratch floats a chunk and the whole call
-        # need, the indexes, and whether to split it (None: not yet timed); keyed by the knot
-        # counts' array too, since a new motion table brings a new one. A planner alternates a
-        # few sizes (populations, one-candidate guard checks), so all are kept.
+        # a _Plan per population size (a new motion table brings a new one); a planner
+        # alternates a few sizes (populations, one-candidate guard checks), so all are kept
         self._plans: dict = {}
 
     def _scratch(self, rows: int, need: int) -> np.ndarray:
@@ -147,18 +161,18 @@ class ThreadedKernel:
             self._buf = np.empty((rows, cols))
         return self._buf
 
-    def _plan(self, n: int, npts: int, spacetime: bool, nk: np.ndarray) -> list:
+    def _plan(self, n: int, npts: int, spacetime: bool, nk: np.ndarray) -> _Plan:
         key = (n, npts, spacetime)
         plan = self._plans.get(key)
-        if plan is None or plan[0] is not nk:
+        if plan is None or plan.nk is not nk:
             if len(self._plans) >= 16:  # (sizes seen long ago)
                 self._plans.clear()
             bounds = chunk_bounds(n, self.threads)
             k = bounds.size - 1
             whole = scratch_size(n, npts, nk, spacetime)
             part = scratch_size(-(-n // k), npts, nk, spacetime) if k > 1 else whole
-            # a call that cannot be split is never timed
-            plan = [nk, bounds, part, whole, index_choice(nk, spacetime), False if k == 1 else None]
+            split = None if k > 1 else False  # a call that cannot be split is never timed
+            plan = _Plan(nk, bounds, part, whole, index_choice(nk, spacetime), split)
             self._plans[key] = plan
         return plan
 
@@ -174,16 +188,13 @@ class ThreadedKernel:
         :data:`PARALLEL_SECONDS` or more. The numbers are the same either way."""
         plan = self._plan(X.shape[0], X.shape[1] // 2 + 2, spacetime, motion[3])
         args = (X, start, goal, t0, speed, spacetime, obs, snap, motion, horizon, weights, box, out)
-        if not plan[5]:
-            buf = self._scratch(1, plan[3])
-            if plan[5] is None:
-                t = self._clock()
-                fused_population_cost(*args, buf[0], *plan[4])
-                plan[5] = self._clock() - t >= PARALLEL_SECONDS
-            else:
-                fused_population_cost(*args, buf[0], *plan[4])
+        if not plan.split:
+            timed = plan.split is None
+            t = self._clock() if timed else 0.0
+            fused_population_cost(*args, self._scratch(1, plan.whole)[0], *plan.indexes)
+            if timed:
+                plan.split = self._clock() - t >= PARALLEL_SECONDS
             return
-        bounds = plan[1]
-        buf = self._scratch(bounds.size - 1, plan[2])
+        buf = self._scratch(plan.bounds.size - 1, plan.part)
         with _lock:
-            _chunked(bounds, *args, buf, *plan[4])
+            _chunked(plan.bounds, *args, buf, *plan.indexes)
