@@ -32,6 +32,7 @@ FLOORS = (
     ("mawdo.util.stablesort", 0),  # a stable argsort for kernels, cheap to compile
     ("mawdo.util.shuffle", 0),  # O(d) permutations: drawn by streams, inlined by kernels
     ("mawdo.util.interrupts", 0),  # Ctrl-C told apart from errors (runner and commands)
+    ("mawdo.util.libm", 0),  # tan, exp, pow... by the C library: the same bits on every CPU
     ("mawdo.optimizers", 1),
     ("mawdo.functions", 1),
     ("mawdo.suites", 2),  # BBOB/CEC problems (ioh/opfunu); run_problem drives minimize

@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from mawdo.util import libm
+
 from .multimodal import penalized_1_core, penalty_u
 
 # Per-coordinate minimiser of sin(x) + 0.1 x^2: the root of cos(x) + 0.2 x = 0 near -1.3064,
@@ -39,7 +41,7 @@ def f11_paper_literal(X: np.ndarray) -> np.ndarray:
     The minimum is at ``x_i = -1.30644...`` for every ``i`` (about -23.84 for ``n = 30``), so the
     paper's stated ``minf = 0`` does not hold for this reading.
     """
-    return np.sum(np.sin(X) + 0.1 * X * X, axis=1)
+    return np.sum(libm.sin(X) + 0.1 * X * X, axis=1)
 
 
 def penalized_1_no_pi_over_n(X: np.ndarray) -> np.ndarray:

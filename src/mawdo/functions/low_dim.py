@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from mawdo.util import libm
+
 # --- Hartmann 6 (F13), docs/functions.md#f-constants ----------------------------------------------
 HARTMANN6_C = np.array([1.0, 1.2, 3.0, 3.2])
 HARTMANN6_A = np.array(
@@ -98,7 +100,7 @@ def _hartmann_6(X: np.ndarray, P: np.ndarray) -> np.ndarray:
     """``-sum_i c_i exp(-sum_j a_ij (x_j - p_ij)^2)`` for a (4, 6) matrix ``P``."""
     D = X[:, None, :] - P[None, :, :]  # (n, 4, 6): x_j - p_ij
     inner = np.sum(HARTMANN6_A * D * D, axis=2)  # (n, 4)
-    return -np.sum(HARTMANN6_C * np.exp(-inner), axis=1)
+    return -np.sum(HARTMANN6_C * libm.exp(-inner), axis=1)
 
 
 def hartmann_6(X: np.ndarray) -> np.ndarray:
@@ -140,7 +142,7 @@ def easom(X: np.ndarray) -> np.ndarray:
     -cos(x - pi)``, and the two signs cancel), so ``(pi, pi)`` gives exactly -1 on any machine.
     """
     u1, u2 = X[:, 0] - np.pi, X[:, 1] - np.pi
-    return -np.cos(u1) * np.cos(u2) * np.exp(-(u1 * u1 + u2 * u2))
+    return -libm.cos(u1) * libm.cos(u2) * libm.exp(-(u1 * u1 + u2 * u2))
 
 
 def goldstein_price(X: np.ndarray) -> np.ndarray:

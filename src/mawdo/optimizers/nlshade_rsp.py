@@ -39,6 +39,7 @@ from mawdo.optimizers import shade_ops as ops
 from mawdo.optimizers.base import Space, option
 from mawdo.optimizers.lshade import ShadeState, ShrinkingDE, ShrinkingParams
 from mawdo.streams import RunStreams
+from mawdo.util import libm
 
 N_MIN = 4  # NIndsMin
 TRIES = 25  # the code's retry limit
@@ -292,14 +293,14 @@ def rank_capped(u, N: int, excluded: list, draws: int) -> np.ndarray:
     while it is one of the ``excluded`` ranks (three ``(R, N)`` arrays, repeats allowed),
     ``draws`` draws at most: :func:`~mawdo.optimizers.shade_ops.weighted_capped`'s law, with
     the excluded set's weights skipped instead of an ``(R, N, N)`` mask."""
-    w = np.exp(-np.arange(N) / float(N))
+    w = libm.exp(-np.arange(N) / float(N))
     cum = np.cumsum(w)
     e = np.sort(np.stack(excluded, axis=-1), axis=-1)
     dup = np.zeros(e.shape, bool)
     dup[..., 1:] = e[..., 1:] == e[..., :-1]
     we = np.where(dup, 0.0, w[e])
     wE = we.sum(axis=-1)
-    c = (wE / cum[-1]) ** draws
+    c = libm.power(wE / cum[-1], draws)
     inside = u < c
     # inside: one of the excluded ranks, by their weights
     pick = ops.inverse_cdf(np.where(inside, u / np.where(c > 0, c, 1.0), 0.0), we)

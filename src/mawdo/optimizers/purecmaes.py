@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mawdo.optimizers import purecmaes_kernel as kernel
+from mawdo.util import libm
 
 EIG_FLOOR = 1e-20
 """Least eigenvalue of the covariance (the source takes ``sqrt`` of whatever ``eig`` returns)."""
@@ -70,7 +71,7 @@ class Settings:
             Samples per generation (the air population), >= 2.
         """
         half = lam / 2
-        w = np.log(half + 0.5) - np.log(np.arange(1, math.floor(half) + 1))
+        w = libm.log(half + 0.5) - libm.log(np.arange(1, math.floor(half) + 1))
         w = w / w.sum()
         mueff = float(w.sum() ** 2 / (w**2).sum())
         c1 = 2 / ((n + 1.3) ** 2 + mueff)

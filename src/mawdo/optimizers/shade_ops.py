@@ -14,6 +14,8 @@ import math
 
 import numpy as np
 
+from mawdo.util import libm
+
 
 def c_round(x: float) -> int:
     """C's ``round()``: to the nearest integer, halves away from zero (NumPy rounds to even)."""
@@ -82,10 +84,10 @@ def truncated_cauchy(mu: np.ndarray, u: np.ndarray, scale: float = 0.1) -> np.nd
     function at ``u`` in ``[0, 1)``: the law of the codes' ``do F = cauchy(mu, 0.1) while (F <=
     0)``, from one uniform. ``u = 0`` maps to the upper tail (a huge ``F``, which the callers
     cap at 1), never to ``F = 0``."""
-    u0 = 0.5 + np.arctan(-mu / scale) / np.pi  # P(F <= 0)
+    u0 = 0.5 + libm.arctan(-mu / scale) / np.pi  # P(F <= 0)
     w = u0 + (1.0 - u0) * (1.0 - u)
     with np.errstate(over="ignore"):
-        F = mu + scale * np.tan(np.pi * (w - 0.5))
+        F = mu + scale * libm.tan(np.pi * (w - 0.5))
     return np.where(F > 0, F, np.nextafter(0.0, 1.0))
 
 
@@ -123,7 +125,7 @@ def weighted_capped(u: np.ndarray, w: np.ndarray, excluded: np.ndarray, draws: i
     """
     tot = w.sum(axis=-1)
     q = (w * excluded).sum(axis=-1) / tot
-    c = q**draws
+    c = libm.power(q, draws)
     inside = u < c
     v = np.where(inside, u / np.where(c > 0, c, 1.0), (u - c) / np.where(c < 1, 1.0 - c, 1.0))
     pool = np.where(inside[..., None], excluded, ~excluded)

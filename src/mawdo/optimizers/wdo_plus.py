@@ -43,6 +43,7 @@ from mawdo.optimizers.kernels import seed_xoshiro, segment_ranks
 from mawdo.optimizers.wdo import group_starts
 from mawdo.optimizers.wdo_plus_kernel import BOUNDS, CENTRES, plus_step, plus_tell
 from mawdo.streams import RunStreams
+from mawdo.util import libm
 
 
 @dataclass(frozen=True)
@@ -142,9 +143,10 @@ def success_sigma(sigma, success, target, damp, vmax):
 
 
 def success_gain(success, target, damp):
-    """The success rule's factor ``exp((success - target) / ((1 - target) damp))`` (NumPy's
-    ``exp``); the kernel reads it from a table over the ``N + 1`` possible fractions ``k/N``."""
-    return np.exp((success - target) / ((1.0 - target) * damp))
+    """The success rule's factor ``exp((success - target) / ((1 - target) damp))`` (the C
+    library's ``exp``, :mod:`mawdo.util.libm`); the kernel reads it from a table over the
+    ``N + 1`` possible fractions ``k/N``."""
+    return libm.exp((success - target) / ((1.0 - target) * damp))
 
 
 def stalled(best, stall, run_best, limit, sigma, sigma_min):

@@ -38,6 +38,7 @@ from numba import njit
 
 from mawdo.optimizers.base import Optimizer, Params, Space, initial_population, option
 from mawdo.streams import RunStreams
+from mawdo.util import libm
 
 
 @dataclass(frozen=True)
@@ -198,7 +199,7 @@ class WOA(Optimizer):
         """Move every whale (one kernel pass, :func:`woa_step`); returns a new array each call."""
         if state.t > 0:
             a, u, l, ur = self._draws(state)
-            e, c = np.exp(self.params.b * l), np.cos(2.0 * np.pi * l)  # Eq. 2.5
+            e, c = libm.exp(self.params.b * l), libm.cos(2.0 * np.pi * l)  # Eq. 2.5
             X = np.empty_like(state.X)
             in_place = self.params.update == "in_place"
             sp = state.space
