@@ -4,6 +4,7 @@ failures as rows, budgets."""
 from __future__ import annotations
 
 import os
+import platform
 import signal
 import subprocess
 import sys
@@ -11,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from threadpoolctl import threadpool_info
 
 from mawdo import minimize
 from mawdo.experiments import ExperimentPlan, Store, Task, execute_task, run_plan
@@ -82,9 +84,19 @@ def test_workers_do_not_change_stored_values(reference_store, tmp_path):
     assert summary.complete and summary.tasks == len(small_plan().tasks())
     with Store.read(tmp_path / "w2.db") as store:
         workers = {t["worker"] for t in store.task_log()}
+        platforms = {t["platform"] for t in store.task_log()}
     # computed in pool processes, not here (how many of the two got work depends on timing)
     assert 1 <= len(workers) <= 2 and not any(w.endswith(f":{os.getpid()}") for w in workers)
     assert stored_values(tmp_path / "w2.db") == ref
+    # each task names what computed it: this machine's NumPy, SIMD features and BLAS kernels
+    (line,) = platforms
+    assert line.startswith(platform.machine()) and f"numpy {np.__version__} (" in line
+    from numpy._core._multiarray_umath import __cpu_features__
+
+    assert ("AVX2" in line) == bool(__cpu_features__.get("AVX2"))
+    for lib in threadpool_info():
+        if lib["user_api"] == "blas":
+            assert f"{lib['internal_api']} {lib['version']} ({lib['architecture']})" in line
 
 
 def test_dask_local_cluster_gives_identical_values(reference_store, tmp_path):

@@ -156,6 +156,27 @@ def test_a_store_made_before_a_column_existed_resumes_and_reads_it_as_none(tmp_p
     assert recs[2].seed_entropy == [123, 456] and recs[2].fun == 3.5
 
 
+def test_a_store_made_before_tasks_had_a_platform_reads_none_and_records_it_when_resumed(
+    tmp_path,
+):
+    path = tmp_path / "s.db"
+    plan = small_plan()
+    with Store.open(path, plan) as store:
+        store.write_task({**outcome(plan, Task("gwo", "quartic", 0, 2)), "platform": "A"})
+    con = sqlite3.connect(path)
+    with con:
+        con.execute("ALTER TABLE tasks DROP COLUMN platform")
+    con.close()
+    with Store.read(path) as store:  # a committed store of an older release, read-only
+        (old,) = store.task_log()
+    assert old["platform"] is None and old["algorithm"] == "gwo" and old["n_runs"] == 2
+    with Store.open(path, plan) as store:
+        store.write_task({**outcome(plan, Task("gwo", "quartic", 2, 1)), "platform": "B"})
+    with Store.read(path) as store:
+        assert [t["platform"] for t in store.task_log()] == [None, "B"]
+        assert store.count() == 3
+
+
 def test_read_only_store_file_is_refused_for_writing(tmp_path):
     path = tmp_path / "s.db"
     plan = small_plan()

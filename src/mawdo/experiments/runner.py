@@ -23,6 +23,7 @@ from typing import Any
 
 from threadpoolctl import threadpool_limits
 
+from mawdo.experiments.machine import platform_summary
 from mawdo.experiments.progress import RunBar
 from mawdo.experiments.protocol import STUDY_KINDS, Study, kind_of
 from mawdo.experiments.store import Store, library_version
@@ -101,7 +102,8 @@ def execute_task(spec: dict[str, Any], execute: Callable | None = None) -> dict[
     -------
     dict
         ``task`` (the task key), ``rows`` (the kind's row objects), ``wall`` (s), ``worker``
-        (host:pid) and ``library_version``.
+        (host:pid), ``platform`` (:func:`~mawdo.experiments.machine.platform_summary`) and
+        ``library_version``.
     """
     if execute is None:
         execute = STUDY_KINDS[spec["kind"]].execute
@@ -125,6 +127,7 @@ def execute_task(spec: dict[str, Any], execute: Callable | None = None) -> dict[
         "rows": rows,
         "wall": time.perf_counter() - t0,
         "worker": f"{socket.gethostname()}:{os.getpid()}",
+        "platform": platform_summary(),
         "library_version": library_version(),
     }
     if "plan_hash" in spec:  # the runner's specs name their plan; the store checks it

@@ -65,7 +65,8 @@ CREATE TABLE tasks (
     n_runs INTEGER NOT NULL,
     wall_time REAL,
     worker TEXT,
-    finished TEXT NOT NULL
+    finished TEXT NOT NULL,
+    platform TEXT
 )"""
 
 TASK_COLUMNS = (
@@ -77,6 +78,7 @@ TASK_COLUMNS = (
     "wall_time",
     "worker",
     "finished",
+    "platform",
 )
 META_COLUMNS = (
     "schema_version",
@@ -120,12 +122,19 @@ def add_missing_columns(conn: sqlite3.Connection, row_type: type[RunRow]) -> lis
     """Add to ``runs`` the columns of ``row_type`` that a store made before they existed lacks
     (NULL in its rows, read as None), so that resuming it can write rows of today's type;
     returns their names."""
-    present = {r[1] for r in conn.execute("PRAGMA table_info(runs)").fetchall()}
+    present = table_columns(conn, "runs")
     missing = [(n, s) for n, s in schema(row_type) if n not in present]
     with conn:
         for name, storage in missing:
             conn.execute(f"ALTER TABLE runs ADD COLUMN {name} {STORAGE_SQL[storage]}")
+        if "platform" not in table_columns(conn, "tasks"):  # stores made before it existed
+            conn.execute("ALTER TABLE tasks ADD COLUMN platform TEXT")
     return [n for n, _ in missing]
+
+
+def table_columns(conn: sqlite3.Connection, table: str) -> set[str]:
+    """The names of a table's columns."""
+    return {r[1] for r in conn.execute(f"PRAGMA table_info({table})").fetchall()}
 
 
 def drop_tables(conn: sqlite3.Connection) -> None:

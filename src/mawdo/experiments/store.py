@@ -43,6 +43,7 @@ from mawdo.experiments.sqlitefile import (
     quick_check,
     read_meta,
     runs_columns,
+    table_columns,
     translate,
 )
 from mawdo.experiments.store_open import check_row_hashes, check_writable_path, open_meta
@@ -224,7 +225,7 @@ class Store:
                 )
             cur = self.conn.execute(
                 "INSERT INTO tasks (algorithm, problem, first_run, n_runs, wall_time, worker, "
-                "finished) VALUES (?, ?, ?, ?, ?, ?, ?)",
+                "finished, platform) VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
                 (
                     t["algorithm"],
                     t["problem"],
@@ -233,6 +234,7 @@ class Store:
                     outcome["wall"],
                     outcome.get("worker"),
                     now(),
+                    outcome.get("platform"),
                 ),
             )
             task_id = cur.lastrowid
@@ -356,8 +358,9 @@ class Store:
         return out
 
     def task_log(self) -> list[dict[str, Any]]:
-        """Every executed task, in execution order."""
-        rows = self.conn.execute(
-            f"SELECT {', '.join(TASK_COLUMNS)} FROM tasks ORDER BY id"
-        ).fetchall()
-        return [dict(zip(TASK_COLUMNS, r, strict=True)) for r in rows]
+        """Every executed task, in execution order; ``platform`` (what computed it, see
+        :func:`mawdo.experiments.runner.platform_summary`) is None in stores made before it was
+        recorded."""
+        cols = [c for c in TASK_COLUMNS if c in table_columns(self.conn, "tasks")]
+        rows = self.conn.execute(f"SELECT {', '.join(cols)} FROM tasks ORDER BY id").fetchall()
+        return [{**dict.fromkeys(TASK_COLUMNS), **dict(zip(cols, r, strict=True))} for r in rows]
