@@ -359,7 +359,7 @@ class Store:
 
     def task_log(self) -> list[dict[str, Any]]:
         """Every executed task, in execution order; ``platform`` (what computed it, see
-        :func:`mawdo.experiments.runner.platform_summary`) is None in stores made before it was
+        :func:`mawdo.experiments.machine.platform_summary`) is None in stores made before it was
         recorded."""
         cols = [c for c in TASK_COLUMNS if c in table_columns(self.conn, "tasks")]
         rows = self.conn.execute(f"SELECT {', '.join(cols)} FROM tasks ORDER BY id").fetchall()
