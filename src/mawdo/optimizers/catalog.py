@@ -231,7 +231,21 @@ register(
     )
 )
 
+from mawdo.optimizers.ea4eig import EA4eig  # noqa: E402
+
+register(
+    AlgorithmSpec(
+        "ea4eig",
+        EA4eig,
+        {},
+        "Bujok & Kolenovsky, IEEE CEC 2022, pp. 1-8; the authors' MATLAB code (Kudela's "
+        "alg_EA4eig.m)",
+        "EA4eig: CoBiDE, IDE, CMA-ES and jSO chosen by a success roulette, eigen crossover",
+        label="EA4eig",
+    )
+)
+
 # The competitions' own protocols rank a method against those who won them: the hold-out field
-# and the three winners.
-CEC_WINNERS = ("lshade", "jso", "nlshade_rsp")
+# and four winners.
+CEC_WINNERS = ("lshade", "jso", "nlshade_rsp", "ea4eig")
 OFFICIAL_ALGORITHMS = (*HOLDOUT_ALGORITHMS, *CEC_WINNERS)

@@ -87,6 +87,15 @@ def _pow(a, b, out):  # pragma: no cover - compiled
         out[i] = a[i] ** b[i]
 
 
+def _flat(x: np.ndarray, shape: tuple) -> np.ndarray:
+    """``x`` in ``shape`` as a flat, C-contiguous, writeable array: itself when it already is
+    one, else a copy (a broadcast view would reach the kernel with NumPy's warn-on-write flag,
+    which Numba's typing reports as a FutureWarning)."""
+    if x.shape == shape and x.flags.c_contiguous and x.flags.writeable:
+        return x.reshape(-1)
+    return np.array(np.broadcast_to(x, shape), dtype=np.float64, order="C").reshape(-1)
+
+
 def power(a, b) -> np.ndarray | float:
     """``a ** b`` elementwise with NumPy broadcasting, by the C library's ``pow``.
 
@@ -100,9 +109,9 @@ def power(a, b) -> np.ndarray | float:
     numpy.ndarray or float
         The powers, in the broadcast shape (a float when both inputs are scalars).
     """
-    a, b = np.broadcast_arrays(np.asarray(a, dtype=np.float64), np.asarray(b, dtype=np.float64))
-    shape = a.shape
-    a, b = np.ascontiguousarray(a).reshape(-1), np.ascontiguousarray(b).reshape(-1)
+    a, b = np.asarray(a, dtype=np.float64), np.asarray(b, dtype=np.float64)
+    shape = np.broadcast_shapes(a.shape, b.shape)
+    a, b = _flat(a, shape), _flat(b, shape)
     out = np.empty_like(a)
     _pow(a, b, out)
     return out.reshape(shape) if shape else out[0]

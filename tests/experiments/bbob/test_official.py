@@ -32,7 +32,7 @@ def test_presets_are_the_competitions_protocols(name, suite, n, evals, runs):
     assert {d: evaluation_budget(plan.budget, d) for d in plan.dims} == evals
     assert plan.runs == runs and plan.final_target == 1e-8 and plan.numbering == "official"
     # judged against the competitions' winners as well as the hold-out field
-    assert plan.algorithms == (*HOLDOUT_ALGORITHMS, "lshade", "jso", "nlshade_rsp")
+    assert plan.algorithms == (*HOLDOUT_ALGORITHMS, "lshade", "jso", "nlshade_rsp", "ea4eig")
 
 
 def test_checkpoints_are_the_reports():

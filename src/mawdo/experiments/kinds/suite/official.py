@@ -8,7 +8,7 @@ at the budget, as both reports ask; every run's best-so-far record is stored, so
 the competitions' checkpoints (:func:`mawdo.suites.cec_native.checkpoints`) and their tables
 (:mod:`.competition`: best, worst, median, mean, std of the error per function, errors up to
 1e-8 as 0) come from the store. The algorithms are the hold-out study's ten and the three
-winners of recent competitions (L-SHADE, jSO, NL-SHADE-RSP): thirteen.
+winners of recent competitions (L-SHADE, jSO, NL-SHADE-RSP, EA4eig): fourteen.
 """
 
 from __future__ import annotations
@@ -44,7 +44,7 @@ OFFICIAL_PRESETS: dict[str, dict[str, Any]] = {
 
 OFFICIAL_HELP = {
     "cec2017-official": "CEC 2017's protocol: F1-F30, D 10 and 30, 1e4 x D evaluations, 51 "
-    "runs, the hold-out's ten algorithms and the three CEC winners; report with the "
+    "runs, the hold-out's ten algorithms and four CEC winners; report with the "
     "competition's tables",
     "cec2022-official-d10": "CEC 2022's protocol at D 10: F1-F12, 200 000 evaluations, 30 runs",
     "cec2022-official-d20": "CEC 2022's protocol at D 20: F1-F12, 1 000 000 evaluations, 30 runs",
