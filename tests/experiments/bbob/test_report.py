@@ -187,6 +187,13 @@ def test_every_algorithm_differs_in_colour_dash_and_marker(tiny_store, tmp_path,
     for key in ("color", "ls", "marker"):
         values = [repr(v[key]) for v in looks.values()]
         assert len(set(values)) == 10, f"two of 10 algorithms share a {key}: {values}"
+    # an eleventh (the official CEC studies have eleven and more) looks like none of the ten,
+    # and the ten look as they did
+    twenty = plots.styles(eight + tuple("abcdefghijkl"))
+    assert all(twenty[a] == looks[a] for a in eight + ("a", "b"))
+    for key in ("color", "marker"):
+        values = [repr(v[key]) for v in twenty.values()]
+        assert len(set(values)) == 20, f"two of 20 algorithms share a {key}: {values}"
     study = load_runs(tiny_store)
     plots.plot_ecdfs(study, TINY["dims"][0], tmp_path)
     # four ECDF panels (all functions and three groups) on a 3 x 2 grid: the legend sits in

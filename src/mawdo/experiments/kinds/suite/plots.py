@@ -50,16 +50,21 @@ _DASHES = (
     (0, (4, 1, 4, 1, 1, 1)),
 )
 _MARKERS = ("o", "s", "^", "v", "D", "x", "+", "*", "P", "<")
+# the second ten: other markers, and the two darkest shades of tab20b's five hues
+_MORE_MARKERS = ("h", "p", "d", ">", "X", "8", "1", "2", "3", "4")
+_MORE_SHADES = (0, 4, 8, 12, 16, 1, 5, 9, 13, 17)
 
 
 def styles(algorithms) -> dict[str, dict]:
-    """Matplotlib line keywords per algorithm: a tab10 colour, a dash pattern and a marker.
+    """Matplotlib line keywords per algorithm: a colour, a dash pattern and a marker.
 
     Parameters
     ----------
     algorithms : sequence of str
-        In the study's order; the i-th gets colour, dash pattern and marker ``i % 10``, so any
-        two of the first 10 differ in all three.
+        In the study's order; the first 10 get tab10's colours with their own dash patterns
+        and markers, the next 10 tab20b's darker shades with ten more markers and the dash
+        patterns shifted by three, so any two of the first 20 differ in colour and marker
+        (and the first 10 look as they did before there could be more).
 
     Returns
     -------
@@ -68,11 +73,17 @@ def styles(algorithms) -> dict[str, dict]:
     """
     from matplotlib import colormaps
 
-    cmap = colormaps["tab10"]
-    return {
-        a: {"color": cmap(i % 10), "ls": _DASHES[i % 10], "marker": _MARKERS[i % 10]}
-        for i, a in enumerate(algorithms)
-    }
+    first, more = colormaps["tab10"], colormaps["tab20b"]
+    out = {}
+    for i, a in enumerate(algorithms):
+        k = i % 20
+        if k < 10:
+            out[a] = {"color": first(k), "ls": _DASHES[k], "marker": _MARKERS[k]}
+        else:
+            j = k - 10
+            out[a] = {"color": more(_MORE_SHADES[j]), "ls": _DASHES[(j + 3) % 10],
+                      "marker": _MORE_MARKERS[j]}  # fmt: skip
+    return out
 
 
 def _marks(i: int, curves: int, points: int, count: int) -> tuple[int, int]:
