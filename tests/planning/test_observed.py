@@ -147,3 +147,34 @@ def test_a_pursuer_close_behind_at_the_start_gets_no_free_step():
     assert not np.array_equal(res.trajectory[1], res.trajectory[0])  # it moves at once
     _assert_safe(res)
     assert res.success, res.reason
+
+
+class _Budgets:
+    """A planner policy that records the evaluations of each plan it makes (None: no plan)."""
+
+    def __init__(self, policy) -> None:
+        self.policy, self.nfev = policy, []
+
+    def reset(self, scenario, seed) -> None:
+        self.policy.reset(scenario, seed)
+
+    def act(self, reading):
+        before = self.policy.last
+        out = self.policy.act(reading)
+        last = self.policy.last
+        self.nfev.append(None if last is before else last.nfev)
+        return out
+
+    def __getattr__(self, name):
+        return getattr(self.policy, name)
+
+
+@pytest.mark.parametrize("movers", [[], [HEAD_ON]], ids=["plans-at-once", "watches-first"])
+def test_only_the_first_plan_spends_a_first_plans_budget(movers):
+    # with nobody in view the robot plans at step 0, with a walker far away it watches first:
+    # either way every later decision is a replan (quick: 5 iterations against 60)
+    rec = _Budgets(PlannerPolicy("mawdo", "quick", "observed"))
+    run_episode(SteppedWorld(_scene(movers)), rec, 4, seed=0)
+    plans = [n for n in rec.nfev if n is not None]
+    assert len(plans) == (4 if not movers else 3), rec.nfev
+    assert all(5 * n < plans[0] for n in plans[1:]), rec.nfev

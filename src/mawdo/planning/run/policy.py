@@ -230,13 +230,15 @@ class PlannerPolicy:
         room = gap - self.known.robot_radius - self.fitted.clearance - MARGIN_SLACK
         return np.where(radii > room, np.maximum(own, room), radii)
 
-    def _step_config(self, step: int):
+    def _step_config(self):
         """The settings of one step's run: one step long (the guide-only planner with its
-        safe-interval guide on)."""
+        safe-interval guide on), the episode's first plan on a first plan's budget and every
+        later one a fresh search on a replan's budget (whether or not the robot watched
+        first: a decision is due every step)."""
         cfg = replace(self.fitted, max_steps=1)
         if self.algorithm == GUIDE_ONLY:
             cfg = replace(cfg, time_guide=True)
-        if step > self.look_first and not self.warm:  # a fresh search on a replan's budget
+        if self.last is not None and not self.warm:
             cfg = replace(cfg, first_iters=cfg.replan_iters, first_pop_size=None)
         return cfg
 
@@ -248,7 +250,7 @@ class PlannerPolicy:
         share_guide(self.known, sc)
         seed = step_seed_sequence(self.seed, reading.step)
         kind = GuideOnlyRun if self.algorithm == GUIDE_ONLY else Run
-        run = kind(sc, self.algorithm, seed, self._step_config(reading.step), True)
+        run = kind(sc, self.algorithm, seed, self._step_config(), True)
         run.warm_start = self._warm(reading.position) if self.warm else None
         run.judge = False  # the episode is judged as a whole, on the realised world
         share_guide(sc, self.known)  # built on the first step, kept for the episode
