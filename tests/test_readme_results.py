@@ -11,6 +11,7 @@ import contextlib
 import csv
 import hashlib
 import importlib.util
+import json
 import lzma
 import re
 import shutil
@@ -535,9 +536,15 @@ NAMES = {
 }  # fmt: skip
 
 
-def test_the_official_cec2017_study_is_that_of_the_committed_store(tmp_path):
-    """docs/results/cec2017-official-d10: the store holds CEC 2017's protocol at D = 10 (F1-F30,
-    51 runs, 100 000 evaluations) as its plan file says; it gives the committed Friedman, group,
+@pytest.mark.parametrize(
+    ("folder", "dim", "algorithms", "row"),
+    [("cec2017-official-d10", 10, 10, -1)],
+)
+def test_the_official_cec2017_study_is_that_of_the_committed_store(
+    tmp_path, folder, dim, algorithms, row
+):
+    """docs/results/cec2017-official-d*: the stores hold CEC 2017's protocol (F1-F30, 51 runs,
+    10 000 x D evaluations) as their plan files say; they give the committed Friedman, group,
     score and competition tables, and the README row, the results page's order and the
     algorithms page's places by group are read from them."""
 
@@ -546,15 +553,17 @@ def test_the_official_cec2017_study_is_that_of_the_committed_store(tmp_path):
     from mawdo.experiments.kinds.suite.report import friedman_groups_table, friedman_table
     from mawdo.experiments.tables import to_markdown
 
-    folder, dim = "cec2017-official-d10", 10
     where, dbs, plan = official_store(folder, tmp_path)
     assert (plan["suite"], plan["dims"], plan["budget"] * dim, plan["runs"]) == (
-        "cec2017", [dim], 100_000, 51,
+        "cec2017", [dim], 10_000 * dim, 51,
     )  # fmt: skip
-    assert plan["functions"] == list(range(1, 31)) and len(plan["algorithms"]) == 10
+    assert plan["functions"] == list(range(1, 31)) and len(plan["algorithms"]) == algorithms
     study = load_runs(dbs)
-    n_runs = sqlite3.connect(dbs[0]).execute("SELECT count(*) FROM runs").fetchone()[0]
-    assert n_runs == 30 * 10 * 51
+    for db in dbs:  # every store complete: 30 functions x its algorithms x 51 runs
+        con = sqlite3.connect(db)
+        stored = json.loads(con.execute("SELECT plan_json FROM meta").fetchone()[0])
+        n_runs = con.execute("SELECT count(*) FROM runs").fetchone()[0]
+        assert n_runs == 30 * len(stored["algorithms"]) * 51, db
     assert to_markdown(friedman_table(study)) == (where / "friedman.md").read_text("utf-8")
     by_group = friedman_groups_table(study)
     assert to_markdown(by_group) == (where / "friedman_groups.md").read_text("utf-8")
@@ -567,8 +576,8 @@ def test_the_official_cec2017_study_is_that_of_the_committed_store(tmp_path):
     assert list(sizes) == [3, 7, 10, 10]
     group_ranks = np.array([r[3 : 3 + n] for r in by_group.rows])
     np.testing.assert_allclose(sizes @ group_ranks / 30, friedman_table(study).rows[0][2 : 2 + n])
-    line = readme_tables().suites_table()[-1]
-    assert line.startswith("| CEC 2017 F1-F30, D = 10 (official") and "| WDO+ |" in line
+    line = readme_tables().suites_table()[row]
+    assert line.startswith(f"| CEC 2017 F1-F30, D = {dim} (official") and "| WDO+ |" in line
     assert_group_places_stated(study, by_group, dim)
     # the results page names, in order, every algorithm ranked ahead of WDO+
     fr = friedman_table(study).rows[-1]
@@ -576,7 +585,7 @@ def test_the_official_cec2017_study_is_that_of_the_committed_store(tmp_path):
     order = sorted(ranks, key=ranks.get)
     ahead = [NAMES[a] for a in order[: order.index("wdo_plus")]]
     page = (ROOT / "docs" / "results.md").read_text("utf-8")
-    section = page.split('<a id="cec2017-official-d10"></a>')[1].split("\n## ")[0]
+    section = page.split(f'<a id="{folder}"></a>')[1].split("\n## ")[0].split("<a id=")[0]
     listed = ", ".join(ahead[:-1]) + f" and {ahead[-1]}" if len(ahead) > 1 else ahead[0]
     assert f"order them {listed}, then WDO+" in " ".join(section.split())
     # and the score's order, best first, as the results page gives it

@@ -28,7 +28,11 @@ STORES = {
 }
 # a further store of a study's protocol (one more algorithm, run later): NAME.db.xz beside
 # NAME.plan.json in the study's folder
-EXTRA = {"cec2022-official-d10": ("ea4eig",), "cec2022-official-d20": ("ea4eig",)}
+EXTRA = {
+    "cec2017-official-d10": ("ea4eig",),
+    "cec2022-official-d10": ("ea4eig",),
+    "cec2022-official-d20": ("ea4eig",),
+}
 LIBRARIES = ("cmaes", "scipy_de")  # computed by other libraries (cmaes, SciPy)
 # run 7 is the third of its task (tasks of five runs), so a dependence on the batch shows too
 RUN = 7
