@@ -25,11 +25,13 @@ STORES = {
     # its main store holds rows made where NumPy used AVX-512 (docs/deviations.md#d-cpu): only
     # its further store is computed again here
     "cec2022-official-d20": "f04_i01_d20",
+    "cec2017-official-d30": "f05_i01_d30",
 }
 # a further store of a study's protocol (one more algorithm, run later): NAME.db.xz beside
 # NAME.plan.json in the study's folder
 EXTRA = {
     "cec2017-official-d10": ("ea4eig",),
+    "cec2017-official-d30": ("lshade", "jso"),
     "cec2022-official-d10": ("ea4eig",),
     "cec2022-official-d20": ("ea4eig",),
 }
@@ -77,7 +79,11 @@ def _own(name: str) -> list[str]:
 
 @pytest.mark.parametrize(
     ("name", "algorithm"),
-    [(n, a) for n in ("cec2017-official-d10", "cec2022-official-d10") for a in _own(n)],
+    [
+        (n, a)
+        for n in ("cec2017-official-d10", "cec2017-official-d30", "cec2022-official-d10")
+        for a in _own(n)
+    ],
 )
 def test_a_stored_run_is_computed_again_bit_for_bit(stores, name, algorithm):
     _rerun(stores, name, algorithm)
@@ -103,7 +109,7 @@ def test_a_stored_run_of_a_library_reference_is_computed_again_bit_for_bit(store
     ("name", "stem"), [(n, stem) for n, stems in EXTRA.items() for stem in stems]
 )
 def test_a_stored_run_of_a_further_store_is_computed_again_bit_for_bit(stores, name, stem):
-    # EA4eig's eigendecompositions (LAPACK, in OpenBLAS) hold to the same CPUs as the cmaes
-    # library's above; the plan names the one algorithm of its store
+    # the plan names the one algorithm of its store; EA4eig's eigendecompositions (LAPACK, in
+    # OpenBLAS) hold to the same CPUs as the cmaes library's above
     (algorithm,) = load_plan_file(RESULTS / name / f"{stem}.plan.json").algorithms
     _rerun(stores, name, algorithm, stem)
