@@ -269,7 +269,10 @@ class _Batch:
         """The optimizer's candidates in the problem's box (themselves unless it is scaled)."""
         if self.scale == 1.0:
             return X
-        return np.clip(X * self.scale, self.problem.lb, self.problem.ub)
+        # clipped before it is scaled back: a candidate outside the scaled box (an optimizer
+        # may evaluate one) would overflow; the power of two makes the order exact
+        s = self.scale
+        return np.clip(X, self.problem.lb / s, self.problem.ub / s) * s
 
     def snapshot(self, message: str) -> OptimizeResult:
         return _result(self.opt, self.problem, self.seed, self.log, self.evaluator.nfev, message)

@@ -23,8 +23,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 
 def c_round(x):
     t = math.trunc(x)
@@ -60,9 +58,11 @@ def capped(u, weights, excluded, draws):
 
 def positive_cauchy(mu, u):
     """Cauchy(mu, 0.1) conditioned on > 0, at the uniform ``u`` (upper tail first)."""
-    p0 = 0.5 + float(np.arctan(-mu / 0.1)) / math.pi  # P(F <= 0)
+    # the C library's atan and tan, as the optimizers take them (mawdo.util.libm): NumPy's
+    # differ in the last bits on CPUs with AVX-512
+    p0 = 0.5 + math.atan(-mu / 0.1) / math.pi  # P(F <= 0)
     w = p0 + (1.0 - p0) * (1.0 - u)
-    return mu + 0.1 * float(np.tan(math.pi * (w - 0.5)))  # NumPy's tan: the same last bits
+    return mu + 0.1 * math.tan(math.pi * (w - 0.5))
 
 
 def modify_solution_with_parent_medium(child, parent, lo, hi):

@@ -115,8 +115,21 @@ def eigen_basis(X: np.ndarray, F: np.ndarray, share: float) -> np.ndarray:
     order = np.argsort(F, axis=1, kind="stable")[:, :keep]
     top = np.take_along_axis(X, order[..., None], 1)
     centred = top - top.mean(axis=1, keepdims=True)
+    # the eigenvectors do not change with the covariance's scale: a run whose spread would
+    # overflow its squares (a box near the float range) is divided by a power of two (exact),
+    # every other run is left as it is (bit for bit)
+    big = np.abs(centred).max(axis=(1, 2))
+    huge = big > _SQUARE_SAFE
+    if np.any(huge):
+        scale = np.ones_like(big)
+        scale[huge] = np.exp2(np.ceil(np.log2(big[huge])))
+        centred = centred / scale[:, None, None]
     cov = np.einsum("rkd,rke->rde", centred, centred) / (keep - 1)
     return np.linalg.eigh(cov)[1]
+
+
+#: Largest spread whose squares, summed over a population, stay far from overflow.
+_SQUARE_SAFE = 1e150
 
 
 def eigen_crossover(y: np.ndarray, v: np.ndarray, E: np.ndarray, mask: np.ndarray) -> np.ndarray:
