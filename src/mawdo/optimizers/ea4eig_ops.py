@@ -106,6 +106,10 @@ def crossover_mask(u_cr: np.ndarray, CR: np.ndarray, u_j: np.ndarray) -> np.ndar
     return mask | (none[..., None] & (np.arange(D) == j[..., None]))
 
 
+#: Largest spread whose squares, summed over a population, stay far from overflow.
+_SQUARE_SAFE = 1e150
+
+
 def eigen_basis(X: np.ndarray, F: np.ndarray, share: float) -> np.ndarray:
     """Eigenvectors ``(R, D, D)`` (columns) of the covariance of each run's best members:
     ``round(N share + 1) - 1`` of them after a stable sort by value (the code's
@@ -126,10 +130,6 @@ def eigen_basis(X: np.ndarray, F: np.ndarray, share: float) -> np.ndarray:
         centred = centred / scale[:, None, None]
     cov = np.einsum("rkd,rke->rde", centred, centred) / (keep - 1)
     return np.linalg.eigh(cov)[1]
-
-
-#: Largest spread whose squares, summed over a population, stay far from overflow.
-_SQUARE_SAFE = 1e150
 
 
 def eigen_crossover(y: np.ndarray, v: np.ndarray, E: np.ndarray, mask: np.ndarray) -> np.ndarray:
