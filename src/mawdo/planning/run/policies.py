@@ -8,6 +8,8 @@ mawdo                  observed    our planner (MAWDO, safe-interval guide on) o
 guide_only             observed    the same without the optimizer: the guides' best seed
 mawdo_oracle           oracle      MAWDO told every agent's future (the upper bound;
                                    exact when the people do not see the robot)
+mawdo_told             oracle      ``mawdo``'s step-by-step loop with its predictor told
+                                   that future (the loop's cost without the guess)
 orca_robot             observed    the robot driven by ORCA on the tracks (``crowd``)
 social_force_robot     observed    the robot driven by the social force (``crowd``)
 dwa                    observed    a sampling local planner (dynamic window) on the
@@ -79,6 +81,13 @@ def _planner(algorithm: str, knowledge: str):
     return make
 
 
+def _told(options):
+    from mawdo.planning.run.told import ToldFuturePolicy
+
+    over = {"time_guide": True, **options.get("overrides", {})}
+    return ToldFuturePolicy("mawdo", options.get("preset"), tracker=_tracker(options), **over)
+
+
 def _dwa(options):
     from mawdo.planning.run.dwa import DynamicWindow
 
@@ -109,6 +118,8 @@ for _spec in (
                "the guides' best seed on the same predictions, no optimizer"),
     PolicySpec("mawdo_oracle", _planner("mawdo", "oracle"), "oracle",
                "MAWDO told every agent's future (upper bound)"),
+    PolicySpec("mawdo_told", _told, "oracle",
+               "MAWDO's step-by-step loop, its predictor told every agent's future"),
     PolicySpec("orca_robot", _robot("OrcaRobot"), "observed", "ORCA on the tracks"),
     PolicySpec("social_force_robot", _robot("SocialForceRobot"), "observed",
                "social force on the tracks"),
