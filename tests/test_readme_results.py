@@ -372,18 +372,31 @@ def test_crowd_sentences_and_readme_table_are_those_of_the_committed_store(tmp_p
         assert caused == f"{100 * m['robot_caused']:.1f} %"
 
 
-def test_every_crowd_setting_sentence_is_that_of_the_committed_store(tmp_path):
-    """docs/results/crowdnav-50: the store gives the committed sentences, 50 episodes each."""
+@pytest.mark.parametrize(
+    ("name", "settings", "policies", "episodes"),
+    [("crowdnav-50", 12, 7, 50), ("crowdnav-10", 4, 8, 500), ("crowdnav-noise", 2, 2, 200)],
+)
+def test_every_crowd_setting_sentence_is_that_of_the_committed_store(
+    tmp_path, name, settings, policies, episodes
+):
+    """docs/results/crowdnav-*: each store is its preset run in full and gives the committed
+    sentences, on the results page too."""
     from mawdo.experiments import Store
     from mawdo.experiments.kinds.crowd import crowd_summary
+    from mawdo.experiments.kinds.crowd.plan import crowd_preset
     from mawdo.experiments.kinds.crowd.report import crowd_headline
 
-    folder = ROOT / "docs" / "results" / "crowdnav-50"
+    folder = ROOT / "docs" / "results" / name
     with Store.read(unpack(folder / "store.db.xz", tmp_path)) as store:
         lines = crowd_headline(store)
         summary = crowd_summary(store)
+        stored = store.plan.plan_hash
+    assert stored == crowd_preset(name).plan_hash  # the preset as it stands, run in full
     assert lines == (folder / "summary.md").read_text("utf-8").splitlines()
-    assert len(summary) == 12 * 7 and {m["episodes"] for m in summary.values()} == {50}
+    assert len(summary) == settings * policies
+    assert {m["episodes"] for m in summary.values()} == {episodes}
+    page = " ".join((ROOT / "docs" / "results.md").read_text("utf-8").split())
+    assert all(" ".join(line.split()) in page for line in lines)
 
 
 @pytest.mark.parametrize(
@@ -413,7 +426,10 @@ def test_stored_crowd_episodes_are_what_the_code_computes(tmp_path, policy, run)
     assert tuple(row[f] for f in fields) == stored
 
 
-@pytest.mark.parametrize("folder", ["crowdnav-circle5", "crowdnav-50", "crowdnav-refiners"])
+@pytest.mark.parametrize(
+    "folder",
+    ["crowdnav-circle5", "crowdnav-50", "crowdnav-refiners", "crowdnav-10", "crowdnav-noise"],
+)
 def test_the_crowd_share_is_that_of_the_committed_store(tmp_path, folder):
     """The committed crowd_share.md is the report's table from the committed crowd store."""
     from mawdo.experiments import Store

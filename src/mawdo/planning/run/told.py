@@ -13,8 +13,8 @@ The true future comes with the scenario the policy is reset with: the world's sc
 every agent's future as a scripted mover, as the crowd study hands it to every policy registered
 with ``oracle`` knowledge (exact when the people do not see the robot; see
 :func:`~mawdo.planning.world.stepped.people_future`). Each step the tracks are matched to those
-movers; a track with no mover under it means the policy was not told the future (reset with the
-world's own scenario), and the step raises rather than plan around nobody.
+movers; a track with no mover under it at the first decision means the policy was not told the
+future (reset with the world's own scenario), and the step raises rather than plan around nobody.
 """
 
 from __future__ import annotations
@@ -80,13 +80,14 @@ class ToldFuturePolicy(PlannerPolicy):
 
         truth = ahead([now])[0]
         agents = match_agents(tracks, truth)
-        if len(tracks):
-            # a track left over is a ghost (the tracker coasting a track whose agent turned
-            # sharply, beside the new track it started for it): the oracle drops it
+        if len(tracks) and self.last is None:
+            # told at all? Checked at the first decision only: people who see the robot leave
+            # the future recorded without it (then it is an estimate, as for mawdo_oracle), and
+            # a track left over later is a ghost (the tracker coasting a track whose agent
+            # turned sharply, beside the new track it started for it) that the oracle drops
             gap = np.hypot(*(tracks.centers - truth[np.maximum(agents, 0)]).T) if len(truth) else 0
-            far = np.flatnonzero((agents >= 0) & (gap > tracks.radii))
-            if not len(truth) or len(far):
-                far = far if len(far) else np.zeros(1, int)
+            far = np.flatnonzero((agents < 0) | (gap > tracks.radii))
+            if len(far):
                 raise ValueError(
                     f"{self.name}: the track at {tracks.centers[far[0]].round(2).tolist()} px "
                     f"has no told mover within its radius at step {self._now:g}; reset the "

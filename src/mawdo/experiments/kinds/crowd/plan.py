@@ -192,6 +192,15 @@ CROWD_PRESETS: dict[str, dict[str, Any]] = {
         "policies": [*_POLICIES_ALL[:3], "mawdo_told", *_POLICIES_ALL[3:]],
         "batch_size": 25,
     },
+    # a noisy sensor (0.05 m per axis): the observing planner with and without its optimizer
+    "crowdnav-noise": {
+        "name": "crowdnav-noise",
+        "settings": ["circle-5-invisible", "circle-10-invisible"],
+        "n": 200,
+        "policies": ["mawdo", "guide_only"],
+        "sensor_noise": 0.05,
+        "batch_size": 25,
+    },
     # every setting, 50 episodes each
     "crowdnav-50": {
         "name": "crowdnav-50",
