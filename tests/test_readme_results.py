@@ -374,7 +374,7 @@ def test_crowd_sentences_and_readme_table_are_those_of_the_committed_store(tmp_p
 
 @pytest.mark.parametrize(
     ("name", "settings", "policies", "episodes"),
-    [("crowdnav-50", 12, 7, 50), ("crowdnav-10", 4, 8, 500), ("crowdnav-noise", 2, 2, 200)],
+    [("crowdnav-50", 12, 7, 50)],
 )
 def test_every_crowd_setting_sentence_is_that_of_the_committed_store(
     tmp_path, name, settings, policies, episodes
