@@ -428,7 +428,7 @@ def test_stored_crowd_episodes_are_what_the_code_computes(tmp_path, policy, run)
 
 @pytest.mark.parametrize(
     "folder",
-    ["crowdnav-circle5", "crowdnav-50", "crowdnav-refiners", "crowdnav-10", "crowdnav-noise"],
+    ["crowdnav-circle5", "crowdnav-50", "crowdnav-refiners"],
 )
 def test_the_crowd_share_is_that_of_the_committed_store(tmp_path, folder):
     """The committed crowd_share.md is the report's table from the committed crowd store."""
