@@ -122,7 +122,7 @@ OFFICIAL = (
     (
         "cec2017-official-d30",
         "CEC 2017 F1-F30, D = 30 (official: 300 000 evaluations, 51 runs; beside WDO, MAWDO, GWO,"
-        " L-SHADE, jSO and random search only)",
+        " L-SHADE, jSO, NL-SHADE-RSP and random search only)",
     ),
 )
 
@@ -229,6 +229,35 @@ def crowd_table() -> list[str]:
             f"{100 * float(row['success']):.1f} % | {share} | {row['time (s)']} |"
         )
     return lines
+
+
+def _span(rows, policy: str, column: str) -> str:
+    """A policy's lowest and highest value of a rate column over the rows' settings, in %."""
+    vals = sorted(100 * float(r[column]) for r in rows if r["policy"] == policy)
+    lo, hi = f"{vals[0]:.1f}", f"{vals[-1]:.1f}"
+    return f"{lo} %" if lo == hi else f"{lo}-{hi} %"
+
+
+def crowd_sentence() -> list[str]:
+    """Beyond the headline setting: the 10-person settings in full and a noisy sensor, each
+    policy's range over the settings, from the two studies' crowd tables."""
+    ten = _rows(RESULTS / "crowdnav-10" / "crowd_table.md")
+    noisy = _rows(RESULTS / "crowdnav-noise" / "crowd_table.md")
+    n_ten = {r["episodes"] for r in ten}.pop()
+    n_noisy = {r["episodes"] for r in noisy}.pop()
+
+    def both(rows, policy):
+        return (f"{policy} {_span(rows, policy, 'success')} success, "
+                f"{_span(rows, policy, 'robot-caused')} robot-caused")  # fmt: skip
+
+    mine = ", ".join(both(ten, p) for p in ("mawdo", "guide_only", "orca_robot"))
+    noise = "; ".join(both(noisy, p) for p in ("mawdo", "guide_only"))
+    return [
+        f"With 10 people (`crowdnav-10`: circle and square crossing, the robot unseen or seen, "
+        f"{n_ten} episodes each), over the four settings: {mine}. Behind a sensor with 0.05 m "
+        f"of noise (`crowdnav-noise`: circle crossing with 5 and 10 people, {n_noisy} episodes "
+        f"each): {noise}."
+    ]
 
 
 TABLES = {

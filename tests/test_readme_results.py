@@ -453,7 +453,8 @@ def official_store(folder: str, tmp_path):
     where = ROOT / "docs" / "results" / folder
     plan = json.loads((where / "plan.json").read_text("utf-8"))
     dbs = []
-    for packed in sorted(where.glob("*.db.xz"), key=lambda p: p.name != "store.db.xz"):
+    # the main store first, then the others by name (a glob's order is the file system's)
+    for packed in sorted(where.glob("*.db.xz"), key=lambda p: (p.name != "store.db.xz", p.name)):
         stem = packed.name.removesuffix(".db.xz")
         (tmp_path / stem).mkdir(exist_ok=True)
         db = unpack(packed, tmp_path / stem)

@@ -31,7 +31,7 @@ STORES = {
 # NAME.plan.json in the study's folder
 EXTRA = {
     "cec2017-official-d10": ("ea4eig",),
-    "cec2017-official-d30": ("lshade", "jso", "random"),
+    "cec2017-official-d30": ("lshade", "jso", "nlshade_rsp", "random"),
     "cec2022-official-d10": ("ea4eig",),
     "cec2022-official-d20": ("ea4eig",),
 }
