@@ -384,13 +384,16 @@ def test_every_crowd_setting_sentence_is_that_of_the_committed_store(
     from mawdo.experiments import Store
     from mawdo.experiments.kinds.crowd import crowd_summary
     from mawdo.experiments.kinds.crowd.plan import crowd_preset
-    from mawdo.experiments.kinds.crowd.report import crowd_headline
+    from mawdo.experiments.kinds.crowd.report import crowd_headline, crowd_table
+    from mawdo.experiments.tables import to_markdown
 
     folder = ROOT / "docs" / "results" / name
     with Store.read(unpack(folder / "store.db.xz", tmp_path)) as store:
         lines = crowd_headline(store)
         summary = crowd_summary(store)
         stored = store.plan.plan_hash
+        table = to_markdown(crowd_table(store))  # the README's sentences read it
+    assert table == (folder / "crowd_table.md").read_text("utf-8")
     assert stored == crowd_preset(name).plan_hash  # the preset as it stands, run in full
     assert lines == (folder / "summary.md").read_text("utf-8").splitlines()
     assert len(summary) == settings * policies
