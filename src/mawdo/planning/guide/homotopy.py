@@ -22,6 +22,7 @@ from numba import njit
 from mawdo.planning.guide.visgraph import VisGraph, build, trace
 from mawdo.planning.world.geometry import centre_box, inflate
 from mawdo.planning.world.scenario import Scenario
+from mawdo.util.weak import WeakAttribute
 
 __all__ = ["Guide", "winding"]
 
@@ -75,6 +76,9 @@ class Guide:
     max_ratio : float
         Alternatives longer than ``max_ratio`` times the shortest are dropped.
     """
+
+    # held weakly: the per-scenario cache must not keep its scenario alive
+    scenario = WeakAttribute()
 
     def __init__(
         self, scenario: Scenario, clearance: float = 0.5, k: int = 6, max_ratio: float = 2.5

@@ -24,6 +24,7 @@ from mawdo.planning.guide.sipp.intervals import Movers
 from mawdo.planning.guide.visgraph import VisGraph, build, csr_dijkstra, visible_from_point
 from mawdo.planning.world.geometry import FlatObstacles, centre_box, inflate
 from mawdo.planning.world.scenario import Scenario
+from mawdo.util.weak import WeakAttribute
 
 __all__ = ["Roadmap", "usable_spots"]
 
@@ -104,6 +105,9 @@ class Roadmap:
     to_goal : numpy.ndarray, shape (n,)
         Static distance to the goal over the graph (pixels; ``inf`` if cut off).
     """
+
+    # held weakly: the per-scenario cache must not keep its scenario alive
+    scenario = WeakAttribute()
 
     def __init__(
         self, scenario: Scenario, clearance: float = 0.5, spots=(), segments: int = GUIDE_SEGMENTS
