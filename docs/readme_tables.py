@@ -265,6 +265,7 @@ TABLES = {
     "suites": suites_table,
     "arena": arena_table,
     "crowd": crowd_table,
+    "crowd_more": crowd_sentence,
     "swarm": swarm_sentence,
 }
 

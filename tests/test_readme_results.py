@@ -62,11 +62,22 @@ def test_the_readme_tables_are_rendered_from_the_committed_results():
     tables = readme_tables()
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
     written = tables.tables_in(readme)
-    assert set(written) == set(tables.TABLES) == {"paper", "suites", "arena", "crowd", "swarm"}
+    assert (
+        set(written)
+        == set(tables.TABLES)
+        == {
+            "paper",
+            "suites",
+            "arena",
+            "crowd",
+            "swarm",
+            "crowd_more",
+        }
+    )
     for name, render in tables.TABLES.items():
         rows = render()
-        # a table: header, rule and at least three rows; the swarm's share: one sentence
-        assert len(rows) == 1 if name == "swarm" else len(rows) >= 5, name
+        # a table: header, rule and at least three rows; the swarm's share, crowds: a sentence
+        assert len(rows) == 1 if name in ("swarm", "crowd_more") else len(rows) >= 5, name
         assert written[name] == "\n".join(rows) + "\n", f"README table {name!r} is stale"
     assert tables.render(readme) == readme
 
@@ -374,7 +385,7 @@ def test_crowd_sentences_and_readme_table_are_those_of_the_committed_store(tmp_p
 
 @pytest.mark.parametrize(
     ("name", "settings", "policies", "episodes"),
-    [("crowdnav-50", 12, 7, 50), ("crowdnav-noise", 2, 2, 200)],
+    [("crowdnav-50", 12, 7, 50), ("crowdnav-10", 4, 8, 500), ("crowdnav-noise", 2, 2, 200)],
 )
 def test_every_crowd_setting_sentence_is_that_of_the_committed_store(
     tmp_path, name, settings, policies, episodes
@@ -431,7 +442,7 @@ def test_stored_crowd_episodes_are_what_the_code_computes(tmp_path, policy, run)
 
 @pytest.mark.parametrize(
     "folder",
-    ["crowdnav-circle5", "crowdnav-50", "crowdnav-refiners", "crowdnav-noise"],
+    ["crowdnav-circle5", "crowdnav-50", "crowdnav-refiners", "crowdnav-10", "crowdnav-noise"],
 )
 def test_the_crowd_share_is_that_of_the_committed_store(tmp_path, folder):
     """The committed crowd_share.md is the report's table from the committed crowd store."""
