@@ -61,3 +61,14 @@ def test_a_weak_attribute_names_itself_once_its_object_is_gone():
     gc.collect()
     with pytest.raises(ReferenceError, match=r"Holder\.thing no longer exists"):
         _ = holder.thing
+
+
+def test_a_guide_built_on_a_scenario_nobody_else_holds_still_answers():
+    """The safe-interval guide keeps its own scenario: its cached roadmap, which holds the
+    scenario weakly, stays usable for as long as the guide is."""
+    from mawdo.planning.guide.sipp.guide import SafeIntervalGuide
+
+    guide = SafeIntervalGuide(_prediction(0))  # the scenario is held by the guide alone
+    gc.collect()
+    guide.routes(k=2)  # the search reads the roadmap's scenario
+    assert guide.roadmap.scenario is guide.scenario
