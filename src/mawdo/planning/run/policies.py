@@ -67,11 +67,17 @@ def _tracker(options):
     return Tracker(noise=float(options.get("noise", 0.0)))
 
 
+def _settings(options) -> dict:
+    """Our planner's settings in every policy built on it: the safe-interval guide on, then the
+    plan's overrides."""
+    return {"time_guide": True, **options.get("overrides", {})}
+
+
 def _planner(algorithm: str, knowledge: str):
     def make(options):
         from mawdo.planning.run.policy import PlannerPolicy
 
-        over = {"time_guide": True, **options.get("overrides", {})}
+        over = _settings(options)
         extra = {}
         if knowledge == "observed":
             extra = {"tracker": _tracker(options), "predictor": options.get("predictor",
@@ -84,8 +90,9 @@ def _planner(algorithm: str, knowledge: str):
 def _told(options):
     from mawdo.planning.run.told import ToldFuturePolicy
 
-    over = {"time_guide": True, **options.get("overrides", {})}
-    return ToldFuturePolicy("mawdo", options.get("preset"), tracker=_tracker(options), **over)
+    return ToldFuturePolicy(
+        "mawdo", options.get("preset"), tracker=_tracker(options), **_settings(options)
+    )
 
 
 def _dwa(options):
