@@ -122,7 +122,7 @@ OFFICIAL = (
     (
         "cec2017-official-d30",
         "CEC 2017 F1-F30, D = 30 (official: 300 000 evaluations, 51 runs; beside WDO, MAWDO, GWO,"
-        " L-SHADE, jSO, NL-SHADE-RSP and random search only)",
+        " L-SHADE, jSO, NL-SHADE-RSP, EA4eig and random search only)",
     ),
 )
 

@@ -22,8 +22,6 @@ RESULTS = Path(__file__).resolve().parents[3] / "docs" / "results"
 STORES = {
     "cec2017-official-d10": "f05_i01_d10",
     "cec2022-official-d10": "f04_i01_d10",
-    # its main store holds rows made where NumPy used AVX-512 (docs/deviations.md#d-cpu): only
-    # its further store is computed again here
     "cec2022-official-d20": "f04_i01_d20",
     "cec2017-official-d30": "f05_i01_d30",
 }
@@ -31,7 +29,7 @@ STORES = {
 # NAME.plan.json in the study's folder
 EXTRA = {
     "cec2017-official-d10": ("ea4eig",),
-    "cec2017-official-d30": ("lshade", "jso", "nlshade_rsp", "random"),
+    "cec2017-official-d30": ("lshade", "jso", "nlshade_rsp", "ea4eig", "random"),
     "cec2022-official-d10": ("ea4eig",),
     "cec2022-official-d20": ("ea4eig",),
 }
@@ -79,11 +77,7 @@ def _own(name: str) -> list[str]:
 
 @pytest.mark.parametrize(
     ("name", "algorithm"),
-    [
-        (n, a)
-        for n in ("cec2017-official-d10", "cec2017-official-d30", "cec2022-official-d10")
-        for a in _own(n)
-    ],
+    [(n, a) for n in STORES for a in _own(n)],
 )
 def test_a_stored_run_is_computed_again_bit_for_bit(stores, name, algorithm):
     _rerun(stores, name, algorithm)
