@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from mawdo.planning.run.episode import run_episode
-from mawdo.planning.run.policy import PlannerPolicy
+from mawdo.planning.run.policy import PlannerPolicy, closes_in_reach, dodge_ratio
 from mawdo.planning.sense.sensor import Sensor
 from mawdo.planning.world.scenario import scenario_from_dict
 from mawdo.planning.world.stepped import SteppedWorld
@@ -115,25 +115,55 @@ def _reading(step, centers, radii):
                    np.asarray(radii, float))  # fmt: skip
 
 
-def test_the_robot_watches_only_while_nobody_can_reach_it_before_the_watch_ends():
+def test_the_robot_watches_only_while_it_could_still_step_out_of_everyone_s_way():
     policy = PlannerPolicy("guide_only", "quick", "observed", look_first=2, time_guide=True)
     policy.reset(_scene([HEAD_ON]), 0)
-    # reach per watch step: k_sd (2) x the tracker's speed prior (4 px per step) = 8 px; gaps
-    # are centre distance - agent radius (8) - robot radius (4)
-    assert policy.tracker.birth_speed_sd == 4.0
-    assert policy.may_watch(_reading(0, [[20.0 + 12.0 + 16.5, 60.0]], [8.0]))  # gap 16.5 > 16
-    assert not policy.may_watch(_reading(0, [[20.0 + 12.0 + 15.5, 60.0]], [8.0]))  # 15.5
-    assert policy.may_watch(_reading(1, [[20.0, 60.0 + 12.0 + 8.5]], [8.0]))  # one step left
-    assert not policy.may_watch(_reading(1, [[20.0, 60.0 + 12.0 + 7.5]], [8.0]))
+    # worst agent: straight at the robot at u = k_sd (2) x the tracker's speed prior (4 px per
+    # step) = 8 px per step, twice the robot's speed v = 4, so the best escape passes it at
+    # v / u = 1/2 of the centre distance left when the watch ends; that must exceed the agent's
+    # radius (8) + the robot's (4) + the quick preset's clearance (0.5) = 12.5, i.e. 25 px
+    assert policy.tracker.birth_speed_sd == 4.0 and policy.fitted.clearance == 0.5
+    assert policy.may_watch(_reading(0, [[20.0 + 25.0 + 16.0 + 0.5, 60.0]], [8.0]))  # 2 steps
+    assert not policy.may_watch(_reading(0, [[20.0 + 25.0 + 16.0 - 0.5, 60.0]], [8.0]))
+    assert policy.may_watch(_reading(1, [[20.0, 60.0 + 25.0 + 8.0 + 0.5]], [8.0]))  # 1 step
+    assert not policy.may_watch(_reading(1, [[20.0, 60.0 + 25.0 + 8.0 - 0.5]], [8.0]))
     assert not policy.may_watch(_reading(2, [[150.0, 60.0]], [8.0]))  # the watch is over
     assert not policy.may_watch(_reading(0, np.zeros((0, 2)), []))  # nobody to watch
-    # one agent in reach is enough to plan at once, and k_sd is the predictor's own
-    two = [[150.0, 60.0], [20.0 + 12.0 + 10.0, 60.0]]
-    assert not policy.may_watch(_reading(0, two, [8.0, 8.0]))  # 10 < 16
+    # one agent too close is enough to plan at once, and k_sd is the predictor's own
+    two = [[150.0, 60.0], [20.0 + 30.0, 60.0]]
+    assert not policy.may_watch(_reading(0, two, [8.0, 8.0]))  # (30 - 16) / 2 < 12.5
     loose = PlannerPolicy("guide_only", "quick", "observed", look_first=1, time_guide=True,
                           predictor_options={"k_sd": 1.0})  # fmt: skip
     loose.reset(_scene([HEAD_ON]), 0)
-    assert loose.may_watch(_reading(0, two, [8.0, 8.0]))  # 10 > 1 x 4 x 1
+    # u = 4 = v: the robot outruns it, so 30 - 4 = 26 > 12.5 is enough
+    assert loose.may_watch(_reading(0, two, [8.0, 8.0]))
+
+
+@pytest.mark.parametrize(("u", "v"), [(8.0, 4.0), (6.6, 4.0), (4.5, 4.0), (4.0, 4.0), (2.0, 4.0)])
+def test_the_best_escape_from_a_straight_walker_keeps_the_dodge_ratio(u, v):
+    # brute force: every heading of the robot (0.01 degree apart), the closest approach over
+    # time of the agent walking straight at the robot's start from 100 px away
+    phi = np.radians(np.arange(0.0, 180.0, 0.01))
+    rel_pos = np.array([100.0, 0.0])  # robot minus agent; the agent walks along +x
+    rel_vel = np.stack([v * np.cos(phi) - u, v * np.sin(phi)], axis=1)
+    t = np.clip(-(rel_vel @ rel_pos) / np.maximum(np.sum(rel_vel**2, axis=1), 1e-300), 0, None)
+    closest = np.hypot(*(rel_pos + t[:, None] * rel_vel).T)
+    assert closest.max() == pytest.approx(100.0 * dodge_ratio(u, v), rel=1e-6)
+
+
+def test_a_fast_crosser_met_at_the_start_gets_no_watch_that_traps_the_robot():
+    # a generated chaser scene (seed 7, scene 1): a disc of radius 11.9 at 6.6 px per step
+    # (the robot makes 4) passes 2.8 px from the robot's start. A watch bounded by the reach
+    # during the watch alone left it 25.7 px from the robot's centre after one step:
+    # 25.7 x 4 / 6.6 = 15.6 < 11.9 + 4, no escape, and the robot was hit from the side.
+    from mawdo.planning.scenes import generate_scene
+
+    scene = generate_scene("chaser", 1, seed=7)
+    policy = PlannerPolicy("guide_only", "realtime", "observed", time_guide=True)
+    res = run_episode(SteppedWorld(scene.scenario), policy, 400, seed=3565384203)
+    assert not np.array_equal(res.trajectory[1], res.trajectory[0])  # it moves at once
+    _assert_safe(res)
+    assert res.success and res.collision_free, res.reason
 
 
 def test_a_pursuer_close_behind_at_the_start_gets_no_free_step():
@@ -178,3 +208,55 @@ def test_only_the_first_plan_spends_a_first_plans_budget(movers):
     plans = [n for n in rec.nfev if n is not None]
     assert len(plans) == (4 if not movers else 3), rec.nfev
     assert all(5 * n < plans[0] for n in plans[1:]), rec.nfev
+
+
+def test_a_move_closes_in_on_an_agent_only_toward_it_and_within_its_reach():
+    # robot at the origin, agent centre 20 px ahead, contact distance 12, reach 4 px a step:
+    # driving to (4, 0) ends 16 px off = 12 + 1 x 4, within reach, heading at it
+    c, contact, top = np.array([[20.0, 0.0]]), np.array([12.0]), np.array([4.0])
+    o = np.zeros(2)
+
+    def closes(*points, fracs=None):
+        pts = np.asarray(points, float)
+        fr = np.ones(1) if fracs is None else np.asarray(fracs, float)
+        return closes_in_reach(o, pts, fr, c, contact, top)
+
+    assert closes([4.0, 0.0])
+    # 20 - 3 f > 12 + 4 f for every f in [0, 1]: never within reach
+    assert not closes([3.0, 0.0])
+    assert not closes([0.0, 0.0])  # standing
+    assert not closes([-4.0, 0.0])  # backing away
+    assert not closes([0.0, 4.0])  # sideways: the agent falls behind the robot's heading
+    # a corner: sideways first, then at it; the second leg ends (2, 2) -> 18.1 px > 16 off,
+    # but heads at it from within 12 + f x 4 only if it gets that close: it does not
+    assert not closes([0.0, 2.0], [2.0, 2.0], fracs=[0.5, 1.0])
+    # the same corner with the agent 17 px ahead: at f = 1, 15.1 px <= 16, heading at it
+    c[0, 0] = 17.0
+    assert closes([0.0, 2.0], [2.0, 2.0], fracs=[0.5, 1.0])
+    # an agent behind the robot is never closed in on by a move ahead
+    assert not closes_in_reach(o, np.array([[4.0, 0.0]]), np.ones(1), np.array([[-13.0, 0.0]]),
+                               contact, top)  # fmt: skip
+
+
+def test_the_robot_does_not_step_toward_someone_who_could_reach_it():
+    # a person 3 px (surface to surface) ahead on the robot's line, slowly coming closer: the
+    # plan goes round them, but no step may head toward where they are while they could
+    # reach the robot within it (at the robot's speed, 4 px a step; contact at 8 + 4 px)
+    person = {"shape": "circle", "center": [20.0 + 12.0 + 3.0, 60.0], "radius": 8.0,
+              "motion": {"velocity": [-0.25, 0.0]}}  # fmt: skip
+    sc = _scene([person])
+    res = run_episode(SteppedWorld(sc), PlannerPolicy("guide_only", "quick", "observed",
+                                                      time_guide=True), 200, seed=0)  # fmt: skip
+    _assert_safe(res)
+    assert res.success, res.reason
+    ob = sc.obstacles[0]
+    for t in range(len(res.trajectory) - 1):
+        centre = (ob.shape.center + np.ravel(ob.offset(float(t))))[None, :]
+        assert not closes_in_reach(
+            res.trajectory[t],
+            res.trajectory[t + 1][None, :],
+            np.ones(1),
+            centre,
+            np.array([12.0]),
+            np.array([4.0]),
+        ), t

@@ -25,11 +25,19 @@ from dataclasses import replace
 import numpy as np
 
 from mawdo.planning.run.carried import CarriedMotion
+from mawdo.planning.sense.predict import K_SD
 from mawdo.planning.sense.reading import Reading
 from mawdo.planning.world.stepped import Move, static_part, with_movers
 from mawdo.streams import step_seed_sequence
 
-__all__ = ["KNOWLEDGE", "PlannerPolicy", "StraightLine", "step_move"]
+__all__ = [
+    "KNOWLEDGE",
+    "PlannerPolicy",
+    "StraightLine",
+    "closes_in_reach",
+    "dodge_ratio",
+    "step_move",
+]
 
 #: The planner without an optimizer (the guides' best seed), a choice beside the optimizers.
 GUIDE_ONLY = "guide_only"
@@ -70,6 +78,49 @@ class StraightLine:
         return d if n <= self.speed else d * (self.speed / n)
 
 
+def closes_in_reach(position, points, fracs, centres, contact, top, samples: int = 16) -> bool:
+    """Whether a robot driving ``position -> points`` over one step (corners reached at
+    ``fracs`` of it) heads, at some moment, toward an agent that could touch it then.
+
+    At each moment ``f`` of the step (fraction, ``samples`` per leg) an agent can be in
+    contact only if the robot is within its contact distance ``contact`` plus ``f`` times its
+    reach per step ``top`` of its centre now; the robot heads toward it if its velocity has
+    a positive component toward that centre: a contact the judge would put down to the robot
+    (:func:`~mawdo.planning.judge.fault.blame`). Standing, or moving away, never does.
+    All lengths in pixels; ``centres`` shape (n, 2), ``contact`` and ``top`` shape (n,).
+    """
+    pts = np.vstack([position, points])
+    legs = np.diff(pts, axis=0)
+    if not len(centres) or not np.any(legs):
+        return False
+    fr = np.concatenate(([0.0], fracs))
+    legs_f = zip(fr[:-1], fr[1:], strict=True)
+    f = np.concatenate([np.linspace(a, b, samples + 1) for a, b in legs_f])
+    leg = np.repeat(np.arange(len(legs)), samples + 1)
+    p = np.stack([np.interp(f, fr, pts[:, k]) for k in (0, 1)], axis=1)
+    to_agent = centres[None, :, :] - p[:, None, :]
+    toward = np.einsum("sk,sak->sa", legs[leg], to_agent) > 0.0
+    within = np.hypot(to_agent[..., 0], to_agent[..., 1]) <= contact + f[:, None] * top
+    return bool(np.any(toward & within))
+
+
+def dodge_ratio(u: float, v: float) -> float:
+    """Closest approach, over the starting centre distance, that a robot of speed ``v`` can
+    keep from an agent walking straight at it at speed ``u`` (any units, both >= 0).
+
+    The robot moving at angle ``phi`` from the agent's heading passes it at
+    ``D v sin(phi) / sqrt(u^2 - 2 u v cos(phi) + v^2)`` (the closest approach of two straight
+    motions); the best ``phi`` has ``cos(phi) = v / u`` and gives ``v / u``. A robot at least
+    as fast as the agent outruns it: the distance never shrinks (ratio 1).
+
+    Returns
+    -------
+    float
+        In (0, 1]; 1 where ``u <= v``.
+    """
+    return 1.0 if u <= v else v / u
+
+
 class PlannerPolicy:
     """Our planner as a policy (see the module docstring).
 
@@ -96,7 +147,8 @@ class PlannerPolicy:
         anyone (``observed`` only): a tracker knows no velocity before its second reading, and
         a first plan around people of unknown velocity (discs grown by the tracker's whole
         speed uncertainty) is a detour the following steps inherit. It watches only while no
-        agent could reach it before the watch ends (:meth:`may_watch`).
+        agent could come so close meanwhile that the robot could not step out of its way
+        (:meth:`may_watch`).
     warm : bool
         Start each step's search from the last step's plan (a replan: cheaper, about 9 ms
         against 20 ms per step with 5 people) instead of afresh from the guides on a
@@ -182,31 +234,40 @@ class PlannerPolicy:
 
     def may_watch(self, reading: Reading) -> bool:
         """Whether the robot stands and watches at this reading: within the first
-        ``look_first`` steps, someone in sight, and nobody close enough to reach the robot
-        before the watch ends.
+        ``look_first`` steps, someone in sight, and nobody close enough that after the watch
+        the robot could no longer step out of their way.
 
-        Standing still is safe only against an agent that cannot close its gap in the
-        meantime. Its speed is not known yet (one reading), so the bound is the one the
-        prediction would carry: ``k_sd`` standard deviations of the tracker's speed prior
-        (``birth_speed_sd``, pixels per time step; the robot's speed for a tracker without
-        one) per remaining watch step, against the gap between the agent's disc and the
-        robot's.
+        Standing still is safe only against an agent that cannot close in so far that, once
+        the watch ends, no move avoids it. Its speed is not known yet (one reading), so the
+        bound is the one the prediction would carry: ``u`` = ``k_sd`` standard deviations of
+        the tracker's speed prior (``birth_speed_sd``, pixels per time step; the robot's speed
+        for a tracker without one). The worst agent walks straight at the robot at ``u``
+        through the remaining watch steps and on (:func:`dodge_ratio`); the robot watches only
+        where, from the centre distance left when the watch ends, its best escape still passes
+        every agent in sight at more than the two radii plus the planner's clearance. An agent
+        that steers after a slower robot catches it whether or not it watched, and a wall
+        beside the robot is the planner's to mind, not this test's.
         """
         left = self.look_first - reading.step
         if left <= 0 or not len(reading.centers):
             return False
-        from mawdo.planning.sense.predict import K_SD
-
         speed_sd = getattr(self.tracker, "birth_speed_sd", self.known.robot_speed)
-        reach = self.predictor_options.get("k_sd", K_SD) * speed_sd * left
-        gap = np.hypot(*(reading.centers - reading.position).T) - reading.radii
-        return bool(np.all(gap - self.known.robot_radius > reach))
+        u = self.predictor_options.get("k_sd", K_SD) * speed_sd
+        v = self.known.robot_speed
+        after = np.hypot(*(reading.centers - reading.position).T) - u * left
+        reach = reading.radii + self.known.robot_radius + self.fitted.clearance
+        return bool(np.all(after * dodge_ratio(u, v) > reach))
 
     def prediction(self, reading: Reading):
         """The prediction scenario of a reading: the known map plus one circle per track,
         moving as the predictor says (times from 0 = now), the robot starting where it is."""
         tracks = self.tracker.update(reading)
         sc = self.known
+        k_sd = self.predictor_options.get("k_sd", K_SD)
+        speed = np.hypot(*np.asarray(tracks.velocities, float).reshape(-1, 2).T)
+        top = np.maximum(sc.robot_speed, speed + k_sd * np.asarray(tracks.velocity_sd, float))
+        self._reach = (np.asarray(tracks.centers, float).reshape(-1, 2),
+                       np.asarray(tracks.radii, float) + sc.robot_radius, top)  # fmt: skip
         preds = self.predict(tracks, 0.0, float(self.horizon), sc.bounds, **self.predictor_options)
         rows = {int(i): k for k, i in enumerate(tracks.ids)}
         k = np.array([rows[int(p.id)] for p in preds], dtype=np.int64)
@@ -260,7 +321,32 @@ class PlannerPolicy:
         self._remainder = run.remainder
         if self.motion is not None:
             self.motion.take_from(run)
-        return step_move(res.route, res.route_times, 0)
+        return self._keep_off(step_move(res.route, res.route_times, 0), reading.position, run)
+
+    def _keep_off(self, move: Move, position, run) -> Move:
+        """``move``, unless it heads toward someone who could touch the robot meanwhile
+        (:func:`closes_in_reach`); then the guard's safe move nearest its end that does not,
+        where there is one.
+
+        The prediction vouches for a person's future only within its margin, and a person
+        who slows ahead of the robot may turn round at full speed within a step (CrowdNav's
+        people pick a new goal when they reach theirs): a robot still closing in then causes
+        the contact. Each agent is taken to cover at most ``top`` px in a step: the robot's
+        speed, or its tracked speed plus ``k_sd`` s.d.s where that is more. Without
+        kinematic limits only (a move of the guard's ignores them).
+        """
+        reach = getattr(self, "_reach", None)
+        if reach is None or self.motion is not None or self.fitted.max_speed is not None:
+            return move
+        position = np.asarray(position, float)
+        if not closes_in_reach(position, move.points, move.fracs, *reach):
+            return move
+        to, _, safe = run.guard.evasive_move(
+            position, move.points[-1], 0.0, 1.0,
+            admit=lambda m: not closes_in_reach(position, np.asarray(m)[None, :], np.ones(1),
+                                                *reach),
+        )  # fmt: skip
+        return Move(np.asarray(to)[None, :], np.ones(1)) if safe else move
 
     def _warm(self, position):
         """The last step's remainder, when the robot stands where it begins: the step's search
