@@ -266,8 +266,10 @@ class PlannerPolicy:
         k_sd = self.predictor_options.get("k_sd", K_SD)
         speed = np.hypot(*np.asarray(tracks.velocities, float).reshape(-1, 2).T)
         top = np.maximum(sc.robot_speed, speed + k_sd * np.asarray(tracks.velocity_sd, float))
+        # a centre read through noise may be off by k_sd of the sensor's s.d. (0 for an exact one)
+        near = sc.robot_radius + k_sd * getattr(self.tracker, "noise", 0.0)
         self._reach = (np.asarray(tracks.centers, float).reshape(-1, 2),
-                       np.asarray(tracks.radii, float) + sc.robot_radius, top)  # fmt: skip
+                       np.asarray(tracks.radii, float) + near, top)  # fmt: skip
         preds = self.predict(tracks, 0.0, float(self.horizon), sc.bounds, **self.predictor_options)
         rows = {int(i): k for k, i in enumerate(tracks.ids)}
         k = np.array([rows[int(p.id)] for p in preds], dtype=np.int64)
@@ -332,8 +334,10 @@ class PlannerPolicy:
         who slows ahead of the robot may turn round at full speed within a step (CrowdNav's
         people pick a new goal when they reach theirs): a robot still closing in then causes
         the contact. Each agent is taken to cover at most ``top`` px in a step: the robot's
-        speed, or its tracked speed plus ``k_sd`` s.d.s where that is more. Without
-        kinematic limits only (a move of the guard's ignores them).
+        speed, or its tracked speed plus ``k_sd`` s.d.s where that is more; and to be in
+        contact from ``k_sd`` s.d.s of the sensor's noise farther than the two radii (a noisy
+        reading may place it that much too far). Without kinematic limits only (a move of the
+        guard's ignores them).
         """
         reach = getattr(self, "_reach", None)
         if reach is None or self.motion is not None or self.fitted.max_speed is not None:
