@@ -67,29 +67,33 @@ def test_the_crowd_comparison_with_mawdo_is_the_stores(tmp_path):
         vs_mawdo = {(p, r["setting"]): r for p in ("woa", "gwo", "wdo_plus")
                     for r in crowd_share(store, p, "mawdo")}  # fmt: skip
         summary = crowd_summary(store)
-    worst = max(r["time_s_holm"] for (p, s), r in vs_guide.items() if s == c5)
-    assert all(r["time_s_verdict"] == "helps" for (p, s), r in vs_guide.items() if s == c5)
+    worst = max(r["time_s_holm"] for r in vs_guide.values())
+    assert all(r["time_s_verdict"] == "helps" for r in vs_guide.values())
     gains = {p: r["time_s"][1] - r["time_s"][0] for (p, s), r in vs_guide.items() if s == c10}
     assert max(gains, key=gains.get) == "mawdo"
     m10 = vs_guide["mawdo", c10]["time_s"]
     page = _page()
     assert f"(Holm p <= {worst:.2g})" in page
     assert f"MAWDO gains the most ({m10[0]:.2f} s against {m10[1]:.2f} s)" in page
-    woa = [vs_mawdo["woa", s] for s in (c5, c10)]
-    assert all(r["time_s_verdict"] == "no measurable difference" for r in woa)
+    same = {p: [vs_mawdo[p, s] for s in (c5, c10)] for p in ("woa", "wdo_plus")}
+    assert all(r["time_s_verdict"] == "no measurable difference" for v in same.values() for r in v)
+    woa, plus = same["woa"], same["wdo_plus"]
     assert (
         f"time p = {woa[0]['time_s_holm']:.2g} with 5 people, {woa[1]['time_s_holm']:.2g}" in page
     )
+    assert f"({plus[0]['time_s_holm']:.2g} and {plus[1]['time_s_holm']:.2g})" in page
     slower = sorted((p, s) for (p, s), r in vs_mawdo.items() if r["time_s_verdict"] == "hurts")
-    assert slower == [("gwo", c10), ("gwo", c5), ("wdo_plus", c10), ("wdo_plus", c5)]
+    assert slower == [("gwo", c10)]
     for p, s in slower:
         r = vs_mawdo[p, s]
         said = f"{r['time_s'][0]:.2f} s against {r['time_s'][1]:.2f} s, p = {r['time_s_holm']:.2g}"
         assert said in page, said
     assert all(r["discomfort_verdict"] == "no measurable difference" for r in vs_mawdo.values())
     caused = {p: [summary[s, p]["robot_caused"] for s in (c5, c10)] for p in vs_guide_policies()}
-    assert [p for p, v in caused.items() if not any(v)] == ["mawdo"]
-    assert "MAWDO is the only one without a robot-caused collision in both settings" in page
+    assert not any(any(v) for v in caused.values())
+    every = [p for p in vs_guide_policies() if all(summary[s, p]["success"] == 1 for s in (c5, c10))]
+    assert every == ["mawdo", "gwo"]
+    assert "None causes a collision; MAWDO and GWO reach the goal in every episode" in page
 
 
 def vs_guide_policies() -> tuple[str, ...]:
