@@ -91,7 +91,8 @@ def test_the_crowd_comparison_with_mawdo_is_the_stores(tmp_path):
     assert all(r["discomfort_verdict"] == "no measurable difference" for r in vs_mawdo.values())
     caused = {p: [summary[s, p]["robot_caused"] for s in (c5, c10)] for p in vs_guide_policies()}
     assert not any(any(v) for v in caused.values())
-    every = [p for p in vs_guide_policies() if all(summary[s, p]["success"] == 1 for s in (c5, c10))]
+    full = {p: all(summary[s, p]["success"] == 1 for s in (c5, c10)) for p in vs_guide_policies()}
+    every = [p for p, v in full.items() if v]
     assert every == ["mawdo", "gwo"]
     assert "None causes a collision; MAWDO and GWO reach the goal in every episode" in page
 
