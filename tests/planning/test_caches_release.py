@@ -32,6 +32,7 @@ def test_a_scenario_with_a_cached_guide_and_roadmap_is_collected():
     from mawdo.planning.guide.sipp.roadmap import Roadmap
     from mawdo.planning.run import execute
 
+    gc.collect()  # (entries of scenarios that earlier tests dropped go first, not meanwhile)
     before = (len(execute._GUIDES), len(roadmap._CACHE))
     gone = []
     for k in range(3):
@@ -44,7 +45,8 @@ def test_a_scenario_with_a_cached_guide_and_roadmap_is_collected():
         del sc, guide, rm
     gc.collect()
     assert all(ref() is None for ref in gone)
-    assert (len(execute._GUIDES), len(roadmap._CACHE)) == before
+    # none of ours is left (entries of others may still drop, never appear)
+    assert len(execute._GUIDES) <= before[0] and len(roadmap._CACHE) <= before[1]
 
 
 def test_a_weak_attribute_names_itself_once_its_object_is_gone():
