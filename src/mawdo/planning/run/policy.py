@@ -261,15 +261,8 @@ class PlannerPolicy:
     def prediction(self, reading: Reading):
         """The prediction scenario of a reading: the known map plus one circle per track,
         moving as the predictor says (times from 0 = now), the robot starting where it is."""
-        tracks = self.tracker.update(reading)
+        self._tracks = tracks = self.tracker.update(reading)
         sc = self.known
-        k_sd = self.predictor_options.get("k_sd", K_SD)
-        speed = np.hypot(*np.asarray(tracks.velocities, float).reshape(-1, 2).T)
-        top = np.maximum(sc.robot_speed, speed + k_sd * np.asarray(tracks.velocity_sd, float))
-        # a centre read through noise may be off by k_sd of the sensor's s.d. (0 for an exact one)
-        near = sc.robot_radius + k_sd * getattr(self.tracker, "noise", 0.0)
-        self._reach = (np.asarray(tracks.centers, float).reshape(-1, 2),
-                       np.asarray(tracks.radii, float) + near, top)  # fmt: skip
         preds = self.predict(tracks, 0.0, float(self.horizon), sc.bounds, **self.predictor_options)
         rows = {int(i): k for k, i in enumerate(tracks.ids)}
         k = np.array([rows[int(p.id)] for p in preds], dtype=np.int64)
@@ -339,9 +332,9 @@ class PlannerPolicy:
         reading may place it that much too far). Without kinematic limits only (a move of the
         guard's ignores them).
         """
-        reach = getattr(self, "_reach", None)
-        if reach is None or self.motion is not None or self.fitted.max_speed is not None:
+        if self.motion is not None or self.fitted.max_speed is not None:
             return move
+        reach = self._reach(self._tracks)
         position = np.asarray(position, float)
         if not closes_in_reach(position, move.points, move.fracs, *reach):
             return move
@@ -351,6 +344,15 @@ class PlannerPolicy:
                                                 *reach),
         )  # fmt: skip
         return Move(np.asarray(to)[None, :], np.ones(1)) if safe else move
+
+    def _reach(self, tracks):
+        """``(centres, contact, top)`` of :func:`closes_in_reach` for the tracks (pixels)."""
+        k_sd = self.predictor_options.get("k_sd", K_SD)
+        speed = np.hypot(*tracks.velocities.T)
+        top = np.maximum(self.known.robot_speed, speed + k_sd * tracks.velocity_sd)
+        # a centre read through noise may be off by k_sd of the sensor's s.d. (0 for an exact one)
+        near = self.known.robot_radius + k_sd * getattr(self.tracker, "noise", 0.0)
+        return tracks.centers, tracks.radii + near, top
 
     def _warm(self, position):
         """The last step's remainder, when the robot stands where it begins: the step's search
