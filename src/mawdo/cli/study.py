@@ -46,6 +46,8 @@ SCHEDULER_FILE = typer.Option(None, "--scheduler-file", help=SCHEDULER_FILE_HELP
 FORCE = typer.Option(False, "--force", help="discard a store made by another plan or version")
 RETRY_FAILED = typer.Option(False, "--retry-failed", help=RETRY_HELP)
 PROGRESS = typer.Option(True, "--progress/--no-progress", help="show a progress bar (stderr)")
+REUSE_HELP = "another store whose identical runs are copied, not computed (repeatable)"
+REUSE = typer.Option(None, "--reuse", help=REUSE_HELP)
 
 ALIAS_RELEASE = "1.0"  # was 0.9; kept one more minor release (0.9.0 still has them)
 """The release that drops the older per-kind study commands."""
@@ -121,7 +123,7 @@ def run_study(plan: Any, out: Path, **backend: Any) -> None:
     the summary on stdout; exit 130 after Ctrl-C, 1 when a task was lost.
 
     ``backend``: ``workers``, ``dask``, ``scheduler_file``, ``progress``, ``force`` and
-    ``retry_failed`` of :func:`mawdo.experiments.run_plan`.
+    ``retry_failed`` (and ``reuse``) of :func:`mawdo.experiments.run_plan`.
     """
     from mawdo.experiments import StoreError, run_plan
 
@@ -162,12 +164,13 @@ def run_cmd(
     force: bool = FORCE,
     retry_failed: bool = RETRY_FAILED,
     progress: bool = PROGRESS,
+    reuse: list[Path] = REUSE,
 ) -> None:
     """Run (or resume) a study: stored runs are skipped, Ctrl-C keeps what finished."""
     study = load_plan(plan, sets)
     run_study(
         study, out, workers=workers, dask=dask, scheduler_file=scheduler_file,
-        progress=progress, force=force, retry_failed=retry_failed,
+        progress=progress, force=force, retry_failed=retry_failed, reuse=reuse or (),
     )  # fmt: skip
 
 

@@ -14,7 +14,7 @@ import os
 import socket
 import sys
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from contextlib import closing
 from dataclasses import dataclass
@@ -56,6 +56,9 @@ class RunSummary:
         Stopped by Ctrl-C (KeyboardInterrupt); finished tasks are stored.
     tasks : int
         Tasks stored by this call.
+    reused : int
+        Runs copied from other stores by this call (``reuse`` of :func:`run_plan`), not
+        computed; counted in neither ``skipped`` nor ``done``.
     wall_time : float
         Seconds.
     """
@@ -68,24 +71,27 @@ class RunSummary:
     lost: int = 0
     interrupted: bool = False
     tasks: int = 0
+    reused: int = 0
     wall_time: float = 0.0
 
     @property
     def complete(self) -> bool:
         """Every run of the plan is stored."""
-        return self.skipped + self.done == self.total
+        return self.skipped + self.reused + self.done == self.total
 
     def __str__(self) -> str:
         rate = self.done / self.wall_time if self.wall_time > 0 else 0.0
         parts = [f"{self.done} runs computed ({rate:.1f} runs/s)", f"{self.skipped} already stored"]
+        if self.reused:
+            parts.append(f"{self.reused} reused from other stores")
         if self.failed:
             parts.append(f"{self.failed} failed")
         if self.lost:
             parts.append(f"{self.lost} lost")
         state = "interrupted" if self.interrupted else ("complete" if self.complete else "partial")
         return (
-            f"{state}: {', '.join(parts)}; {self.skipped + self.done}/{self.total} runs in "
-            f"{self.store} ({self.wall_time:.1f} s)"
+            f"{state}: {', '.join(parts)}; {self.skipped + self.reused + self.done}/{self.total} "
+            f"runs in {self.store} ({self.wall_time:.1f} s)"
         )
 
 
@@ -233,6 +239,7 @@ def run_plan(
     force: bool = False,
     retry_failed: bool = False,
     scheduler_file: str | Path | None = None,
+    reuse: Sequence[str | Path] = (),
 ) -> RunSummary:
     """Compute every run of ``plan`` that ``store_path`` does not hold yet, and store it.
 
@@ -261,6 +268,9 @@ def run_plan(
     scheduler_file : str or Path, optional
         Send tasks to the Dask cluster whose scheduler wrote this file (``dask scheduler
         --scheduler-file FILE``). Excludes ``dask`` and ``workers > 1``.
+    reuse : sequence of str or Path
+        Other results stores of the same kind and library version: a run they hold as the same
+        computation (:func:`~mawdo.experiments.reuse.same_run`) is copied, not computed.
 
     Returns
     -------
@@ -286,8 +296,12 @@ def run_plan(
     with Store.open(store_path, plan, force=force) as store:
         bar = RunBar(False, 0, "")
         try:
+            if reuse:
+                from mawdo.experiments.reuse import reuse_runs
+
+                summary.reused = reuse_runs(plan, store, reuse)
             tasks = plan.tasks(store.done_keys(failed=not retry_failed))
-            summary.skipped = plan.total_runs - sum(t.n_runs for t in tasks)
+            summary.skipped = plan.total_runs - sum(t.n_runs for t in tasks) - summary.reused
             # each spec names the plan it is computed for; the store checks it on write
             specs = [{**plan.task_spec(t), "plan_hash": plan.plan_hash} for t in tasks]
             if dask is not None or scheduler_file is not None:

@@ -154,6 +154,11 @@ class PlannerPolicy:
         against 20 ms per step with 5 people) instead of afresh from the guides on a
         replan's budget (default: its routes were about 9 % shorter in time on CrowdNav's
         circle crossing, as the last plan keeps the detours of the steps before).
+    keep_off : bool
+        Refuse steps toward anyone who could reach the robot within the step (default;
+        :meth:`_keep_off`). Off only to measure what the rule costs: without it, a person who
+        turns round within a step can meet a robot still closing in, and the contact is the
+        robot's.
     **overrides
         Fields of :class:`~mawdo.planning.run.config.PlannerConfig`.
     """
@@ -161,7 +166,8 @@ class PlannerPolicy:
     def __init__(
         self, algorithm: str = "mawdo", config=None, knowledge: str = "observed",
         predictor: str = "constant_velocity", tracker=None, horizon: int = 200,
-        predictor_options=None, look_first: int = 1, warm: bool = False, **overrides,
+        predictor_options=None, look_first: int = 1, warm: bool = False, keep_off: bool = True,
+        **overrides,
     ):  # fmt: skip
         from mawdo.planning.run.config import resolve_config
 
@@ -189,6 +195,7 @@ class PlannerPolicy:
         if int(look_first) < 0:
             raise ValueError(f"look_first must be >= 0 steps, got {look_first!r}")
         self.look_first, self.warm = int(look_first), bool(warm)
+        self.keep_off = bool(keep_off)
         self.name = f"{algorithm}-{knowledge}"
 
     def reset(self, scenario, seed) -> None:
@@ -332,7 +339,7 @@ class PlannerPolicy:
         reading may place it that much too far). Without kinematic limits only (a move of the
         guard's ignores them).
         """
-        if self.motion is not None or self.fitted.max_speed is not None:
+        if not self.keep_off or self.motion is not None or self.fitted.max_speed is not None:
             return move
         reach = self._reach(self._tracks)
         position = np.asarray(position, float)
