@@ -35,3 +35,15 @@ def test_no_step_toward_a_person_who_could_reach_the_robot_within_it(episode):
         step = res.trajectory[t + 1][None, :]
         assert not closes_in_reach(res.trajectory[t], step, np.ones(1), centres, contact,
                                    np.full(len(people), v)), t  # fmt: skip
+
+
+@pytest.mark.slow
+def test_without_the_rule_the_robot_walks_into_the_person_who_turns():
+    # the same episode with the rule switched off (keep_off=False, as the ablation in
+    # docs/deviations.md#d-uncertainty-tube runs it): the contact is the robot's again
+    seed = crowd_preset("crowdnav").episode_seed(SETTING, 8)
+    spec = {"algorithm": "mawdo", "preset": "realtime", "overrides": {"keep_off": False},
+            "predictor": "constant_velocity",
+            "sensor": {"noise": 0.0, "range": None, "miss_rate": 0.0}}  # fmt: skip
+    res, _ = run_one(spec, SETTING, seed)
+    assert res.robot_caused > 0 and not res.success
