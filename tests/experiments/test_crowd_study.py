@@ -82,3 +82,35 @@ def test_separation_is_the_smallest_during_a_step_not_at_its_ends():
     assert sep[2] == pytest.approx(5.0)
     ends = np.hypot(8.0, 10.0) - 5.0  # at either end of the step
     assert sep[1] == pytest.approx(ends) and sep[2] < ends  # step 1 is closest at its end
+
+
+def test_a_running_study_says_how_many_episodes_each_figure_rests_on(store, tmp_path):
+    # one policy has fewer episodes than the others (a study still running): the sentence
+    # names the count most policies have and the one that differs, not one count for all
+    import shutil
+    import sqlite3
+
+    from mawdo.experiments.kinds.crowd.figures import rates_title
+    from mawdo.experiments.kinds.crowd.report import crowd_headline, episodes_phrase
+
+    assert episodes_phrase({"a": 3, "b": 3}) == "3 episodes"
+    assert episodes_phrase({"a": 50, "b": 90, "c": 50}) == (
+        "50 episodes (b 90; the study is incomplete)")  # fmt: skip
+    part = tmp_path / "part.db"
+    shutil.copy(store, part)
+    con = sqlite3.connect(part)
+    with con:
+        con.execute("DELETE FROM runs WHERE algorithm = 'straight' AND run = 2")
+    con.close()
+    with Store.read(part) as s:
+        (line,) = crowd_headline(s)
+        title = rates_title(s.plan, crowd_summary(s))
+    assert line.startswith(
+        "- circle-3-invisible, 3 episodes (straight 2; the study is incomplete):"
+    )
+    assert title == "tiny: 2-3 of 3 episodes per setting and policy (incomplete)"
+    with Store.read(store) as s:
+        (line,) = crowd_headline(s)
+        title = rates_title(s.plan, crowd_summary(s))
+    assert line.startswith("- circle-3-invisible, 3 episodes:")
+    assert title == "tiny: 3 episodes per setting"

@@ -10,6 +10,16 @@ import numpy as np
 from mawdo.experiments.store import Store
 
 
+def rates_title(plan, summary: dict) -> str:
+    """The rates figure's title: the plan and the episodes its bars rest on (a range, and
+    "incomplete", while the study is still running)."""
+    counts = [m["episodes"] for m in summary.values()]
+    if len(counts) == len(plan.settings) * len(plan.policies) and set(counts) == {plan.n}:
+        return f"{plan.name}: {plan.n} episodes per setting"
+    return (f"{plan.name}: {min(counts, default=0)}-{max(counts, default=0)} of {plan.n} "
+            "episodes per setting and policy (incomplete)")  # fmt: skip
+
+
 def rates_figure(store: Store, summary: dict, out: Path) -> Path:
     """Success, robot-caused collision and arrival time per setting (groups) and policy
     (bars), from :func:`~mawdo.experiments.kinds.crowd.report.crowd_summary`."""
@@ -32,7 +42,7 @@ def rates_figure(store: Store, summary: dict, out: Path) -> Path:
     axes[2].set_xticks(x, settings, rotation=20, ha="right")
     axes[0].legend(ncol=min(3, len(plan.policies)), fontsize=8, loc="lower left",
                    bbox_to_anchor=(0.0, 1.12))  # fmt: skip
-    fig.suptitle(f"{plan.name}: {plan.n} episodes per setting")
+    fig.suptitle(rates_title(plan, summary))
     for ax in axes:
         ax.grid(axis="y", alpha=0.3)
     path = out / "crowd_rates.png"

@@ -85,9 +85,21 @@ def crowd_headline(store: Store) -> list[str]:
             if np.isfinite(m["time_s"]):
                 part += f", {m['time_s']:.2f} s to the goal"
             parts.append(part)
-        n = max(m["episodes"] for m in here.values())
-        out.append(f"- {s}, {n} episodes: " + "; ".join(parts) + ".")
+        counts = {p: m["episodes"] for p, m in here.items()}
+        out.append(f"- {s}, {episodes_phrase(counts)}: " + "; ".join(parts) + ".")
     return out
+
+
+def episodes_phrase(counts: dict[str, int]) -> str:
+    """How many episodes each policy's figures of a setting rest on: ``"500 episodes"``, or,
+    in a study still running, the count most policies have and the policies that differ
+    (``"50 episodes (mawdo 90; the study is incomplete)"``)."""
+    values = list(counts.values())
+    common = max(set(values), key=lambda n: (values.count(n), n))
+    odd = [f"{p} {n}" for p, n in counts.items() if n != common]
+    if not odd:
+        return f"{common} episodes"
+    return f"{common} episodes ({', '.join(odd)}; the study is incomplete)"
 
 
 def crowd_table(store: Store) -> Table:
