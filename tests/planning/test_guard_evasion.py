@@ -72,3 +72,29 @@ def test_no_blamed_move_while_an_unblamed_one_exists(seed):
     to, _, safe = guard.evasive_move(pos, pos + np.array([5.0, 0.0]), 0.0, 1.0)
     if not safe:
         assert not _blamed(sc, pos, to), (seed, to - pos)
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_the_nearest_admitted_move_is_the_evasive_move_with_the_same_rule(seed):
+    # nearest_admitted stops at the first safe admitted move; evasive_move checks all 33 and
+    # filters: both must pick the same move (or none), on random crowds and random rules
+    rng = np.random.default_rng(seed)
+    pos = np.array([200.0, 200.0])
+    discs = [(tuple(pos + rng.uniform(-40, 40, 2)), float(rng.uniform(4, 12)),
+              tuple(rng.uniform(-5, 5, 2))) for _ in range(int(rng.integers(1, 8)))]  # fmt: skip
+    sc = _scene(discs, robot=tuple(pos))
+    guard = Guard(sc, clearance=float(rng.uniform(0.0, 2.0)))
+    target = pos + rng.uniform(-6, 6, 2)
+    banned = rng.uniform(0, 2 * np.pi)  # a half-plane of headings the rule refuses
+
+    def admit(to):
+        d = np.asarray(to) - pos
+        return not np.any(d) or np.cos(np.arctan2(d[1], d[0]) - banned) < 0.3
+
+    to, clear, safe = guard.evasive_move(pos, target, 0.0, 1.0, admit=admit)
+    found = guard.nearest_admitted(pos, target, 0.0, 1.0, admit)
+    if safe:
+        assert found is not None
+        assert np.array_equal(found[0], to) and found[1] == clear
+    else:
+        assert found is None

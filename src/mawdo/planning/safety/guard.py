@@ -218,6 +218,25 @@ class Guard:
         rep = check_trajectory(pts, self.scenario, times=times)
         return min(float(rep.min_clearance), -rep.border_excess)
 
+    def nearest_admitted(self, pos, target, t: float, dt: float, admit):
+        """The safe move over ``dt`` steps nearest ``target`` among those ``admit(to)``
+        admits: ``(to, clearance)``, or None where none is safe. It is the move
+        :meth:`evasive_move` returns with ``admit`` when that one is safe, found by checking
+        the admitted moves nearest first and stopping at the first safe one (an evasive move
+        checks all 33 against every obstacle)."""
+        v = self.scenario.robot_speed * dt
+        dirs = unit_headings(16)
+        moves = np.vstack([pos, pos + v * dirs, pos + 0.5 * v * dirs])
+        # the order evasive_move ranks its safe moves in: distance to the target, then index
+        order = np.argsort(np.hypot(*(moves - np.asarray(target, float)).T), kind="stable")
+        for i in order:
+            if not admit(moves[i]):
+                continue
+            clear = self._clearances(self._step_check(pos, moves[i], t, dt)[2])[0]
+            if clear >= self.clearance:
+                return moves[i], float(clear)
+        return None
+
     def evasive_move(self, pos: np.ndarray, target: np.ndarray, t: float, dt: float, admit=None):
         """Best move over ``dt`` steps: ``(to, clearance, safe)`` (see the module docstring).
 
