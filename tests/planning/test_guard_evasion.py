@@ -74,14 +74,48 @@ def test_no_blamed_move_while_an_unblamed_one_exists(seed):
         assert not _blamed(sc, pos, to), (seed, to - pos)
 
 
-@pytest.mark.parametrize("seed", range(40))
-def test_the_nearest_admitted_move_is_the_evasive_move_with_the_same_rule(seed):
-    # nearest_admitted stops at the first safe admitted move; evasive_move checks all 33 and
-    # filters: both must pick the same move (or none), on random crowds and random rules
+def _eager_evasive_move(guard, pos, target, t, dt, admit=None):
+    """The guard's evasive move as it was first written: every move checked, then chosen (the
+    reference for the version that checks nearest first and stops early)."""
+    from mawdo.planning.safety.guard import TIE_TOL
+    from mawdo.planning.world.path import unit_headings
+
+    v = guard.scenario.robot_speed * dt
+    dirs = unit_headings(16)
+    moves = np.vstack([pos, pos + v * dirs, pos + 0.5 * v * dirs])
+    checks = [guard._step_check(pos, m, t, dt) for m in moves]
+    clear, walls = np.array([guard._clearances(c[2]) for c in checks]).T
+    safe = clear >= guard.clearance
+    if safe.any():
+        idx = np.nonzero(safe)[0]
+        near = idx[np.argsort(np.hypot(*(moves[idx] - target).T), kind="stable")]
+        best = near[0]
+        if admit is not None:
+            first = next((i for i in near if admit(moves[i])), None)
+            if first is None:
+                return moves[best], float(clear[best]), False
+            best = first
+    else:
+        out = walls >= 0.0
+        free = out & ~np.array([guard._own_contact(*c) for c in checks])
+        out = free if free.any() else out
+        ahead = np.array([guard.ahead_clearance(pos, m, t, dt) for m in moves])
+        key = np.where(out, ahead, -np.inf) if out.any() else ahead
+        top = np.nonzero(key >= key.max() - TIE_TOL)[0]
+        best = int(top[int(np.argmax(clear[top]))])
+    return moves[best], float(clear[best]), bool(safe[best])
+
+
+@pytest.mark.parametrize("seed", range(60))
+def test_the_evasive_move_is_the_one_every_move_checked_first_gives(seed):
+    # the guard checks moves nearest the target first and stops early: on random crowds (some
+    # where no move is safe), with and without a rule that refuses half the headings, it must
+    # choose what checking all 33 first chooses
     rng = np.random.default_rng(seed)
     pos = np.array([200.0, 200.0])
-    discs = [(tuple(pos + rng.uniform(-40, 40, 2)), float(rng.uniform(4, 12)),
-              tuple(rng.uniform(-5, 5, 2))) for _ in range(int(rng.integers(1, 8)))]  # fmt: skip
+    spread = 40.0 if seed % 3 else 15.0  # every third crowd packed round the robot
+    discs = [(tuple(pos + rng.uniform(-spread, spread, 2)), float(rng.uniform(4, 12)),
+              tuple(rng.uniform(-5, 5, 2))) for _ in range(int(rng.integers(1, 9)))]  # fmt: skip
     sc = _scene(discs, robot=tuple(pos))
     guard = Guard(sc, clearance=float(rng.uniform(0.0, 2.0)))
     target = pos + rng.uniform(-6, 6, 2)
@@ -91,10 +125,11 @@ def test_the_nearest_admitted_move_is_the_evasive_move_with_the_same_rule(seed):
         d = np.asarray(to) - pos
         return not np.any(d) or np.cos(np.arctan2(d[1], d[0]) - banned) < 0.3
 
-    to, clear, safe = guard.evasive_move(pos, target, 0.0, 1.0, admit=admit)
-    found = guard.nearest_admitted(pos, target, 0.0, 1.0, admit)
-    if safe:
-        assert found is not None
-        assert np.array_equal(found[0], to) and found[1] == clear
-    else:
-        assert found is None
+    def narrow(to):  # only a cone of about 50 degrees: often no safe move in it
+        d = np.asarray(to) - pos
+        return bool(np.any(d)) and np.cos(np.arctan2(d[1], d[0]) - banned) > 0.9
+
+    for rule in (None, admit, narrow):
+        to, clear, safe = guard.evasive_move(pos, target, 0.0, 1.0, admit=rule)
+        ref_to, ref_clear, ref_safe = _eager_evasive_move(guard, pos, target, 0.0, 1.0, rule)
+        assert np.array_equal(to, ref_to) and clear == ref_clear and safe == ref_safe

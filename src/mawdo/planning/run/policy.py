@@ -345,12 +345,12 @@ class PlannerPolicy:
         position = np.asarray(position, float)
         if not closes_in_reach(position, move.points, move.fracs, *reach):
             return move
-        found = run.guard.nearest_admitted(
+        to, _, safe = run.guard.evasive_move(
             position, move.points[-1], 0.0, 1.0,
             admit=lambda m: not closes_in_reach(position, np.asarray(m)[None, :], np.ones(1),
                                                 *reach),
         )  # fmt: skip
-        return move if found is None else Move(np.asarray(found[0])[None, :], np.ones(1))
+        return Move(np.asarray(to)[None, :], np.ones(1)) if safe else move
 
     def _reach(self, tracks):
         """``(centres, contact, top)`` of :func:`closes_in_reach` for the tracks (pixels)."""

@@ -218,53 +218,48 @@ class Guard:
         rep = check_trajectory(pts, self.scenario, times=times)
         return min(float(rep.min_clearance), -rep.border_excess)
 
-    def nearest_admitted(self, pos, target, t: float, dt: float, admit):
-        """The safe move over ``dt`` steps nearest ``target`` among those ``admit(to)``
-        admits: ``(to, clearance)``, or None where none is safe. It is the move
-        :meth:`evasive_move` returns with ``admit`` when that one is safe, found by checking
-        the admitted moves nearest first and stopping at the first safe one (an evasive move
-        checks all 33 against every obstacle)."""
-        v = self.scenario.robot_speed * dt
-        dirs = unit_headings(16)
-        moves = np.vstack([pos, pos + v * dirs, pos + 0.5 * v * dirs])
-        # the order evasive_move ranks its safe moves in: distance to the target, then index
-        order = np.argsort(np.hypot(*(moves - np.asarray(target, float)).T), kind="stable")
-        for i in order:
-            if not admit(moves[i]):
-                continue
-            clear = self._clearances(self._step_check(pos, moves[i], t, dt)[2])[0]
-            if clear >= self.clearance:
-                return moves[i], float(clear)
-        return None
-
     def evasive_move(self, pos: np.ndarray, target: np.ndarray, t: float, dt: float, admit=None):
         """Best move over ``dt`` steps: ``(to, clearance, safe)`` (see the module docstring).
 
         ``admit(to) -> bool`` (optional): of the safe moves, only those it admits count, tried
         nearest the target first; ``safe`` is then False when it admits none (the move
-        returned is the one without ``admit``)."""
+        returned is the one without ``admit``).
+
+        The moves are checked nearest the target first, and the checks stop at the first
+        safe one (with ``admit``: the first safe one it admits): all 33 are checked only
+        where that one is far down the order or missing, as the least-bad move needs them
+        all. Same answer as checking them all first (a test keeps that version).
+        """
         v = self.scenario.robot_speed * dt
         dirs = unit_headings(16)
         moves = np.vstack([pos, pos + v * dirs, pos + 0.5 * v * dirs])
-        checks = [self._step_check(pos, m, t, dt) for m in moves]  # each move checked once
-        clear, walls = np.array([self._clearances(c[2]) for c in checks]).T
-        safe = clear >= self.clearance
-        if safe.any():
-            idx = np.nonzero(safe)[0]
-            near = idx[np.argsort(np.hypot(*(moves[idx] - target).T), kind="stable")]
-            best = near[0]
-            if admit is not None:
-                first = next((i for i in near if admit(moves[i])), None)
-                if first is None:
-                    return moves[best], float(clear[best]), False
-                best = first
-        else:  # none keeps the margin: never into a wall or off the map if any move stays out
-            out = walls >= 0.0
-            # nor into a contact of its own making, if any move is free of one (waiting is)
-            free = out & ~np.array([self._own_contact(*c) for c in checks])
-            out = free if free.any() else out
-            ahead = np.array([self.ahead_clearance(pos, m, t, dt) for m in moves])
-            key = np.where(out, ahead, -np.inf) if out.any() else ahead
-            top = np.nonzero(key >= key.max() - TIE_TOL)[0]
-            best = int(top[int(np.argmax(clear[top]))])
-        return moves[best], float(clear[best]), bool(safe[best])
+        order = np.argsort(np.hypot(*(moves - target).T), kind="stable")
+        checks: list = [None] * len(moves)
+        clear = np.full(len(moves), -np.inf)
+        best = None  # the nearest safe move, admitted or not
+        for i in order:
+            checks[i] = self._step_check(pos, moves[i], t, dt)  # each move checked once
+            clear[i] = self._clearances(checks[i][2])[0]
+            if clear[i] < self.clearance:
+                continue
+            best = i if best is None else best
+            if admit is None or admit(moves[i]):
+                return moves[i], float(clear[i]), True
+        if best is not None:  # safe moves, none admitted
+            return moves[best], float(clear[best]), False
+        return self._least_bad(pos, moves, checks, clear, t, dt)
+
+    def _least_bad(self, pos, moves, checks, clear, t: float, dt: float):
+        """None of ``moves`` keeps the margin: never into a wall or off the map if any move
+        stays out, nor into a contact of its own making if any move is free of one (waiting
+        is); then the most room ahead (:meth:`ahead_clearance`), the step's own breaking
+        ties. ``(to, clearance, False)``."""
+        walls = np.array([self._clearances(c[2])[1] for c in checks])
+        out = walls >= 0.0
+        free = out & ~np.array([self._own_contact(*c) for c in checks])
+        out = free if free.any() else out
+        ahead = np.array([self.ahead_clearance(pos, m, t, dt) for m in moves])
+        key = np.where(out, ahead, -np.inf) if out.any() else ahead
+        top = np.nonzero(key >= key.max() - TIE_TOL)[0]
+        best = int(top[int(np.argmax(clear[top]))])
+        return moves[best], float(clear[best]), False
