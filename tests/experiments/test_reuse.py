@@ -119,6 +119,11 @@ def test_the_cli_copies_runs_and_refuses_what_is_not_a_store(tmp_path):
                              "--no-progress"])  # fmt: skip
     assert grown.exit_code == 0, grown.output
     assert "8 reused from other stores" in grown.output and "10/10 runs" in grown.output
+    with_progress = cli.invoke(app, ["study", "run", str(tmp_path / "whole.json"), "--out",
+                                     str(tmp_path / "again.db"), "--reuse",
+                                     str(tmp_path / "part.db")])  # fmt: skip
+    assert with_progress.exit_code == 0, with_progress.output
+    assert "8 runs copied from" in with_progress.output  # a word before the bar, not silence
     (tmp_path / "junk.db").write_text("not a database")
     plan = str(tmp_path / "whole.json")
     bad = cli.invoke(app, ["study", "run", plan, "--out", str(tmp_path / "w2.db"),

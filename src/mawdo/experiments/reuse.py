@@ -67,7 +67,7 @@ def _contiguous(runs: list[int]) -> list[range]:
     return out
 
 
-def reuse_runs(plan: Any, store: Any, sources: Iterable[str | Path]) -> int:
+def reuse_runs(plan: Any, store: Any, sources: Iterable[str | Path], say=None) -> int:
     """Copy into ``store`` (open for ``plan``) every run of ``plan`` it lacks that a source
     store holds as the same computation (:func:`same_run`), without error.
 
@@ -79,6 +79,8 @@ def reuse_runs(plan: Any, store: Any, sources: Iterable[str | Path]) -> int:
         Open for writing.
     sources : iterable of str or Path
         Results stores of the same study kind written by this library version; read only.
+    say : callable, optional
+        ``say(text)`` before each source is read and with what it gave (progress lines).
 
     Returns
     -------
@@ -98,6 +100,9 @@ def reuse_runs(plan: Any, store: Any, sources: Iterable[str | Path]) -> int:
     wanted = _plan_keys(plan) - store.done_keys(failed=True)
     copied = 0
     for path in map(Path, sources):
+        if say is not None:
+            say(f"reading {path} for runs this plan computes the same way ...")
+        before = copied
         with Store.read(path) as src:
             _check_source(src, path, plan)
             have = src.done_keys(failed=False) & wanted
@@ -118,4 +123,6 @@ def reuse_runs(plan: Any, store: Any, sources: Iterable[str | Path]) -> int:
                     })  # fmt: skip
                     wanted -= {(a, p, k) for k in block}
                     copied += len(block)
+        if say is not None:
+            say(f"{copied - before} runs copied from {path}")
     return copied

@@ -299,7 +299,7 @@ def run_plan(
             if reuse:
                 from mawdo.experiments.reuse import reuse_runs
 
-                summary.reused = reuse_runs(plan, store, reuse)
+                summary.reused = reuse_runs(plan, store, reuse, say=_say if progress else None)
             tasks = plan.tasks(store.done_keys(failed=not retry_failed))
             summary.skipped = plan.total_runs - sum(t.n_runs for t in tasks) - summary.reused
             # each spec names the plan it is computed for; the store checks it on write
