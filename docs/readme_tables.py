@@ -121,8 +121,7 @@ OFFICIAL = (
     ("cec2017-official-d10", "CEC 2017 F1-F30, D = 10 (official: 100 000 evaluations, 51 runs)"),
     (
         "cec2017-official-d30",
-        "CEC 2017 F1-F30, D = 30 (official: 300 000 evaluations, 51 runs; beside WDO, MAWDO, GWO,"
-        " L-SHADE, jSO, NL-SHADE-RSP, EA4eig and random search only)",
+        "CEC 2017 F1-F30, D = 30 (official: 300 000 evaluations, 51 runs; all but scipy's DE)",
     ),
 )
 
