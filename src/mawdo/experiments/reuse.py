@@ -5,8 +5,8 @@ kind's task spec of that one run (:meth:`Study.task_spec` of a one-run task: alg
 problem, seeds, settings) is equal in both, and both stores were written by this library
 version. A bigger study can then grow from smaller ones (``crowdnav`` from ``crowdnav-50`` and
 ``crowdnav-10``, a CEC study from one store per algorithm) without recomputing what they hold;
-every kind computes a run from its spec alone, whatever else shares its task (the contract
-suite checks it), so the copied row is the row the plan would compute.
+a run is computed from its spec alone, whatever else shares its task (tested for the
+benchmark, suite and crowd kinds), so the copied row is the row the plan would compute.
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
-from mawdo.experiments.protocol import Task
+from mawdo.experiments.protocol import Task, missing_run_tasks
 from mawdo.experiments.sqlitefile import library_version
 
 __all__ = ["ReuseError", "reuse_runs", "same_run"]
@@ -53,18 +53,6 @@ def _check_source(src: Any, path: Path, plan: Any) -> None:
             f"this is mawdo {library_version()} (results of different versions may differ); "
             f"compute them again instead"
         )
-
-
-def _contiguous(runs: list[int]) -> list[range]:
-    """``runs`` (sorted) cut into ranges of consecutive indices."""
-    out, start = [], None
-    for i, k in enumerate(runs):
-        if start is None:
-            start = k
-        if i + 1 == len(runs) or runs[i + 1] != k + 1:
-            out.append(range(start, k + 1))
-            start = None
-    return out
 
 
 def reuse_runs(plan: Any, store: Any, sources: Iterable[str | Path], say=None) -> int:
@@ -112,17 +100,18 @@ def reuse_runs(plan: Any, store: Any, sources: Iterable[str | Path], say=None) -
                     blocks.setdefault((a, p), []).append(k)
             for (a, p), runs in blocks.items():
                 rows = {r.run: r for _, _, r in src.rows(algorithm=a, problem=p)}
-                for block in _contiguous(runs):
-                    picked = [rows[k] for k in block]
+                # the copied runs' consecutive stretches, as the plans cut missing runs
+                others = {(a, p, k) for k in range(runs[-1] + 1)} - {(a, p, k) for k in runs}
+                for task in missing_run_tasks(a, p, runs[-1] + 1, others, len(runs)):
+                    picked = [rows[k] for k in task.runs]
                     store.write_task({
-                        "task": {"algorithm": a, "problem": p, "first_run": block.start,
-                                 "n_runs": len(block)},
+                        "task": task.key(),
                         "rows": picked,
                         "wall": sum(r.wall_time or 0.0 for r in picked),
                         "worker": f"reused from {path.name}",
                     })  # fmt: skip
-                    wanted -= {(a, p, k) for k in block}
-                    copied += len(block)
+                    wanted -= {(a, p, k) for k in task.runs}
+                    copied += task.n_runs
         if say is not None:
             say(f"{copied - before} runs copied from {path}")
     return copied

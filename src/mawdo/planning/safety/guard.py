@@ -235,11 +235,11 @@ class Guard:
         moves = np.vstack([pos, pos + v * dirs, pos + 0.5 * v * dirs])
         order = np.argsort(np.hypot(*(moves - target).T), kind="stable")
         checks: list = [None] * len(moves)
-        clear = np.full(len(moves), -np.inf)
+        clear, walls = np.full(len(moves), -np.inf), np.full(len(moves), -np.inf)
         best = None  # the nearest safe move, admitted or not
         for i in order:
             checks[i] = self._step_check(pos, moves[i], t, dt)  # each move checked once
-            clear[i] = self._clearances(checks[i][2])[0]
+            clear[i], walls[i] = self._clearances(checks[i][2])
             if clear[i] < self.clearance:
                 continue
             best = i if best is None else best
@@ -247,14 +247,13 @@ class Guard:
                 return moves[i], float(clear[i]), True
         if best is not None:  # safe moves, none admitted
             return moves[best], float(clear[best]), False
-        return self._least_bad(pos, moves, checks, clear, t, dt)
+        return self._least_bad(pos, moves, checks, clear, walls, t, dt)
 
-    def _least_bad(self, pos, moves, checks, clear, t: float, dt: float):
+    def _least_bad(self, pos, moves, checks, clear, walls, t: float, dt: float):
         """None of ``moves`` keeps the margin: never into a wall or off the map if any move
         stays out, nor into a contact of its own making if any move is free of one (waiting
         is); then the most room ahead (:meth:`ahead_clearance`), the step's own breaking
         ties. ``(to, clearance, False)``."""
-        walls = np.array([self._clearances(c[2])[1] for c in checks])
         out = walls >= 0.0
         free = out & ~np.array([self._own_contact(*c) for c in checks])
         out = free if free.any() else out
