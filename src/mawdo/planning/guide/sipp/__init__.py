@@ -5,7 +5,8 @@ disc, a convex piece or a reachable set, in closed form), :mod:`.intervals` (mov
 forbidden departures, the exact re-check of a timed move, safe intervals of vertices),
 :mod:`.search` (compiled A* over (vertex, safe interval) states), :mod:`.guide` (the public
 :class:`SafeIntervalGuide` and :class:`TimedRoute`), :mod:`.exact` (the re-check's exact
-point/segment/polygon tests), :mod:`.optimum` (a scenario's earliest arrival ``T*``).
+point/segment/polygon tests), :mod:`.optimum` (a scenario's earliest arrival ``T*``),
+:mod:`.explain` (why a query has no route).
 """
 
 from mawdo.planning.guide.sipp.guide import SafeIntervalGuide, TimedRoute

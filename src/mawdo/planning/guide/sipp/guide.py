@@ -165,6 +165,7 @@ class SafeIntervalGuide:
             raise ValueError(f"lookahead must be > 0 time steps or None, got {lookahead!r}")
         self.checked_until = self.t_end if lookahead is None else min(self.t_end, t0 + lookahead)
         cut = self.checked_until < self.t_end  # a lookahead: no mover is tested after it
+        self.walkers, self._cut = walkers, cut
         self.movers = self.roadmap.movers(self.t0, self.checked_until, walkers, cut)
         self._mv = self.movers.arrays()
         self._keeping(keep_departures, cut, walkers)
@@ -209,6 +210,16 @@ class SafeIntervalGuide:
         first, count, lo, hi = self.safe[2], self.safe[3], self.safe[4], self.safe[5]
         a, b = first[v], first[v] + count[v]
         return np.column_stack([lo[a:b], hi[a:b]])
+
+    def explain(self) -> str:
+        """Why :meth:`routes` finds no route, in words: the goal cut off on the static map,
+        a horizon shorter than the static route, the goal covered by movers (named, with
+        when) from the earliest arrival to the horizon's end, or the movers barring every
+        way to a goal that is free (:func:`~mawdo.planning.guide.sipp.explain.why_no_route`).
+        """
+        from mawdo.planning.guide.sipp.explain import why_no_route
+
+        return why_no_route(self)
 
     def _search(self, banned: np.ndarray):
         if self.profile is not None:
@@ -262,7 +273,8 @@ class SafeIntervalGuide:
         Returns
         -------
         list of TimedRoute
-            Earliest arrival first; empty when the goal cannot be reached within the horizon.
+            Earliest arrival first; empty when the goal cannot be reached within the horizon
+            (:meth:`explain` says why).
 
         Raises
         ------

@@ -264,14 +264,21 @@ class Roadmap:
         if made == self.knots_made:
             self._departures[key] = memo
 
-    def movers(self, t0: float, t_end: float, walkers: str, cut: bool = False) -> Movers:
+    def movers(self, t0: float, t_end: float, walkers: str, cut: bool = False, only=None) -> Movers:
         """The moving obstacles over ``[t0, t_end]`` (see :class:`Movers`). ``cut``: their
         pieces end at ``t_end`` (a lookahead: nothing is tested after it), else the last piece
-        runs to its own end (a knot at or after ``t_end``)."""
+        runs to its own end (a knot at or after ``t_end``). ``only``: the indices (ascending,
+        into the moving obstacles) of those to tabulate, default all."""
         knots = self._pieces if not cut else self._cut_pieces
         return Movers.from_scenario(
-            self.scenario, self.clearance, t0, t_end, walkers, knots=knots, flat=self.flat
-        )
+            self.scenario, self.clearance, t0, t_end, walkers, knots=knots, flat=self.flat,
+            only=only,
+        )  # fmt: skip
+
+    @property
+    def moving(self) -> tuple:
+        """The scenario's moving obstacles, in order (those :meth:`movers` tabulates)."""
+        return self._moving
 
     def _cut_pieces(self, m: int, t0: float, t_end: float):
         """:meth:`_pieces` with the last piece ending at ``t_end`` (its offset there
