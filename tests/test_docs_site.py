@@ -39,6 +39,7 @@ SLOW = {
     "planning.md",
     "observed.md",
     "tutorials/first-planning-run.md",
+    "tutorials/among-people.md",
     "bbob.md",
     "tutorials/first-study.md",
     "how-to/add-a-planner.md",
