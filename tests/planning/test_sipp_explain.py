@@ -79,3 +79,15 @@ def test_the_paper_maps_walker_covers_the_goal_as_a_reachable_set():
     known = SafeIntervalGuide(sc, walkers="known")
     assert known.routes()
     assert known.explain().startswith("nothing stops the robot")
+
+
+def test_a_braking_lead_through_a_wall_cannot_start():
+    """Under an acceleration limit the search starts where the robot comes to rest; a lead
+    whose step crosses the wall (x = 140..160) leaves no route to start."""
+    sc = _scene(300, 100, (20, 50), (280, 50), [_box(140, 0, 160, 40), _box(140, 60, 160, 100)])
+    guide = SafeIntervalGuide(sc, profile=(1.0, float("inf")), lead=[(135, 30), (166, 30)])
+    assert guide.routes() == []
+    assert guide.explain().startswith("the robot cannot brake clear")
+    clear = SafeIntervalGuide(sc, profile=(1.0, float("inf")), lead=[(120, 50), (126, 50)])
+    assert clear.routes()
+    assert clear.explain().startswith("nothing stops the robot")

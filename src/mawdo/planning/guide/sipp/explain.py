@@ -6,8 +6,9 @@ order (the first that holds is the answer):
 
 1. the goal is cut off on the static map (no roadmap path from the start);
 2. the horizon ends before the static shortest route could arrive;
-3. the start is inside a mover at ``t0`` (the search's own error), or a route exists after
-   all (then the sentence says so, with its arrival);
+3. with kinematic limits, the robot's braking lead meets a mover or a wall; the start is
+   inside a mover at ``t0`` (the search's own error); or a route exists after all (then the
+   sentence says so, with its arrival);
 4. the goal is covered by movers (grown by robot radius + clearance) from the earliest
    arrival on the static map to the horizon's end: the movers are named, with when each
    covers it; a random walker taken as a reachable set (``walkers="reachable"``) grows
@@ -23,6 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 from mawdo.planning.guide.sipp.intervals import safe_intervals
+from mawdo.planning.guide.sipp.profiled import lead_clear
 from mawdo.planning.world.motion import BoundedRandomWalk
 
 __all__ = ["covering_movers", "why_no_route"]
@@ -91,6 +93,12 @@ def why_no_route(guide) -> str:
             f"the horizon is too short: the static shortest route ({dist:.1f} px) arrives at "
             f"t = {arrive:.1f} at the earliest, after the horizon's end t = {guide.t_end:.1f}; "
             f"give horizon > {arrive - guide.t0:.1f} time steps"
+        )
+    if guide.profile is not None and not lead_clear(guide):
+        return (
+            "the robot cannot brake clear: a step of its braking lead (from its current "
+            "motion to rest) meets a mover, a wall or the map's border, so no timed route can "
+            "start from it"
         )
     try:
         found = guide.routes(1)
