@@ -238,11 +238,14 @@ def _span(rows, policy: str, column: str) -> str:
 
 
 def crowd_sentence() -> list[str]:
-    """Beyond the headline setting: the 10-person settings in full and a noisy sensor, each
-    policy's range over the settings, from the two studies' crowd tables."""
+    """Beyond the headline setting: the 10- and 20-person settings in full and a noisy sensor,
+    each policy's range over the settings, from the studies' crowd tables."""
     ten = _rows(RESULTS / "crowdnav-10" / "crowd_table.md")
+    full = _rows(RESULTS / "crowdnav" / "crowd_table.md")
+    twenty = [r for r in full if r["setting"].split("-")[1] == "20"]
     noisy = _rows(RESULTS / "crowdnav-noise" / "crowd_table.md")
     n_ten = {r["episodes"] for r in ten}.pop()
+    n_twenty = {r["episodes"] for r in twenty}.pop()
     n_noisy = {r["episodes"] for r in noisy}.pop()
 
     def both(rows, policy):
@@ -250,12 +253,14 @@ def crowd_sentence() -> list[str]:
                 f"{_span(rows, policy, 'robot-caused')} robot-caused")  # fmt: skip
 
     mine = ", ".join(both(ten, p) for p in ("mawdo", "guide_only", "orca_robot"))
+    many = ", ".join(both(twenty, p) for p in ("mawdo", "guide_only", "mawdo_oracle", "orca_robot"))
     noise = "; ".join(both(noisy, p) for p in ("mawdo", "guide_only"))
     return [
         f"With 10 people (`crowdnav-10`: circle and square crossing, the robot unseen or seen, "
-        f"{n_ten} episodes each), over the four settings: {mine}. Behind a sensor with 0.05 m "
-        f"of noise (`crowdnav-noise`: circle crossing with 5 and 10 people, {n_noisy} episodes "
-        f"each): {noise}."
+        f"{n_ten} episodes each), over the four settings: {mine}. With 20 (`crowdnav`, every "
+        f"setting, {n_twenty} episodes each): {many}. Behind a sensor with 0.05 m of noise "
+        f"(`crowdnav-noise`: circle crossing with 5 and 10 people, {n_noisy} episodes each): "
+        f"{noise}."
     ]
 
 

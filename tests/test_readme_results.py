@@ -385,7 +385,12 @@ def test_crowd_sentences_and_readme_table_are_those_of_the_committed_store(tmp_p
 
 @pytest.mark.parametrize(
     ("name", "settings", "policies", "episodes"),
-    [("crowdnav-50", 12, 7, 50), ("crowdnav-10", 4, 8, 500), ("crowdnav-noise", 2, 2, 200)],
+    [
+        ("crowdnav-50", 12, 7, 50),
+        ("crowdnav", 12, 7, 500),
+        ("crowdnav-10", 4, 8, 500),
+        ("crowdnav-noise", 2, 2, 200),
+    ],
 )
 def test_every_crowd_setting_sentence_is_that_of_the_committed_store(
     tmp_path, name, settings, policies, episodes
@@ -442,7 +447,14 @@ def test_stored_crowd_episodes_are_what_the_code_computes(tmp_path, policy, run)
 
 @pytest.mark.parametrize(
     "folder",
-    ["crowdnav-circle5", "crowdnav-50", "crowdnav-refiners", "crowdnav-10", "crowdnav-noise"],
+    [
+        "crowdnav-circle5",
+        "crowdnav-50",
+        "crowdnav",
+        "crowdnav-refiners",
+        "crowdnav-10",
+        "crowdnav-noise",
+    ],
 )
 def test_the_crowd_share_is_that_of_the_committed_store(tmp_path, folder):
     """The committed crowd_share.md is the report's table from the committed crowd store."""
