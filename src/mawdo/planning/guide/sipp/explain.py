@@ -25,7 +25,6 @@ import numpy as np
 
 from mawdo.planning.guide.sipp.intervals import safe_intervals
 from mawdo.planning.guide.sipp.profiled import lead_clear
-from mawdo.planning.world.motion import BoundedRandomWalk
 
 __all__ = ["covering_movers", "why_no_route"]
 
@@ -56,17 +55,16 @@ def covering_movers(guide, point, t_from: float) -> list[tuple[str, float, float
     p = np.reshape(np.asarray(point, dtype=float), (1, 2))
     road, t0, t_end = guide.roadmap, guide.t0, guide.t_end
     out = []
+    cut = guide.checked_until < t_end  # (a lookahead, as the guide tabulated its movers)
     for j, obstacle in enumerate(road.moving):
-        mv = road.movers(t0, guide.checked_until, guide.walkers, guide._cut, only=[j]).arrays()
-        _, lo, hi = safe_intervals(p, t0, t_end, mv)
+        one = road.movers(t0, guide.checked_until, guide.walkers, cut, only=[j])
+        _, lo, hi = safe_intervals(p, t0, t_end, one.arrays())
         # the covered windows are the gaps between the safe ones (open intervals)
         edges = np.concatenate(([t0], np.column_stack([lo, hi]).ravel(), [t_end]))
         gaps = edges.reshape(-1, 2)
         gaps = gaps[(gaps[:, 1] > gaps[:, 0]) & (gaps[:, 1] > t_from)]
         if len(gaps):
-            reachable = guide.walkers == "reachable" and isinstance(
-                obstacle.motion, BoundedRandomWalk
-            )
+            reachable = bool(one.kind[0] == 1)  # (Movers' kind 1: a growing reachable set)
             first = max(float(gaps[0, 0]), t0)
             out.append((obstacle.id, first, float(gaps[0, 1]), reachable))
     return sorted(out, key=lambda m: m[1])

@@ -165,7 +165,7 @@ class SafeIntervalGuide:
             raise ValueError(f"lookahead must be > 0 time steps or None, got {lookahead!r}")
         self.checked_until = self.t_end if lookahead is None else min(self.t_end, t0 + lookahead)
         cut = self.checked_until < self.t_end  # a lookahead: no mover is tested after it
-        self.walkers, self._cut = walkers, cut
+        self.walkers = walkers
         self.movers = self.roadmap.movers(self.t0, self.checked_until, walkers, cut)
         self._mv = self.movers.arrays()
         self._keeping(keep_departures, cut, walkers)
@@ -212,11 +212,11 @@ class SafeIntervalGuide:
         return np.column_stack([lo[a:b], hi[a:b]])
 
     def explain(self) -> str:
-        """Why :meth:`routes` finds no route, in words: the goal cut off on the static map,
-        a horizon shorter than the static route, the goal covered by movers (named, with
-        when) from the earliest arrival to the horizon's end, or the movers barring every
-        way to a goal that is free (:func:`~mawdo.planning.guide.sipp.explain.why_no_route`).
-        """
+        """Why :meth:`routes` finds no route, in one sentence: the first cause that holds, in
+        the order :mod:`~mawdo.planning.guide.sipp.explain` lists them (goal cut off, horizon
+        too short, braking lead blocked, start inside a mover, goal covered by named movers,
+        every way barred); runs the search once
+        (:func:`~mawdo.planning.guide.sipp.explain.why_no_route`)."""
         from mawdo.planning.guide.sipp.explain import why_no_route
 
         return why_no_route(self)
