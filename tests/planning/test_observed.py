@@ -260,3 +260,54 @@ def test_the_robot_does_not_step_toward_someone_who_could_reach_it():
             np.array([12.0]),
             np.array([4.0]),
         ), t
+
+
+def test_a_missed_person_is_kept_off_from_where_the_sensor_last_saw_them():
+    # a robot at (20, 60) driving +x at 4 px a step; two tracks reported at (50, 60): the first
+    # detected now, the second missed for 2 steps and coasted at +3 px a step from (44, 60),
+    # where it was last seen. A person who turned round meanwhile may be anywhere within 2
+    # steps of reach of that place, so that is where the keep-off rule must measure from.
+    from mawdo.planning.sense.reading import Tracks
+
+    sc = _scene([])
+    policy = PlannerPolicy("guide_only", "quick", "observed", time_guide=True)
+    policy.reset(sc, 0)
+    vel = np.array([[0.0, 0.0], [3.0, 0.0]])
+    tracks = Tracks(np.arange(2), np.array([[50.0, 60.0], [50.0, 60.0]]), vel,
+                    np.array([8.0, 8.0]), np.zeros(2), np.full(2, 0.5),
+                    missed=np.array([0, 2]))  # fmt: skip
+    centres, contact, top = policy._reach(tracks)
+    k_sd = policy.predictor_options.get("k_sd", 2.0)
+    # reach per step: the robot's speed or the tracked speed plus k_sd s.d.s, the larger
+    expect_top = np.maximum(4.0, np.array([0.0, 3.0]) + k_sd * 0.5)
+    near = 8.0 + 4.0  # person radius + robot radius (an exact sensor adds nothing)
+    np.testing.assert_allclose(top, expect_top)
+    np.testing.assert_allclose(centres, [[50.0, 60.0], [44.0, 60.0]])
+    np.testing.assert_allclose(contact, [near, near + 2 * expect_top[1]])
+    # without a miss the same tracks are taken where they are reported
+    seen = Tracks(tracks.ids, tracks.centers, vel, tracks.radii, tracks.position_sd,
+                  tracks.velocity_sd)  # fmt: skip
+    c0, k0, _ = policy._reach(seen)
+    np.testing.assert_allclose(c0, tracks.centers)
+    np.testing.assert_allclose(k0, [near, near])
+    # a step of 4 px toward it ends 20 px from the last-seen place, within 12 + 2 x 4 px and
+    # the step's own 4; from the coasted centre it would end 26 px off, beyond 12 + 4
+    here, step = np.array([20.0, 60.0]), np.array([[24.0, 60.0]])
+    assert closes_in_reach(here, step, np.ones(1), centres[1:], contact[1:], top[1:])
+    assert not closes_in_reach(here, step, np.ones(1), c0[1:], k0[1:], top[1:])
+
+
+def test_tracks_report_how_long_each_was_missed():
+    # a person seen at steps 0 and 1, missed at 2 and 3, seen again at 4
+    from mawdo.planning.sense.reading import Reading
+    from mawdo.planning.sense.tracker import Tracker
+
+    trk = Tracker(noise=0.0)
+    seen = {0: True, 1: True, 2: False, 3: False, 4: True}
+    missed = []
+    for step, visible in seen.items():
+        c = np.array([[100.0 + 2.0 * step, 50.0]]) if visible else np.empty((0, 2))
+        r = np.full(len(c), 5.0)
+        reading = Reading(step, np.zeros(2), np.zeros(2), np.array([150.0, 50.0]), c, r)
+        missed.append(int(trk.update(reading).missed[0]))
+    assert missed == [0, 0, 1, 2, 0]

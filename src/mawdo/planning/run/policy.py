@@ -353,13 +353,23 @@ class PlannerPolicy:
         return Move(np.asarray(to)[None, :], np.ones(1)) if safe else move
 
     def _reach(self, tracks):
-        """``(centres, contact, top)`` of :func:`closes_in_reach` for the tracks (pixels)."""
+        """``(centres, contact, top)`` of :func:`closes_in_reach` for the tracks (pixels).
+
+        A track missed for ``m`` steps is taken from where it was last detected, its contact
+        distance grown by ``m`` steps of its reach: its reported centre is a constant-velocity
+        guess, and a person who turned round meanwhile is anywhere within that reach of where
+        the sensor last saw them."""
         k_sd = self.predictor_options.get("k_sd", K_SD)
         speed = np.hypot(*tracks.velocities.T)
         top = np.maximum(self.known.robot_speed, speed + k_sd * tracks.velocity_sd)
         # a centre read through noise may be off by k_sd of the sensor's s.d. (0 for an exact one)
         near = self.known.robot_radius + k_sd * getattr(self.tracker, "noise", 0.0)
-        return tracks.centers, tracks.radii + near, top
+        missed = tracks.missed
+        if not missed.any():  # (every track detected now: its centre as reported)
+            return tracks.centers, tracks.radii + near, top
+        # the tracker predicts a missed track at constant velocity, one step at a time
+        seen = tracks.centers - missed[:, None] * tracks.velocities
+        return seen, tracks.radii + near + missed * top, top
 
     def _warm(self, position):
         """The last step's remainder, when the robot stands where it begins: the step's search

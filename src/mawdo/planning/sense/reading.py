@@ -80,6 +80,10 @@ class Tracks:
         Standard deviation of each centre estimate (pixels), >= 0.
     velocity_sd : array_like, shape (n,)
         Standard deviation of each velocity estimate (pixels per time step), >= 0.
+    missed : array_like of int, shape (n,), optional
+        Steps since each track was last detected (0: detected in this reading, the default
+        for every track). A missed track's centre and velocity are a constant-velocity guess
+        from its last detection, which a person who turned meanwhile does not follow.
     """
 
     ids: np.ndarray
@@ -88,6 +92,7 @@ class Tracks:
     radii: np.ndarray
     position_sd: np.ndarray
     velocity_sd: np.ndarray
+    missed: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         c = _points(self.centers, "centers")
@@ -97,9 +102,13 @@ class Tracks:
         object.__setattr__(self, "ids", np.asarray(self.ids, dtype=np.int64).reshape(-1))
         for name in ("radii", "position_sd", "velocity_sd"):
             object.__setattr__(self, name, np.asarray(getattr(self, name), float).reshape(-1))
-        for name in ("ids", "velocities", "radii", "position_sd", "velocity_sd"):
+        missed = np.zeros(n, np.int64) if self.missed is None else self.missed
+        object.__setattr__(self, "missed", np.asarray(missed, dtype=np.int64).reshape(-1))
+        for name in ("ids", "velocities", "radii", "position_sd", "velocity_sd", "missed"):
             if len(getattr(self, name)) != n:
                 raise ValueError(f"tracks: {name} has {len(getattr(self, name))} rows, not {n}")
+        if np.any(self.missed < 0):
+            raise ValueError(f"tracks: missed must be >= 0 steps, got {self.missed!r}")
 
     def __len__(self) -> int:
         return len(self.centers)

@@ -234,6 +234,7 @@ class Tracker:
             radii=self._radius_sum / self._hits,
             position_sd=_largest_sd(self._cov[:, :2, :2]),
             velocity_sd=_largest_sd(self._cov[:, 2:, 2:]),
+            missed=self._missed.copy(),
         )
 
     def _predict(self, dt: float) -> None:
