@@ -8,6 +8,7 @@ import pytest
 from mawdo.planning.run.episode import run_episode
 from mawdo.planning.run.policy import PlannerPolicy, closes_in_reach, dodge_ratio
 from mawdo.planning.sense.sensor import Sensor
+from mawdo.planning.sense.tracker import Tracker
 from mawdo.planning.world.scenario import scenario_from_dict
 from mawdo.planning.world.stepped import SteppedWorld
 
@@ -21,7 +22,8 @@ def _scene(obstacles, start=(20.0, 60.0), goal=(180.0, 60.0)):
 
 
 def _run(sc, algorithm="guide_only", sensor=None, steps=200, seed=0):
-    policy = PlannerPolicy(algorithm, "quick", "observed", time_guide=True)
+    tracker = None if sensor is None else Tracker.for_sensor(sensor)
+    policy = PlannerPolicy(algorithm, "quick", "observed", time_guide=True, tracker=tracker)
     return run_episode(SteppedWorld(sc), policy, steps, seed=seed, sensor=sensor)
 
 
@@ -311,3 +313,21 @@ def test_tracks_report_how_long_each_was_missed():
         reading = Reading(step, np.zeros(2), np.zeros(2), np.array([150.0, 50.0]), c, r)
         missed.append(int(trk.update(reading).missed[0]))
     assert missed == [0, 0, 1, 2, 0]
+
+
+def test_a_tracker_that_trusts_a_noisy_sensor_is_warned_of():
+    # the default tracker assumes an exact sensor: with a noisy one the episode says how to
+    # tell it the noise; told, or with an exact sensor, nothing is said
+    import warnings
+
+    sc = _scene([HEAD_ON])
+    sensor = Sensor(noise=1.0)
+    policy = PlannerPolicy("guide_only", "quick", "observed", time_guide=True)
+    with pytest.warns(UserWarning, match="Tracker.for_sensor"):
+        run_episode(SteppedWorld(sc), policy, 2, seed=0, sensor=sensor)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        told = PlannerPolicy("guide_only", "quick", "observed", time_guide=True,
+                             tracker=Tracker.for_sensor(sensor))  # fmt: skip
+        run_episode(SteppedWorld(sc), told, 2, seed=0, sensor=sensor)
+        run_episode(SteppedWorld(sc), policy, 2, seed=0)

@@ -10,6 +10,7 @@ agent (:meth:`~mawdo.planning.world.stepped.SteppedWorld.realised`) and
 from __future__ import annotations
 
 import time
+import warnings
 
 import numpy as np
 
@@ -47,6 +48,21 @@ def _record(step: int, position, latency: float, policy) -> Replan:
     way = getattr(policy, "waypoints", None)
     way = np.zeros((0, 2)) if way is None else np.asarray(way, dtype=float).reshape(-1, 2)
     return Replan(step, np.array(position), way, np.nan, np.nan, 0, latency, 0, np.zeros(0))
+
+
+def _warn_if_tracker_trusts_more(policy, sensor) -> None:
+    """Warn when ``policy``'s tracker assumes less position noise than ``sensor`` adds: it
+    would take noisy readings at their word (jittering velocities, margins too thin)."""
+    noise = getattr(getattr(policy, "tracker", None), "noise", None)
+    if sensor is None or noise is None or not noise < sensor.noise:
+        return
+    warnings.warn(
+        f"the policy's tracker assumes position noise {noise:g} px but the sensor adds "
+        f"{sensor.noise:g} px: pass tracker=Tracker.for_sensor(sensor) to the policy "
+        "(mawdo.planning.Tracker)",
+        UserWarning,
+        stacklevel=3,
+    )
 
 
 def run_episode(
@@ -93,6 +109,7 @@ def run_episode(
     streams = episode_seed_sequences(seed)
     rng = np.random.default_rng(streams["sensor"])
     policy.reset(world.scenario if known is None else known, streams["policy"])
+    _warn_if_tracker_trusts_more(policy, sensor)
     decisions: list[Replan] = []
 
     def decide(step: int):
