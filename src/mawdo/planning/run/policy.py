@@ -364,10 +364,9 @@ class PlannerPolicy:
         top = np.maximum(self.known.robot_speed, speed + k_sd * tracks.velocity_sd)
         # a centre read through noise may be off by k_sd of the sensor's s.d. (0 for an exact one)
         near = self.known.robot_radius + k_sd * getattr(self.tracker, "noise", 0.0)
+        # the tracker predicts a missed track at constant velocity, one step at a time (a
+        # track detected now, missed 0, is taken exactly as reported)
         missed = tracks.missed
-        if not missed.any():  # (every track detected now: its centre as reported)
-            return tracks.centers, tracks.radii + near, top
-        # the tracker predicts a missed track at constant velocity, one step at a time
         seen = tracks.centers - missed[:, None] * tracks.velocities
         return seen, tracks.radii + near + missed * top, top
 
