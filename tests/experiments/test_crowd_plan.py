@@ -72,3 +72,28 @@ def test_a_refiner_policy_is_the_mawdo_policy_with_its_optimizer(name):
     assert ours.tracker.noise == base.tracker.noise == 2.0
     plan = CrowdPlan.from_dict({"settings": ["circle-5-invisible"], "policies": ["mawdo", name]})
     assert plan.policies == ("mawdo", name)
+
+
+def test_strays_reach_the_observing_trackers_and_only_a_plan_with_them_changes_hash(monkeypatch):
+    from mawdo.experiments.kinds.crowd.execute import run_one
+    from mawdo.planning.run import policies
+
+    base = {"settings": ["circle-5-invisible"], "n": 1, "policies": ["dwa"]}
+    plain, off = CrowdPlan.from_dict(base), CrowdPlan.from_dict({**base, "strays": False})
+    on = CrowdPlan.from_dict({**base, "strays": True})
+    # a plan made before the field existed keeps its hash; turning it on makes another plan
+    assert "strays" not in plain.numbers_spec()
+    assert plain.plan_hash == off.plan_hash != on.plan_hash
+    assert "strays" in on.describe() and "strays" not in plain.describe()
+    with pytest.raises((ValueError, PlanError), match="strays"):
+        CrowdPlan.from_dict({**base, "strays": "yes"})
+    for name in ("mawdo", "dwa"):
+        assert policies.POLICIES[name].make({"strays": True}).tracker.strays is True
+        assert policies.POLICIES[name].make({}).tracker.strays is False
+    made = []
+    tracker = policies.study_tracker
+    monkeypatch.setattr(policies, "study_tracker", lambda o: made.append(tracker(o)) or made[-1])
+    for plan, want in ((on, True), (plain, False)):
+        spec = plan.task_spec(plan.tasks()[0])
+        run_one(spec, "circle-5-invisible", spec["seeds"][0])  # the study's own path
+        assert made[-1].strays is want

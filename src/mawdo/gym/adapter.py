@@ -131,14 +131,12 @@ def register_policy(name: str, fn: Callable, description: str = "", **observatio
     -------
     PolicySpec
     """
-    from mawdo.planning.run.policies import POLICIES, PolicySpec
-    from mawdo.planning.sense.tracker import Tracker
+    from mawdo.planning.run.policies import POLICIES, PolicySpec, study_tracker
 
     CallablePolicy(fn, **observation)  # bad options fail here, not in a study's worker
 
     def make(options):
-        tracker = Tracker(noise=float(options.get("noise", 0.0)))
-        return CallablePolicy(fn, tracker=tracker, **observation)
+        return CallablePolicy(fn, tracker=study_tracker(options), **observation)
 
     spec = PolicySpec(name, make, "observed", description or f"callable policy {name}")
     POLICIES.register(name, spec)

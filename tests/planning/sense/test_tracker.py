@@ -245,3 +245,67 @@ def test_for_sensor_takes_the_sensor_noise():
     from mawdo.planning.sense.sensor import Sensor
 
     assert Tracker.for_sensor(Sensor(noise=2.5), gate=3.0).noise_var == 2.5**2
+
+
+def _turning_walker(strays):
+    # a small agent (radius 2) walking at 3 px a step turns round at step 6: its detection lands
+    # 6 px from the prediction, outside the disc (radius 2) and the Mahalanobis gate
+    tracker = Tracker(0.0, gate=4.0, birth_speed_sd=4.0, strays=strays)
+    xs = [10.0 + 3.0 * min(k, 6) - 3.0 * max(k - 6, 0) for k in range(12)]
+    out = [tracker.update(reading(k, [(x, 20.0)], radii=np.array([2.0]))) for k, x in enumerate(xs)]
+    return tracker, xs, out
+
+
+def test_a_turn_beyond_the_disc_and_the_gate_leaves_a_ghost_without_strays():
+    tracker, xs, out = _turning_walker(strays=False)
+    assert out[6].ids.tolist() == [0]
+    assert out[7].ids.tolist() == [0, 1]  # the old track coasts on, missed; a new one is born
+    assert out[7].missed.tolist() == [1, 0]
+    assert out[7].centers[0, 0] > xs[6]  # the ghost goes on where the walker was going
+
+
+def test_a_turn_within_its_stray_keeps_the_track_with_strays():
+    # 6 px from the prediction is within 2 + 2 x 4 px of a track detected a step ago
+    tracker, xs, out = _turning_walker(strays=True)
+    for k, tracks in enumerate(out):
+        assert tracks.ids.tolist() == [0], k
+        assert tracks.missed.tolist() == [0], k
+    # paired as a maneuver: the new velocity is taken at once
+    assert np.allclose(out[-1].velocities[0], (-3.0, 0.0), atol=0.01)
+
+
+@pytest.mark.parametrize(("offset", "same"), [(20.0, True), (30.0, False)])
+def test_the_stray_distance_grows_with_the_steps_unseen(offset, same):
+    # a walker (radius 5, 2 px a step) unseen at steps 5 and 6 reappears at step 7 ``offset`` px
+    # aside of where it was going: its stray distance is 5 + 2 x 4 x 3 = 29 px (three steps since
+    # its last detection), so 20 px is the same agent and 30 px someone else
+    tracker = Tracker(0.0, birth_speed_sd=4.0, strays=True)
+    for k in range(5):
+        tracker.update(reading(k, [(10.0 + 2.0 * k, 20.0)]))
+    tracker.update(reading(5, []))
+    tracker.update(reading(6, []))
+    tracks = tracker.update(reading(7, [(24.0, 20.0 + offset)]))
+    assert tracks.ids.tolist() == ([0] if same else [0, 1])
+    assert tracks.missed.tolist() == ([0] if same else [3, 0])
+
+
+def test_a_detection_beyond_any_stray_is_a_new_agent():
+    # the walker is missed at step 5 while someone appears 60 px away: farther than the
+    # walker's radius plus 2 x 4 px a step could take it, so a new track, the walker's coasting
+    tracker = Tracker(0.0, birth_speed_sd=4.0, strays=True)
+    for k in range(5):
+        tracker.update(reading(k, [(10.0 + 2.0 * k, 20.0)]))
+    tracks = tracker.update(reading(5, [(80.0, 20.0)]))
+    assert tracks.ids.tolist() == [0, 1]
+    assert tracks.missed.tolist() == [1, 0]
+    assert np.allclose(tracks.centers[0], (20.0, 20.0))
+
+
+def test_strays_must_be_a_bool_and_for_sensor_turns_them_on():
+    from mawdo.planning.sense.sensor import Sensor
+
+    with pytest.raises(TypeError, match="strays"):
+        Tracker(1.0, strays="yes")
+    assert Tracker(1.0).strays is False
+    assert Tracker.for_sensor(Sensor(noise=1.0)).strays is True
+    assert Tracker.for_sensor(Sensor(noise=1.0), strays=False).strays is False

@@ -32,7 +32,7 @@ from typing import Any
 
 from mawdo.registry import Registry
 
-__all__ = ["POLICIES", "PolicySpec", "make_policy"]
+__all__ = ["POLICIES", "PolicySpec", "make_policy", "study_tracker"]
 
 
 @dataclass(frozen=True)
@@ -61,10 +61,14 @@ class PolicySpec:
 POLICIES: Registry[PolicySpec] = Registry("policy")
 
 
-def _tracker(options):
+def study_tracker(options):
+    """The tracker of an observing policy built from a study's ``options``: the sensor's
+    ``noise`` (pixels, default 0) and ``strays`` (default False; see
+    :class:`~mawdo.planning.sense.tracker.Tracker`)."""
     from mawdo.planning.sense.tracker import Tracker
 
-    return Tracker(noise=float(options.get("noise", 0.0)))
+    noise, strays = float(options.get("noise", 0.0)), bool(options.get("strays", False))
+    return Tracker(noise=noise, strays=strays)
 
 
 def _settings(options) -> dict:
@@ -80,7 +84,7 @@ def _planner(algorithm: str, knowledge: str):
         over = _settings(options)
         extra = {}
         if knowledge == "observed":
-            extra = {"tracker": _tracker(options), "predictor": options.get("predictor",
+            extra = {"tracker": study_tracker(options), "predictor": options.get("predictor",
                      "constant_velocity")}  # fmt: skip
         return PlannerPolicy(algorithm, options.get("preset"), knowledge, **extra, **over)
 
@@ -91,14 +95,14 @@ def _told(options):
     from mawdo.planning.run.told import ToldFuturePolicy
 
     return ToldFuturePolicy(
-        "mawdo", options.get("preset"), tracker=_tracker(options), **_settings(options)
+        "mawdo", options.get("preset"), tracker=study_tracker(options), **_settings(options)
     )
 
 
 def _dwa(options):
     from mawdo.planning.run.dwa import DynamicWindow
 
-    return DynamicWindow(tracker=_tracker(options))
+    return DynamicWindow(tracker=study_tracker(options))
 
 
 def _straight(options):
@@ -113,7 +117,7 @@ def _robot(cls_name: str):
 
         # CrowdNav's settings in metres and seconds, at the world's resolution and time step
         res, dt = options.get("res", 0.05), options.get("dt", 0.25)
-        return getattr(robots, cls_name).from_metres(res, dt, tracker=_tracker(options))
+        return getattr(robots, cls_name).from_metres(res, dt, tracker=study_tracker(options))
 
     return make
 

@@ -79,7 +79,7 @@ def stepped_run(sc, algorithm, seed, preset, max_steps: int, knowledge: str, sen
     if knowledge == "observed":
         from mawdo.planning.sense.tracker import Tracker
 
-        tracker = Tracker(noise=0.0 if sensor is None else sensor.noise)
+        tracker = Tracker(noise=0.0) if sensor is None else Tracker.for_sensor(sensor)
         run.policy = PlannerPolicy(algorithm, preset, "observed", predictor=predictor,
                                    tracker=tracker, threads=threads)  # fmt: skip
     else:  # invisible people: their future, walked by a fresh world's people, told the planner

@@ -13,7 +13,9 @@ A step of the tracker (:meth:`Tracker.update`):
    covariance symmetric and positive semi-definite); a pair admitted by the disc alone is a
    maneuver (a turn, a bounce off a wall), and its track's covariance is first widened by
    :func:`velocity_jump` so that it takes the new velocity at once
-   (docs/deviations.md#d-track-gate);
+   (docs/deviations.md#d-track-gate); with ``strays=True`` a second pass then pairs a track and
+   a detection both left over when the detection lies within the distance the agent can have
+   strayed from the prediction (:meth:`Tracker._strays`), also as a maneuver;
 4. counts a miss for every unmatched track, which stays reported at its predicted centre (with
    the predicted, growing covariance) until it has been missed on more than ``max_missed``
    consecutive steps, and then dies;
@@ -143,6 +145,16 @@ class Tracker:
         S.d. of a new track's velocity per axis (pixels per time step), > 0: its velocity is 0
         with this uncertainty until a second detection; also the s.d. of a maneuver's velocity
         jump. The default 4 is the default robot speed, above the speed of the scenes' movers.
+    strays : bool
+        Pair the tracks and detections the gated assignment left over in a second pass, a
+        detection with a track when it lies within the track's radius plus ``2
+        birth_speed_sd`` pixels per step since the track's last detection (a velocity changed
+        by up to twice the speed prior: a person who turned round at their goal, or walked on
+        unseen for a few steps). Without it such an agent is tracked twice for up to
+        ``max_missed`` steps: a new track at the detection, and a ghost coasting on where it was
+        going. Off by default, as the committed crowd studies were made; on in
+        :meth:`for_sensor`. It matters most behind an imperfect sensor (measured in
+        ``benchmarks/log/crowd.md``, "A second association pass").
 
     Notes
     -----
@@ -158,19 +170,24 @@ class Tracker:
         gate: float = 4.0,
         max_missed: int = 5,
         birth_speed_sd: float = 4.0,
+        strays: bool = False,
     ) -> None:
         self.noise = check_real("noise", noise, 0.0)
         self.accel_sd = check_real("accel_sd", accel_sd, 0.0)
         self.gate = check_real("gate", gate, 0.0, low_open=True)
         self.max_missed = check_int("max_missed", max_missed, 0)
         self.birth_speed_sd = check_real("birth_speed_sd", birth_speed_sd, 0.0, low_open=True)
+        if not isinstance(strays, bool | np.bool_):
+            raise TypeError(f"strays must be True or False, got {strays!r}")
+        self.strays = bool(strays)
         self.noise_var = max(self.noise, NOISE_FLOOR) ** 2
         self.reset()
 
     @classmethod
     def for_sensor(cls, sensor, **options) -> Tracker:
-        """A tracker whose measurement noise is ``sensor.noise`` (other options as given)."""
-        return cls(sensor.noise, **options)
+        """A tracker whose measurement noise is ``sensor.noise``, pairing strays (``strays``
+        True unless given; other options as given)."""
+        return cls(sensor.noise, **{"strays": True, **options})
 
     def reset(self) -> None:
         """Forget every track; ids start again at 0 (a new episode)."""
@@ -212,7 +229,7 @@ class Tracker:
             self._predict(dt)
         self._step = step
         z, radii = reading.centers, reading.radii
-        rows, cols, turned = self._associate(z)
+        rows, cols, turned = self._associate(z, dt)
         if turned.any():
             self._cov[rows[turned]] += velocity_jump(dt, self.birth_speed_sd)
         self._correct(rows, z[cols], radii[cols])
@@ -242,9 +259,10 @@ class Tracker:
         self._x = self._x @ f.T
         self._cov = f @ self._cov @ f.T + process_noise(dt, self.accel_sd)
 
-    def _associate(self, z: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def _associate(self, z: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Matched (track row, detection index) pairs, sorted by track row, and whether each
-        pair is outside the Mahalanobis gate (admitted by the disc rule: a maneuver)."""
+        pair is outside the Mahalanobis gate (a maneuver: admitted by the disc rule or, with
+        ``strays``, by :meth:`_strays`); ``dt`` steps since the last reading."""
         if len(self._ids) == 0 or len(z) == 0:
             none = np.empty(0, dtype=np.int64)
             return none, none, np.empty(0, dtype=bool)
@@ -257,7 +275,27 @@ class Tracker:
         rows, cols = linear_sum_assignment(np.where(allowed, d2, _FORBIDDEN))
         keep = allowed[rows, cols]
         rows, cols = rows[keep], cols[keep]
+        if self.strays and len(rows) < min(gap.shape):  # a track and a detection left over
+            more_r, more_c = self._strays(gap, rows, cols, dt)
+            rows, cols = np.concatenate([rows, more_r]), np.concatenate([cols, more_c])
+            order = np.argsort(rows, kind="stable")
+            rows, cols = rows[order], cols[order]
         return rows, cols, ~gated[rows, cols]
+
+    def _strays(self, gap, rows, cols, dt: float) -> tuple[np.ndarray, np.ndarray]:
+        """(track row, detection index) pairs among those the first assignment left over: each
+        detection within its track's radius plus ``2 birth_speed_sd`` px per step since the
+        track's last detection (``gap``: centre distances, tracks x detections, px), nearest
+        first by the Hungarian method."""
+        left_r = np.setdiff1d(np.arange(gap.shape[0]), rows)
+        left_c = np.setdiff1d(np.arange(gap.shape[1]), cols)
+        sub = gap[np.ix_(left_r, left_c)]
+        steps = self._missed[left_r] + dt  # the missed count is the previous step's here
+        reach = self._radius_sum[left_r] / self._hits[left_r] + 2.0 * self.birth_speed_sd * steps
+        allowed = sub <= reach[:, None]
+        r, c = linear_sum_assignment(np.where(allowed, sub, _FORBIDDEN))
+        keep = allowed[r, c]
+        return left_r[r[keep]], left_c[c[keep]]
 
     def _correct(self, rows: np.ndarray, z: np.ndarray, radii: np.ndarray) -> None:
         if len(rows) == 0:

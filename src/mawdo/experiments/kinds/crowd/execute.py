@@ -147,6 +147,7 @@ def run_one(spec: dict[str, Any], setting: str, seed: int):
         "overrides": spec["overrides"],
         "noise": spec["sensor"]["noise"] / scene.res,
         "predictor": spec["predictor"],
+        "strays": spec.get("strays", False),
     }
     policy = entry.make(options)
     steps = scene.time_limit_steps

@@ -69,6 +69,10 @@ class CrowdPlan(StudyPlanBase):
         Probability that a person in view is not detected, in [0, 1).
     predictor : str
         Predictor of the observed planners (``constant_velocity``, ``stop``).
+    strays : bool
+        The observing policies' trackers pair the tracks and detections their first assignment
+        left over (:class:`~mawdo.planning.sense.tracker.Tracker`'s ``strays``). Off by
+        default; a plan that leaves it off keeps the hash it had before the field existed.
     batch_size : int
         Episodes per task.
     """
@@ -86,6 +90,7 @@ class CrowdPlan(StudyPlanBase):
     sensor_range: Annotated[float, Field(gt=0)] | None = None
     miss_rate: Annotated[float, Field(ge=0, lt=1)] = 0.0
     predictor: str = "constant_velocity"
+    strays: Annotated[bool, Field(strict=True)] = False
     batch_size: Annotated[int, Field(ge=1)] = 10
 
     @field_validator("settings")
@@ -118,7 +123,10 @@ class CrowdPlan(StudyPlanBase):
         return tuple(out)
 
     def numbers_spec(self) -> dict[str, Any]:
-        return {**super().numbers_spec(), "schema": CROWD_SCHEMA}
+        spec = {**super().numbers_spec(), "schema": CROWD_SCHEMA}
+        if not spec["strays"]:  # the field came later: plans without it keep their hash
+            del spec["strays"]
+        return spec
 
     def episode_seed(self, setting: str, k: int) -> int:
         """Seed of episode ``k`` of ``setting``: the people and every policy's draws."""
@@ -149,6 +157,7 @@ class CrowdPlan(StudyPlanBase):
                 "miss_rate": self.miss_rate,
             },  # fmt: skip
             "predictor": self.predictor,
+            "strays": self.strays,
         }
 
     def describe(self) -> str:
@@ -157,6 +166,7 @@ class CrowdPlan(StudyPlanBase):
             f"({', '.join(self.settings)}) x "
             f"{self.n} episodes x {len(self.policies)} policies ({', '.join(self.policies)}), "
             f"sensor noise {self.sensor_noise} m, seed {self.seed}"
+            + (", trackers pairing strays" if self.strays else "")
         )
 
 
@@ -199,6 +209,7 @@ CROWD_PRESETS: dict[str, dict[str, Any]] = {
         "n": 200,
         "policies": ["mawdo", "guide_only"],
         "sensor_noise": 0.05,
+        "strays": True,  # as Tracker.for_sensor builds a tracker for an imperfect sensor
         "batch_size": 25,
     },
     # every setting, 50 episodes each
