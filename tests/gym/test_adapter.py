@@ -68,18 +68,20 @@ def _compare(info, traj, res):
         assert len(traj) == len(res.trajectory)  # goal or time limit: the whole episode
 
 
-@pytest.mark.parametrize("seed, noise", [(0, 0.0), (1, 0.0), (2, 0.1)])
-def test_random_callable_policy_same_episode_in_env_and_run_episode(seed, noise):
+@pytest.mark.parametrize("seed, noise, strays", [(0, 0.0, False), (1, 0.0, False),
+                                                 (2, 0.1, False), (2, 0.1, True)])  # fmt: skip
+def test_random_callable_policy_same_episode_in_env_and_run_episode(seed, noise, strays):
     scene = scene_of(SETTING, seed)
     opts = {**COMMON, "sensor_noise": noise, "miss_rate": 0.1 if noise else 0.0}
     env = gymnasium.make("mawdo/Crowd-v0", setting=SETTING, sensor_noise=noise,
-                         miss_rate=opts["miss_rate"])  # fmt: skip
+                         miss_rate=opts["miss_rate"], strays=strays)  # fmt: skip
+    assert env.unwrapped.observer.tracker.strays is strays
     in_env = RandomPolicy(1.0)
     in_env.reseed(seed)  # the env path: the caller seeds its own policy
     info, traj = _drive(env, in_env, seed)
 
     judged = RandomPolicy(1.0)
-    policy = CallablePolicy(judged, tracker=Tracker(noise=noise / scene.res),
+    policy = CallablePolicy(judged, tracker=Tracker(noise=noise / scene.res, strays=strays),
                             on_reset=lambda s: judged.reseed(seed))  # fmt: skip
     res = run_episode(world_of(scene, seed), policy, scene.time_limit_steps, seed=seed,
                       sensor=sensor_of(opts, scene.res))  # fmt: skip

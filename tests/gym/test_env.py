@@ -178,6 +178,7 @@ def test_unknown_setting_names_it_and_the_form():
         ({"max_range": 0.0}, "max_range"),
         ({"miss_rate": 1.0}, "miss_rate"),
         ({"max_steps": 0}, "max_steps"),
+        ({"strays": "yes"}, "strays"),
     ],
 )
 def test_bad_option_values(kwargs, match):

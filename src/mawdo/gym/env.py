@@ -78,7 +78,8 @@ class MawdoEnv(gym.Env):
         from mawdo.planning.sense.tracker import Tracker
 
         o = self.options
-        return Observer(o["k"], o["n_rays"], o["max_range"], Tracker(noise=o["sensor_noise"] / res))
+        tracker = Tracker(noise=o["sensor_noise"] / res, strays=o["strays"])
+        return Observer(o["k"], o["n_rays"], o["max_range"], tracker)
 
     # -- what subclasses give ------------------------------------------------------------------
     def _template(self):

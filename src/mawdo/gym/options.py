@@ -18,6 +18,7 @@ COMMON: dict[str, Any] = {
     "sensor_range": None,  # detection range (m); None: unlimited
     "sensor_noise": 0.0,  # s.d. of detected centres (m)
     "miss_rate": 0.0,  # probability of missing an agent in sight, in [0, 1)
+    "strays": False,  # the observation's tracker pairs strays (Tracker's strays)
     "max_steps": None,  # step limit (truncation); None: the scene's or scenario's rule
     "success_reward": 1.0,
     "collision_penalty": -0.25,
@@ -43,6 +44,8 @@ def check_options(env_id: str, given: dict[str, Any], extra: dict[str, Any]) -> 
         check_real("sensor_range", out["sensor_range"], 0.0, low_open=True)
     check_real("sensor_noise", out["sensor_noise"], 0.0)
     check_real("miss_rate", out["miss_rate"], 0.0, 1.0, high_open=True)
+    if not isinstance(out["strays"], bool):
+        raise ValueError(f"strays must be True or False, got {out['strays']!r}")
     if out["max_steps"] is not None:
         check_int("max_steps", out["max_steps"], 1)
     for name in ("success_reward", "collision_penalty"):
