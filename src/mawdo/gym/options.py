@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from mawdo.util.validate import check_int, check_real
+from mawdo.util.validate import check_bool, check_int, check_real
 
 __all__ = ["COMMON", "check_options", "sensor_of"]
 
@@ -44,8 +44,7 @@ def check_options(env_id: str, given: dict[str, Any], extra: dict[str, Any]) -> 
         check_real("sensor_range", out["sensor_range"], 0.0, low_open=True)
     check_real("sensor_noise", out["sensor_noise"], 0.0)
     check_real("miss_rate", out["miss_rate"], 0.0, 1.0, high_open=True)
-    if not isinstance(out["strays"], bool):
-        raise ValueError(f"strays must be True or False, got {out['strays']!r}")
+    check_bool("strays", out["strays"])
     if out["max_steps"] is not None:
         check_int("max_steps", out["max_steps"], 1)
     for name in ("success_reward", "collision_penalty"):

@@ -35,7 +35,7 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from mawdo.planning.sense.reading import Reading, Tracks
-from mawdo.util.validate import check_int, check_real
+from mawdo.util.validate import check_bool, check_int, check_real
 
 __all__ = [
     "NOISE_FLOOR",
@@ -177,9 +177,7 @@ class Tracker:
         self.gate = check_real("gate", gate, 0.0, low_open=True)
         self.max_missed = check_int("max_missed", max_missed, 0)
         self.birth_speed_sd = check_real("birth_speed_sd", birth_speed_sd, 0.0, low_open=True)
-        if not isinstance(strays, bool | np.bool_):
-            raise TypeError(f"strays must be True or False, got {strays!r}")
-        self.strays = bool(strays)
+        self.strays = check_bool("strays", strays)
         self.noise_var = max(self.noise, NOISE_FLOOR) ** 2
         self.reset()
 
@@ -269,29 +267,30 @@ class Tracker:
         centers = self._x[:, :2]
         d2 = mahalanobis2(centers, self._cov[:, :2, :2], z, self.noise_var)
         gap = np.hypot(*(z[None, :, :] - centers[:, None, :]).transpose(2, 0, 1))
-        inside = gap <= (self._radius_sum / self._hits)[:, None]
+        radius = self._radius_sum / self._hits
+        inside = gap <= radius[:, None]
         gated = d2 <= self.gate**2
         allowed = gated | inside
         rows, cols = linear_sum_assignment(np.where(allowed, d2, _FORBIDDEN))
         keep = allowed[rows, cols]
         rows, cols = rows[keep], cols[keep]
         if self.strays and len(rows) < min(gap.shape):  # a track and a detection left over
-            more_r, more_c = self._strays(gap, rows, cols, dt)
+            more_r, more_c = self._strays(gap, radius, rows, cols, dt)
             rows, cols = np.concatenate([rows, more_r]), np.concatenate([cols, more_c])
             order = np.argsort(rows, kind="stable")
             rows, cols = rows[order], cols[order]
         return rows, cols, ~gated[rows, cols]
 
-    def _strays(self, gap, rows, cols, dt: float) -> tuple[np.ndarray, np.ndarray]:
+    def _strays(self, gap, radius, rows, cols, dt: float) -> tuple[np.ndarray, np.ndarray]:
         """(track row, detection index) pairs among those the first assignment left over: each
         detection within its track's radius plus ``2 birth_speed_sd`` px per step since the
-        track's last detection (``gap``: centre distances, tracks x detections, px), nearest
-        first by the Hungarian method."""
+        track's last detection (``gap``: centre distances, tracks x detections, px; ``radius``:
+        the tracks' radii, px), nearest first by the Hungarian method."""
         left_r = np.setdiff1d(np.arange(gap.shape[0]), rows)
         left_c = np.setdiff1d(np.arange(gap.shape[1]), cols)
         sub = gap[np.ix_(left_r, left_c)]
         steps = self._missed[left_r] + dt  # the missed count is the previous step's here
-        reach = self._radius_sum[left_r] / self._hits[left_r] + 2.0 * self.birth_speed_sd * steps
+        reach = radius[left_r] + 2.0 * self.birth_speed_sd * steps
         allowed = sub <= reach[:, None]
         r, c = linear_sum_assignment(np.where(allowed, sub, _FORBIDDEN))
         keep = allowed[r, c]
