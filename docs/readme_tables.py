@@ -119,10 +119,7 @@ OFFICIAL = (
     ("cec2022-official-d10", "CEC 2022 F1-F12, D = 10 (official: 200 000 evaluations, 30 runs)"),
     ("cec2022-official-d20", "CEC 2022 F1-F12, D = 20 (official: 1 000 000 evaluations, 30 runs)"),
     ("cec2017-official-d10", "CEC 2017 F1-F30, D = 10 (official: 100 000 evaluations, 51 runs)"),
-    (
-        "cec2017-official-d30",
-        "CEC 2017 F1-F30, D = 30 (official: 300 000 evaluations, 51 runs; all but scipy's DE)",
-    ),
+    ("cec2017-official-d30", "CEC 2017 F1-F30, D = 30 (official: 300 000 evaluations, 51 runs)"),
 )
 
 

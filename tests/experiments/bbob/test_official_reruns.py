@@ -29,7 +29,15 @@ STORES = {
 # NAME.plan.json in the study's folder
 EXTRA = {
     "cec2017-official-d10": ("ea4eig",),
-    "cec2017-official-d30": ("lshade", "jso", "nlshade_rsp", "ea4eig", "cmaes", "random"),
+    "cec2017-official-d30": (
+        "lshade",
+        "jso",
+        "nlshade_rsp",
+        "ea4eig",
+        "cmaes",
+        "random",
+        "scipy_de",
+    ),
     "cec2022-official-d10": ("ea4eig",),
     "cec2022-official-d20": ("ea4eig",),
 }
