@@ -47,8 +47,15 @@ test: $(DEVSTAMP)
 	$(PY) -m mawdo.jit --jobs 2
 	$(PY) -m pytest -q -n $(TEST_WORKERS) --dist loadfile -m "not slow and not rl" --timeout=600
 
+# The slow tier also computes stored runs of the official CEC studies again bit for bit. Some
+# of them go through OpenBLAS (EA4eig's and the cmaes library's eigendecompositions), whose
+# kernels differ by CPU, as NumPy's AVX-512 loops do (docs/deviations.md#d-cpu); the stores
+# were made with OpenBLAS's Haswell kernels and without those loops, and test-all asks the same
+# of any x86-64 CPU with AVX2 (a setting of your own in the environment wins).
+CPU_PINS := $(shell grep -qs avx2 /proc/cpuinfo && echo OPENBLAS_CORETYPE=$${OPENBLAS_CORETYPE:-Haswell} \
+	$$(grep -qs avx512f /proc/cpuinfo && echo NPY_DISABLE_CPU_FEATURES=$${NPY_DISABLE_CPU_FEATURES:-X86_V4}))
 test-all: $(DEVSTAMP)
-	$(PY) -m pytest -q -m "not rl" --timeout=1800
+	$(CPU_PINS) $(PY) -m pytest -q -m "not rl" --timeout=1800
 
 # The tests that train with stable-baselines3 (marker rl) need PyTorch, which the dev extras
 # leave out: they run in a venv of their own with the rl extra (pip picks the PyTorch build).

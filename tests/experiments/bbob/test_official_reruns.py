@@ -102,7 +102,8 @@ def test_a_stored_run_is_computed_again_bit_for_bit(stores, name, algorithm):
 )
 def test_a_stored_run_of_a_library_reference_is_computed_again_bit_for_bit(stores, name, algorithm):
     # the cmaes library's eigendecomposition runs in OpenBLAS, whose kernels depend on the CPU
-    # (docs/deviations.md): these hold on CPUs that get OpenBLAS's Haswell or Zen kernels
+    # (docs/deviations.md#d-cpu): these hold with OpenBLAS's Haswell or Zen kernels, which
+    # `make test-all` asks for on any x86-64 CPU with AVX2
     _rerun(stores, name, algorithm)
 
 
