@@ -107,7 +107,12 @@ def _stagnated(patience: int):
 
 class _Watched:
     """The cost from ``start`` at ``t0`` as the optimizer sees it (``pure``: it only reads the
-    candidates, :func:`mawdo.minimize.make_problem`); the elite sees every batch it evaluates."""
+    candidates, :func:`mawdo.minimize.make_problem`); the elite sees every batch it evaluates.
+
+    A candidate outside the cost's box is costed, and kept by the elite, as its projection
+    onto the box (:func:`in_box`): not every optimizer keeps its trials inside (EA4eig's jSO
+    step, as its authors coded it, leaves its eigen-crossover trials unrepaired), and the
+    cost refuses coordinates far outside the map."""
 
     pure = True
 
@@ -115,9 +120,17 @@ class _Watched:
         self.cost, self.elite, self.extra, self.start, self.t0 = cost, elite, extra, start, t0
 
     def __call__(self, X):
+        X = in_box(X, *self.cost.bounds)
         f = self.cost(X, start=self.start, t0=self.t0)
         f = f if self.extra is None else f + self.extra(X, self.start)  # kinematic limits
         return self.elite.add(X, f)
+
+
+def in_box(X: np.ndarray, lb: np.ndarray, ub: np.ndarray) -> np.ndarray:
+    """``X`` (candidates, pixels) with every coordinate clipped to ``[lb, ub]``: ``X`` itself
+    when all are inside (the common case, no copy), else a clipped copy (a NaN stays NaN,
+    which the cost prices as NaN)."""
+    return X if np.all(X >= lb) and np.all(X <= ub) else np.clip(X, lb, ub)
 
 
 class Run(DecidingRun, TimedRun, SafeRun, LimitedRun):
@@ -263,7 +276,9 @@ class Run(DecidingRun, TimedRun, SafeRun, LimitedRun):
         """The search's best after :func:`~mawdo.planning.refine.polish.polish` (its cost and the
         evaluations of both); the elite sees every variant. The stall flag stays the search's:
         a polished plan was still one the search could not improve."""
-        x, fx, nfev = res.x[0], float(res.fun[0]), int(res.nfev[0])
+        # the point the objective costed (and the elite kept): an optimizer's best may lie
+        # outside the box (_Watched)
+        x, fx, nfev = in_box(res.x[0], *self.cost.bounds), float(res.fun[0]), int(res.nfev[0])
         if self.cfg.polish_rounds == 0:
             return x, fx, nfev
         cfg, (lb, ub) = self.cfg, self.cost.bounds
