@@ -81,11 +81,17 @@ def test_two_concurrent_writers_one_refused_rows_of_one_plan(tmp_path):
     )  # fmt: skip
     try:
         wait_for(lambda: (tmp_path / "cg.db.lock").exists() and first.poll() is None)
-        second = mawdo(
-            "bench", "run", "--preset", "smoke", "--iters", "20", "--batch-size", "1",
-            "--out", "cg.db", "--force", "--no-progress", cwd=tmp_path,
-        )  # fmt: skip
-        still_running = first.poll() is None
+        # held while the second tries, however fast the machine: the first cannot finish
+        # (and release its lock) while it is stopped
+        os.kill(first.pid, signal.SIGSTOP)
+        try:
+            second = mawdo(
+                "bench", "run", "--preset", "smoke", "--iters", "20", "--batch-size", "1",
+                "--out", "cg.db", "--force", "--no-progress", cwd=tmp_path,
+            )  # fmt: skip
+            still_running = first.poll() is None
+        finally:
+            os.kill(first.pid, signal.SIGCONT)
         out, err = first.communicate(timeout=300)
     finally:
         if first.poll() is None:
