@@ -118,9 +118,10 @@ class _Watched:
 
     def __init__(self, cost: PathCost, elite: Elite, extra, start, t0: float) -> None:
         self.cost, self.elite, self.extra, self.start, self.t0 = cost, elite, extra, start, t0
+        self.lb, self.ub = cost.bounds  # once: the property hands out copies
 
     def __call__(self, X):
-        X = in_box(X, *self.cost.bounds)
+        X = in_box(X, self.lb, self.ub)
         f = self.cost(X, start=self.start, t0=self.t0)
         f = f if self.extra is None else f + self.extra(X, self.start)  # kinematic limits
         return self.elite.add(X, f)
@@ -278,10 +279,11 @@ class Run(DecidingRun, TimedRun, SafeRun, LimitedRun):
         a polished plan was still one the search could not improve."""
         # the point the objective costed (and the elite kept): an optimizer's best may lie
         # outside the box (_Watched)
-        x, fx, nfev = in_box(res.x[0], *self.cost.bounds), float(res.fun[0]), int(res.nfev[0])
+        lb, ub = watched.lb, watched.ub
+        x, fx, nfev = in_box(res.x[0], lb, ub), float(res.fun[0]), int(res.nfev[0])
         if self.cfg.polish_rounds == 0:
             return x, fx, nfev
-        cfg, (lb, ub) = self.cfg, self.cost.bounds
+        cfg = self.cfg
         rounds, steps = cfg.polish_rounds, cfg.polish_steps
         x, fx, extra = polish(watched, x, fx, pos, self.sc.goal, rounds, steps, lb, ub)
         return x, fx, nfev + extra
