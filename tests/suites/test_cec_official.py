@@ -72,13 +72,38 @@ def test_the_official_numbering_and_optima():
 
 @pytest.mark.parametrize("year", [2017, 2022])
 def test_a_point_has_one_value_whatever_its_batch_and_problems_pickle(year):
-    # a run's numbers must not depend on the other runs of its block
-    X = np.random.default_rng(0).uniform(-100, 100, (40, 10))
+    # a run's numbers must not depend on the other runs of its block: batches cut across the
+    # kernel's blocks of 128 points and below its 8 points of a full vector pass
+    X = np.random.default_rng(0).uniform(-100, 100, (300, 10))
+    cuts = [0, 1, 8, 15, 143, 300]
     for fn in TABLES[year]:
         f = get_problem(f"cec{year}", fn.fid, dim=10)
         whole = f(X)
-        np.testing.assert_array_equal(np.concatenate([f(X[:1]), f(X[1:7]), f(X[7:])]), whole)
+        parts = [f(X[a:b]) for a, b in zip(cuts[:-1], cuts[1:], strict=True)]
+        np.testing.assert_array_equal(np.concatenate(parts), whole)
+        np.testing.assert_array_equal([f(x[None])[0] for x in X[:20]], whole[:20])
         np.testing.assert_array_equal(pickle.loads(pickle.dumps(f))(X), whole)
+        np.testing.assert_array_equal(f(np.asfortranarray(X)), whole)  # any memory layout
+
+
+def test_each_basic_function_code_runs_the_function_of_that_name():
+    from mawdo.suites import cec_basic as B
+    from mawdo.suites.cec_kernels import basic
+
+    z = np.random.default_rng(1).uniform(-3, 3, (7, 16))
+    for code, name in enumerate(B.NAMES[:-1]):  # the bi-Rastrigin has its own path
+        t, got, want = B.constants(code, 7), np.empty(16), np.empty(16)
+        basic(code, z, 7, 16, t, got)
+        if name.startswith("levy"):
+            B.levy(z, 7, 16, 1.0 if name == "levy2017" else 0.0, want)
+        elif name in ("happycat", "hgbat"):
+            B.cat(z, 7, 16, name == "hgbat", want)
+        else:
+            getattr(B, name)(z, 7, 16, t, want)
+        np.testing.assert_array_equal(got, want, err_msg=name)
+    out = np.empty(16)
+    basic(B.BI_RASTRIGIN, z, 7, 16, np.zeros(B.WIDTH), out)
+    assert np.isnan(out).all()
 
 
 def test_unknown_function_and_uncovered_dimension_are_named():

@@ -174,15 +174,12 @@ class Data:
         ``(k, D)`` shift vectors (``k = 1`` unless a composition).
     matrix : numpy.ndarray
         ``(k, D, D)`` rotation matrices ``M``, applied as ``z = M @ y``.
-    matrix_t : numpy.ndarray
-        The same matrices transposed, each C-contiguous (what the rotation kernel reads).
     shuffle : numpy.ndarray or None
         ``(k, D)`` 0-based permutations (the files hold them 1-based); None if unused.
     """
 
     shift: np.ndarray
     matrix: np.ndarray
-    matrix_t: np.ndarray
     shuffle: np.ndarray | None
 
 
@@ -215,7 +212,6 @@ def _load(need: FunctionData, dim: int, folder: Path) -> Data:
         text = read_checked(need.year, need.fid, rest[0], folder)
         shuffle = _numbers(text, need.shuffle * dim, rest[0], dtype=int).reshape(-1, dim) - 1
     matrix = matrix.reshape(need.n_matrix, dim, dim)
-    matrix_t = np.ascontiguousarray(matrix.transpose(0, 2, 1))
-    for arr in (matrix, matrix_t, shift):
+    for arr in (matrix, shift):
         arr.flags.writeable = False
-    return Data(shift=shift, matrix=matrix, matrix_t=matrix_t, shuffle=shuffle)
+    return Data(shift=shift, matrix=matrix, shuffle=shuffle)

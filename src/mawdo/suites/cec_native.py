@@ -1,11 +1,12 @@
 """CEC 2017 (F1-F30) and CEC 2022 (F1-F12) computed by mawdo on a whole population, in the
 official numbering: the suites ``cec2017`` and ``cec2022``.
 
-One call evaluates a batch ``(n, D)`` (:mod:`.cec_compose` over the Numba loops of
-:mod:`.cec_basic` and :mod:`.cec_kernels`), from the official input data (:mod:`.cec_data`):
-the official C code's values, bit for bit on 6078 of 6080 probe points and within 1.4e-16
-relative on the others (tests/suites/test_cec_official.py), at 100-220 times less cost per
-point than ``opfunu``'s one-point calls at batch 100 (benchmarks/bench_cec.py). Bounds are
+One call evaluates a batch ``(n, D)`` (:mod:`.cec_compose`: one compiled loop over the Numba
+functions of :mod:`.cec_basic` and :mod:`.cec_kernels`), from the official input data
+(:mod:`.cec_data`): the official C code's values, bit for bit on 6078 of 6080 probe points and
+within 1.4e-16 relative on the others (tests/suites/test_cec_official.py). At batch 100 a point
+costs about 0.3 us at D = 10 and 1 us at D = 30, some 100-250 times less than ``opfunu``'s
+one-point calls (benchmarks/bench_cec.py; the ratio depends on the machine). Bounds are
 ``[-100, 100]^D``; ``f_star`` is the function's bias (``100 * F`` in CEC 2017). The dimensions
 are those the official data cover.
 """
@@ -15,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from mawdo.suites.base import CompetitionScore, SuiteFunction, SuiteSpec, register_suite
-from mawdo.suites.cec_compose import Composition, Hybrid, Plain, evaluate
+from mawdo.suites.cec_compose import Composition, Hybrid, Plain, compile_function, run
 from mawdo.suites.cec_data import CECDataError, load
 from mawdo.suites.cec_tables import TABLES, CECFunction
 
@@ -81,7 +82,7 @@ class CECFormula:
     def __init__(self, year: int, fid: int, dim: int) -> None:
         self.year, self.fid, self.dim = year, fid, dim
         self.function = cec_function(year, fid)
-        self._data = None
+        self._data = self._program = None
 
     @property
     def data(self):
@@ -92,13 +93,15 @@ class CECFormula:
         return self._data
 
     def __call__(self, X: np.ndarray) -> np.ndarray:
-        X = np.asarray(X, dtype=float)
+        X = np.ascontiguousarray(X, dtype=np.float64)
         if X.ndim != 2 or X.shape[1] != self.dim:
             raise ValueError(
                 f"CEC {self.year} F{self.fid} (D={self.dim}) takes points of shape (n, "
                 f"{self.dim}); got {X.shape}"
             )
-        return evaluate(self.function.node, X, self.data) + self.function.bias
+        if self._program is None:
+            self._program = compile_function(self.function.node, self.data)
+        return run(X, self._program, self.function.bias)
 
     def optimum(self) -> np.ndarray:
         """A point where the value is the bias: the (first component's) shift vector, or for
