@@ -76,13 +76,14 @@ class Program(NamedTuple):
     """A function tree in arrays, one row per component (``c``; 1 unless a composition), one
     column per group (``g``; 1 unless a hybrid).
 
-    ``kind`` (c,): PLAIN, BI_RASTRIGIN or HYBRID; ``rotated`` (c,); ``groups`` (c,): groups
-    in use; ``codes``, ``sizes``, ``rates`` (c, g): the groups' basic functions (index in
-    :data:`cec_basic.NAMES`), sizes and scalings (a plain function's before the rotation, as
-    ``sr_func``; a hybrid group's after it); ``consts`` (c, g, w): their
-    :func:`cec_basic.constants`; ``weight`` (c, 4): each component's delta, bias, ``a``,
-    ``b``; ``composite``: whether to weigh components (``cf_cal``); ``shift`` (c, D),
-    ``matrix`` (c, D, D), ``perm`` (c, D): the official data (perm 0-based; zeros if unused).
+    ``kind`` (c,): PLAIN, BI_RASTRIGIN or HYBRID; ``rotated`` (c,; never a plain Schaffer's
+    F7); ``groups`` (c,): groups in use; ``codes``, ``sizes``, ``rates`` (c, g): the groups'
+    basic functions (index in :data:`cec_basic.NAMES`), sizes and scalings (a plain
+    function's before the rotation, as ``sr_func``; a hybrid group's after it); ``consts``
+    (c, g, w): their :func:`cec_basic.constants`; ``weight`` (c, 4): each component's delta,
+    bias, ``a``, ``b``; ``composite``: whether to weigh components (``cf_cal``); ``shift``
+    (c, D), ``matrix`` (c, D, D), ``perm`` (c, D): the official data (perm 0-based; zeros if
+    unused).
     """
 
     kind: np.ndarray
@@ -118,7 +119,9 @@ def compile_function(node, data) -> Program:
     perm = np.zeros((c, dim), dtype=np.int64)
     for i, part in enumerate(parts):
         kind[i], groups_i = _parts(part.function, dim)
-        rotated[i] = getattr(part.function, "rotated", True)
+        rotated[i] = getattr(part.function, "rotated", True) and not (
+            kind[i] == PLAIN and part.function.name == "schaffer_f7"
+        )  # Schaffer's F7 reads the C code's unrotated buffer y, rotated or not
         groups[i] = len(groups_i)
         for k, (name, size) in enumerate(groups_i):
             codes[i, k], sizes[i, k] = B.CODE[name], size
@@ -150,11 +153,11 @@ def _bi_rastrigin(xt, m, rotated, t, shift, matrix, yt, zt, out):
 @kernel
 def _points(xt, m, p, i, yt, zt):
     """The block's points as component ``i`` reads them: shifted, scaled (plain: by its rate
-    before the rotation, as ``sr_func``), rotated (not for Schaffer's F7, which reads the
-    unrotated buffer y) and for a hybrid shuffled. Returns the buffer holding them."""
-    kind, code = p.kind[i], p.codes[i, 0]
+    before the rotation, as ``sr_func``), rotated unless the program says not, and for a
+    hybrid shuffled. Returns the buffer holding them."""
+    kind = p.kind[i]
     K.shift_t(xt, m, p.shift[i], p.rates[i, 0] if kind == PLAIN else 1.0, yt)
-    if kind == PLAIN and not (p.rotated[i] and code != B.SCHAFFER_F7):
+    if kind == PLAIN and not p.rotated[i]:
         return yt
     K.rotate_t(yt, m, p.matrix[i], zt)
     if kind == PLAIN:
@@ -177,7 +180,8 @@ def _component(xt, m, p, i, yt, zt, part, val, out):
     else:
         y = _points(xt, m, p, i, yt, zt)
         hybrid = p.kind[i] == HYBRID
-        out[:m] = 0.0
+        if hybrid:
+            out[:m] = 0.0
         start = 0
         for g in range(p.groups[i]):
             size, code, t = p.sizes[i, g], p.codes[i, g], p.consts[i, g]
